@@ -1,0 +1,29 @@
+//! # vesselcad
+//!
+//! A data-oriented engine for parametric process vessels: shells, heads, cones,
+//! skirts, saddles and nozzles described by parameters, kept as exact rational
+//! NURBS surfaces.
+//!
+//! ## Pipeline
+//!
+//! ```text
+//! parameters (mm, degrees) ──parts──▶ exact NURBS patches ──nurbs::grid──▶ samples
+//! ```
+//!
+//! - [`nurbs`] — the kernel: knot vectors, basis functions, rational curves and
+//!   surfaces, batched grid evaluation, refinement, transforms, point inversion.
+//! - [`parts`] — functions from vessel-part parameters to their exact patches in the
+//!   part's local frame (axis +Z).
+//!
+//! ## Units and tolerances
+//!
+//! Lengths are millimetres and angles degrees at every public boundary; radians are
+//! used inside the kernel. The modelling tolerance [`MODEL_EPSILON`] (point
+//! coincidence, knot equality) is separate from any meshing tolerance.
+
+pub mod nurbs;
+pub mod parts;
+
+/// Modelling epsilon in mm: two points closer than this are the same point.
+/// Not a meshing tolerance.
+pub const MODEL_EPSILON: f64 = 1e-9;

@@ -1,0 +1,140 @@
+//! B-spline basis functions and their derivatives (Piegl & Tiller A2.2 and A2.3).
+//!
+//! These are the innermost loops of every evaluation in the kernel. They work on
+//! fixed-size stack arrays of length [`MAX_ORDER`] so that evaluation allocates
+//! nothing. The thesis's listing of A2.2 has two bugs (its right-hand term uses
+//! `U[i+1-j]` instead of `U[i+j]`, and it omits the final `N[j] = saved`); this is the
+//! corrected algorithm.
+
+use super::MAX_DEGREE;
+
+/// Largest number of non-zero basis functions at a parameter: `MAX_DEGREE + 1`.
+pub const MAX_ORDER: usize = MAX_DEGREE + 1;
+
+/// Values of the `p + 1` non-zero basis functions `N_{span−p..=span, p}(u)`
+/// (A2.2). Only the first `p + 1` entries of the result are meaningful.
+#[inline]
+pub fn basis_functions(knots: &[f64], span: usize, u: f64, p: usize) -> [f64; MAX_ORDER] {
+    let mut n = [0.0; MAX_ORDER];
+    let mut left = [0.0; MAX_ORDER];
+    let mut right = [0.0; MAX_ORDER];
+    n[0] = 1.0;
+    for j in 1..=p {
+        left[j] = u - knots[span + 1 - j];
+        right[j] = knots[span + j] - u;
+        let mut saved = 0.0;
+        for r in 0..j {
+            let temp = n[r] / (right[r + 1] + left[j - r]);
+            n[r] = saved + right[r + 1] * temp;
+            saved = left[j - r] * temp;
+        }
+        n[j] = saved;
+    }
+    n
+}
+
+/// Values and derivatives up to order `d` of the non-zero basis functions at `u`
+/// (A2.3): `result[k][j]` is the k-th derivative of `N_{span−p+j, p}(u)`.
+/// Derivatives above the degree are zero.
+pub fn basis_derivatives<const D: usize>(
+    knots: &[f64],
+    span: usize,
+    u: f64,
+    p: usize,
+) -> [[f64; MAX_ORDER]; D] {
+    let mut ders = [[0.0; MAX_ORDER]; D];
+    let mut ndu = [[0.0; MAX_ORDER]; MAX_ORDER];
+    let mut left = [0.0; MAX_ORDER];
+    let mut right = [0.0; MAX_ORDER];
+    ndu[0][0] = 1.0;
+    for j in 1..=p {
+        left[j] = u - knots[span + 1 - j];
+        right[j] = knots[span + j] - u;
+        let mut saved = 0.0;
+        for r in 0..j {
+            // Lower triangle: knot differences; upper triangle: basis values.
+            ndu[j][r] = right[r + 1] + left[j - r];
+            let temp = ndu[r][j - 1] / ndu[j][r];
+            ndu[r][j] = saved + right[r + 1] * temp;
+            saved = left[j - r] * temp;
+        }
+        ndu[j][j] = saved;
+    }
+    if D == 0 {
+        return ders;
+    }
+    for j in 0..=p {
+        ders[0][j] = ndu[j][p];
+    }
+    let order = D - 1; // highest derivative requested
+    let mut a = [[0.0; MAX_ORDER]; 2];
+    for r in 0..=p {
+        let (mut s1, mut s2) = (0usize, 1usize);
+        a[0][0] = 1.0;
+        for k in 1..=order.min(p) {
+            let mut d = 0.0;
+            let rk = r as isize - k as isize;
+            let pk = p - k;
+            if r >= k {
+                a[s2][0] = a[s1][0] / ndu[pk + 1][r - k];
+                d = a[s2][0] * ndu[r - k][pk];
+            }
+            let j1 = if rk >= -1 { 1 } else { (-rk) as usize };
+            let j2 = if (r as isize - 1) <= pk as isize {
+                k - 1
+            } else {
+                p - r
+            };
+            for j in j1..=j2 {
+                let idx = (rk + j as isize) as usize;
+                a[s2][j] = (a[s1][j] - a[s1][j - 1]) / ndu[pk + 1][idx];
+                d += a[s2][j] * ndu[idx][pk];
+            }
+            if r <= pk {
+                a[s2][k] = -a[s1][k - 1] / ndu[pk + 1][r];
+                d += a[s2][k] * ndu[r][pk];
+            }
+            ders[k][r] = d;
+            std::mem::swap(&mut s1, &mut s2);
+        }
+    }
+    let mut factor = p as f64;
+    for (k, row) in ders.iter_mut().enumerate().skip(1).take(order.min(p)) {
+        for value in row.iter_mut().take(p + 1) {
+            *value *= factor;
+        }
+        factor *= (p - k) as f64;
+    }
+    ders
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    const U: [f64; 11] = [0.0, 0.0, 0.0, 1.0, 2.0, 3.0, 4.0, 4.0, 5.0, 5.0, 5.0];
+
+    #[test]
+    fn thesis_example_values() {
+        // Piegl & Tiller Ex. 2.3 / thesis Ch. 2.2.5: span 4 at u = 5/2.
+        let n = basis_functions(&U, 4, 2.5, 2);
+        assert_eq!(&n[..3], &[0.125, 0.75, 0.125]);
+    }
+
+    #[test]
+    fn derivatives_match_finite_differences() {
+        let h = 1e-6;
+        for &u in &[0.3, 1.7, 2.5, 3.2, 4.6] {
+            let span = 2 + U[3..9].iter().take_while(|&&k| k <= u).count();
+            let ders = basis_derivatives::<3>(&U, span, u, 2);
+            let plus = basis_functions(&U, span, u + h, 2);
+            let minus = basis_functions(&U, span, u - h, 2);
+            for j in 0..3 {
+                let fd = (plus[j] - minus[j]) / (2.0 * h);
+                assert!((fd - ders[1][j]).abs() < 1e-6, "u={u} j={j}");
+                let fd2 = (plus[j] - 2.0 * ders[0][j] + minus[j]) / (h * h);
+                assert!((fd2 - ders[2][j]).abs() < 1e-3, "u={u} j={j}");
+            }
+        }
+    }
+}

@@ -1,0 +1,112 @@
+//! Typed errors of the NURBS kernel.
+//!
+//! Every constructor of the kernel (`KnotVector::try_new`, `NurbsCurve::try_new`,
+//! `NurbsSurface::try_new`, the builders) validates its input and reports what is wrong
+//! with one of these variants. Part builders wrap them in their own error type.
+
+use thiserror::Error;
+
+/// What can be wrong with knots, control points or weights handed to the kernel.
+#[derive(Debug, Error, Clone, PartialEq)]
+pub enum NurbsError {
+    /// The degree is 0 or above [`MAX_DEGREE`](super::MAX_DEGREE).
+    #[error("degree {degree} is out of range: expected 1..={max}")]
+    DegreeOutOfRange {
+        /// The degree that was asked for.
+        degree: usize,
+        /// The largest degree the kernel supports.
+        max: usize,
+    },
+    /// A knot is NaN or infinite.
+    #[error("knot {index} is {value}: knots must be finite")]
+    KnotNotFinite {
+        /// Position of the knot in the vector.
+        index: usize,
+        /// Its value.
+        value: f64,
+    },
+    /// Two consecutive knots decrease.
+    #[error("knot {index} ({next}) is smaller than knot {} ({previous}): knots must not decrease", index - 1)]
+    KnotsDecreasing {
+        /// Position of the smaller knot.
+        index: usize,
+        /// The knot before it.
+        previous: f64,
+        /// The knot itself.
+        next: f64,
+    },
+    /// The first or last knot does not repeat exactly `degree + 1` times.
+    #[error(
+        "knot vector is not clamped: the {end} knot appears {multiplicity} times, expected {expected}"
+    )]
+    NotClamped {
+        /// `"first"` or `"last"`.
+        end: &'static str,
+        /// How many times it appears.
+        multiplicity: usize,
+        /// `degree + 1`.
+        expected: usize,
+    },
+    /// An interior knot repeats more than `degree + 1` times.
+    #[error("knot {knot} appears {multiplicity} times: at most degree + 1 = {max} allowed")]
+    MultiplicityTooHigh {
+        /// The repeated knot value.
+        knot: f64,
+        /// How many times it appears.
+        multiplicity: usize,
+        /// The largest multiplicity allowed.
+        max: usize,
+    },
+    /// First and last knot are equal, so the parameter domain is empty.
+    #[error("knot vector spans an empty domain [{start}, {end}]")]
+    EmptyDomain {
+        /// First knot.
+        start: f64,
+        /// Last knot.
+        end: f64,
+    },
+    /// The number of control points does not match `knots − degree − 1`.
+    #[error("{direction}: {got} control points given, the knot vector needs {expected}")]
+    PointCountMismatch {
+        /// `"curve"`, `"u"` or `"v"`.
+        direction: &'static str,
+        /// `knots − degree − 1`.
+        expected: usize,
+        /// Number of points given.
+        got: usize,
+    },
+    /// A weight is zero, negative, NaN or infinite.
+    #[error("weight {index} is {weight}: weights must be finite and > 0")]
+    WeightNotPositive {
+        /// Index of the control point (row-major for surfaces).
+        index: usize,
+        /// The weight.
+        weight: f64,
+    },
+    /// A control-point coordinate is NaN or infinite.
+    #[error("control point {index} has a non-finite coordinate")]
+    PointNotFinite {
+        /// Index of the control point (row-major for surfaces).
+        index: usize,
+    },
+    /// A knot value to insert or split at lies outside the domain.
+    #[error("parameter {value} lies outside the domain [{start}, {end}]")]
+    ParameterOutOfDomain {
+        /// The parameter.
+        value: f64,
+        /// Domain start.
+        start: f64,
+        /// Domain end.
+        end: f64,
+    },
+    /// A geometric builder received an invalid number or an impossible combination.
+    #[error("{what} is {value}: {rule}")]
+    InvalidGeometry {
+        /// The argument, e.g. `"radius"`.
+        what: &'static str,
+        /// Its value.
+        value: f64,
+        /// The rule it breaks, e.g. `"must be finite and > 0"`.
+        rule: &'static str,
+    },
+}

@@ -1,0 +1,41 @@
+//! Toriconical head: a toroidal knuckle turning the flange through the half-angle α,
+//! then a cone of half-angle α closing to an apex on the axis.
+
+use glam::DVec3;
+
+use super::profile::{Segment, arc_xz, knuckle_torus, xz};
+use crate::nurbs::builders::line;
+use crate::parts::check::{in_range, less_than, positive};
+use crate::parts::{Analytic, PartError};
+
+/// Profile from the tangent line at `z0`: knuckle, then cone to the apex.
+pub(super) fn profile(
+    part: &'static str,
+    r: f64,
+    z0: f64,
+    half_angle_deg: f64,
+    knuckle: f64,
+) -> Result<Vec<Segment>, PartError> {
+    let alpha = in_range(part, "half_angle", half_angle_deg, 0.0, 90.0, true)?.to_radians();
+    let knuckle = positive(part, "knuckle_radius", knuckle)?;
+    less_than(part, "knuckle_radius", knuckle, r, "the outside radius D/2")?;
+    let major = r - knuckle;
+    let end = xz(major + knuckle * alpha.cos(), z0 + knuckle * alpha.sin());
+    let apex = xz(0.0, end.z + end.x / alpha.tan());
+    Ok(vec![
+        Segment {
+            name: "knuckle",
+            curve: arc_xz(major, z0, knuckle, 0.0, alpha)?,
+            analytic: knuckle_torus(major, knuckle, z0),
+        },
+        Segment {
+            name: "cone",
+            curve: line(end, apex)?,
+            analytic: Analytic::Cone {
+                apex,
+                axis: -DVec3::Z,
+                half_angle: alpha,
+            },
+        },
+    ])
+}
