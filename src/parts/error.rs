@@ -2,6 +2,7 @@
 
 use thiserror::Error;
 
+use super::tables::TableError;
 use crate::nurbs::NurbsError;
 
 /// Why a part could not be built.
@@ -22,4 +23,7 @@ pub enum PartError {
     /// The kernel rejected a construction (a bug if parameters were validated).
     #[error("geometry kernel: {0}")]
     Kernel(#[from] NurbsError),
+    /// A size, schedule or class that the ASME tables do not list.
+    #[error("{0}")]
+    Table(#[from] TableError),
 }

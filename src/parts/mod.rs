@@ -18,6 +18,7 @@ mod patch;
 pub mod heads;
 mod reducer;
 mod shell;
+pub mod tables;
 
 pub use analytic::Analytic;
 pub use error::PartError;
