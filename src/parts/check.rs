@@ -3,29 +3,44 @@
 
 use super::PartError;
 
-/// A dimension that must be finite and > 0.
+/// Smallest dimension a part accepts, mm (a micrometre).
+pub const MIN_DIMENSION: f64 = 1e-3;
+/// Largest dimension a part accepts, mm (a kilometre).
+pub const MAX_DIMENSION: f64 = 1e6;
+
+/// A dimension that must lie in [`MIN_DIMENSION`, `MAX_DIMENSION`].
 pub(crate) fn positive(
     part: &'static str,
     field: &'static str,
     value: f64,
 ) -> Result<f64, PartError> {
-    if value.is_finite() && value > 0.0 {
+    if (MIN_DIMENSION..=MAX_DIMENSION).contains(&value) {
         Ok(value)
     } else {
-        Err(invalid(part, field, value, "must be a finite number > 0"))
+        Err(invalid(
+            part,
+            field,
+            value,
+            format!("must be a finite number between {MIN_DIMENSION} and {MAX_DIMENSION} mm"),
+        ))
     }
 }
 
-/// A dimension that must be finite and ≥ 0.
+/// A dimension that is 0 (absent) or lies in [`MIN_DIMENSION`, `MAX_DIMENSION`].
 pub(crate) fn non_negative(
     part: &'static str,
     field: &'static str,
     value: f64,
 ) -> Result<f64, PartError> {
-    if value.is_finite() && value >= 0.0 {
+    if value == 0.0 || (MIN_DIMENSION..=MAX_DIMENSION).contains(&value) {
         Ok(value)
     } else {
-        Err(invalid(part, field, value, "must be a finite number ≥ 0"))
+        Err(invalid(
+            part,
+            field,
+            value,
+            format!("must be 0 or a finite number between {MIN_DIMENSION} and {MAX_DIMENSION} mm"),
+        ))
     }
 }
 

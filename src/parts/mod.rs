@@ -21,6 +21,7 @@ mod shell;
 pub mod tables;
 
 pub use analytic::Analytic;
+pub use check::{MAX_DIMENSION, MIN_DIMENSION};
 pub use error::PartError;
 pub use patch::Patch;
 pub use reducer::{Reducer, ReducerAlignment};

@@ -11,7 +11,7 @@ use std::f64::consts::TAU;
 
 use glam::DVec3;
 
-use super::check::{finite, less_than, positive};
+use super::check::{in_range, less_than, positive};
 use super::{Analytic, PartError, Patch};
 use crate::nurbs::builders::{circular_arc, line, revolve, ruled};
 
@@ -51,7 +51,7 @@ impl Reducer {
         less_than(PART, "small_diameter", small, large, "the large diameter")?;
         positive(PART, "length", self.length)?;
         if let ReducerAlignment::Eccentric { flat_side } = self.alignment {
-            finite(PART, "flat_side", flat_side)?;
+            in_range(PART, "flat_side", flat_side, -360.0, 360.0, false)?;
         }
         Ok(())
     }

@@ -3,7 +3,7 @@
 
 use glam::DVec3;
 
-use super::profile::{Segment, xz};
+use super::profile::{MAX_HALF_ANGLE, MIN_HALF_ANGLE, Segment, xz};
 use crate::nurbs::builders::line;
 use crate::parts::check::{in_range, less_than, non_negative};
 use crate::parts::{Analytic, PartError};
@@ -16,7 +16,15 @@ pub(super) fn profile(
     half_angle_deg: f64,
     small_diameter: f64,
 ) -> Result<Vec<Segment>, PartError> {
-    let alpha = in_range(part, "half_angle", half_angle_deg, 0.0, 90.0, true)?.to_radians();
+    let alpha = in_range(
+        part,
+        "half_angle",
+        half_angle_deg,
+        MIN_HALF_ANGLE,
+        MAX_HALF_ANGLE,
+        false,
+    )?
+    .to_radians();
     let small = non_negative(part, "small_diameter", small_diameter)?;
     less_than(
         part,

@@ -48,7 +48,7 @@ pub enum HeadKind {
     },
     /// A cone closing to an apex, joined to the flange by a toroidal knuckle.
     Toriconical {
-        /// Half-angle between axis and cone, degrees, 0 < α < 90.
+        /// Half-angle between axis and cone, degrees, 1 ≤ α ≤ 89.
         half_angle: f64,
         /// Knuckle radius, mm; 0 < r < D/2.
         knuckle_radius: f64,
@@ -56,7 +56,7 @@ pub enum HeadKind {
     /// A cone without knuckle, closing to an apex (`small_diameter` = 0) or truncated
     /// at `small_diameter` and closed there by a flat plate.
     Conical {
-        /// Half-angle between axis and cone, degrees, 0 < α < 90.
+        /// Half-angle between axis and cone, degrees, 1 ≤ α ≤ 89.
         half_angle: f64,
         /// Diameter of the small end, mm; 0 for an apex, else < D.
         small_diameter: f64,

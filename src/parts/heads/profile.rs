@@ -48,3 +48,8 @@ pub(super) fn knuckle_torus(major: f64, minor: f64, z: f64) -> Analytic {
         minor,
     }
 }
+
+/// Smallest cone half-angle a head accepts, degrees.
+pub(super) const MIN_HALF_ANGLE: f64 = 1.0;
+/// Largest cone half-angle a head accepts, degrees (beyond it, design a flat head).
+pub(super) const MAX_HALF_ANGLE: f64 = 89.0;

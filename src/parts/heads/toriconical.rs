@@ -3,7 +3,7 @@
 
 use glam::DVec3;
 
-use super::profile::{Segment, arc_xz, knuckle_torus, xz};
+use super::profile::{MAX_HALF_ANGLE, MIN_HALF_ANGLE, Segment, arc_xz, knuckle_torus, xz};
 use crate::nurbs::builders::line;
 use crate::parts::check::{in_range, less_than, positive};
 use crate::parts::{Analytic, PartError};
@@ -16,7 +16,15 @@ pub(super) fn profile(
     half_angle_deg: f64,
     knuckle: f64,
 ) -> Result<Vec<Segment>, PartError> {
-    let alpha = in_range(part, "half_angle", half_angle_deg, 0.0, 90.0, true)?.to_radians();
+    let alpha = in_range(
+        part,
+        "half_angle",
+        half_angle_deg,
+        MIN_HALF_ANGLE,
+        MAX_HALF_ANGLE,
+        false,
+    )?
+    .to_radians();
     let knuckle = positive(part, "knuckle_radius", knuckle)?;
     less_than(part, "knuckle_radius", knuckle, r, "the outside radius D/2")?;
     let major = r - knuckle;
