@@ -21,6 +21,9 @@
 //! used inside the kernel. The modelling tolerance [`MODEL_EPSILON`] (point
 //! coincidence, knot equality) is separate from any meshing tolerance.
 
+pub mod constraints;
+pub mod design;
+pub mod mesh;
 pub mod nurbs;
 pub mod parts;
 

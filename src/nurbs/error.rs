@@ -109,4 +109,50 @@ pub enum NurbsError {
         /// The rule it breaks, e.g. `"must be finite and > 0"`.
         rule: &'static str,
     },
+    /// A Gauss–Legendre rule was asked for with 0 nodes or more than the kernel computes.
+    #[error("Gauss–Legendre order {order} is out of range: expected 1..={max}")]
+    QuadratureOrderOutOfRange {
+        /// The number of nodes asked for.
+        order: usize,
+        /// The largest order supported.
+        max: usize,
+    },
+    /// A point to project onto a curve or surface has a NaN or infinite coordinate.
+    #[error("query point ({x}, {y}, {z}) has a non-finite coordinate")]
+    QueryPointNotFinite {
+        /// x coordinate.
+        x: f64,
+        /// y coordinate.
+        y: f64,
+        /// z coordinate.
+        z: f64,
+    },
+    /// Knot insertion or refinement would repeat a knot more often than the degree.
+    #[error(
+        "inserting knot {knot} would give it multiplicity {multiplicity}: at most the degree {degree} allowed"
+    )]
+    InsertionExceedsDegree {
+        /// The knot value being inserted.
+        knot: f64,
+        /// Its multiplicity after the insertion.
+        multiplicity: usize,
+        /// The degree, the largest multiplicity insertion may reach.
+        degree: usize,
+    },
+    /// Knots handed to refinement are not in non-decreasing order.
+    #[error("refinement knot {index} ({next}) is smaller than the one before ({previous})")]
+    RefinementKnotsUnsorted {
+        /// Position of the smaller knot in the slice given.
+        index: usize,
+        /// The knot before it.
+        previous: f64,
+        /// The knot itself.
+        next: f64,
+    },
+    /// A parallel projection's direction lies (almost) in the target plane.
+    #[error("projection direction is parallel to the plane (cosine to its normal {cosine})")]
+    ProjectionParallelToPlane {
+        /// Cosine of the angle between the unit direction and the unit plane normal.
+        cosine: f64,
+    },
 }

@@ -8,20 +8,33 @@
 //! Everything is concrete `f64` (`glam::DVec3`/`DVec4`). Rational geometry is stored
 //! as B-splines over homogeneous points `(w·x, w·y, w·z, w)`.
 
+mod arc_length;
 mod basis;
+mod bbox;
 pub mod builders;
 mod compatible;
 mod curve;
+mod elevate;
 mod error;
+mod gauss;
+pub mod grid;
+mod integrals;
+mod inversion;
 mod knots;
+mod refine;
 mod surface;
+mod transform;
 
 pub use basis::{MAX_ORDER, basis_derivatives, basis_functions};
+pub use bbox::Aabb;
 pub use compatible::make_compatible;
 pub use curve::{CurveDerivatives, NurbsCurve, euclidean, homogeneous};
 pub use error::NurbsError;
+pub use gauss::GaussLegendre;
+pub use inversion::{CurveProjection, SurfaceProjection};
 pub use knots::KnotVector;
 pub use surface::{NurbsSurface, Side, SurfaceDerivatives};
+pub use transform::{MIN_PROJECTION_COSINE, ParallelProjection};
 
 /// Highest degree the kernel evaluates (fixed-size stack buffers are sized from it).
 pub const MAX_DEGREE: usize = 12;

@@ -11,18 +11,32 @@
 //! surface (plates such as saddle webs are their mid-surfaces).
 
 mod analytic;
+mod boot;
 mod check;
 mod error;
 mod patch;
 
 pub mod heads;
+mod legs;
+mod lugs;
+mod measure;
+mod nozzle;
 mod reducer;
+mod saddle;
 mod shell;
+mod skirt;
 pub mod tables;
 
 pub use analytic::Analytic;
+pub use boot::Boot;
 pub use check::{MAX_DIMENSION, MIN_DIMENSION};
 pub use error::PartError;
+pub use legs::{Legs, MAX_LEGS};
+pub use lugs::{Lugs, MAX_LUGS};
+pub use measure::{enclosed_volume, surface_area};
+pub use nozzle::{Facing, FlangeType, Nozzle};
 pub use patch::Patch;
 pub use reducer::{Reducer, ReducerAlignment};
+pub use saddle::Saddle;
 pub use shell::Shell;
+pub use skirt::Skirt;

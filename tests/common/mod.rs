@@ -104,3 +104,28 @@ pub fn assert_outward(patches: &[Patch], interior: impl Fn(DVec3) -> DVec3) {
         }
     }
 }
+
+/// Asserts that two curves trace the same points at the same fractions of their
+/// domains (`reversed`: `b` runs the other way), within `tol`. Used for shared
+/// edges of patches, given as `surface.boundary(side)`.
+pub fn assert_same_curve(
+    a: &vesselcad::nurbs::NurbsCurve,
+    b: &vesselcad::nurbs::NurbsCurve,
+    reversed: bool,
+    tol: f64,
+    what: &str,
+) {
+    let (a0, a1) = a.domain();
+    let (b0, b1) = b.domain();
+    for k in 0..=64 {
+        let t = k as f64 / 64.0;
+        let s = if reversed { 1.0 - t } else { t };
+        let pa = a.point(a0 + (a1 - a0) * t);
+        let pb = b.point(b0 + (b1 - b0) * s);
+        assert!(
+            (pa - pb).length() <= tol,
+            "{what}: {pa} and {pb} are {} apart at t={t}",
+            (pa - pb).length()
+        );
+    }
+}

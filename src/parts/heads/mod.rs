@@ -150,6 +150,44 @@ impl Head {
         Ok(self.depth()? + self.straight_flange)
     }
 
+    /// Height above the open end (z = 0) of the head's outside surface at distance
+    /// `radius` from the axis (0 ≤ radius ≤ D/2): the top of the head at that
+    /// radius. The meridian's radius never increases away from the open end, so
+    /// this is one bisection per call.
+    pub fn height_at_radius(&self, radius: f64) -> Result<f64, PartError> {
+        let segments = self.profile()?;
+        let radius = radius.max(0.0);
+        let mut best = 0.0f64;
+        for s in &segments {
+            let (a, b) = s.curve.domain();
+            let (ra, rb) = (s.curve.point(a).x, s.curve.point(b).x);
+            let (lo_r, hi_r) = (ra.min(rb), ra.max(rb));
+            if radius < lo_r - 1e-12 || radius > hi_r + 1e-12 {
+                continue;
+            }
+            if (hi_r - lo_r).abs() <= 1e-12 {
+                // A cylinder piece at this radius: its top.
+                best = best.max(s.curve.point(a).z.max(s.curve.point(b).z));
+                continue;
+            }
+            // Bisection on the parameter: radius decreases from a to b.
+            let (mut lo, mut hi) = (a, b);
+            for _ in 0..200 {
+                let mid = 0.5 * (lo + hi);
+                if s.curve.point(mid).x > radius {
+                    lo = mid;
+                } else {
+                    hi = mid;
+                }
+                if hi - lo <= f64::EPSILON * (b - a) {
+                    break;
+                }
+            }
+            best = best.max(s.curve.point(0.5 * (lo + hi)).z);
+        }
+        Ok(best)
+    }
+
     /// The exact patches, outward normals, from the open end (z = 0) upwards.
     pub fn patches(&self) -> Result<Vec<Patch>, PartError> {
         self.profile()?

@@ -1,0 +1,275 @@
+//! Nozzles on their hosts: the nozzle-on-host relation.
+//!
+//! A shell (or reducer) nozzle is radial: its axis leaves the vessel axis at its
+//! elevation in the direction of its orientation, and its projection is measured
+//! from the vessel axis to the flange face. A head nozzle is parallel to the vessel
+//! axis at `offset` from the head centreline, and its projection is measured from
+//! the head's tangent line. Because the frame is derived from the host every time,
+//! a nozzle stays on its host when the host's diameter, length or position changes:
+//! orientation and elevation are kept and the neck length adapts to keep the
+//! projection.
+
+use glam::{DAffine3, DMat3, DVec3};
+
+use super::geometry::{PartGeometry, report_part_error};
+use super::stack::Course;
+use super::{Report, ResolvedNozzle, ResolvedPart, orientation_direction};
+use crate::design::{FacingDesign, FlangeDesign, NozzleDesign, VesselDesign};
+use crate::parts::tables::{FlangeClass, Nps, PipeSchedule};
+use crate::parts::{Facing, FlangeType, Nozzle};
+
+/// Parses a schedule name as written in design files.
+pub(crate) fn parse_schedule(name: &str) -> Option<PipeSchedule> {
+    Some(match name.to_ascii_uppercase().as_str() {
+        "STD" => PipeSchedule::Std,
+        "XS" => PipeSchedule::Xs,
+        "40" => PipeSchedule::S40,
+        "80" => PipeSchedule::S80,
+        "160" => PipeSchedule::S160,
+        "XXS" => PipeSchedule::Xxs,
+        _ => return None,
+    })
+}
+
+/// The nozzle part parameters of a design nozzle, or `None` after reporting.
+fn nozzle_part(n: &NozzleDesign, path: &str, report: &mut Report) -> Option<Nozzle> {
+    let id = Some(n.mark.as_str());
+    let nps = Nps::try_new(n.size)
+        .map_err(|e| report.push(format!("{path}.size"), id, "size", n.size, e.to_string()))
+        .ok();
+    let class = FlangeClass::try_from_rating(n.rating)
+        .map_err(|_| {
+            report.push(
+                format!("{path}.rating"),
+                id,
+                "rating",
+                n.rating,
+                "expected one of 150, 300, 600, 900",
+            )
+        })
+        .ok();
+    let schedule = parse_schedule(&n.schedule);
+    if schedule.is_none() {
+        report.push(
+            format!("{path}.schedule"),
+            id,
+            "schedule",
+            format!("{:?}", n.schedule),
+            "expected one of STD, XS, 40, 80, 160, XXS",
+        );
+    }
+    let flange = match n.flange {
+        FlangeDesign::WeldNeck => FlangeType::WeldNeck,
+        FlangeDesign::SlipOn => FlangeType::SlipOn,
+        FlangeDesign::Blind => FlangeType::Blind,
+    };
+    let facing = match n.facing {
+        FacingDesign::RaisedFace => Facing::RaisedFace,
+        FacingDesign::FlatFace => Facing::FlatFace,
+        FacingDesign::RingJoint => Facing::RingJoint,
+    };
+    Some(Nozzle {
+        nps: nps?,
+        schedule: schedule?,
+        class: class?,
+        flange,
+        facing,
+        projection: n.projection,
+    })
+}
+
+/// A frame whose +Z is `axis` (unit) and whose +X is `x_hint` made orthogonal.
+fn frame_along(origin: DVec3, axis: DVec3, x_hint: DVec3) -> DAffine3 {
+    let x = (x_hint - axis * x_hint.dot(axis))
+        .try_normalize()
+        .unwrap_or_else(|| axis.any_orthonormal_vector());
+    let y = axis.cross(x);
+    DAffine3::from_mat3_translation(DMat3::from_cols(x, y, axis), origin)
+}
+
+/// Resolves every nozzle against the resolved parts.
+pub(crate) fn place(
+    vessel: &VesselDesign,
+    parts: &[Option<ResolvedPart>],
+    courses: &[Course],
+    report: &mut Report,
+) -> Vec<ResolvedNozzle> {
+    let mut out = Vec::new();
+    for (k, n) in vessel.nozzles.iter().enumerate() {
+        let path = format!("nozzles[{k}]");
+        let id = Some(n.mark.as_str());
+        let Some(host) = vessel.parts.iter().position(|p| p.id() == n.host) else {
+            report.push(
+                format!("{path}.host"),
+                id,
+                "host",
+                &n.host,
+                "no part of this vessel has that id",
+            );
+            continue;
+        };
+        let part = nozzle_part(n, &path, report);
+        if !n.orientation.is_finite() || n.orientation.abs() > 360.0 {
+            report.push(
+                format!("{path}.orientation"),
+                id,
+                "orientation",
+                n.orientation,
+                "must be a finite angle between -360 and 360 degrees",
+            );
+            continue;
+        }
+        let (Some(mut nozzle), Some(resolved_host)) = (part, parts[host].as_ref()) else {
+            continue; // reported already
+        };
+        let flange_length = match nozzle.flange_length() {
+            Ok(f) => f,
+            Err(e) => {
+                report_part_error(report, &path, &n.mark, &e, &[]);
+                continue;
+            }
+        };
+        let pipe_od = nozzle.outside_diameter();
+        let pad = match n.pad {
+            None => None,
+            Some(p) => {
+                if !(p.od.is_finite() && p.od > pipe_od && p.od <= 1e6) {
+                    report.push(
+                        format!("{path}.pad.od"),
+                        id,
+                        "od",
+                        p.od,
+                        format!("the pad OD must exceed the nozzle OD ({pipe_od} mm)"),
+                    );
+                    continue;
+                }
+                if !(p.thickness.is_finite() && p.thickness > 0.0 && p.thickness <= 1e3) {
+                    report.push(
+                        format!("{path}.pad.thickness"),
+                        id,
+                        "thickness",
+                        p.thickness,
+                        "must be a finite number between 0 and 1000 mm",
+                    );
+                    continue;
+                }
+                Some((p.od, p.thickness))
+            }
+        };
+        let reach = pad.map_or(pipe_od, |p| p.0);
+        let dir = orientation_direction(vessel.kind, vessel.placement.rotation, n.orientation);
+        let frame = match &resolved_host.geometry {
+            PartGeometry::Shell(_) | PartGeometry::Reducer(_) => {
+                if n.offset.is_some() {
+                    report.push(
+                        format!("{path}.offset"),
+                        id,
+                        "offset",
+                        n.offset.unwrap_or(0.0),
+                        "applies to head nozzles only; shell nozzles take an elevation",
+                    );
+                    continue;
+                }
+                let Some(z) = n.elevation.filter(|z| z.is_finite()) else {
+                    report.push(
+                        format!("{path}.elevation"),
+                        id,
+                        "elevation",
+                        format!("{:?}", n.elevation),
+                        "a shell nozzle needs a finite elevation (position along the axis)",
+                    );
+                    continue;
+                };
+                let Some(course) = courses.iter().find(|c| c.part == host) else {
+                    continue;
+                };
+                let host_od = course.diameter_at(z);
+                if pipe_od >= course.d_start.min(course.d_end) {
+                    report.push(format!("{path}.size"), id, "size", n.size, format!("the nozzle OD {pipe_od} mm must be smaller than its host {}'s OD {} mm", n.host, course.d_start.min(course.d_end)));
+                    continue;
+                }
+                if z - reach / 2.0 < course.start - 1e-9 || z + reach / 2.0 > course.end + 1e-9 {
+                    report.push(format!("{path}.elevation"), id, "elevation", z, format!("the nozzle (reach {reach} mm) must lie within its host {} from {} to {} mm", n.host, course.start, course.end));
+                    continue;
+                }
+                if n.projection - flange_length <= host_od / 2.0 {
+                    report.push(format!("{path}.projection"), id, "projection", n.projection, format!("must exceed the host radius {} mm plus the flange length {flange_length} mm", host_od / 2.0));
+                    continue;
+                }
+                frame_along(DVec3::new(0.0, 0.0, z), dir, DVec3::Z)
+            }
+            PartGeometry::Head(head) => {
+                if n.elevation.is_some() {
+                    report.push(
+                        format!("{path}.elevation"),
+                        id,
+                        "elevation",
+                        n.elevation.unwrap_or(0.0),
+                        "applies to shell nozzles only; head nozzles take an offset",
+                    );
+                    continue;
+                }
+                let offset = n.offset.unwrap_or(0.0);
+                let radius = head.outside_diameter / 2.0;
+                if !(offset.is_finite() && offset >= 0.0) {
+                    report.push(
+                        format!("{path}.offset"),
+                        id,
+                        "offset",
+                        offset,
+                        "must be a finite number ≥ 0",
+                    );
+                    continue;
+                }
+                if pipe_od >= head.outside_diameter {
+                    report.push(format!("{path}.size"), id, "size", n.size, format!("the nozzle OD {pipe_od} mm must be smaller than its host {}'s OD {} mm", n.host, head.outside_diameter));
+                    continue;
+                }
+                if offset + reach / 2.0 >= radius {
+                    report.push(format!("{path}.offset"), id, "offset", offset, format!("offset + half the nozzle reach ({reach} mm) must stay inside the head radius {radius} mm"));
+                    continue;
+                }
+                let rise = head.height_at_radius(offset).unwrap_or(0.0) - head.straight_flange;
+                if n.projection - flange_length <= rise {
+                    report.push(format!("{path}.projection"), id, "projection", n.projection, format!("must exceed the head's height at that offset ({rise:.1} mm) plus the flange length {flange_length} mm"));
+                    continue;
+                }
+                // Work in the head's local frame (dome towards +Z), then map.
+                let inverse = resolved_host.frame.matrix3.inverse();
+                let local_dir = inverse * dir;
+                let origin = DVec3::new(
+                    local_dir.x * offset,
+                    local_dir.y * offset,
+                    head.straight_flange,
+                );
+                resolved_host.frame * frame_along(origin, DVec3::Z, DVec3::X)
+            }
+            other => {
+                report.push(
+                    format!("{path}.host"),
+                    id,
+                    "host",
+                    &n.host,
+                    format!(
+                        "nozzles mount on shells, reducers or heads, not on a {}",
+                        other.kind()
+                    ),
+                );
+                continue;
+            }
+        };
+        if let Err(e) = nozzle.validate() {
+            report_part_error(report, &path, &n.mark, &e, &[]);
+            continue;
+        }
+        nozzle.projection = n.projection;
+        out.push(ResolvedNozzle {
+            mark: n.mark.clone(),
+            host,
+            frame,
+            geometry: nozzle,
+            pad,
+        });
+    }
+    out
+}

@@ -1,0 +1,466 @@
+//! The design file's data model: what a designer writes, as serde types.
+//!
+//! This is the top of the data flow: a design file (or an edit) is parsed into these
+//! types, checked by [`super::validate`], and then becomes parameter components on
+//! ECS entities. Every entity has a stable id — the vessel `tag`, a part `id`, a
+//! nozzle `mark`, a note `id` — which edits and viewers use.
+//!
+//! Lengths are mm and angles degrees once loaded (a file may declare
+//! `"units": "in"`; see [`super::units`]). Enumerations are lowercase strings; parts
+//! are externally tagged objects (`{"shell": {...}}`) so that every error can name
+//! its exact JSON path.
+
+use serde::{Deserialize, Serialize};
+
+/// The format tag every design file carries.
+pub const FORMAT: &str = "vesselcad/1";
+
+/// A whole design file: one vessel or a plant of many.
+#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct Design {
+    /// Always [`FORMAT`].
+    pub format: String,
+    /// Length unit of the file; loaded designs are always in mm.
+    #[serde(default)]
+    pub units: Units,
+    /// The vessels, each with a unique tag.
+    pub vessels: Vec<VesselDesign>,
+}
+
+/// Length unit declared by a design file.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Serialize, Deserialize)]
+#[serde(rename_all = "lowercase")]
+pub enum Units {
+    /// Millimetres (the default, and what loaded designs use).
+    #[default]
+    Mm,
+    /// Inches, converted to mm on load.
+    In,
+}
+
+/// One vessel: its identity, placement, design data, parts, nozzles and notes.
+#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct VesselDesign {
+    /// Unique tag, e.g. `"V-101"`.
+    pub tag: String,
+    /// Horizontal drum, vertical vessel or column, or storage tank.
+    pub kind: VesselKind,
+    /// Where the vessel stands in the plant.
+    #[serde(default)]
+    pub placement: Placement,
+    /// Design conditions, carried as data.
+    #[serde(default)]
+    pub design: DesignConditions,
+    /// Parts: the stack (heads, shell courses, reducers) in order along the axis —
+    /// bottom to top for vertical vessels, left to right for horizontal ones — and the
+    /// attached parts (skirt, saddles, legs, lugs, boot) anywhere in the list.
+    pub parts: Vec<PartDesign>,
+    /// Nozzles and manways.
+    #[serde(default)]
+    pub nozzles: Vec<NozzleDesign>,
+    /// Notes attached to the vessel or to one of its parts or nozzles.
+    #[serde(default)]
+    pub notes: Vec<NoteDesign>,
+}
+
+/// What kind of vessel this is; decides the local frame's orientation in the plant.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash, Serialize, Deserialize)]
+#[serde(rename_all = "lowercase")]
+pub enum VesselKind {
+    /// Axis horizontal; local +Y is plant up.
+    Horizontal,
+    /// Axis vertical (plant +Z).
+    Vertical,
+    /// Vertical storage tank (flat bottom, roof on top).
+    Tank,
+}
+
+/// Placement of the vessel's datum (the bottom or left tangent line on the axis)
+/// in the plant frame (X east, Y north, Z up), mm.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct Placement {
+    /// Datum position `[east, north, up]`, mm.
+    #[serde(default)]
+    pub position: [f64; 3],
+    /// Plan rotation, degrees clockwise from north: for a horizontal vessel the
+    /// bearing of its axis, for a vertical one its turn about its axis.
+    #[serde(default)]
+    pub rotation: f64,
+}
+
+/// Design conditions of a vessel (data for drawings and weights).
+#[derive(Clone, Debug, Default, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct DesignConditions {
+    /// Design pressure, kPa gauge.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub pressure: Option<f64>,
+    /// Design temperature, °C.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub temperature: Option<f64>,
+    /// Corrosion allowance, mm.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub corrosion_allowance: Option<f64>,
+    /// Material specification, e.g. `"SA-516-70"`.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub material: Option<String>,
+}
+
+/// One part, tagged by its kind: `{"shell": {...}}`, `{"head": {...}}`, ….
+#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
+#[serde(rename_all = "lowercase")]
+pub enum PartDesign {
+    /// A cylindrical shell course.
+    Shell(ShellDesign),
+    /// A head closing an end of the stack.
+    Head(HeadDesign),
+    /// A conical reducer between two courses.
+    Reducer(ReducerDesign),
+    /// A skirt under a vertical vessel.
+    Skirt(SkirtDesign),
+    /// A saddle under a horizontal vessel.
+    Saddle(SaddleDesign),
+    /// Pipe legs.
+    Legs(LegsDesign),
+    /// Support lugs.
+    Lugs(LugsDesign),
+    /// A boot (small drum) under a horizontal vessel.
+    Boot(BootDesign),
+}
+
+/// A cylindrical shell course.
+#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct ShellDesign {
+    /// Part id, unique in the vessel.
+    pub id: String,
+    /// Outside diameter, mm.
+    pub od: f64,
+    /// Length along the axis, mm.
+    pub length: f64,
+    /// Wall thickness, mm.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub thickness: Option<f64>,
+}
+
+/// Shape of a head.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash, Serialize, Deserialize)]
+#[serde(rename_all = "lowercase")]
+pub enum HeadShape {
+    /// Half sphere.
+    Hemispherical,
+    /// Semi-ellipsoidal (`ratio`, default 2 for 2:1).
+    Ellipsoidal,
+    /// Flanged and dished (`crown_radius`, `knuckle_radius`; default ASME F&D).
+    Torispherical,
+    /// Cone with knuckle (`half_angle`, `knuckle_radius`).
+    Toriconical,
+    /// Cone without knuckle (`half_angle`, optional `small_od`).
+    Conical,
+    /// Flat plate (optional `knuckle_radius` for a flanged flat head).
+    Flat,
+}
+
+/// A head. Its outside diameter is the OD of the course it closes.
+#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct HeadDesign {
+    /// Part id, unique in the vessel.
+    pub id: String,
+    /// Head shape.
+    pub shape: HeadShape,
+    /// Ellipsoidal: D / (2 h); default 2.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub ratio: Option<f64>,
+    /// Torispherical: crown radius, mm; default = OD.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub crown_radius: Option<f64>,
+    /// Torispherical, toriconical, flat: knuckle radius, mm; defaults 0.06 × crown
+    /// radius (torispherical), 0.06 × OD (toriconical), 0 (flat).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub knuckle_radius: Option<f64>,
+    /// Toriconical, conical: half-angle, degrees; default 30.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub half_angle: Option<f64>,
+    /// Conical: small-end outside diameter, mm; default 0 (apex).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub small_od: Option<f64>,
+    /// Straight flange length, mm; default 0.
+    #[serde(default, skip_serializing_if = "is_zero")]
+    pub straight_flange: f64,
+    /// Thickness, mm.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub thickness: Option<f64>,
+}
+
+/// A conical reducer; its end diameters are those of the courses it joins.
+#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct ReducerDesign {
+    /// Part id, unique in the vessel.
+    pub id: String,
+    /// Axial length, mm.
+    pub length: f64,
+    /// For an eccentric reducer, the angle of its flat side (degrees about the
+    /// vessel axis, the same convention as nozzle orientations); absent: concentric.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub eccentric: Option<f64>,
+    /// Thickness, mm.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub thickness: Option<f64>,
+}
+
+/// A skirt; its top diameter is the OD of the bottom course.
+#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct SkirtDesign {
+    /// Part id, unique in the vessel.
+    pub id: String,
+    /// Height from the base to the bottom tangent line, mm.
+    pub height: f64,
+    /// Flare angle, degrees, 0–45; default 0 (straight).
+    #[serde(default, skip_serializing_if = "is_zero")]
+    pub flare_angle: f64,
+    /// Base ring radial width, mm; default 0 (none).
+    #[serde(default, skip_serializing_if = "is_zero")]
+    pub base_ring_width: f64,
+    /// Thickness, mm.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub thickness: Option<f64>,
+}
+
+/// A saddle; it fits the OD of the course it stands under.
+#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct SaddleDesign {
+    /// Part id, unique in the vessel.
+    pub id: String,
+    /// Position of the saddle centre along the axis from the left tangent line, mm.
+    /// Default: 0.2 L from the nearer tangent line (first saddle left, second right).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub position: Option<f64>,
+    /// Contact angle, degrees, 120–150; default 120.
+    #[serde(default = "default_contact_angle")]
+    pub contact_angle: f64,
+    /// Width along the vessel axis, mm.
+    pub width: f64,
+    /// Height from the base to the vessel axis, mm.
+    pub height: f64,
+    /// Web thickness, mm; default 12.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub web_thickness: Option<f64>,
+}
+
+/// Pipe legs around a small vertical vessel.
+#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct LegsDesign {
+    /// Part id, unique in the vessel.
+    pub id: String,
+    /// Number of legs, ≥ 3.
+    pub count: u32,
+    /// Leg pipe size, NPS inches.
+    pub size: f64,
+    /// Length from the floor to the bottom tangent line, mm.
+    pub length: f64,
+    /// Orientation of the first leg, degrees; default 0.
+    #[serde(default, skip_serializing_if = "is_zero")]
+    pub orientation: f64,
+}
+
+/// Support lugs on a vertical vessel.
+#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct LugsDesign {
+    /// Part id, unique in the vessel.
+    pub id: String,
+    /// Number of lugs, ≥ 2.
+    pub count: u32,
+    /// Elevation of the bearing plate from the datum, mm.
+    pub elevation: f64,
+    /// Gusset height, mm.
+    pub height: f64,
+    /// Radial projection from the shell, mm.
+    pub projection: f64,
+    /// Distance between the two gussets, mm.
+    pub width: f64,
+    /// Orientation of the first lug, degrees; default 0.
+    #[serde(default, skip_serializing_if = "is_zero")]
+    pub orientation: f64,
+}
+
+/// A boot under a horizontal vessel.
+#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct BootDesign {
+    /// Part id, unique in the vessel.
+    pub id: String,
+    /// Position of the boot axis along the vessel axis from the left tangent line, mm.
+    pub position: f64,
+    /// Boot outside diameter, mm.
+    pub od: f64,
+    /// Length below the vessel shell, mm.
+    pub length: f64,
+    /// Shape of its bottom head; default ellipsoidal 2:1.
+    #[serde(default = "default_boot_head")]
+    pub head: HeadShape,
+}
+
+/// Flange facing.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash, Serialize, Deserialize)]
+pub enum FacingDesign {
+    /// Raised face.
+    #[serde(rename = "RF")]
+    RaisedFace,
+    /// Flat face.
+    #[serde(rename = "FF")]
+    FlatFace,
+    /// Ring-type joint.
+    #[serde(rename = "RTJ")]
+    RingJoint,
+}
+
+/// Flange type of a nozzle.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Hash, Serialize, Deserialize)]
+pub enum FlangeDesign {
+    /// Weld-neck (the default).
+    #[default]
+    #[serde(rename = "WN")]
+    WeldNeck,
+    /// Slip-on.
+    #[serde(rename = "SO")]
+    SlipOn,
+    /// Closed by a blind flange.
+    #[serde(rename = "blind")]
+    Blind,
+}
+
+/// A nozzle or manway mounted on a host part (a shell course or a head).
+#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct NozzleDesign {
+    /// Mark, unique in the vessel: `N1`, `M1` (manway), ….
+    pub mark: String,
+    /// Service, e.g. `"inlet"`.
+    #[serde(default, skip_serializing_if = "String::is_empty")]
+    pub service: String,
+    /// Size, NPS inches (1/2 to 24).
+    pub size: f64,
+    /// Pressure class: 150, 300, 600 or 900.
+    pub rating: u32,
+    /// Flange facing.
+    #[serde(default = "default_facing")]
+    pub facing: FacingDesign,
+    /// Flange type; default weld-neck.
+    #[serde(default)]
+    pub flange: FlangeDesign,
+    /// Neck pipe schedule: `"STD"`, `"XS"`, `"40"`, `"80"`, `"160"`, `"XXS"`; default STD.
+    #[serde(default = "default_schedule")]
+    pub schedule: String,
+    /// Id of the host part.
+    pub host: String,
+    /// Orientation, degrees: for vertical vessels the plan angle from plant north,
+    /// clockwise; for horizontal ones the angle about the axis from the top,
+    /// clockwise looking from the left end.
+    pub orientation: f64,
+    /// Shell nozzles: elevation of the nozzle axis above the datum (vertical) or its
+    /// position along the axis from the left tangent line (horizontal), mm.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub elevation: Option<f64>,
+    /// Head nozzles: distance of the nozzle axis from the head centreline, mm;
+    /// default 0.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub offset: Option<f64>,
+    /// Distance from the vessel axis (shell nozzles) or from the head tangent line
+    /// (head nozzles) to the flange face, mm.
+    pub projection: f64,
+    /// Reinforcing pad.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub pad: Option<PadDesign>,
+}
+
+/// A reinforcing pad around a nozzle.
+#[derive(Clone, Copy, Debug, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct PadDesign {
+    /// Pad outside diameter, mm.
+    pub od: f64,
+    /// Pad thickness, mm.
+    pub thickness: f64,
+}
+
+/// A note: text anchored to a target (vessel tag, part id or nozzle mark).
+#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct NoteDesign {
+    /// Note id, unique in the vessel.
+    pub id: String,
+    /// The text.
+    pub text: String,
+    /// What it annotates: the vessel's tag, a part id or a nozzle mark.
+    pub target: String,
+    /// Offset of the text from the target's anchor, in the vessel frame, mm.
+    #[serde(default)]
+    pub offset: [f64; 3],
+}
+
+fn is_zero(v: &f64) -> bool {
+    *v == 0.0
+}
+
+fn default_contact_angle() -> f64 {
+    120.0
+}
+
+fn default_boot_head() -> HeadShape {
+    HeadShape::Ellipsoidal
+}
+
+fn default_facing() -> FacingDesign {
+    FacingDesign::RaisedFace
+}
+
+fn default_schedule() -> String {
+    "STD".to_string()
+}
+
+impl PartDesign {
+    /// The part's id.
+    pub fn id(&self) -> &str {
+        match self {
+            PartDesign::Shell(p) => &p.id,
+            PartDesign::Head(p) => &p.id,
+            PartDesign::Reducer(p) => &p.id,
+            PartDesign::Skirt(p) => &p.id,
+            PartDesign::Saddle(p) => &p.id,
+            PartDesign::Legs(p) => &p.id,
+            PartDesign::Lugs(p) => &p.id,
+            PartDesign::Boot(p) => &p.id,
+        }
+    }
+
+    /// The kind's name as written in files: `"shell"`, `"head"`, ….
+    pub fn kind(&self) -> &'static str {
+        match self {
+            PartDesign::Shell(_) => "shell",
+            PartDesign::Head(_) => "head",
+            PartDesign::Reducer(_) => "reducer",
+            PartDesign::Skirt(_) => "skirt",
+            PartDesign::Saddle(_) => "saddle",
+            PartDesign::Legs(_) => "legs",
+            PartDesign::Lugs(_) => "lugs",
+            PartDesign::Boot(_) => "boot",
+        }
+    }
+
+    /// True for parts of the axial stack (heads, shells, reducers).
+    pub fn in_stack(&self) -> bool {
+        matches!(
+            self,
+            PartDesign::Shell(_) | PartDesign::Head(_) | PartDesign::Reducer(_)
+        )
+    }
+}

@@ -1,0 +1,37 @@
+//! Meshes: triangle approximations of patches, in the patch's part-local frame.
+//!
+//! The Tessellate stage turns each dirty patch's exact surface into a [`Mesh`] with
+//! [`tessellate`], driven by [`TessellationOptions`]. Exporters convert meshes to
+//! `f32` buffers; the model keeps them in `f64`.
+
+mod grid;
+mod options;
+
+pub use grid::tessellate;
+pub use options::{OptionsError, TessellationOptions};
+
+use glam::DVec3;
+
+/// An indexed triangle mesh with per-vertex exact normals.
+#[derive(Clone, Debug, Default, PartialEq)]
+pub struct Mesh {
+    /// Vertex positions, mm.
+    pub positions: Vec<DVec3>,
+    /// Unit normals from the exact surface, one per vertex.
+    pub normals: Vec<DVec3>,
+    /// Triangles as vertex-index triples, counter-clockwise seen from outside.
+    pub indices: Vec<u32>,
+}
+
+impl Mesh {
+    /// Number of triangles.
+    pub fn triangle_count(&self) -> usize {
+        self.indices.len() / 3
+    }
+
+    /// Axis-aligned bounds `(min, max)` of the vertices; `None` when empty.
+    pub fn bounds(&self) -> Option<(DVec3, DVec3)> {
+        let first = *self.positions.first()?;
+        Some(self.positions.iter().fold((first, first), |(lo, hi), &p| (lo.min(p), hi.max(p))))
+    }
+}
