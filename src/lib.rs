@@ -21,11 +21,18 @@
 //! used inside the kernel. The modelling tolerance [`MODEL_EPSILON`] (point
 //! coincidence, knot equality) is separate from any meshing tolerance.
 
+#[path = "../components/mod.rs"]
+pub mod components;
 pub mod constraints;
 pub mod design;
+pub mod export;
 pub mod mesh;
+pub mod model;
 pub mod nurbs;
 pub mod parts;
+pub mod report;
+#[path = "../systems/mod.rs"]
+pub mod systems;
 
 /// Modelling epsilon in mm: two points closer than this are the same point.
 /// Not a meshing tolerance.

@@ -28,15 +28,11 @@ fn surfaces() -> Vec<(String, NurbsSurface)> {
     }
     .patches()
     .expect("the shell is valid");
-    head.into_iter()
-        .chain(shell)
-        .map(|p| {
-            (
-                format!("F&D {}", p.name).replace("F&D shell", "shell"),
-                p.surface,
-            )
-        })
-        .collect()
+    let head = head
+        .into_iter()
+        .map(|p| (format!("F&D {}", p.name), p.surface));
+    let shell = shell.into_iter().map(|p| (p.name.to_string(), p.surface));
+    head.chain(shell).collect()
 }
 
 /// `n` parameters evenly spaced over `(a, b)`, both ends included.

@@ -118,25 +118,86 @@ pub(crate) struct Report<'a> {
 
 impl Report<'_> {
     /// Records a broken rule at `path` (relative to the vessel) for `entity`.
+    ///
+    /// The entity is `tag/id`; where the tag or id is empty (itself an error) it is
+    /// named by its place instead (`vessels[0]`, `V-101/nozzles[2]`), so that every
+    /// violation names an entity.
     pub fn push(
         &mut self,
         path: impl AsRef<str>,
         entity: Option<&str>,
         field: &str,
-        value: impl ToString,
+        value: impl ShowValue,
         rule: impl Into<String>,
     ) {
+        let path = path.as_ref();
+        let tag = if self.tag.trim().is_empty() {
+            self.prefix.as_str()
+        } else {
+            self.tag
+        };
         let entity = match entity {
-            Some(id) => format!("{}/{}", self.tag, id),
-            None => self.tag.to_string(),
+            Some(id) if id.trim().is_empty() => {
+                format!("{tag}/{}", path.split('.').next().unwrap_or(path))
+            }
+            Some(id) => format!("{tag}/{id}"),
+            None => tag.to_string(),
         };
         self.violations.push(RuleViolation {
-            path: format!("{}.{}", self.prefix, path.as_ref()),
+            path: format!("{}.{}", self.prefix, path),
             entity,
             field: field.to_string(),
-            value: value.to_string(),
+            value: value.show(),
             rule: rule.into(),
         });
+    }
+}
+
+/// How a violation shows the offending value: text as written, numbers compactly
+/// (`1e300` rather than 301 digits).
+pub(crate) trait ShowValue {
+    /// The value as a violation shows it.
+    fn show(&self) -> String;
+}
+
+impl ShowValue for f64 {
+    fn show(&self) -> String {
+        let magnitude = self.abs();
+        if self.is_finite() && magnitude != 0.0 && !(1e-4..1e9).contains(&magnitude) {
+            format!("{self:e}")
+        } else {
+            self.to_string()
+        }
+    }
+}
+
+impl ShowValue for u32 {
+    fn show(&self) -> String {
+        self.to_string()
+    }
+}
+
+impl ShowValue for usize {
+    fn show(&self) -> String {
+        self.to_string()
+    }
+}
+
+impl ShowValue for str {
+    fn show(&self) -> String {
+        self.to_string()
+    }
+}
+
+impl ShowValue for String {
+    fn show(&self) -> String {
+        self.clone()
+    }
+}
+
+impl<T: ShowValue + ?Sized> ShowValue for &T {
+    fn show(&self) -> String {
+        (**self).show()
     }
 }
 

@@ -13,7 +13,7 @@ use glam::{DAffine3, DMat3, DVec3};
 
 use super::geometry::{PartGeometry, report_part_error};
 use super::stack::Course;
-use super::{Report, ResolvedNozzle, ResolvedPart, orientation_direction};
+use super::{Report, ResolvedNozzle, ResolvedPart, ShowValue, orientation_direction};
 use crate::design::{FacingDesign, FlangeDesign, NozzleDesign, VesselDesign};
 use crate::parts::tables::{FlangeClass, Nps, PipeSchedule};
 use crate::parts::{Facing, FlangeType, Nozzle};
@@ -156,7 +156,9 @@ pub(crate) fn place(
                 Some((p.od, p.thickness))
             }
         };
+        // The footprint on the host: the pad where there is one, else the neck.
         let reach = pad.map_or(pipe_od, |p| p.0);
+        let reach_name = if pad.is_some() { "pad OD" } else { "nozzle OD" };
         let dir = orientation_direction(vessel.kind, vessel.placement.rotation, n.orientation);
         let frame = match &resolved_host.geometry {
             PartGeometry::Shell(_) | PartGeometry::Reducer(_) => {
@@ -175,7 +177,7 @@ pub(crate) fn place(
                         format!("{path}.elevation"),
                         id,
                         "elevation",
-                        format!("{:?}", n.elevation),
+                        n.elevation.map_or("missing".to_string(), |z| z.show()),
                         "a shell nozzle needs a finite elevation (position along the axis)",
                     );
                     continue;
@@ -189,7 +191,7 @@ pub(crate) fn place(
                     continue;
                 }
                 if z - reach / 2.0 < course.start - 1e-9 || z + reach / 2.0 > course.end + 1e-9 {
-                    report.push(format!("{path}.elevation"), id, "elevation", z, format!("the nozzle (reach {reach} mm) must lie within its host {} from {} to {} mm", n.host, course.start, course.end));
+                    report.push(format!("{path}.elevation"), id, "elevation", z, format!("the {reach_name} {reach} mm centred here must lie within its host {}, which spans {} to {} mm", n.host, course.start, course.end));
                     continue;
                 }
                 if n.projection - flange_length <= host_od / 2.0 {
@@ -226,7 +228,7 @@ pub(crate) fn place(
                     continue;
                 }
                 if offset + reach / 2.0 >= radius {
-                    report.push(format!("{path}.offset"), id, "offset", offset, format!("offset + half the nozzle reach ({reach} mm) must stay inside the head radius {radius} mm"));
+                    report.push(format!("{path}.offset"), id, "offset", offset, format!("offset + half the {reach_name} ({} mm) must stay inside the head radius {radius} mm", reach / 2.0));
                     continue;
                 }
                 let rise = head.height_at_radius(offset).unwrap_or(0.0) - head.straight_flange;

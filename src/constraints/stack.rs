@@ -298,6 +298,12 @@ pub(crate) fn head_kind(
         ("half_angle", h.half_angle),
         ("small_od", h.small_od),
     ];
+    let shape = format!("{:?}", h.shape).to_lowercase();
+    let article = if shape.starts_with(['a', 'e', 'i', 'o', 'u']) {
+        "an"
+    } else {
+        "a"
+    };
     let allowed: &[&str] = match h.shape {
         HeadShape::Hemispherical => &[],
         HeadShape::Ellipsoidal => &["ratio"],
@@ -316,7 +322,14 @@ pub(crate) fn head_kind(
                 Some(&h.id),
                 name,
                 v,
-                format!("does not apply to a {:?} head", h.shape).to_lowercase(),
+                if allowed.is_empty() {
+                    format!("does not apply to {article} {shape} head (it takes no shape fields)")
+                } else {
+                    format!(
+                        "does not apply to {article} {shape} head (it takes {})",
+                        allowed.join(", ")
+                    )
+                },
             );
             ok = false;
         }

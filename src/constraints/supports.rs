@@ -122,7 +122,7 @@ pub(crate) fn place(
                     (None, 2, 0) => 0.2 * tangent_length,
                     (None, 2, _) => 0.8 * tangent_length,
                     (None, n, _) => {
-                        report.push(format!("{path}.position"), Some(id), "position", "none", format!("the default positions (0.2 L from each tangent line) need exactly two saddles, this vessel has {n}: give a position"));
+                        report.push(format!("{path}.position"), Some(id), "position", "missing", format!("the default positions (0.2 L from each tangent line) need exactly two saddles, this vessel has {n}: give a position"));
                         continue;
                     }
                 };

@@ -18,13 +18,21 @@ pub fn parse(text: &str) -> Result<Design, DesignError> {
 /// Parses JSON into a design without unit conversion or rule checks; errors carry
 /// the JSON path and the line and column.
 pub fn parse_unchecked(text: &str) -> Result<Design, DesignError> {
+    check_top_level_object(text)?;
     let de = &mut serde_json::Deserializer::from_str(text);
     let design: Design = serde_path_to_error::deserialize(de).map_err(|e| {
+        // serde_path_to_error writes `?` for a segment it never learned (the key
+        // being read when the JSON broke off); the enclosing object is the place.
         let path = e.path().to_string();
-        DesignError::Syntax {
-            path,
-            message: e.into_inner().to_string(),
-        }
+        let path = match path.strip_suffix("?").map(|p| p.trim_end_matches('.')) {
+            Some("") => ".".to_string(),
+            Some(p) => p.to_string(),
+            None => path,
+        };
+        let inner = e.into_inner();
+        let message = explain_expected_value(text, &inner)
+            .unwrap_or_else(|| plain_type_names(&inner.to_string()));
+        DesignError::Syntax { path, message }
     })?;
     if design.format != FORMAT {
         return Err(DesignError::Format {
@@ -33,6 +41,96 @@ pub fn parse_unchecked(text: &str) -> Result<Design, DesignError> {
         });
     }
     Ok(design)
+}
+
+/// A design is a JSON object. serde would also read a struct from an array of its
+/// fields in order, which gives baffling errors for a file that is not an object
+/// at all, so anything but `{` (after whitespace) is rejected here, up front.
+fn check_top_level_object(text: &str) -> Result<(), DesignError> {
+    let Some((offset, first)) = text.char_indices().find(|(_, c)| !c.is_whitespace()) else {
+        return Ok(()); // serde reports the empty file
+    };
+    if first == '{' {
+        return Ok(());
+    }
+    let (line, column) = line_column(text, offset);
+    Err(DesignError::Syntax {
+        path: ".".into(),
+        message: format!(
+            "invalid type: {}, expected a JSON object {{\"format\": \"{FORMAT}\", \"vessels\": [...]}} \
+             at line {line} column {column}",
+            describe_token(&text[offset..])
+        ),
+    })
+}
+
+/// serde_json says only "expected value" when a field that takes a name (an
+/// enumeration such as `kind`, `shape` or `facing`) holds a number, array, `true`,
+/// `false` or `null`. Where the text at the error position is a well-formed JSON
+/// value, the real problem is its type: say so.
+fn explain_expected_value(text: &str, error: &serde_json::Error) -> Option<String> {
+    if !error.to_string().starts_with("expected value at") {
+        return None;
+    }
+    let (line, column) = (error.line(), error.column());
+    let start = text
+        .split_inclusive('\n')
+        .take(line.saturating_sub(1))
+        .map(str::len)
+        .sum::<usize>();
+    // serde_json counts columns in bytes, from 1.
+    let token = text.get(start + column.checked_sub(1)?..)?;
+    let first = token.chars().next()?;
+    if !(first.is_ascii_digit() || matches!(first, '-' | '[' | 't' | 'f' | 'n')) {
+        return None; // really malformed JSON: keep serde's message
+    }
+    Some(format!(
+        "invalid type: {}, expected a name (a JSON string such as \"vertical\", \
+         \"ellipsoidal\" or \"RF\") at line {line} column {column}",
+        describe_token(token)
+    ))
+}
+
+/// serde names the Rust types it expected (`f64`, `u32`, `struct ShellDesign`);
+/// a designer reads JSON, so say it in JSON's words.
+fn plain_type_names(message: &str) -> String {
+    let mut out = message
+        .replace("expected f64", "expected a number")
+        .replace("expected u32", "expected a whole number ≥ 0");
+    if let Some(at) = out.find("expected struct ") {
+        let name_start = at + "expected struct ".len();
+        let name_end = out[name_start..]
+            .find(|c: char| !c.is_alphanumeric())
+            .map_or(out.len(), |k| name_start + k);
+        out.replace_range(at..name_end, "expected an object");
+    }
+    out
+}
+
+/// Line and column (both from 1, the column in bytes as serde_json counts it) of a
+/// byte offset.
+fn line_column(text: &str, offset: usize) -> (usize, usize) {
+    let before = text.get(..offset).unwrap_or(text);
+    let line = before.matches('\n').count() + 1;
+    let column = before.rsplit('\n').next().map_or(0, str::len) + 1;
+    (line, column)
+}
+
+/// A short description of the JSON value starting `text`, e.g. ``integer `2` ``.
+fn describe_token(text: &str) -> String {
+    let word: String = text
+        .chars()
+        .take_while(|c| c.is_ascii_alphanumeric() || matches!(c, '-' | '+' | '.'))
+        .take(24)
+        .collect();
+    match text.chars().next() {
+        Some('[') => "an array".into(),
+        Some('"') => "a string".into(),
+        Some('{') => "an object".into(),
+        Some(c) if c.is_ascii_digit() || c == '-' => format!("number `{word}`"),
+        _ if !word.is_empty() => format!("`{word}`"),
+        _ => "an unexpected character".into(),
+    }
 }
 
 /// Reads and parses a design file.

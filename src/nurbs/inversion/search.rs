@@ -27,6 +27,10 @@ pub(super) const MAX_HALVINGS: usize = 40;
 /// Local minima of the sampled distance that Newton is started from.
 pub(super) const MAX_SEEDS: usize = 4;
 
+/// Relative change of a squared distance that floating point cannot resolve: near the
+/// minimum, where ½|S − P|² is flat, steps are told apart by their residual instead.
+const ROUNDING: f64 = 16.0 * f64::EPSILON;
+
 /// One parameter direction: its domain and whether the geometry closes across it.
 #[derive(Clone, Copy)]
 pub(super) struct Axis {
@@ -105,10 +109,6 @@ pub(super) fn check_query(p: DVec3) -> Result<DVec3, NurbsError> {
     }
 }
 
-/// Relative change of a squared distance that floating point cannot resolve: near the
-/// minimum, where ½|S − P|² is flat, steps are told apart by their residual instead.
-pub(super) const ROUNDING: f64 = 16.0 * f64::EPSILON;
-
 /// A trial point of a line search: squared distance, stationarity residual (the
 /// largest |(S − P) · S_k| / |S_k| over the free directions k) and the state.
 pub(super) struct Trial<T> {
@@ -119,7 +119,8 @@ pub(super) struct Trial<T> {
 
 /// Backtracking on the projected path: the first `t` in 1, ½, ¼, … whose trial
 /// reduces the squared distance, or (where the change is below rounding) keeps it and
-/// reduces the residual; with whether it was `t = 1`. So the distance never increases.
+/// reduces the residual; with whether it was `t = 1`. So the distance never increases
+/// beyond rounding.
 pub(super) fn backtrack<T>(
     value: f64,
     residual: f64,

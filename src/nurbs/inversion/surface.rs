@@ -22,6 +22,11 @@ pub struct SurfaceProjection {
     pub distance: f64,
 }
 
+/// A 2×2 matrix [[a, b], [b, c]] counts as positive definite when a, c > 0 and its
+/// determinant exceeds this fraction of a·c (|cos| of the angle between S_u and S_v
+/// below 1 − 10⁻¹² for the Gauss–Newton matrix).
+const POSITIVE_DEFINITE_MARGIN: f64 = 1e-12;
+
 /// The Newton step for the free variables (P&T eq. 6.6), falling back to the
 /// Gauss–Newton matrix JᵀJ and then to its diagonal where the Hessian is not positive
 /// definite. Held variables get a zero step.
@@ -46,7 +51,7 @@ fn surface_step(d: &SurfaceDerivatives, r: DVec3, g: DVec2, free: [bool; 2]) -> 
         [true, true] => {
             for [a, b, c] in [hessian, gauss] {
                 let det = a * c - b * b;
-                if a > 0.0 && c > 0.0 && det > 1e-12 * a * c {
+                if a > 0.0 && c > 0.0 && det > POSITIVE_DEFINITE_MARGIN * a * c {
                     return DVec2::new(c * g.x - b * g.y, a * g.y - b * g.x) / -det;
                 }
             }
@@ -76,7 +81,8 @@ impl NurbsSurface {
         let weight = |i: usize, j: usize| self.homogeneous_point_at(i, j).w;
         let same = |a: (usize, usize), b: (usize, usize)| {
             (at(a.0, a.1) - at(b.0, b.1)).length() <= tol
-                && (weight(a.0, a.1) - weight(b.0, b.1)).abs() <= 1e-12 * weight(a.0, a.1)
+                && (weight(a.0, a.1) - weight(b.0, b.1)).abs()
+                    <= COINCIDENT_CONTROL_POINTS * weight(a.0, a.1)
         };
         let u_closed = (0..nv).all(|j| same((0, j), (nu - 1, j)));
         let v_closed = (0..nu).all(|i| same((i, 0), (i, nv - 1)));

@@ -1,0 +1,62 @@
+//! Derived components: written only by systems, always with `set_if_neq` (or
+//! inserted once), so that equal values do not mark anything changed.
+
+use std::sync::Arc;
+
+use bevy_ecs::component::Component;
+use glam::{DAffine3, DVec3};
+
+use crate::constraints::PartGeometry;
+use crate::mesh::Mesh;
+use crate::parts::{Nozzle, Patch};
+
+/// Vessel local frame → plant frame (mm).
+#[derive(Component, Clone, Copy, Debug, PartialEq)]
+pub struct VesselFrame(pub DAffine3);
+
+/// Resolved whole-vessel figures.
+#[derive(Component, Clone, Copy, Debug, PartialEq)]
+pub struct VesselSummary {
+    /// Tangent-to-tangent length, mm.
+    pub tangent_length: f64,
+    /// Axial extent including heads and supports, mm.
+    pub extent: (f64, f64),
+    /// Largest course OD, mm.
+    pub max_diameter: f64,
+}
+
+/// Part (or nozzle) local frame → vessel local frame. Changing it never rebuilds a
+/// patch: patches live in the part's local frame.
+#[derive(Component, Clone, Copy, Debug, PartialEq)]
+pub struct PartFrame(pub DAffine3);
+
+/// Axial extent `[start, end]` of a part in its vessel's frame, mm.
+#[derive(Component, Clone, Copy, Debug, PartialEq)]
+pub struct PartSpan(pub f64, pub f64);
+
+/// The resolved parameters that determine a part's or nozzle's patches. The
+/// Geometry stage rebuilds patches exactly when this changes.
+#[derive(Component, Clone, Debug, PartialEq)]
+pub enum Shape {
+    /// A part of the vessel.
+    Part(PartGeometry),
+    /// A nozzle, with its pad `(od, thickness)`.
+    Nozzle(Nozzle, Option<(f64, f64)>),
+}
+
+/// A note's resolved anchor and text position, vessel frame, mm.
+#[derive(Component, Clone, Copy, Debug, PartialEq)]
+pub struct NoteAnchor {
+    /// The target's anchor point.
+    pub anchor: DVec3,
+    /// Where the text sits.
+    pub position: DVec3,
+}
+
+/// The exact surface of a patch, in its part's local frame (shared, immutable).
+#[derive(Component, Clone, Debug, PartialEq)]
+pub struct PatchSurface(pub Arc<Patch>);
+
+/// The triangle mesh of a patch, in its part's local frame.
+#[derive(Component, Clone, Debug, PartialEq)]
+pub struct PatchMesh(pub Arc<Mesh>);

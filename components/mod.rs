@@ -1,0 +1,15 @@
+//! ECS components: the parameter components users set, the relations between
+//! entities, and the derived components only systems write.
+//!
+//! Parameters are the design-file types themselves (one component per entity
+//! kind), so an entity's parameters and its design-file entry can never disagree.
+//! Derived components are written with `set_if_neq`, so an unchanged value stops a
+//! cascade. See `ARCHITECTURE.md` for which system writes what.
+
+mod derived;
+mod params;
+mod relations;
+
+pub use derived::{NoteAnchor, PartFrame, PartSpan, PatchMesh, PatchSurface, Shape, VesselFrame, VesselSummary};
+pub use params::{DesignOrder, NoteSpec, NozzleSpec, PartSpec, VesselSpec};
+pub use relations::{AnnotatedBy, Annotates, MountedOn, Mounts, PatchOf, Patches};

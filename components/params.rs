@@ -1,0 +1,38 @@
+//! Parameter components: what a designer sets. Each wraps the design-file type of
+//! its entity kind; systems only read them.
+
+use bevy_ecs::component::Component;
+
+use crate::design::{
+    DesignConditions, NoteDesign, NozzleDesign, PartDesign, Placement, VesselKind,
+};
+
+/// A vessel's own parameters (its parts, nozzles and notes are child entities).
+#[derive(Component, Clone, Debug, PartialEq)]
+pub struct VesselSpec {
+    /// Unique tag.
+    pub tag: String,
+    /// Kind.
+    pub kind: VesselKind,
+    /// Placement in the plant.
+    pub placement: Placement,
+    /// Design conditions.
+    pub design: DesignConditions,
+}
+
+/// Position of an entity in its list in the design file (vessels in the plant;
+/// parts, nozzles and notes in their vessel), for stable, deterministic order.
+#[derive(Component, Clone, Copy, Debug, PartialEq, Eq, PartialOrd, Ord, Hash)]
+pub struct DesignOrder(pub u32);
+
+/// A part's parameters.
+#[derive(Component, Clone, Debug, PartialEq)]
+pub struct PartSpec(pub PartDesign);
+
+/// A nozzle's parameters.
+#[derive(Component, Clone, Debug, PartialEq)]
+pub struct NozzleSpec(pub NozzleDesign);
+
+/// A note's parameters.
+#[derive(Component, Clone, Debug, PartialEq)]
+pub struct NoteSpec(pub NoteDesign);

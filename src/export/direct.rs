@@ -1,0 +1,132 @@
+//! The direct, non-incremental scene build: design → resolved vessels → patches →
+//! meshes → [`Scene`], all in one call.
+//!
+//! This runs the whole data flow (Constrain, Geometry, Tessellate) from scratch,
+//! without ECS: it is the reference the incremental model's scenes are compared
+//! against, and the baseline of the benchmarks. Patch building and tessellation run
+//! in parallel with rayon (tessellation over every patch of the plant at once); the
+//! result is assembled in design order, so it does not depend on scheduling.
+
+use std::sync::Arc;
+
+use rayon::prelude::*;
+
+use super::error::ExportError;
+use super::extras::{nozzle_extras, part_extras, vessel_extras};
+use super::scene::{Scene, SceneNode, SceneNodeKind, ScenePatch, SceneVessel};
+use crate::constraints::PartGeometry;
+use crate::design::{Design, resolve};
+use crate::mesh::{Mesh, TessellationOptions, tessellate};
+use crate::parts::{Nozzle, PartError, Patch};
+
+/// Builds the scene of a whole design: every vessel, its parts then its nozzles in
+/// design order, each with its patches meshed to `options`.
+///
+/// # Errors
+///
+/// [`ExportError::Options`] for out-of-range options, [`ExportError::Design`] when
+/// the design breaks a rule, [`ExportError::Part`] when a resolved part cannot
+/// build its patches (the first such part in design order).
+pub fn build_scene(design: &Design, options: &TessellationOptions) -> Result<Scene, ExportError> {
+    options.validate()?;
+    let resolved = resolve(design)?;
+
+    // The scene without meshes, and what builds each node's patches, in design
+    // order. `resolve` returns one vessel per design vessel, one part per design
+    // part and one nozzle per design nozzle, each in design order.
+    let mut vessels = Vec::with_capacity(resolved.len());
+    let mut sources = Vec::new();
+    for (vessel_design, vessel) in design.vessels.iter().zip(&resolved) {
+        let mut nodes = Vec::with_capacity(vessel.parts.len() + vessel.nozzles.len());
+        for (part_design, part) in vessel_design.parts.iter().zip(&vessel.parts) {
+            sources.push(Source::Part(&part.geometry));
+            nodes.push(SceneNode {
+                id: part.id.clone(),
+                kind: SceneNodeKind::Part,
+                frame: part.frame,
+                extras: part_extras(part_design, part),
+                patches: Vec::new(),
+            });
+        }
+        for (nozzle_design, nozzle) in vessel_design.nozzles.iter().zip(&vessel.nozzles) {
+            sources.push(Source::Nozzle(&nozzle.geometry));
+            nodes.push(SceneNode {
+                id: nozzle.mark.clone(),
+                kind: SceneNodeKind::Nozzle,
+                frame: nozzle.frame,
+                extras: nozzle_extras(nozzle_design, nozzle),
+                patches: Vec::new(),
+            });
+        }
+        vessels.push(SceneVessel {
+            tag: vessel.tag.clone(),
+            frame: vessel.frame,
+            extras: vessel_extras(vessel_design, vessel),
+            nodes,
+        });
+    }
+
+    // Geometry: every node's patches, in parallel; the first error in design order
+    // wins, whatever the scheduling.
+    let built: Vec<Result<Vec<Patch>, PartError>> =
+        sources.par_iter().map(Source::patches).collect();
+    let mut patches = Vec::with_capacity(built.len());
+    let node_slots = vessels
+        .iter()
+        .enumerate()
+        .flat_map(|(v, vessel)| (0..vessel.nodes.len()).map(move |n| (v, n)));
+    for ((v, n), result) in node_slots.zip(built) {
+        match result {
+            Ok(node_patches) => patches.push(((v, n), node_patches)),
+            Err(source) => {
+                let entity = format!("{}/{}", vessels[v].tag, vessels[v].nodes[n].id);
+                return Err(ExportError::Part { entity, source });
+            }
+        }
+    }
+
+    // Tessellation: every patch of the plant, in parallel, collected in order.
+    let flat: Vec<(usize, usize, &Patch)> = patches
+        .iter()
+        .flat_map(|((v, n), list)| list.iter().map(move |p| (*v, *n, p)))
+        .collect();
+    let meshes: Vec<Mesh> = flat
+        .par_iter()
+        .map(|(_, _, patch)| tessellate(&patch.surface, options))
+        .collect();
+    for ((v, n, patch), mesh) in flat.into_iter().zip(meshes) {
+        vessels[v].nodes[n].patches.push(ScenePatch {
+            name: patch_name(patch),
+            mesh: Arc::new(mesh),
+        });
+    }
+    Ok(Scene { vessels })
+}
+
+/// The scene name of a patch: its name, followed by its index when that is > 0
+/// (`"leg 2"`).
+pub fn patch_name(patch: &Patch) -> String {
+    if patch.index > 0 {
+        format!("{} {}", patch.name, patch.index)
+    } else {
+        patch.name.to_string()
+    }
+}
+
+/// What builds one node's patches.
+enum Source<'a> {
+    /// A part.
+    Part(&'a PartGeometry),
+    /// A nozzle.
+    Nozzle(&'a Nozzle),
+}
+
+impl Source<'_> {
+    /// The node's exact patches in its local frame.
+    fn patches(&self) -> Result<Vec<Patch>, PartError> {
+        match self {
+            Source::Part(geometry) => geometry.patches(),
+            Source::Nozzle(nozzle) => nozzle.patches(),
+        }
+    }
+}

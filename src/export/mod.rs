@@ -1,0 +1,27 @@
+//! Outputs: the exchange files written from the model.
+//!
+//! The model assembles a [`Scene`] — the plant → vessel → part/nozzle → patch tree
+//! with frames, metadata and meshes — and each exporter writes it. Exporters know
+//! nothing of ECS.
+//!
+//! - [`build_scene`] builds a scene directly from a design (resolve, patches, meshes
+//!   in parallel): the non-incremental reference and benchmark baseline. Node
+//!   metadata comes from [`vessel_extras`], [`part_extras`] and [`nozzle_extras`].
+//! - [`write_glb`] / [`write_glb_to`] write a scene as binary glTF 2.0 (Y-up,
+//!   metres, deterministic bytes).
+
+mod direct;
+mod error;
+mod extras;
+mod glb;
+mod gltf_buffers;
+mod gltf_document;
+mod gltf_materials;
+mod scene;
+
+pub use direct::{build_scene, patch_name};
+pub use error::ExportError;
+pub use extras::{nozzle_extras, part_extras, vessel_extras};
+pub use glb::{write_glb, write_glb_to};
+pub use gltf_document::{PLANT_NODE, PLANT_ROTATION};
+pub use scene::{Scene, SceneNode, SceneNodeKind, ScenePatch, SceneVessel};

@@ -1,0 +1,137 @@
+//! The `vesselcad` command line: build a design into a GLB, check a design, or
+//! report its figures.
+//!
+//! Exit status: 0 on success; 1 when the design is invalid (every problem is
+//! listed on stderr); 2 when a file cannot be read or written or the command line
+//! is wrong.
+
+use std::path::PathBuf;
+use std::process::ExitCode;
+use std::time::Instant;
+
+use clap::{Parser, Subcommand};
+use vesselcad::design::{DesignError, load};
+use vesselcad::export::write_glb_to;
+use vesselcad::mesh::TessellationOptions;
+use vesselcad::model::{Model, ModelError};
+use vesselcad::report::report;
+
+#[derive(Parser)]
+#[command(name = "vesselcad", version, about = "Parametric process vessels as exact NURBS")]
+struct Cli {
+    #[command(subcommand)]
+    command: Command,
+}
+
+#[derive(Subcommand)]
+enum Command {
+    /// Build a design and write it as binary glTF (Y-up, metres).
+    Build {
+        /// The design file (JSON, vesselcad/1).
+        design: PathBuf,
+        /// Output GLB file.
+        #[arg(short, long)]
+        output: PathBuf,
+        /// Chordal tolerance of the meshes, mm.
+        #[arg(long, default_value_t = TessellationOptions::DEFAULT.tolerance)]
+        tolerance: f64,
+    },
+    /// Check a design: exit 0 when valid, 1 with every problem listed otherwise.
+    Check {
+        /// The design file.
+        design: PathBuf,
+    },
+    /// Report each vessel's parts, nozzles, lengths, OD, volume and area.
+    Info {
+        /// The design file.
+        design: PathBuf,
+        /// Print JSON instead of text.
+        #[arg(long)]
+        json: bool,
+    },
+}
+
+/// Prints a design error and returns the exit code for it.
+fn fail(error: &DesignError) -> ExitCode {
+    eprintln!("error: {error}");
+    match error {
+        DesignError::Io { .. } => ExitCode::from(2),
+        _ => ExitCode::from(1),
+    }
+}
+
+fn main() -> ExitCode {
+    let cli = Cli::parse();
+    match cli.command {
+        Command::Check { design } => match load(&design) {
+            Ok(d) => {
+                println!("{}: valid ({} vessel(s))", design.display(), d.vessels.len());
+                ExitCode::SUCCESS
+            }
+            Err(e) => fail(&e),
+        },
+        Command::Info { design, json } => {
+            let d = match load(&design) {
+                Ok(d) => d,
+                Err(e) => return fail(&e),
+            };
+            let vessels = match report(&d) {
+                Ok(v) => v,
+                Err(e) => return fail(&e),
+            };
+            if json {
+                match serde_json::to_string_pretty(&vessels) {
+                    Ok(text) => println!("{text}"),
+                    Err(e) => {
+                        eprintln!("error: {e}");
+                        return ExitCode::from(2);
+                    }
+                }
+            } else {
+                for v in &vessels {
+                    println!("{} ({})", v.tag, v.kind);
+                    println!("  parts:            {}", v.parts.iter().map(|p| format!("{} {}", p.kind, p.id)).collect::<Vec<_>>().join(", "));
+                    println!("  nozzles:          {} ({})", v.nozzles.len(), v.nozzles.join(", "));
+                    println!("  tangent length:   {:.1} mm", v.tangent_length);
+                    println!("  overall length:   {:.1} mm", v.overall_length);
+                    println!("  outside diameter: {:.1} mm", v.outside_diameter);
+                    println!("  volume:           {:.3} m³ (inside the outside surface)", v.volume);
+                    println!("  surface area:     {:.3} m² (outside of heads and courses)", v.surface_area);
+                }
+            }
+            ExitCode::SUCCESS
+        }
+        Command::Build { design, output, tolerance } => {
+            let start = Instant::now();
+            let d = match load(&design) {
+                Ok(d) => d,
+                Err(e) => return fail(&e),
+            };
+            let model = match Model::from_design(&d, TessellationOptions::chord(tolerance)) {
+                Ok(m) => m,
+                Err(ModelError::Design(e)) => return fail(&e),
+                Err(e) => {
+                    eprintln!("error: {e}");
+                    return ExitCode::from(2);
+                }
+            };
+            let scene = model.scene();
+            let triangles: usize = scene.vessels.iter().flat_map(|v| &v.nodes).flat_map(|n| &n.patches).map(|p| p.mesh.triangle_count()).sum();
+            if let Err(e) = write_glb_to(&scene, &output) {
+                eprintln!("error: {e}");
+                return ExitCode::from(2);
+            }
+            let bytes = std::fs::metadata(&output).map(|m| m.len()).unwrap_or(0);
+            println!(
+                "{}: {} vessel(s), {} triangles at {} mm, {} bytes, {:.0} ms",
+                output.display(),
+                scene.vessels.len(),
+                triangles,
+                tolerance,
+                bytes,
+                start.elapsed().as_secs_f64() * 1e3
+            );
+            ExitCode::SUCCESS
+        }
+    }
+}

@@ -1,0 +1,79 @@
+//! Edits: the changes a user (file, API call, live session) can make to a model.
+//! Each is checked as one transaction; a [`Edit::Batch`] is all or nothing.
+
+use crate::design::{Design, NoteDesign, NozzleDesign, PartDesign, Placement, VesselDesign};
+
+/// One change to the model.
+#[derive(Clone, Debug, PartialEq)]
+pub enum Edit {
+    /// Replace the whole design; only vessels that differ are touched.
+    ReplaceDesign(Design),
+    /// Add a vessel, or replace the one with the same tag.
+    SetVessel(VesselDesign),
+    /// Remove a vessel.
+    RemoveVessel {
+        /// Its tag.
+        tag: String,
+    },
+    /// Move a vessel (a frame change: no patch is rebuilt).
+    MoveVessel {
+        /// Its tag.
+        tag: String,
+        /// The new placement.
+        placement: Placement,
+    },
+    /// Replace the part with the same id.
+    SetPart {
+        /// Vessel tag.
+        vessel: String,
+        /// The part's new parameters.
+        part: PartDesign,
+    },
+    /// Insert a new part at `index` in the vessel's part list.
+    InsertPart {
+        /// Vessel tag.
+        vessel: String,
+        /// Position in the part list (clamped to its length).
+        index: usize,
+        /// The part.
+        part: PartDesign,
+    },
+    /// Remove a part (and with it the nozzles it hosts must go too, or the edit
+    /// is refused).
+    RemovePart {
+        /// Vessel tag.
+        vessel: String,
+        /// Part id.
+        id: String,
+    },
+    /// Add a nozzle, or replace the one with the same mark.
+    SetNozzle {
+        /// Vessel tag.
+        vessel: String,
+        /// The nozzle.
+        nozzle: NozzleDesign,
+    },
+    /// Remove a nozzle.
+    RemoveNozzle {
+        /// Vessel tag.
+        vessel: String,
+        /// Its mark.
+        mark: String,
+    },
+    /// Add a note, or replace the one with the same id.
+    SetNote {
+        /// Vessel tag.
+        vessel: String,
+        /// The note.
+        note: NoteDesign,
+    },
+    /// Remove a note.
+    RemoveNote {
+        /// Vessel tag.
+        vessel: String,
+        /// Its id.
+        id: String,
+    },
+    /// Several edits applied together: all or none.
+    Batch(Vec<Edit>),
+}

@@ -1,0 +1,149 @@
+//! The model: a bevy_ecs `World` holding the plant as entities, the schedule that
+//! keeps derived data consistent, and transactional edits.
+//!
+//! This is the engine's front door. `Model::from_design` spawns the entities of a
+//! design; [`Model::apply`] checks an [`Edit`] against every rule before writing
+//! anything (a rejected edit leaves the world exactly as it was); [`Model::update`]
+//! runs the schedule, which redoes only the work that depends on what changed, and
+//! returns the [`WorkCounters`] of that run.
+
+mod edit;
+mod read;
+mod staging;
+mod sync;
+
+pub use edit::Edit;
+
+use std::collections::HashMap;
+
+use bevy_ecs::entity::Entity;
+use bevy_ecs::resource::Resource;
+use bevy_ecs::schedule::Schedule;
+use bevy_ecs::world::World;
+use thiserror::Error;
+
+use crate::design::{Design, DesignError};
+use crate::export::Scene;
+use crate::mesh::{OptionsError, TessellationOptions};
+use crate::systems::{
+    ChangeLog, ModelErrors, PendingResolutions, Tessellation, WorkCounters, build_schedule,
+};
+
+/// Why an edit or model construction was refused. The model is unchanged.
+#[derive(Debug, Error)]
+pub enum ModelError {
+    /// The edit would break design rules (every violation listed) or is malformed.
+    #[error(transparent)]
+    Design(#[from] DesignError),
+    /// Tessellation options are invalid.
+    #[error(transparent)]
+    Options(#[from] OptionsError),
+    /// The edit names a vessel that does not exist.
+    #[error("no vessel has the tag {tag:?}")]
+    UnknownVessel {
+        /// The tag given.
+        tag: String,
+    },
+    /// The edit names a part, nozzle or note that does not exist in the vessel.
+    #[error("vessel {vessel} has no {kind} {id:?}")]
+    UnknownEntity {
+        /// Vessel tag.
+        vessel: String,
+        /// `"part"`, `"nozzle"` or `"note"`.
+        kind: &'static str,
+        /// The id given.
+        id: String,
+    },
+}
+
+/// Vessel entities by tag.
+#[derive(Resource, Default, Debug)]
+pub(crate) struct VesselIndex(pub HashMap<String, Entity>);
+
+/// The plant model: world, schedule and edit API.
+pub struct Model {
+    world: World,
+    schedule: Schedule,
+}
+
+impl Model {
+    /// An empty model meshing with `options`.
+    pub fn new(options: TessellationOptions) -> Result<Self, ModelError> {
+        options.validate()?;
+        let mut world = World::new();
+        world.insert_resource(Tessellation(options));
+        world.init_resource::<WorkCounters>();
+        world.init_resource::<PendingResolutions>();
+        world.init_resource::<ModelErrors>();
+        world.init_resource::<ChangeLog>();
+        world.init_resource::<VesselIndex>();
+        Ok(Self {
+            world,
+            schedule: build_schedule(),
+        })
+    }
+
+    /// A model holding `design` (checked first), fully built.
+    pub fn from_design(design: &Design, options: TessellationOptions) -> Result<Self, ModelError> {
+        let mut model = Self::new(options)?;
+        model.apply(Edit::ReplaceDesign(design.clone()))?;
+        model.update();
+        Ok(model)
+    }
+
+    /// Checks `edit` against every rule and, if it passes, writes it into the
+    /// world. Derived data follows on the next [`update`](Self::update).
+    pub fn apply(&mut self, edit: Edit) -> Result<(), ModelError> {
+        let staged = staging::stage(&self.world, edit)?;
+        sync::commit(&mut self.world, staged);
+        Ok(())
+    }
+
+    /// Runs the schedule once and returns the work it did.
+    pub fn update(&mut self) -> WorkCounters {
+        *self.world.resource_mut::<WorkCounters>() = WorkCounters::default();
+        self.schedule.run(&mut self.world);
+        *self.world.resource::<WorkCounters>()
+    }
+
+    /// [`apply`](Self::apply) then [`update`](Self::update).
+    pub fn edit(&mut self, edit: Edit) -> Result<WorkCounters, ModelError> {
+        self.apply(edit)?;
+        Ok(self.update())
+    }
+
+    /// Changes the tessellation options; every patch is re-meshed on the next update.
+    pub fn set_tessellation(&mut self, options: TessellationOptions) -> Result<(), ModelError> {
+        options.validate()?;
+        let mut t = self.world.resource_mut::<Tessellation>();
+        if t.0 != options {
+            t.0 = options;
+        }
+        Ok(())
+    }
+
+    /// The current design, read back from the entities (canonical: mm).
+    pub fn design(&self) -> Design {
+        read::design(&self.world)
+    }
+
+    /// The plant as a scene for the exporters (meshes as of the last update).
+    pub fn scene(&self) -> Scene {
+        read::scene(&self.world)
+    }
+
+    /// The ids changed and removed since the last call.
+    pub fn take_changes(&mut self) -> ChangeLog {
+        std::mem::take(&mut *self.world.resource_mut::<ChangeLog>())
+    }
+
+    /// Violations found in the world by the last updates (normally none).
+    pub fn errors(&self) -> &ModelErrors {
+        self.world.resource::<ModelErrors>()
+    }
+
+    /// The ECS world, for queries.
+    pub fn world(&self) -> &World {
+        &self.world
+    }
+}

@@ -1,0 +1,21 @@
+//! Work counters: how much each stage did in the last run of the schedule. Tests
+//! use them to prove that work is proportional to what changed.
+
+use bevy_ecs::resource::Resource;
+
+/// Work done by the last run of the schedule (reset before each run).
+#[derive(Resource, Clone, Copy, Debug, Default, PartialEq, Eq)]
+pub struct WorkCounters {
+    /// Vessels resolved (constraint layout recomputed).
+    pub vessels_resolved: u64,
+    /// Part and nozzle frames that changed.
+    pub frames_updated: u64,
+    /// Parts and nozzles whose shape changed (their patches were rebuilt).
+    pub shapes_rebuilt: u64,
+    /// Patches rebuilt.
+    pub patches_rebuilt: u64,
+    /// Patch meshes rebuilt.
+    pub meshes_rebuilt: u64,
+    /// Triangles in the rebuilt meshes.
+    pub triangles_meshed: u64,
+}

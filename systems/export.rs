@@ -1,0 +1,52 @@
+//! Export stage: record the stable ids (`tag` or `tag/id`) of what changed in this
+//! run — vessels whose frame changed, parts and nozzles whose frame or meshes
+//! changed — so exporters and viewers can send only those.
+
+use std::collections::BTreeSet;
+
+use bevy_ecs::hierarchy::ChildOf;
+use bevy_ecs::query::{Changed, Or};
+use bevy_ecs::resource::Resource;
+use bevy_ecs::system::{Query, ResMut};
+
+use crate::components::{NozzleSpec, PartFrame, PartSpec, PatchMesh, PatchOf, VesselFrame, VesselSpec};
+
+/// Stable ids changed and removed since the log was last drained.
+#[derive(Resource, Default, Debug, Clone, PartialEq, Eq)]
+pub struct ChangeLog {
+    /// Ids of vessels, parts and nozzles whose frame or geometry changed.
+    pub changed: BTreeSet<String>,
+    /// Ids of entities that were removed.
+    pub removed: BTreeSet<String>,
+}
+
+/// Records what changed in this run into the [`ChangeLog`].
+pub fn collect_changes(
+    vessels: Query<&VesselSpec, Changed<VesselFrame>>,
+    moved: Query<(&ChildOf, Option<&PartSpec>, Option<&NozzleSpec>), Or<(Changed<PartFrame>, Changed<crate::components::Shape>)>>,
+    meshed: Query<&PatchOf, Changed<PatchMesh>>,
+    owners: Query<(&ChildOf, Option<&PartSpec>, Option<&NozzleSpec>)>,
+    tags: Query<&VesselSpec>,
+    mut log: ResMut<ChangeLog>,
+) {
+    for v in &vessels {
+        log.changed.insert(v.tag.clone());
+    }
+    let id_of = |child: &ChildOf, part: Option<&PartSpec>, nozzle: Option<&NozzleSpec>| -> Option<String> {
+        let tag = &tags.get(child.parent()).ok()?.tag;
+        let id = part.map(|p| p.0.id().to_string()).or_else(|| nozzle.map(|n| n.0.mark.clone()))?;
+        Some(format!("{tag}/{id}"))
+    };
+    for (c, p, n) in &moved {
+        if let Some(id) = id_of(c, p, n) {
+            log.changed.insert(id);
+        }
+    }
+    for patch in &meshed {
+        if let Ok((c, p, n)) = owners.get(patch.0)
+            && let Some(id) = id_of(c, p, n)
+        {
+            log.changed.insert(id);
+        }
+    }
+}

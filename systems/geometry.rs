@@ -1,0 +1,83 @@
+//! Geometry stage: rebuild the exact patches of every part and nozzle whose
+//! resolved shape changed, in parallel with rayon.
+//!
+//! Patches are entities `PatchOf` their part, in the part's local frame, so a frame
+//! change never reaches this stage. Existing patch entities are reused in order and
+//! their surfaces written only where they differ; extra ones are despawned, missing
+//! ones spawned.
+
+use std::sync::Arc;
+
+use bevy_ecs::entity::Entity;
+use bevy_ecs::query::{Changed, QueryState};
+use bevy_ecs::world::World;
+use rayon::prelude::*;
+
+use super::{ModelErrors, WorkCounters};
+use crate::components::{PatchOf, PatchSurface, Patches, Shape};
+use crate::parts::{PartError, Patch};
+
+/// The patches of a shape in its local frame.
+pub(crate) fn shape_patches(shape: &Shape) -> Result<Vec<Patch>, PartError> {
+    match shape {
+        Shape::Part(p) => p.patches(),
+        Shape::Nozzle(n, _) => n.patches(),
+    }
+}
+
+/// Rebuilds the patches of every entity whose [`Shape`] changed.
+pub fn rebuild_dirty_patches(world: &mut World, dirty: &mut QueryState<(Entity, &Shape), Changed<Shape>>) {
+    let work: Vec<(Entity, Shape)> = dirty.iter(world).map(|(e, s)| (e, s.clone())).collect();
+    if work.is_empty() {
+        return;
+    }
+    let built: Vec<(Entity, Result<Vec<Patch>, PartError>)> =
+        work.par_iter().map(|(e, s)| (*e, shape_patches(s))).collect();
+    let mut rebuilt = 0u64;
+    for (entity, result) in built {
+        let patches = match result {
+            Ok(p) => p,
+            Err(e) => {
+                // Only reachable if the world was edited around `Model::apply`.
+                world.resource_mut::<ModelErrors>().0.push((
+                    format!("{entity}"),
+                    vec![crate::design::RuleViolation {
+                        path: String::new(),
+                        entity: format!("{entity}"),
+                        field: "shape".into(),
+                        value: String::new(),
+                        rule: e.to_string(),
+                    }],
+                ));
+                continue;
+            }
+        };
+        let existing: Vec<Entity> = world
+            .get::<Patches>(entity)
+            .map(|p| p.entities().to_vec())
+            .unwrap_or_default();
+        let count = patches.len();
+        for (k, patch) in patches.into_iter().enumerate() {
+            match existing.get(k) {
+                Some(&pe) => {
+                    if let Some(mut current) = world.get_mut::<PatchSurface>(pe)
+                        && *current.0 != patch
+                    {
+                        current.0 = Arc::new(patch);
+                        rebuilt += 1;
+                    }
+                }
+                None => {
+                    world.spawn((PatchOf(entity), PatchSurface(Arc::new(patch))));
+                    rebuilt += 1;
+                }
+            }
+        }
+        for &extra in existing.iter().skip(count) {
+            world.despawn(extra);
+        }
+    }
+    let mut counters = world.resource_mut::<WorkCounters>();
+    counters.patches_rebuilt += rebuilt;
+    counters.shapes_rebuilt += work.len() as u64;
+}

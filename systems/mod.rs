@@ -1,0 +1,61 @@
+//! ECS systems and the schedule: Validate → Constrain → Geometry → Tessellate →
+//! Export, each a `SystemSet` in a chain.
+//!
+//! Every stage reads what changed upstream and writes downstream only when the value
+//! really differs (`set_if_neq`), so untouched entities cost nothing but the
+//! change-detection scan. The heavy stages (Geometry, Tessellate) collect their
+//! dirty entities and process them in parallel with rayon.
+
+mod constrain;
+mod counters;
+mod export;
+mod geometry;
+mod tessellate;
+mod validate;
+
+pub use constrain::apply_resolutions;
+pub use counters::WorkCounters;
+pub use export::{ChangeLog, collect_changes};
+pub use geometry::rebuild_dirty_patches;
+pub use tessellate::{Tessellation, remesh_dirty_patches};
+pub use validate::{ModelErrors, PendingResolutions, resolve_dirty_vessels};
+
+use bevy_ecs::schedule::{IntoScheduleConfigs, Schedule, SystemSet};
+
+/// The pipeline stages, run in this order.
+#[derive(SystemSet, Debug, Clone, Copy, PartialEq, Eq, Hash)]
+pub enum Stage {
+    /// Resolve and check vessels whose parameters changed.
+    Validate,
+    /// Write resolved frames, shapes, relations and note anchors.
+    Constrain,
+    /// Rebuild the exact patches of parts whose shape changed.
+    Geometry,
+    /// Re-mesh patches whose surface changed.
+    Tessellate,
+    /// Record what changed for exporters and viewers.
+    Export,
+}
+
+/// The model's schedule: every system in its stage, stages chained.
+pub fn build_schedule() -> Schedule {
+    let mut schedule = Schedule::default();
+    schedule.configure_sets(
+        (
+            Stage::Validate,
+            Stage::Constrain,
+            Stage::Geometry,
+            Stage::Tessellate,
+            Stage::Export,
+        )
+            .chain(),
+    );
+    schedule.add_systems((
+        resolve_dirty_vessels.in_set(Stage::Validate),
+        apply_resolutions.in_set(Stage::Constrain),
+        rebuild_dirty_patches.in_set(Stage::Geometry),
+        remesh_dirty_patches.in_set(Stage::Tessellate),
+        collect_changes.in_set(Stage::Export),
+    ));
+    schedule
+}

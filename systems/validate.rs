@@ -1,0 +1,93 @@
+//! Validate stage: find the vessels whose parameters changed and resolve them.
+//!
+//! A vessel is dirty when its own parameters changed or any of its parts, nozzles
+//! or notes did (the model also marks it when it adds or removes children). Each
+//! dirty vessel is read back into its design form and resolved by the constraint
+//! rules, in parallel. A vessel that fails (only possible if the world was edited
+//! around `Model::apply`) keeps its derived data and its violations are recorded.
+
+use bevy_ecs::change_detection::{DetectChanges, Ref};
+use bevy_ecs::entity::Entity;
+use bevy_ecs::hierarchy::{ChildOf, Children};
+use bevy_ecs::query::{Changed, Or};
+use bevy_ecs::resource::Resource;
+use bevy_ecs::system::{Query, ResMut};
+use rayon::prelude::*;
+
+use super::WorkCounters;
+use crate::components::{DesignOrder, NoteSpec, NozzleSpec, PartSpec, VesselSpec};
+use crate::constraints::{ResolvedVessel, resolve_vessel};
+use crate::design::{RuleViolation, VesselDesign};
+
+/// Vessels resolved by the Validate stage, waiting for the Constrain stage.
+#[derive(Resource, Default)]
+pub struct PendingResolutions(pub Vec<(Entity, ResolvedVessel)>);
+
+/// Rule violations found in the world by the last run (normally empty: edits are
+/// checked before they are written).
+#[derive(Resource, Default, Debug)]
+pub struct ModelErrors(pub Vec<(String, Vec<RuleViolation>)>);
+
+/// Reads a vessel entity and its children back into the design form, children in
+/// design order.
+pub(crate) fn read_vessel(
+    spec: &VesselSpec,
+    children: Option<&Children>,
+    parts: &Query<(&PartSpec, &DesignOrder)>,
+    nozzles: &Query<(&NozzleSpec, &DesignOrder)>,
+    notes: &Query<(&NoteSpec, &DesignOrder)>,
+) -> VesselDesign {
+    let kids: &[Entity] = children.map_or(&[], |c| c);
+    let mut p: Vec<_> = kids.iter().filter_map(|&e| parts.get(e).ok()).collect();
+    p.sort_by_key(|(_, o)| **o);
+    let mut n: Vec<_> = kids.iter().filter_map(|&e| nozzles.get(e).ok()).collect();
+    n.sort_by_key(|(_, o)| **o);
+    let mut t: Vec<_> = kids.iter().filter_map(|&e| notes.get(e).ok()).collect();
+    t.sort_by_key(|(_, o)| **o);
+    VesselDesign {
+        tag: spec.tag.clone(),
+        kind: spec.kind,
+        placement: spec.placement,
+        design: spec.design.clone(),
+        parts: p.into_iter().map(|(s, _)| s.0.clone()).collect(),
+        nozzles: n.into_iter().map(|(s, _)| s.0.clone()).collect(),
+        notes: t.into_iter().map(|(s, _)| s.0.clone()).collect(),
+    }
+}
+
+/// Resolves every vessel whose parameters (or whose children's) changed.
+#[expect(clippy::too_many_arguments, reason = "one query per parameter kind")]
+pub fn resolve_dirty_vessels(
+    vessels: Query<(Entity, Ref<VesselSpec>, &DesignOrder, Option<&Children>)>,
+    changed_children: Query<
+        &ChildOf,
+        Or<(Changed<PartSpec>, Changed<NozzleSpec>, Changed<NoteSpec>)>,
+    >,
+    parts: Query<(&PartSpec, &DesignOrder)>,
+    nozzles: Query<(&NozzleSpec, &DesignOrder)>,
+    notes: Query<(&NoteSpec, &DesignOrder)>,
+    mut pending: ResMut<PendingResolutions>,
+    mut errors: ResMut<ModelErrors>,
+    mut counters: ResMut<WorkCounters>,
+) {
+    let mut dirty: Vec<Entity> = changed_children.iter().map(|c| c.parent()).collect();
+    dirty.extend(vessels.iter().filter(|(_, s, _, _)| s.is_changed()).map(|(e, ..)| e));
+    dirty.sort_unstable();
+    dirty.dedup();
+    let work: Vec<(Entity, u32, VesselDesign)> = dirty
+        .iter()
+        .filter_map(|&e| vessels.get(e).ok())
+        .map(|(e, spec, order, kids)| (e, order.0, read_vessel(&spec, kids, &parts, &nozzles, &notes)))
+        .collect();
+    counters.vessels_resolved += work.len() as u64;
+    let results: Vec<_> = work
+        .par_iter()
+        .map(|(e, order, design)| (*e, design.tag.clone(), resolve_vessel(design, *order as usize)))
+        .collect();
+    for (e, tag, result) in results {
+        match result {
+            Ok(resolved) => pending.0.push((e, resolved)),
+            Err(violations) => errors.0.push((tag, violations)),
+        }
+    }
+}

@@ -1,0 +1,199 @@
+//! The ECS model redoes only the work that depends on an edit, refuses bad edits
+//! without changing anything, and after any sequence of edits holds exactly what a
+//! from-scratch build of its design gives.
+
+use vesselcad::design::{PartDesign, load, to_canonical_json};
+use vesselcad::export::{build_scene, write_glb};
+use vesselcad::mesh::TessellationOptions;
+use vesselcad::model::{Edit, Model, ModelError};
+
+fn example(name: &str) -> vesselcad::design::Design {
+    load(format!("{}/examples/designs/{name}.json", env!("CARGO_MANIFEST_DIR"))).unwrap()
+}
+
+fn options() -> TessellationOptions {
+    TessellationOptions::chord(2.0)
+}
+
+fn model(name: &str) -> Model {
+    Model::from_design(&example(name), options()).unwrap()
+}
+
+/// The incremental model's GLB equals a from-scratch build of its design.
+fn assert_matches_full_build(model: &Model) {
+    let incremental = write_glb(&model.scene()).unwrap();
+    let full = write_glb(&build_scene(&model.design(), &options()).unwrap()).unwrap();
+    assert!(incremental == full, "incremental GLB differs from the full build");
+}
+
+#[test]
+fn first_update_builds_everything_once() {
+    let mut m = model("small-plant");
+    assert!(m.errors().0.is_empty());
+    assert_matches_full_build(&m);
+    // Nothing changed since: a second update does no work at all.
+    let counters = m.update();
+    assert_eq!(counters, Default::default());
+}
+
+#[test]
+fn nozzle_orientation_moves_only_that_nozzle() {
+    let mut m = model("small-plant");
+    m.take_changes();
+    let mut n = m.design().vessels[0].nozzles[0].clone();
+    n.orientation = 45.0;
+    let c = m.edit(Edit::SetNozzle { vessel: "V-101".into(), nozzle: n }).unwrap();
+    assert_eq!(c.vessels_resolved, 1);
+    assert_eq!(c.frames_updated, 1, "{c:?}");
+    assert_eq!(c.patches_rebuilt, 0, "a frame change must not rebuild patches: {c:?}");
+    assert_eq!(c.meshes_rebuilt, 0);
+    let log = m.take_changes();
+    assert_eq!(log.changed.into_iter().collect::<Vec<_>>(), vec!["V-101/N1".to_string()]);
+    assert_matches_full_build(&m);
+}
+
+#[test]
+fn nozzle_projection_rebuilds_only_that_nozzle() {
+    let mut m = model("small-plant");
+    m.take_changes();
+    let mut n = m.design().vessels[0].nozzles[1].clone();
+    n.projection += 100.0;
+    let c = m.edit(Edit::SetNozzle { vessel: "V-101".into(), nozzle: n }).unwrap();
+    assert_eq!(c.shapes_rebuilt, 1, "{c:?}");
+    assert!(c.patches_rebuilt > 0 && c.patches_rebuilt <= 8, "{c:?}");
+    assert_eq!(c.meshes_rebuilt, c.patches_rebuilt);
+    assert_eq!(m.take_changes().changed.into_iter().collect::<Vec<_>>(), vec!["V-101/N2".to_string()]);
+    assert_matches_full_build(&m);
+}
+
+#[test]
+fn shell_diameter_rebuilds_its_dependents_in_its_vessel_only() {
+    let mut m = model("small-plant");
+    m.take_changes();
+    let design = m.design();
+    let PartDesign::Shell(mut shell) = design.vessels[0].parts[1].clone() else { panic!() };
+    shell.od = 2500.0;
+    let c = m.edit(Edit::SetPart { vessel: "V-101".into(), part: PartDesign::Shell(shell) }).unwrap();
+    assert_eq!(c.vessels_resolved, 1);
+    // The shell, both heads, both saddles and the boot change shape; nozzles keep
+    // theirs (projection is measured from the axis).
+    assert_eq!(c.shapes_rebuilt, 6, "{c:?}");
+    let changed = m.take_changes().changed;
+    assert!(changed.iter().all(|id| id.starts_with("V-101")), "{changed:?}");
+    for id in ["V-101/S1", "V-101/H1", "V-101/H2", "V-101/SD1", "V-101/SD2", "V-101/B1"] {
+        assert!(changed.contains(id), "{id} missing from {changed:?}");
+    }
+    assert_matches_full_build(&m);
+}
+
+#[test]
+fn lengthening_a_course_moves_what_is_above_without_rebuilding_it() {
+    let mut m = model("vertical-column");
+    m.take_changes();
+    let design = m.design();
+    let PartDesign::Shell(mut s1) = design.vessels[0].parts[2].clone() else { panic!() };
+    s1.length += 500.0;
+    let c = m.edit(Edit::SetPart { vessel: "C-201".into(), part: PartDesign::Shell(s1) }).unwrap();
+    // Only S1 changes shape. The reducer, S2, the top head and the nozzle on the
+    // head move; shell nozzles keep their elevation above the datum, so they stay.
+    assert_eq!(c.shapes_rebuilt, 1, "{c:?}");
+    assert_eq!(c.frames_updated, 4, "{c:?}");
+    let changed = m.take_changes().changed;
+    let expected = ["C-201/H2", "C-201/N3", "C-201/R1", "C-201/S1", "C-201/S2"];
+    assert_eq!(changed.iter().map(String::as_str).collect::<Vec<_>>(), expected);
+    assert_matches_full_build(&m);
+}
+
+#[test]
+fn moving_a_vessel_rebuilds_no_patch() {
+    let mut m = model("small-plant");
+    m.take_changes();
+    let mut placement = m.design().vessels[2].placement;
+    placement.position[0] += 5000.0;
+    let c = m.edit(Edit::MoveVessel { tag: "C-201".into(), placement }).unwrap();
+    assert_eq!((c.patches_rebuilt, c.meshes_rebuilt, c.shapes_rebuilt), (0, 0, 0), "{c:?}");
+    assert_eq!(m.take_changes().changed.into_iter().collect::<Vec<_>>(), vec!["C-201".to_string()]);
+    assert_matches_full_build(&m);
+}
+
+#[test]
+fn an_edit_to_the_same_value_does_nothing() {
+    let mut m = model("small-plant");
+    let n = m.design().vessels[0].nozzles[0].clone();
+    let c = m.edit(Edit::SetNozzle { vessel: "V-101".into(), nozzle: n }).unwrap();
+    assert_eq!(c, Default::default());
+    let design = m.design();
+    let c = m.edit(Edit::ReplaceDesign(design)).unwrap();
+    assert_eq!(c, Default::default());
+}
+
+#[test]
+fn rejected_edits_leave_the_model_unchanged() {
+    let mut m = model("small-plant");
+    let before = to_canonical_json(&m.design());
+    let glb_before = write_glb(&m.scene()).unwrap();
+    // A nozzle larger than its shell.
+    let mut n = m.design().vessels[1].nozzles[0].clone();
+    n.size = 24.0;
+    n.host = "S1".into();
+    n.elevation = Some(2500.0);
+    let mut big = m.design().vessels[0].clone();
+    big.tag = "V-102".into();
+    let err = m.apply(Edit::SetNozzle { vessel: "V-102".into(), nozzle: { let mut x = n.clone(); x.size = 30.0; x } });
+    assert!(err.is_err());
+    // A knuckle larger than its crown, in a batch with a valid edit: all or nothing.
+    let mut placement = m.design().vessels[0].placement;
+    placement.position[1] += 100.0;
+    let bad_head = PartDesign::Head(vesselcad::design::HeadDesign {
+        id: "H2".into(),
+        shape: vesselcad::design::HeadShape::Torispherical,
+        ratio: None,
+        crown_radius: Some(2400.0),
+        knuckle_radius: Some(2500.0),
+        half_angle: None,
+        small_od: None,
+        straight_flange: 50.0,
+        thickness: None,
+    });
+    let err = m
+        .apply(Edit::Batch(vec![
+            Edit::MoveVessel { tag: "V-101".into(), placement },
+            Edit::SetPart { vessel: "V-101".into(), part: bad_head },
+        ]))
+        .unwrap_err();
+    let ModelError::Design(e) = &err else { panic!("{err}") };
+    let v = &e.violations()[0];
+    assert_eq!(v.entity, "V-101/H2");
+    assert_eq!(v.field, "knuckle_radius");
+    assert_eq!(v.value, "2500");
+    assert!(v.rule.contains("crown radius"), "{v}");
+    assert_eq!(v.path, "vessels[0].parts[2].head.knuckle_radius");
+    // Unknown targets.
+    assert!(matches!(m.apply(Edit::RemoveVessel { tag: "X-999".into() }), Err(ModelError::UnknownVessel { .. })));
+    assert_eq!(m.update(), Default::default());
+    assert_eq!(before, to_canonical_json(&m.design()));
+    assert!(glb_before == write_glb(&m.scene()).unwrap());
+    let _ = big;
+}
+
+#[test]
+fn structural_edits_match_a_full_build() {
+    let mut m = model("small-plant");
+    // Remove a nozzle, add another, add a note, remove a vessel, change a head shape.
+    m.edit(Edit::RemoveNozzle { vessel: "V-101".into(), mark: "N7".into() }).unwrap();
+    let mut n = m.design().vessels[0].nozzles[0].clone();
+    n.mark = "N9".into();
+    n.elevation = Some(3300.0);
+    m.edit(Edit::SetNozzle { vessel: "V-101".into(), nozzle: n }).unwrap();
+    m.edit(Edit::RemoveVessel { tag: "V-102".into() }).unwrap();
+    let design = m.design();
+    let PartDesign::Head(mut h) = design.vessels[0].parts[2].clone() else { panic!() };
+    h.shape = vesselcad::design::HeadShape::Hemispherical;
+    h.ratio = None;
+    m.edit(Edit::SetPart { vessel: "V-101".into(), part: PartDesign::Head(h) }).unwrap();
+    assert!(m.errors().0.is_empty());
+    assert_eq!(m.design().vessels.len(), 3);
+    assert_matches_full_build(&m);
+    let removed = m.take_changes().removed;
+    assert!(removed.contains("V-102") && removed.contains("V-101/N7"), "{removed:?}");
+}
