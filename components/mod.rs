@@ -10,6 +10,8 @@ mod derived;
 mod params;
 mod relations;
 
-pub use derived::{NoteAnchor, PartFrame, PartSpan, PatchMesh, PatchSurface, Shape, VesselFrame, VesselSummary};
+pub use derived::{
+    NoteAnchor, PartFrame, PartSpan, PatchMesh, PatchSurface, Shape, VesselFrame, VesselSummary,
+};
 pub use params::{DesignOrder, NoteSpec, NozzleSpec, PartSpec, VesselSpec};
 pub use relations::{AnnotatedBy, Annotates, MountedOn, Mounts, PatchOf, Patches};

@@ -17,7 +17,11 @@ use vesselcad::model::{Model, ModelError};
 use vesselcad::report::report;
 
 #[derive(Parser)]
-#[command(name = "vesselcad", version, about = "Parametric process vessels as exact NURBS")]
+#[command(
+    name = "vesselcad",
+    version,
+    about = "Parametric process vessels as exact NURBS"
+)]
 struct Cli {
     #[command(subcommand)]
     command: Command,
@@ -65,7 +69,11 @@ fn main() -> ExitCode {
     match cli.command {
         Command::Check { design } => match load(&design) {
             Ok(d) => {
-                println!("{}: valid ({} vessel(s))", design.display(), d.vessels.len());
+                println!(
+                    "{}: valid ({} vessel(s))",
+                    design.display(),
+                    d.vessels.len()
+                );
                 ExitCode::SUCCESS
             }
             Err(e) => fail(&e),
@@ -90,18 +98,39 @@ fn main() -> ExitCode {
             } else {
                 for v in &vessels {
                     println!("{} ({})", v.tag, v.kind);
-                    println!("  parts:            {}", v.parts.iter().map(|p| format!("{} {}", p.kind, p.id)).collect::<Vec<_>>().join(", "));
-                    println!("  nozzles:          {} ({})", v.nozzles.len(), v.nozzles.join(", "));
+                    println!(
+                        "  parts:            {}",
+                        v.parts
+                            .iter()
+                            .map(|p| format!("{} {}", p.kind, p.id))
+                            .collect::<Vec<_>>()
+                            .join(", ")
+                    );
+                    println!(
+                        "  nozzles:          {} ({})",
+                        v.nozzles.len(),
+                        v.nozzles.join(", ")
+                    );
                     println!("  tangent length:   {:.1} mm", v.tangent_length);
                     println!("  overall length:   {:.1} mm", v.overall_length);
                     println!("  outside diameter: {:.1} mm", v.outside_diameter);
-                    println!("  volume:           {:.3} m³ (inside the outside surface)", v.volume);
-                    println!("  surface area:     {:.3} m² (outside of heads and courses)", v.surface_area);
+                    println!(
+                        "  volume:           {:.3} m³ (inside the outside surface)",
+                        v.volume
+                    );
+                    println!(
+                        "  surface area:     {:.3} m² (outside of heads and courses)",
+                        v.surface_area
+                    );
                 }
             }
             ExitCode::SUCCESS
         }
-        Command::Build { design, output, tolerance } => {
+        Command::Build {
+            design,
+            output,
+            tolerance,
+        } => {
             let start = Instant::now();
             let d = match load(&design) {
                 Ok(d) => d,
@@ -116,7 +145,13 @@ fn main() -> ExitCode {
                 }
             };
             let scene = model.scene();
-            let triangles: usize = scene.vessels.iter().flat_map(|v| &v.nodes).flat_map(|n| &n.patches).map(|p| p.mesh.triangle_count()).sum();
+            let triangles: usize = scene
+                .vessels
+                .iter()
+                .flat_map(|v| &v.nodes)
+                .flat_map(|n| &n.patches)
+                .map(|p| p.mesh.triangle_count())
+                .sum();
             if let Err(e) = write_glb_to(&scene, &output) {
                 eprintln!("error: {e}");
                 return ExitCode::from(2);

@@ -90,7 +90,11 @@ pub fn report(design: &Design) -> Result<Vec<VesselReport>, DesignError> {
             parts: v
                 .parts
                 .iter()
-                .map(|p| PartReport { id: p.id.clone(), kind: p.geometry.kind(), span: [p.span.0, p.span.1] })
+                .map(|p| PartReport {
+                    id: p.id.clone(),
+                    kind: p.geometry.kind(),
+                    span: [p.span.0, p.span.1],
+                })
                 .collect(),
             nozzles: d.nozzles.iter().map(|n| n.mark.clone()).collect(),
             tangent_length: v.tangent_length,

@@ -17,7 +17,11 @@ use crate::constraints::{NoteTarget, ResolvedVessel};
 
 /// Writes `value` into `entity`'s component `T` if it differs (inserting it if
 /// absent); returns whether anything was written.
-fn put<T: Component<Mutability = Mutable> + PartialEq>(world: &mut World, entity: Entity, value: T) -> bool {
+fn put<T: Component<Mutability = Mutable> + PartialEq>(
+    world: &mut World,
+    entity: Entity,
+    value: T,
+) -> bool {
     let Ok(mut e) = world.get_entity_mut(entity) else {
         return false;
     };
@@ -48,7 +52,11 @@ struct Lookup {
 
 impl Lookup {
     fn of(world: &World, vessel: Entity) -> Self {
-        let mut out = Lookup { parts: vec![], nozzles: vec![], notes: vec![] };
+        let mut out = Lookup {
+            parts: vec![],
+            nozzles: vec![],
+            notes: vec![],
+        };
         let Some(children) = world.get::<Children>(vessel) else {
             return out;
         };
@@ -72,12 +80,22 @@ impl Lookup {
 /// Applies one resolved vessel.
 fn apply(world: &mut World, vessel: Entity, r: ResolvedVessel) -> u64 {
     put(world, vessel, VesselFrame(r.frame));
-    put(world, vessel, VesselSummary { tangent_length: r.tangent_length, extent: r.extent, max_diameter: r.max_diameter });
+    put(
+        world,
+        vessel,
+        VesselSummary {
+            tangent_length: r.tangent_length,
+            extent: r.extent,
+            max_diameter: r.max_diameter,
+        },
+    );
     let ids = Lookup::of(world, vessel);
     let mut frames = 0;
     let mut part_entities = Vec::with_capacity(r.parts.len());
     for p in r.parts {
-        let Some(e) = Lookup::find(&ids.parts, &p.id) else { continue };
+        let Some(e) = Lookup::find(&ids.parts, &p.id) else {
+            continue;
+        };
         frames += u64::from(put(world, e, PartFrame(p.frame)));
         put(world, e, PartSpan(p.span.0, p.span.1));
         put(world, e, Shape::Part(p.geometry));
@@ -85,19 +103,36 @@ fn apply(world: &mut World, vessel: Entity, r: ResolvedVessel) -> u64 {
     }
     let mut nozzle_entities = Vec::with_capacity(r.nozzles.len());
     for n in r.nozzles {
-        let Some(e) = Lookup::find(&ids.nozzles, &n.mark) else { continue };
+        let Some(e) = Lookup::find(&ids.nozzles, &n.mark) else {
+            continue;
+        };
         frames += u64::from(put(world, e, PartFrame(n.frame)));
         put(world, e, Shape::Nozzle(n.geometry, n.pad));
-        let host_id = world.get::<NozzleSpec>(e).map(|s| s.0.host.clone()).unwrap_or_default();
+        let host_id = world
+            .get::<NozzleSpec>(e)
+            .map(|s| s.0.host.clone())
+            .unwrap_or_default();
         if let Some(host) = Lookup::find(&ids.parts, &host_id) {
             relate(world, e, MountedOn(host));
         }
         nozzle_entities.push(e);
     }
     for note in r.notes {
-        let Some(e) = Lookup::find(&ids.notes, &note.id) else { continue };
-        put(world, e, NoteAnchor { anchor: note.anchor, position: note.position });
-        let target = world.get::<NoteSpec>(e).map(|s| s.0.target.clone()).unwrap_or_default();
+        let Some(e) = Lookup::find(&ids.notes, &note.id) else {
+            continue;
+        };
+        put(
+            world,
+            e,
+            NoteAnchor {
+                anchor: note.anchor,
+                position: note.position,
+            },
+        );
+        let target = world
+            .get::<NoteSpec>(e)
+            .map(|s| s.0.target.clone())
+            .unwrap_or_default();
         let target_entity = match note.target {
             NoteTarget::Vessel => Some(vessel),
             NoteTarget::Part(_) => Lookup::find(&ids.parts, &target),

@@ -9,7 +9,9 @@ use bevy_ecs::query::{Changed, Or};
 use bevy_ecs::resource::Resource;
 use bevy_ecs::system::{Query, ResMut};
 
-use crate::components::{NozzleSpec, PartFrame, PartSpec, PatchMesh, PatchOf, VesselFrame, VesselSpec};
+use crate::components::{
+    NozzleSpec, PartFrame, PartSpec, PatchMesh, PatchOf, VesselFrame, VesselSpec,
+};
 
 /// Stable ids changed and removed since the log was last drained.
 #[derive(Resource, Default, Debug, Clone, PartialEq, Eq)]
@@ -20,23 +22,31 @@ pub struct ChangeLog {
     pub removed: BTreeSet<String>,
 }
 
+/// Part or nozzle identity: its vessel and its spec.
+type Owner<'a> = (&'a ChildOf, Option<&'a PartSpec>, Option<&'a NozzleSpec>);
+/// A part or nozzle whose frame or shape changed.
+type MovedFilter = Or<(Changed<PartFrame>, Changed<crate::components::Shape>)>;
+
 /// Records what changed in this run into the [`ChangeLog`].
 pub fn collect_changes(
     vessels: Query<&VesselSpec, Changed<VesselFrame>>,
-    moved: Query<(&ChildOf, Option<&PartSpec>, Option<&NozzleSpec>), Or<(Changed<PartFrame>, Changed<crate::components::Shape>)>>,
+    moved: Query<Owner, MovedFilter>,
     meshed: Query<&PatchOf, Changed<PatchMesh>>,
-    owners: Query<(&ChildOf, Option<&PartSpec>, Option<&NozzleSpec>)>,
+    owners: Query<Owner>,
     tags: Query<&VesselSpec>,
     mut log: ResMut<ChangeLog>,
 ) {
     for v in &vessels {
         log.changed.insert(v.tag.clone());
     }
-    let id_of = |child: &ChildOf, part: Option<&PartSpec>, nozzle: Option<&NozzleSpec>| -> Option<String> {
-        let tag = &tags.get(child.parent()).ok()?.tag;
-        let id = part.map(|p| p.0.id().to_string()).or_else(|| nozzle.map(|n| n.0.mark.clone()))?;
-        Some(format!("{tag}/{id}"))
-    };
+    let id_of =
+        |child: &ChildOf, part: Option<&PartSpec>, nozzle: Option<&NozzleSpec>| -> Option<String> {
+            let tag = &tags.get(child.parent()).ok()?.tag;
+            let id = part
+                .map(|p| p.0.id().to_string())
+                .or_else(|| nozzle.map(|n| n.0.mark.clone()))?;
+            Some(format!("{tag}/{id}"))
+        };
     for (c, p, n) in &moved {
         if let Some(id) = id_of(c, p, n) {
             log.changed.insert(id);

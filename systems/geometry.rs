@@ -26,13 +26,18 @@ pub(crate) fn shape_patches(shape: &Shape) -> Result<Vec<Patch>, PartError> {
 }
 
 /// Rebuilds the patches of every entity whose [`Shape`] changed.
-pub fn rebuild_dirty_patches(world: &mut World, dirty: &mut QueryState<(Entity, &Shape), Changed<Shape>>) {
+pub fn rebuild_dirty_patches(
+    world: &mut World,
+    dirty: &mut QueryState<(Entity, &Shape), Changed<Shape>>,
+) {
     let work: Vec<(Entity, Shape)> = dirty.iter(world).map(|(e, s)| (e, s.clone())).collect();
     if work.is_empty() {
         return;
     }
-    let built: Vec<(Entity, Result<Vec<Patch>, PartError>)> =
-        work.par_iter().map(|(e, s)| (*e, shape_patches(s))).collect();
+    let built: Vec<(Entity, Result<Vec<Patch>, PartError>)> = work
+        .par_iter()
+        .map(|(e, s)| (*e, shape_patches(s)))
+        .collect();
     let mut rebuilt = 0u64;
     for (entity, result) in built {
         let patches = match result {

@@ -55,14 +55,14 @@ pub(crate) fn read_vessel(
     }
 }
 
+/// A part, nozzle or note whose parameters changed.
+type ChangedSpec = Or<(Changed<PartSpec>, Changed<NozzleSpec>, Changed<NoteSpec>)>;
+
 /// Resolves every vessel whose parameters (or whose children's) changed.
 #[expect(clippy::too_many_arguments, reason = "one query per parameter kind")]
 pub fn resolve_dirty_vessels(
     vessels: Query<(Entity, Ref<VesselSpec>, &DesignOrder, Option<&Children>)>,
-    changed_children: Query<
-        &ChildOf,
-        Or<(Changed<PartSpec>, Changed<NozzleSpec>, Changed<NoteSpec>)>,
-    >,
+    changed_children: Query<&ChildOf, ChangedSpec>,
     parts: Query<(&PartSpec, &DesignOrder)>,
     nozzles: Query<(&NozzleSpec, &DesignOrder)>,
     notes: Query<(&NoteSpec, &DesignOrder)>,
@@ -71,18 +71,35 @@ pub fn resolve_dirty_vessels(
     mut counters: ResMut<WorkCounters>,
 ) {
     let mut dirty: Vec<Entity> = changed_children.iter().map(|c| c.parent()).collect();
-    dirty.extend(vessels.iter().filter(|(_, s, _, _)| s.is_changed()).map(|(e, ..)| e));
+    dirty.extend(
+        vessels
+            .iter()
+            .filter(|(_, s, _, _)| s.is_changed())
+            .map(|(e, ..)| e),
+    );
     dirty.sort_unstable();
     dirty.dedup();
     let work: Vec<(Entity, u32, VesselDesign)> = dirty
         .iter()
         .filter_map(|&e| vessels.get(e).ok())
-        .map(|(e, spec, order, kids)| (e, order.0, read_vessel(&spec, kids, &parts, &nozzles, &notes)))
+        .map(|(e, spec, order, kids)| {
+            (
+                e,
+                order.0,
+                read_vessel(&spec, kids, &parts, &nozzles, &notes),
+            )
+        })
         .collect();
     counters.vessels_resolved += work.len() as u64;
     let results: Vec<_> = work
         .par_iter()
-        .map(|(e, order, design)| (*e, design.tag.clone(), resolve_vessel(design, *order as usize)))
+        .map(|(e, order, design)| {
+            (
+                *e,
+                design.tag.clone(),
+                resolve_vessel(design, *order as usize),
+            )
+        })
         .collect();
     for (e, tag, result) in results {
         match result {

@@ -1,11 +1,19 @@
 //! The example designs load, pass every rule, and survive load → save → load.
 
-use vesselcad::design::{load, parse, to_canonical_json, resolve};
+use vesselcad::design::{load, parse, resolve, to_canonical_json};
 
-const EXAMPLES: [&str; 4] = ["horizontal-drum", "vertical-column", "storage-tank", "small-plant"];
+const EXAMPLES: [&str; 4] = [
+    "horizontal-drum",
+    "vertical-column",
+    "storage-tank",
+    "small-plant",
+];
 
 fn path(name: &str) -> String {
-    format!("{}/examples/designs/{name}.json", env!("CARGO_MANIFEST_DIR"))
+    format!(
+        "{}/examples/designs/{name}.json",
+        env!("CARGO_MANIFEST_DIR")
+    )
 }
 
 #[test]
@@ -24,6 +32,10 @@ fn save_is_canonical_and_round_trips() {
         let text = to_canonical_json(&design);
         let again = parse(&text).unwrap();
         assert_eq!(design, again, "{name}");
-        assert_eq!(text, to_canonical_json(&again), "{name}: save is not canonical");
+        assert_eq!(
+            text,
+            to_canonical_json(&again),
+            "{name}: save is not canonical"
+        );
     }
 }

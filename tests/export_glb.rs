@@ -78,7 +78,12 @@ fn node_tree_is_plant_vessels_parts_patches_with_names_and_extras() {
         let plant = &roots[0];
         assert_eq!(plant.name(), Some(PLANT_NODE));
         let vessels: Vec<_> = plant.children().collect();
-        let tags: Vec<_> = example.design.vessels.iter().map(|v| v.tag.as_str()).collect();
+        let tags: Vec<_> = example
+            .design
+            .vessels
+            .iter()
+            .map(|v| v.tag.as_str())
+            .collect();
         let names: Vec<_> = vessels.iter().map(|n| n.name().unwrap()).collect();
         assert_eq!(names, tags, "{}", example.name);
         for (node, vessel) in vessels.iter().zip(&example.design.vessels) {
@@ -104,7 +109,11 @@ fn node_tree_is_plant_vessels_parts_patches_with_names_and_extras() {
                 assert!(!patches.is_empty(), "{}/{id} has no patches", vessel.tag);
                 for patch in patches {
                     assert!(!patch.name().unwrap().is_empty());
-                    assert!(patch.mesh().is_some(), "{}/{id}: patch without mesh", vessel.tag);
+                    assert!(
+                        patch.mesh().is_some(),
+                        "{}/{id}: patch without mesh",
+                        vessel.tag
+                    );
                     assert_eq!(patch.children().count(), 0);
                 }
             }
@@ -135,8 +144,14 @@ fn world_bounds(example: &Example, path: [&str; 2]) -> (DVec3, DVec3) {
     let gltf = Gltf::from_slice(&example.glb).unwrap();
     let blob = gltf.blob.as_deref().unwrap();
     let plant = gltf.default_scene().unwrap().nodes().next().unwrap();
-    let vessel = plant.children().find(|n| n.name() == Some(path[0])).unwrap();
-    let part = vessel.children().find(|n| n.name() == Some(path[1])).unwrap();
+    let vessel = plant
+        .children()
+        .find(|n| n.name() == Some(path[0]))
+        .unwrap();
+    let part = vessel
+        .children()
+        .find(|n| n.name() == Some(path[1]))
+        .unwrap();
     let to_part = local_matrix(&plant) * local_matrix(&vessel) * local_matrix(&part);
     let mut lo = DVec3::splat(f64::INFINITY);
     let mut hi = DVec3::splat(f64::NEG_INFINITY);
@@ -205,19 +220,48 @@ fn normals_are_unit_and_positions_within_accessor_bounds() {
                 let positions: Vec<[f32; 3]> = reader.read_positions().unwrap().collect();
                 let normals: Vec<[f32; 3]> = reader.read_normals().unwrap().collect();
                 assert_eq!(positions.len(), normals.len());
-                for n in normals {
+                for &n in &normals {
                     let length = glam::Vec3::from(n).length();
-                    assert!((length - 1.0).abs() < 1e-6, "{:?}: |n| = {length}", mesh.name());
+                    assert!(
+                        (length - 1.0).abs() < 1e-6,
+                        "{:?}: |n| = {length}",
+                        mesh.name()
+                    );
                 }
-                for p in positions {
-                    for k in 0..3 {
-                        assert!(bounds.min[k] <= p[k] && p[k] <= bounds.max[k]);
-                    }
+                let (lo, hi) = (glam::Vec3::from(bounds.min), glam::Vec3::from(bounds.max));
+                for &p in &positions {
+                    let p = glam::Vec3::from(p);
+                    assert!(
+                        p.cmpge(lo).all() && p.cmple(hi).all(),
+                        "{p} outside {lo}..{hi}"
+                    );
                 }
-                let count = reader.read_indices().unwrap().into_u32().count();
-                assert!(count > 0 && count % 3 == 0);
+                let indices: Vec<u32> = reader.read_indices().unwrap().into_u32().collect();
+                assert!(!indices.is_empty() && indices.len().is_multiple_of(3));
+                assert_front_faces_outward(&positions, &normals, &indices, mesh.name());
             }
         }
+    }
+}
+
+/// Materials are single-sided: every counter-clockwise triangle must face the
+/// way its vertex normals point.
+fn assert_front_faces_outward(
+    positions: &[[f32; 3]],
+    normals: &[[f32; 3]],
+    indices: &[u32],
+    mesh: Option<&str>,
+) {
+    let vec = |a: [f32; 3]| glam::Vec3::from(a);
+    for triangle in indices.chunks_exact(3) {
+        let [a, b, c] = [0, 1, 2].map(|k| triangle[k] as usize);
+        let face =
+            (vec(positions[b]) - vec(positions[a])).cross(vec(positions[c]) - vec(positions[a]));
+        let normal = vec(normals[a]) + vec(normals[b]) + vec(normals[c]);
+        assert!(
+            face.dot(normal) >= 0.0,
+            "{mesh:?}: triangle {triangle:?} faces inward"
+        );
     }
 }
 
@@ -227,7 +271,10 @@ fn glb_container_is_well_formed() {
         let glb = &example.glb;
         assert_eq!(&glb[0..4], b"glTF");
         assert_eq!(u32::from_le_bytes(glb[4..8].try_into().unwrap()), 2);
-        assert_eq!(u32::from_le_bytes(glb[8..12].try_into().unwrap()) as usize, glb.len());
+        assert_eq!(
+            u32::from_le_bytes(glb[8..12].try_into().unwrap()) as usize,
+            glb.len()
+        );
         let json_len = u32::from_le_bytes(glb[12..16].try_into().unwrap()) as usize;
         assert_eq!(&glb[16..20], b"JSON");
         assert_eq!(json_len % 4, 0);
@@ -235,14 +282,21 @@ fn glb_container_is_well_formed() {
         assert_eq!(&glb[bin + 4..bin + 8], b"BIN\0");
         let json: Value = serde_json::from_slice(&glb[20..bin]).unwrap();
         let generator = json["asset"]["generator"].as_str().unwrap();
-        assert_eq!(generator, format!("vesselcad {}", env!("CARGO_PKG_VERSION")));
+        assert_eq!(
+            generator,
+            format!("vesselcad {}", env!("CARGO_PKG_VERSION"))
+        );
     }
 }
 
 #[test]
 fn two_builds_give_identical_bytes() {
     for example in examples() {
-        assert!(glb_of(&example.design) == example.glb, "{}: bytes differ", example.name);
+        assert!(
+            glb_of(&example.design) == example.glb,
+            "{}: bytes differ",
+            example.name
+        );
     }
 }
 

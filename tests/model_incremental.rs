@@ -8,7 +8,11 @@ use vesselcad::mesh::TessellationOptions;
 use vesselcad::model::{Edit, Model, ModelError};
 
 fn example(name: &str) -> vesselcad::design::Design {
-    load(format!("{}/examples/designs/{name}.json", env!("CARGO_MANIFEST_DIR"))).unwrap()
+    load(format!(
+        "{}/examples/designs/{name}.json",
+        env!("CARGO_MANIFEST_DIR")
+    ))
+    .unwrap()
 }
 
 fn options() -> TessellationOptions {
@@ -23,7 +27,10 @@ fn model(name: &str) -> Model {
 fn assert_matches_full_build(model: &Model) {
     let incremental = write_glb(&model.scene()).unwrap();
     let full = write_glb(&build_scene(&model.design(), &options()).unwrap()).unwrap();
-    assert!(incremental == full, "incremental GLB differs from the full build");
+    assert!(
+        incremental == full,
+        "incremental GLB differs from the full build"
+    );
 }
 
 #[test]
@@ -42,13 +49,24 @@ fn nozzle_orientation_moves_only_that_nozzle() {
     m.take_changes();
     let mut n = m.design().vessels[0].nozzles[0].clone();
     n.orientation = 45.0;
-    let c = m.edit(Edit::SetNozzle { vessel: "V-101".into(), nozzle: n }).unwrap();
+    let c = m
+        .edit(Edit::SetNozzle {
+            vessel: "V-101".into(),
+            nozzle: n,
+        })
+        .unwrap();
     assert_eq!(c.vessels_resolved, 1);
     assert_eq!(c.frames_updated, 1, "{c:?}");
-    assert_eq!(c.patches_rebuilt, 0, "a frame change must not rebuild patches: {c:?}");
+    assert_eq!(
+        c.patches_rebuilt, 0,
+        "a frame change must not rebuild patches: {c:?}"
+    );
     assert_eq!(c.meshes_rebuilt, 0);
     let log = m.take_changes();
-    assert_eq!(log.changed.into_iter().collect::<Vec<_>>(), vec!["V-101/N1".to_string()]);
+    assert_eq!(
+        log.changed.into_iter().collect::<Vec<_>>(),
+        vec!["V-101/N1".to_string()]
+    );
     assert_matches_full_build(&m);
 }
 
@@ -58,11 +76,19 @@ fn nozzle_projection_rebuilds_only_that_nozzle() {
     m.take_changes();
     let mut n = m.design().vessels[0].nozzles[1].clone();
     n.projection += 100.0;
-    let c = m.edit(Edit::SetNozzle { vessel: "V-101".into(), nozzle: n }).unwrap();
+    let c = m
+        .edit(Edit::SetNozzle {
+            vessel: "V-101".into(),
+            nozzle: n,
+        })
+        .unwrap();
     assert_eq!(c.shapes_rebuilt, 1, "{c:?}");
     assert!(c.patches_rebuilt > 0 && c.patches_rebuilt <= 8, "{c:?}");
     assert_eq!(c.meshes_rebuilt, c.patches_rebuilt);
-    assert_eq!(m.take_changes().changed.into_iter().collect::<Vec<_>>(), vec!["V-101/N2".to_string()]);
+    assert_eq!(
+        m.take_changes().changed.into_iter().collect::<Vec<_>>(),
+        vec!["V-101/N2".to_string()]
+    );
     assert_matches_full_build(&m);
 }
 
@@ -71,16 +97,33 @@ fn shell_diameter_rebuilds_its_dependents_in_its_vessel_only() {
     let mut m = model("small-plant");
     m.take_changes();
     let design = m.design();
-    let PartDesign::Shell(mut shell) = design.vessels[0].parts[1].clone() else { panic!() };
+    let PartDesign::Shell(mut shell) = design.vessels[0].parts[1].clone() else {
+        panic!()
+    };
     shell.od = 2500.0;
-    let c = m.edit(Edit::SetPart { vessel: "V-101".into(), part: PartDesign::Shell(shell) }).unwrap();
+    let c = m
+        .edit(Edit::SetPart {
+            vessel: "V-101".into(),
+            part: PartDesign::Shell(shell),
+        })
+        .unwrap();
     assert_eq!(c.vessels_resolved, 1);
     // The shell, both heads, both saddles and the boot change shape; nozzles keep
     // theirs (projection is measured from the axis).
     assert_eq!(c.shapes_rebuilt, 6, "{c:?}");
     let changed = m.take_changes().changed;
-    assert!(changed.iter().all(|id| id.starts_with("V-101")), "{changed:?}");
-    for id in ["V-101/S1", "V-101/H1", "V-101/H2", "V-101/SD1", "V-101/SD2", "V-101/B1"] {
+    assert!(
+        changed.iter().all(|id| id.starts_with("V-101")),
+        "{changed:?}"
+    );
+    for id in [
+        "V-101/S1",
+        "V-101/H1",
+        "V-101/H2",
+        "V-101/SD1",
+        "V-101/SD2",
+        "V-101/B1",
+    ] {
         assert!(changed.contains(id), "{id} missing from {changed:?}");
     }
     assert_matches_full_build(&m);
@@ -91,16 +134,26 @@ fn lengthening_a_course_moves_what_is_above_without_rebuilding_it() {
     let mut m = model("vertical-column");
     m.take_changes();
     let design = m.design();
-    let PartDesign::Shell(mut s1) = design.vessels[0].parts[2].clone() else { panic!() };
+    let PartDesign::Shell(mut s1) = design.vessels[0].parts[2].clone() else {
+        panic!()
+    };
     s1.length += 500.0;
-    let c = m.edit(Edit::SetPart { vessel: "C-201".into(), part: PartDesign::Shell(s1) }).unwrap();
+    let c = m
+        .edit(Edit::SetPart {
+            vessel: "C-201".into(),
+            part: PartDesign::Shell(s1),
+        })
+        .unwrap();
     // Only S1 changes shape. The reducer, S2, the top head and the nozzle on the
     // head move; shell nozzles keep their elevation above the datum, so they stay.
     assert_eq!(c.shapes_rebuilt, 1, "{c:?}");
     assert_eq!(c.frames_updated, 4, "{c:?}");
     let changed = m.take_changes().changed;
     let expected = ["C-201/H2", "C-201/N3", "C-201/R1", "C-201/S1", "C-201/S2"];
-    assert_eq!(changed.iter().map(String::as_str).collect::<Vec<_>>(), expected);
+    assert_eq!(
+        changed.iter().map(String::as_str).collect::<Vec<_>>(),
+        expected
+    );
     assert_matches_full_build(&m);
 }
 
@@ -110,9 +163,21 @@ fn moving_a_vessel_rebuilds_no_patch() {
     m.take_changes();
     let mut placement = m.design().vessels[2].placement;
     placement.position[0] += 5000.0;
-    let c = m.edit(Edit::MoveVessel { tag: "C-201".into(), placement }).unwrap();
-    assert_eq!((c.patches_rebuilt, c.meshes_rebuilt, c.shapes_rebuilt), (0, 0, 0), "{c:?}");
-    assert_eq!(m.take_changes().changed.into_iter().collect::<Vec<_>>(), vec!["C-201".to_string()]);
+    let c = m
+        .edit(Edit::MoveVessel {
+            tag: "C-201".into(),
+            placement,
+        })
+        .unwrap();
+    assert_eq!(
+        (c.patches_rebuilt, c.meshes_rebuilt, c.shapes_rebuilt),
+        (0, 0, 0),
+        "{c:?}"
+    );
+    assert_eq!(
+        m.take_changes().changed.into_iter().collect::<Vec<_>>(),
+        vec!["C-201".to_string()]
+    );
     assert_matches_full_build(&m);
 }
 
@@ -120,7 +185,12 @@ fn moving_a_vessel_rebuilds_no_patch() {
 fn an_edit_to_the_same_value_does_nothing() {
     let mut m = model("small-plant");
     let n = m.design().vessels[0].nozzles[0].clone();
-    let c = m.edit(Edit::SetNozzle { vessel: "V-101".into(), nozzle: n }).unwrap();
+    let c = m
+        .edit(Edit::SetNozzle {
+            vessel: "V-101".into(),
+            nozzle: n,
+        })
+        .unwrap();
     assert_eq!(c, Default::default());
     let design = m.design();
     let c = m.edit(Edit::ReplaceDesign(design)).unwrap();
@@ -139,7 +209,14 @@ fn rejected_edits_leave_the_model_unchanged() {
     n.elevation = Some(2500.0);
     let mut big = m.design().vessels[0].clone();
     big.tag = "V-102".into();
-    let err = m.apply(Edit::SetNozzle { vessel: "V-102".into(), nozzle: { let mut x = n.clone(); x.size = 30.0; x } });
+    let err = m.apply(Edit::SetNozzle {
+        vessel: "V-102".into(),
+        nozzle: {
+            let mut x = n.clone();
+            x.size = 30.0;
+            x
+        },
+    });
     assert!(err.is_err());
     // A knuckle larger than its crown, in a batch with a valid edit: all or nothing.
     let mut placement = m.design().vessels[0].placement;
@@ -157,11 +234,19 @@ fn rejected_edits_leave_the_model_unchanged() {
     });
     let err = m
         .apply(Edit::Batch(vec![
-            Edit::MoveVessel { tag: "V-101".into(), placement },
-            Edit::SetPart { vessel: "V-101".into(), part: bad_head },
+            Edit::MoveVessel {
+                tag: "V-101".into(),
+                placement,
+            },
+            Edit::SetPart {
+                vessel: "V-101".into(),
+                part: bad_head,
+            },
         ]))
         .unwrap_err();
-    let ModelError::Design(e) = &err else { panic!("{err}") };
+    let ModelError::Design(e) = &err else {
+        panic!("{err}")
+    };
     let v = &e.violations()[0];
     assert_eq!(v.entity, "V-101/H2");
     assert_eq!(v.field, "knuckle_radius");
@@ -169,7 +254,12 @@ fn rejected_edits_leave_the_model_unchanged() {
     assert!(v.rule.contains("crown radius"), "{v}");
     assert_eq!(v.path, "vessels[0].parts[2].head.knuckle_radius");
     // Unknown targets.
-    assert!(matches!(m.apply(Edit::RemoveVessel { tag: "X-999".into() }), Err(ModelError::UnknownVessel { .. })));
+    assert!(matches!(
+        m.apply(Edit::RemoveVessel {
+            tag: "X-999".into()
+        }),
+        Err(ModelError::UnknownVessel { .. })
+    ));
     assert_eq!(m.update(), Default::default());
     assert_eq!(before, to_canonical_json(&m.design()));
     assert!(glb_before == write_glb(&m.scene()).unwrap());
@@ -180,20 +270,40 @@ fn rejected_edits_leave_the_model_unchanged() {
 fn structural_edits_match_a_full_build() {
     let mut m = model("small-plant");
     // Remove a nozzle, add another, add a note, remove a vessel, change a head shape.
-    m.edit(Edit::RemoveNozzle { vessel: "V-101".into(), mark: "N7".into() }).unwrap();
+    m.edit(Edit::RemoveNozzle {
+        vessel: "V-101".into(),
+        mark: "N7".into(),
+    })
+    .unwrap();
     let mut n = m.design().vessels[0].nozzles[0].clone();
     n.mark = "N9".into();
     n.elevation = Some(3300.0);
-    m.edit(Edit::SetNozzle { vessel: "V-101".into(), nozzle: n }).unwrap();
-    m.edit(Edit::RemoveVessel { tag: "V-102".into() }).unwrap();
+    m.edit(Edit::SetNozzle {
+        vessel: "V-101".into(),
+        nozzle: n,
+    })
+    .unwrap();
+    m.edit(Edit::RemoveVessel {
+        tag: "V-102".into(),
+    })
+    .unwrap();
     let design = m.design();
-    let PartDesign::Head(mut h) = design.vessels[0].parts[2].clone() else { panic!() };
+    let PartDesign::Head(mut h) = design.vessels[0].parts[2].clone() else {
+        panic!()
+    };
     h.shape = vesselcad::design::HeadShape::Hemispherical;
     h.ratio = None;
-    m.edit(Edit::SetPart { vessel: "V-101".into(), part: PartDesign::Head(h) }).unwrap();
+    m.edit(Edit::SetPart {
+        vessel: "V-101".into(),
+        part: PartDesign::Head(h),
+    })
+    .unwrap();
     assert!(m.errors().0.is_empty());
     assert_eq!(m.design().vessels.len(), 3);
     assert_matches_full_build(&m);
     let removed = m.take_changes().removed;
-    assert!(removed.contains("V-102") && removed.contains("V-101/N7"), "{removed:?}");
+    assert!(
+        removed.contains("V-102") && removed.contains("V-101/N7"),
+        "{removed:?}"
+    );
 }

@@ -252,8 +252,10 @@ pub(crate) fn layout(vessel: &VesselDesign, report: &mut Report) -> StackLayout 
         }
     }
     let mut tangent_length = z;
-    if let (Some((i, h)), Some(c)) = (first_head, courses.first()) {
-        if let Some(head) = head_part(i, h, c.d_start, report) {
+    if let (Some((i, h)), Some(c)) = (first_head, courses.first())
+        && let Some(head) = head_part(i, h, c.d_start, report)
+    {
+        {
             let sf = h.straight_flange;
             let height = head.height().unwrap_or(0.0);
             parts[i] = Some(ResolvedPart {
@@ -264,8 +266,10 @@ pub(crate) fn layout(vessel: &VesselDesign, report: &mut Report) -> StackLayout 
             });
         }
     }
-    if let (Some((i, h)), Some(c)) = (last_head, courses.last()) {
-        if let Some(head) = head_part(i, h, c.d_end, report) {
+    if let (Some((i, h)), Some(c)) = (last_head, courses.last())
+        && let Some(head) = head_part(i, h, c.d_end, report)
+    {
+        {
             let height = head.height().unwrap_or(0.0);
             parts[i] = Some(ResolvedPart {
                 id: h.id.clone(),

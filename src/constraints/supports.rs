@@ -136,7 +136,7 @@ pub(crate) fn place(
                     );
                     continue;
                 }
-                if !(s.width < tangent_length / 2.0) {
+                if !s.width.is_finite() || s.width >= tangent_length / 2.0 {
                     report.push(
                         format!("{path}.width"),
                         Some(id),

@@ -92,7 +92,13 @@ impl MeshBuffers {
         let positions = root.push(json::Accessor {
             min: Some(vec3_value(lo)),
             max: Some(vec3_value(hi)),
-            ..accessor(POSITIONS_VIEW, position_offset, count, Type::Vec3, ComponentType::F32)
+            ..accessor(
+                POSITIONS_VIEW,
+                position_offset,
+                count,
+                Type::Vec3,
+                ComponentType::F32,
+            )
         });
         let normals = root.push(accessor(
             NORMALS_VIEW,
@@ -176,7 +182,7 @@ fn check_topology(mesh: &Mesh, entity: &str, patch: &str) -> Result<(), ExportEr
             mesh.normals.len()
         )));
     }
-    if mesh.indices.len() % 3 != 0 {
+    if !mesh.indices.len().is_multiple_of(3) {
         return Err(malformed(format!(
             "{} indices is not a whole number of triangles",
             mesh.indices.len()

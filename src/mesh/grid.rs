@@ -45,7 +45,11 @@ fn allowed_chord(kappa: f64, options: &TessellationOptions) -> f64 {
         f64::INFINITY
     } else {
         let rho = 1.0 / kappa;
-        if delta >= rho { 2.0 * rho } else { 2.0 * (delta * (2.0 * rho - delta)).sqrt() }
+        if delta >= rho {
+            2.0 * rho
+        } else {
+            2.0 * (delta * (2.0 * rho - delta)).sqrt()
+        }
     };
     if let Some(angle) = options.angle_tolerance
         && kappa > 0.0
@@ -63,13 +67,20 @@ fn allowed_chord(kappa: f64, options: &TessellationOptions) -> f64 {
 fn place(params: &[f64], density: &[f64], min_segments: usize) -> Vec<f64> {
     let mut cumulative = vec![0.0; params.len()];
     for k in 1..params.len() {
-        cumulative[k] = cumulative[k - 1] + 0.5 * (density[k] + density[k - 1]) * (params[k] - params[k - 1]);
+        cumulative[k] =
+            cumulative[k - 1] + 0.5 * (density[k] + density[k - 1]) * (params[k] - params[k - 1]);
     }
     let total = cumulative[params.len() - 1];
-    let n = if total.is_finite() { (total.ceil() as usize).clamp(min_segments.max(1), MAX_SEGMENTS) } else { MAX_SEGMENTS };
+    let n = if total.is_finite() {
+        (total.ceil() as usize).clamp(min_segments.max(1), MAX_SEGMENTS)
+    } else {
+        MAX_SEGMENTS
+    };
     let (first, last) = (params[0], params[params.len() - 1]);
     if !(total > 0.0 && total.is_finite()) {
-        return (0..=n).map(|k| first + (last - first) * k as f64 / n as f64).collect();
+        return (0..=n)
+            .map(|k| first + (last - first) * k as f64 / n as f64)
+            .collect();
     }
     let mut out = Vec::with_capacity(n + 1);
     out.push(first);
@@ -80,7 +91,11 @@ fn place(params: &[f64], density: &[f64], min_segments: usize) -> Vec<f64> {
             seg += 1;
         }
         let (c0, c1) = (cumulative[seg - 1], cumulative[seg]);
-        let t = if c1 > c0 { (target - c0) / (c1 - c0) } else { 0.0 };
+        let t = if c1 > c0 {
+            (target - c0) / (c1 - c0)
+        } else {
+            0.0
+        };
         out.push(params[seg - 1] + t * (params[seg] - params[seg - 1]));
     }
     out.push(last);
@@ -114,7 +129,10 @@ pub fn tessellate(surface: &NurbsSurface, options: &TessellationOptions) -> Mesh
     let mut normals = Vec::new();
     surface.evaluate_grid_with_normals(&grid_u, &grid_v, &mut positions, &mut normals);
     let nv = grid_v.len();
-    let scale = positions.iter().fold(0.0f64, |m, p| m.max(p.abs().max_element())).max(1.0);
+    let scale = positions
+        .iter()
+        .fold(0.0f64, |m, p| m.max(p.abs().max_element()))
+        .max(1.0);
     let same = |a: DVec3, b: DVec3| (a - b).length() <= 1e-12 * scale;
     let mut indices = Vec::with_capacity((grid_u.len() - 1) * (nv - 1) * 6);
     for i in 0..grid_u.len() - 1 {
@@ -131,5 +149,9 @@ pub fn tessellate(surface: &NurbsSurface, options: &TessellationOptions) -> Mesh
             }
         }
     }
-    Mesh { positions, normals, indices }
+    Mesh {
+        positions,
+        normals,
+        indices,
+    }
 }

@@ -32,6 +32,10 @@ impl Mesh {
     /// Axis-aligned bounds `(min, max)` of the vertices; `None` when empty.
     pub fn bounds(&self) -> Option<(DVec3, DVec3)> {
         let first = *self.positions.first()?;
-        Some(self.positions.iter().fold((first, first), |(lo, hi), &p| (lo.min(p), hi.max(p))))
+        Some(
+            self.positions
+                .iter()
+                .fold((first, first), |(lo, hi), &p| (lo.min(p), hi.max(p))),
+        )
     }
 }

@@ -65,12 +65,20 @@ impl TessellationOptions {
     pub fn validate(&self) -> Result<(), OptionsError> {
         let bad = |field, value, rule| Err(OptionsError::Invalid { field, value, rule });
         if !(self.tolerance.is_finite() && self.tolerance >= 1e-6 && self.tolerance <= 1e4) {
-            return bad("tolerance", self.tolerance, "must be a finite number from 1e-6 to 1e4 mm");
+            return bad(
+                "tolerance",
+                self.tolerance,
+                "must be a finite number from 1e-6 to 1e4 mm",
+            );
         }
         if let Some(a) = self.angle_tolerance
             && !(a.is_finite() && a > 0.0 && a <= 90.0)
         {
-            return bad("angle_tolerance", a, "must be a finite angle in (0, 90] degrees");
+            return bad(
+                "angle_tolerance",
+                a,
+                "must be a finite angle in (0, 90] degrees",
+            );
         }
         if let Some(l) = self.max_edge_length
             && !(l.is_finite() && l > 0.0)

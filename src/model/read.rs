@@ -18,12 +18,17 @@ use crate::export::{
 };
 
 /// Children of `vessel` that carry component `T`, in design order.
-fn ordered<T: bevy_ecs::component::Component + Clone>(world: &World, vessel: Entity) -> Vec<(Entity, T)> {
+fn ordered<T: bevy_ecs::component::Component + Clone>(
+    world: &World,
+    vessel: Entity,
+) -> Vec<(Entity, T)> {
     let mut out: Vec<(DesignOrder, Entity, T)> = world
         .get::<Children>(vessel)
         .map(|c| {
             c.iter()
-                .filter_map(|&e| Some((*world.get::<DesignOrder>(e)?, e, world.get::<T>(e)?.clone())))
+                .filter_map(|&e| {
+                    Some((*world.get::<DesignOrder>(e)?, e, world.get::<T>(e)?.clone()))
+                })
                 .collect()
         })
         .unwrap_or_default();
@@ -55,7 +60,10 @@ pub(crate) fn vessel(world: &World, entity: Entity) -> Option<VesselDesign> {
         placement: spec.placement,
         design: spec.design,
         parts: parts(world, entity).into_iter().map(|(_, p)| p.0).collect(),
-        nozzles: nozzles(world, entity).into_iter().map(|(_, n)| n.0).collect(),
+        nozzles: nozzles(world, entity)
+            .into_iter()
+            .map(|(_, n)| n.0)
+            .collect(),
         notes: notes(world, entity).into_iter().map(|(_, n)| n.0).collect(),
     })
 }
@@ -77,7 +85,10 @@ pub(crate) fn design(world: &World) -> Design {
     Design {
         format: FORMAT.to_string(),
         units: Units::Mm,
-        vessels: vessels(world).into_iter().filter_map(|e| vessel(world, e)).collect(),
+        vessels: vessels(world)
+            .into_iter()
+            .filter_map(|e| vessel(world, e))
+            .collect(),
     }
 }
 
@@ -90,17 +101,35 @@ fn resolved(world: &World, entity: Entity) -> Option<(VesselDesign, ResolvedVess
     let part_entities = parts(world, entity);
     let mut resolved_parts = Vec::new();
     for (e, spec) in &part_entities {
-        if let (Some(f), Some(span), Some(Shape::Part(g))) =
-            (world.get::<PartFrame>(*e), world.get::<PartSpan>(*e), world.get::<Shape>(*e))
-        {
-            resolved_parts.push(ResolvedPart { id: spec.0.id().to_string(), frame: f.0, geometry: g.clone(), span: (span.0, span.1) });
+        if let (Some(f), Some(span), Some(Shape::Part(g))) = (
+            world.get::<PartFrame>(*e),
+            world.get::<PartSpan>(*e),
+            world.get::<Shape>(*e),
+        ) {
+            resolved_parts.push(ResolvedPart {
+                id: spec.0.id().to_string(),
+                frame: f.0,
+                geometry: g.clone(),
+                span: (span.0, span.1),
+            });
         }
     }
     let mut resolved_nozzles = Vec::new();
     for (e, spec) in nozzles(world, entity) {
-        if let (Some(f), Some(Shape::Nozzle(n, pad))) = (world.get::<PartFrame>(e), world.get::<Shape>(e)) {
-            let host = part_entities.iter().position(|(_, p)| p.0.id() == spec.0.host).unwrap_or(0);
-            resolved_nozzles.push(ResolvedNozzle { mark: spec.0.mark.clone(), host, frame: f.0, geometry: n.clone(), pad: *pad });
+        if let (Some(f), Some(Shape::Nozzle(n, pad))) =
+            (world.get::<PartFrame>(e), world.get::<Shape>(e))
+        {
+            let host = part_entities
+                .iter()
+                .position(|(_, p)| p.0.id() == spec.0.host)
+                .unwrap_or(0);
+            resolved_nozzles.push(ResolvedNozzle {
+                mark: spec.0.mark.clone(),
+                host,
+                frame: f.0,
+                geometry: *n,
+                pad: *pad,
+            });
         }
     }
     let resolved = ResolvedVessel {
@@ -128,7 +157,10 @@ fn scene_patches(world: &World, entity: Entity) -> Vec<ScenePatch> {
         .filter_map(|&p| {
             let surface = world.get::<PatchSurface>(p)?;
             let mesh = world.get::<PatchMesh>(p)?;
-            Some(ScenePatch { name: patch_name(&surface.0), mesh: mesh.0.clone() })
+            Some(ScenePatch {
+                name: patch_name(&surface.0),
+                mesh: mesh.0.clone(),
+            })
         })
         .collect()
 }
@@ -143,7 +175,9 @@ pub(crate) fn scene(world: &World) -> Scene {
         let mut nodes = Vec::new();
         let part_entities = parts(world, entity);
         for part in &resolved.parts {
-            let Some((e, spec)) = part_entities.iter().find(|(_, s)| s.0.id() == part.id) else { continue };
+            let Some((e, spec)) = part_entities.iter().find(|(_, s)| s.0.id() == part.id) else {
+                continue;
+            };
             nodes.push(SceneNode {
                 id: part.id.clone(),
                 kind: SceneNodeKind::Part,
@@ -154,7 +188,12 @@ pub(crate) fn scene(world: &World) -> Scene {
         }
         let nozzle_entities = nozzles(world, entity);
         for nozzle in &resolved.nozzles {
-            let Some((e, spec)) = nozzle_entities.iter().find(|(_, s)| s.0.mark == nozzle.mark) else { continue };
+            let Some((e, spec)) = nozzle_entities
+                .iter()
+                .find(|(_, s)| s.0.mark == nozzle.mark)
+            else {
+                continue;
+            };
             nodes.push(SceneNode {
                 id: nozzle.mark.clone(),
                 kind: SceneNodeKind::Nozzle,

@@ -50,18 +50,25 @@ impl Work<'_> {
     }
 
     fn vessel(&self, tag: &str) -> Result<(VesselDesign, u32), ModelError> {
-        self.current(tag).ok_or_else(|| ModelError::UnknownVessel { tag: tag.to_string() })
+        self.current(tag).ok_or_else(|| ModelError::UnknownVessel {
+            tag: tag.to_string(),
+        })
     }
 
     fn put(&mut self, design: VesselDesign, order: u32) {
-        self.touched.insert(design.tag.clone(), Some((design, order)));
+        self.touched
+            .insert(design.tag.clone(), Some((design, order)));
     }
 
     fn apply(&mut self, edit: Edit) -> Result<(), ModelError> {
         match edit {
             Edit::ReplaceDesign(mut design) => {
                 if design.format != FORMAT {
-                    return Err(DesignError::Format { found: design.format, expected: FORMAT }.into());
+                    return Err(DesignError::Format {
+                        found: design.format,
+                        expected: FORMAT,
+                    }
+                    .into());
                 }
                 units::to_millimetres(&mut design);
                 let mut seen: HashMap<String, usize> = HashMap::new();
@@ -80,7 +87,13 @@ impl Work<'_> {
                 if !dup.is_empty() {
                     return Err(DesignError::Invalid(dup).into());
                 }
-                let existing: Vec<String> = self.world.resource::<VesselIndex>().0.keys().cloned().collect();
+                let existing: Vec<String> = self
+                    .world
+                    .resource::<VesselIndex>()
+                    .0
+                    .keys()
+                    .cloned()
+                    .collect();
                 for tag in existing {
                     if !seen.contains_key(&tag) {
                         self.touched.insert(tag, None);
@@ -114,12 +127,20 @@ impl Work<'_> {
                 let (mut v, o) = self.vessel(&vessel)?;
                 let slot = v.parts.iter_mut().find(|p| p.id() == part.id());
                 let Some(slot) = slot else {
-                    return Err(ModelError::UnknownEntity { vessel, kind: "part", id: part.id().to_string() });
+                    return Err(ModelError::UnknownEntity {
+                        vessel,
+                        kind: "part",
+                        id: part.id().to_string(),
+                    });
                 };
                 *slot = part;
                 self.put(v, o);
             }
-            Edit::InsertPart { vessel, index, part } => {
+            Edit::InsertPart {
+                vessel,
+                index,
+                part,
+            } => {
                 let (mut v, o) = self.vessel(&vessel)?;
                 let at = index.min(v.parts.len());
                 v.parts.insert(at, part);
@@ -130,7 +151,11 @@ impl Work<'_> {
                 let before = v.parts.len();
                 v.parts.retain(|p| p.id() != id);
                 if v.parts.len() == before {
-                    return Err(ModelError::UnknownEntity { vessel, kind: "part", id });
+                    return Err(ModelError::UnknownEntity {
+                        vessel,
+                        kind: "part",
+                        id,
+                    });
                 }
                 self.put(v, o);
             }
@@ -147,7 +172,11 @@ impl Work<'_> {
                 let before = v.nozzles.len();
                 v.nozzles.retain(|n| n.mark != mark);
                 if v.nozzles.len() == before {
-                    return Err(ModelError::UnknownEntity { vessel, kind: "nozzle", id: mark });
+                    return Err(ModelError::UnknownEntity {
+                        vessel,
+                        kind: "nozzle",
+                        id: mark,
+                    });
                 }
                 self.put(v, o);
             }
@@ -164,7 +193,11 @@ impl Work<'_> {
                 let before = v.notes.len();
                 v.notes.retain(|n| n.id != id);
                 if v.notes.len() == before {
-                    return Err(ModelError::UnknownEntity { vessel, kind: "note", id });
+                    return Err(ModelError::UnknownEntity {
+                        vessel,
+                        kind: "note",
+                        id,
+                    });
                 }
                 self.put(v, o);
             }
@@ -181,7 +214,11 @@ impl Work<'_> {
 /// Stages and checks an edit against the world.
 pub(crate) fn stage(world: &World, edit: Edit) -> Result<Staged, ModelError> {
     let next_order = world.resource::<VesselIndex>().0.len() as u32;
-    let mut work = Work { world, touched: BTreeMap::new(), next_order };
+    let mut work = Work {
+        world,
+        touched: BTreeMap::new(),
+        next_order,
+    };
     work.apply(edit)?;
     let mut out = Vec::new();
     let mut violations = Vec::new();

@@ -14,7 +14,11 @@ use crate::design::VesselDesign;
 use crate::systems::ChangeLog;
 
 /// Sets a component if it differs; returns whether it was written.
-fn put<T: Component<Mutability = Mutable> + PartialEq>(world: &mut World, entity: Entity, value: T) -> bool {
+fn put<T: Component<Mutability = Mutable> + PartialEq>(
+    world: &mut World,
+    entity: Entity,
+    value: T,
+) -> bool {
     match world.get_mut::<T>(entity) {
         Some(mut current) => current.set_if_neq(value),
         None => {
@@ -60,7 +64,12 @@ fn sync_children<T: Component<Mutability = Mutable> + PartialEq>(
 /// Writes one vessel's design into its entities.
 fn put_vessel(world: &mut World, design: VesselDesign, order: u32) {
     let existing = world.resource::<VesselIndex>().0.get(&design.tag).copied();
-    let spec = VesselSpec { tag: design.tag.clone(), kind: design.kind, placement: design.placement, design: design.design };
+    let spec = VesselSpec {
+        tag: design.tag.clone(),
+        kind: design.kind,
+        placement: design.placement,
+        design: design.design,
+    };
     let entity = match existing {
         Some(e) => {
             put(world, e, spec);
@@ -69,16 +78,55 @@ fn put_vessel(world: &mut World, design: VesselDesign, order: u32) {
         }
         None => {
             let e = world.spawn((spec, DesignOrder(order))).id();
-            world.resource_mut::<VesselIndex>().0.insert(design.tag.clone(), e);
+            world
+                .resource_mut::<VesselIndex>()
+                .0
+                .insert(design.tag.clone(), e);
             e
         }
     };
-    let parts = read::parts(world, entity).into_iter().map(|(e, p)| (e, p.0.id().to_string())).collect();
-    let nozzles = read::nozzles(world, entity).into_iter().map(|(e, n)| (e, n.0.mark)).collect();
-    let notes = read::notes(world, entity).into_iter().map(|(e, n)| (e, n.0.id)).collect();
-    let (a, ra) = sync_children(world, entity, parts, design.parts.into_iter().map(|p| (p.id().to_string(), PartSpec(p))).collect());
-    let (b, rb) = sync_children(world, entity, nozzles, design.nozzles.into_iter().map(|n| (n.mark.clone(), NozzleSpec(n))).collect());
-    let (c, rc) = sync_children(world, entity, notes, design.notes.into_iter().map(|n| (n.id.clone(), NoteSpec(n))).collect());
+    let parts = read::parts(world, entity)
+        .into_iter()
+        .map(|(e, p)| (e, p.0.id().to_string()))
+        .collect();
+    let nozzles = read::nozzles(world, entity)
+        .into_iter()
+        .map(|(e, n)| (e, n.0.mark))
+        .collect();
+    let notes = read::notes(world, entity)
+        .into_iter()
+        .map(|(e, n)| (e, n.0.id))
+        .collect();
+    let (a, ra) = sync_children(
+        world,
+        entity,
+        parts,
+        design
+            .parts
+            .into_iter()
+            .map(|p| (p.id().to_string(), PartSpec(p)))
+            .collect(),
+    );
+    let (b, rb) = sync_children(
+        world,
+        entity,
+        nozzles,
+        design
+            .nozzles
+            .into_iter()
+            .map(|n| (n.mark.clone(), NozzleSpec(n)))
+            .collect(),
+    );
+    let (c, rc) = sync_children(
+        world,
+        entity,
+        notes,
+        design
+            .notes
+            .into_iter()
+            .map(|n| (n.id.clone(), NoteSpec(n)))
+            .collect(),
+    );
     let mut log = world.resource_mut::<ChangeLog>();
     for id in ra.into_iter().chain(rb).chain(rc) {
         log.removed.insert(format!("{}/{id}", design.tag));

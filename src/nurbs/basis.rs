@@ -138,3 +138,46 @@ mod tests {
         }
     }
 }
+
+#[cfg(test)]
+mod properties {
+    use super::*;
+    use proptest::prelude::*;
+
+    /// A clamped knot vector of `degree` with random interior knots.
+    fn knots() -> impl Strategy<Value = (usize, Vec<f64>)> {
+        (1usize..=5).prop_flat_map(|p| {
+            proptest::collection::vec(0.0..1.0f64, 0..12).prop_map(move |mut interior| {
+                interior.sort_by(f64::total_cmp);
+                let mut k = vec![0.0; p + 1];
+                k.extend(interior);
+                k.extend(std::iter::repeat_n(1.0, p + 1));
+                (p, k)
+            })
+        })
+    }
+
+    proptest! {
+        #![proptest_config(ProptestConfig { cases: 512, failure_persistence: None, ..ProptestConfig::default() })]
+
+        /// Partition of unity and non-negativity at any parameter, for the values
+        /// of A2.2 and the zeroth row of A2.3; derivatives of the sum vanish.
+        #[test]
+        fn partition_of_unity((p, k) in knots(), t in 0.0..=1.0f64) {
+            let kv = crate::nurbs::KnotVector::new(p, k);
+            let span = kv.find_span(t);
+            let n = basis_functions(kv.as_slice(), span, t, p);
+            let d = basis_derivatives::<3>(kv.as_slice(), span, t, p);
+            let sum: f64 = n[..=p].iter().sum();
+            prop_assert!((sum - 1.0).abs() < 1e-12, "sum {sum}");
+            prop_assert!(n[..=p].iter().all(|&v| v >= -1e-15));
+            for j in 0..=p {
+                prop_assert!((n[j] - d[0][j]).abs() < 1e-12);
+            }
+            let s1: f64 = d[1][..=p].iter().sum();
+            let s2: f64 = d[2][..=p].iter().sum();
+            let scale = d[1][..=p].iter().chain(&d[2][..=p]).fold(1.0f64, |m, v| m.max(v.abs()));
+            prop_assert!(s1.abs() < 1e-9 * scale && s2.abs() < 1e-9 * scale, "{s1} {s2}");
+        }
+    }
+}

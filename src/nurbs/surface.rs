@@ -172,10 +172,9 @@ impl NurbsSurface {
         let stride = self.v_count();
         // temp[d][k]: row k contracted with the d-th v-derivative basis.
         let mut temp = [[DVec4::ZERO; MAX_ORDER]; 3];
-        for k in 0..=p {
-            let row = (su - p + k) * stride + sv - q;
-            for l in 0..=q {
-                let pt = self.points[row + l];
+        for (k, row_point) in (0..=p).map(|k| (k, (su - p + k) * stride + sv - q)) {
+            let row = &self.points[row_point..=row_point + q];
+            for (l, &pt) in row.iter().enumerate() {
                 temp[0][k] += pt * dv[0][l];
                 temp[1][k] += pt * dv[1][l];
                 temp[2][k] += pt * dv[2][l];
@@ -254,15 +253,6 @@ impl NurbsSurface {
             Side::VMin => self.isocurve_v(v0),
             Side::VMax => self.isocurve_v(v1),
         }
-    }
-
-    /// The surface with its control points mapped (same knots and counts).
-    pub(crate) fn map_points(&self, f: impl Fn(DVec4) -> DVec4) -> Self {
-        Self::from_raw(
-            self.u_knots.clone(),
-            self.v_knots.clone(),
-            self.points.iter().map(|&p| f(p)).collect(),
-        )
     }
 }
 

@@ -44,19 +44,6 @@ pub(crate) fn non_negative(
     }
 }
 
-/// A finite value (of any sign).
-pub(crate) fn finite(
-    part: &'static str,
-    field: &'static str,
-    value: f64,
-) -> Result<f64, PartError> {
-    if value.is_finite() {
-        Ok(value)
-    } else {
-        Err(invalid(part, field, value, "must be a finite number"))
-    }
-}
-
 /// A value in the open or closed range `[low, high]` (`open` excludes both ends).
 pub(crate) fn in_range(
     part: &'static str,
