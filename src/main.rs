@@ -37,7 +37,7 @@ enum Command {
         #[arg(short, long)]
         output: PathBuf,
         /// Chordal tolerance of the meshes, mm.
-        #[arg(long, default_value_t = TessellationOptions::DEFAULT.tolerance)]
+        #[arg(long, default_value_t = TessellationOptions::DEFAULT.tolerance, allow_negative_numbers = true)]
         tolerance: f64,
     },
     /// Check a design: exit 0 when valid, 1 with every problem listed otherwise.

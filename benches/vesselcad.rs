@@ -1,0 +1,14 @@
+//! Benchmarks of vesselcad: one criterion entry point, one module per topic.
+//!
+//! Run with `cargo bench --bench vesselcad` (or `-- grid` / `-- model` for one
+//! topic); each topic keeps its measurement short so the whole run takes a few
+//! minutes.
+
+use criterion::criterion_main;
+
+#[path = "vesselcad/grid.rs"]
+mod grid;
+#[path = "vesselcad/model.rs"]
+mod model;
+
+criterion_main!(grid::group, model::group);

@@ -1,0 +1,109 @@
+//! The command line: `build` writes a valid GLB, `check` exits 0 for valid designs
+//! and 1 with every problem listed for invalid ones, `info` reports figures, and
+//! unreadable files exit 2. No input makes it panic.
+
+use std::process::Command;
+
+fn vesselcad(args: &[&str]) -> std::process::Output {
+    Command::new(env!("CARGO_BIN_EXE_vesselcad")).args(args).output().expect("the binary runs")
+}
+
+fn example(name: &str) -> String {
+    format!("{}/examples/designs/{name}.json", env!("CARGO_MANIFEST_DIR"))
+}
+
+#[test]
+fn build_writes_a_glb() {
+    let dir = std::env::temp_dir().join(format!("vesselcad-cli-{}", std::process::id()));
+    std::fs::create_dir_all(&dir).unwrap();
+    let out = dir.join("drum.glb");
+    let o = vesselcad(&["build", &example("horizontal-drum"), "-o", out.to_str().unwrap(), "--tolerance", "1"]);
+    assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
+    let bytes = std::fs::read(&out).unwrap();
+    assert_eq!(&bytes[..4], b"glTF");
+    let doc = gltf::Gltf::from_slice(&bytes).unwrap();
+    assert!(doc.nodes().any(|n| n.name() == Some("V-101")));
+    // Same design, same bytes.
+    let again = dir.join("again.glb");
+    assert!(vesselcad(&["build", &example("horizontal-drum"), "-o", again.to_str().unwrap(), "--tolerance", "1"]).status.success());
+    assert!(bytes == std::fs::read(&again).unwrap());
+    std::fs::remove_dir_all(&dir).ok();
+}
+
+#[test]
+fn check_accepts_every_example() {
+    for name in ["horizontal-drum", "vertical-column", "storage-tank", "small-plant"] {
+        let o = vesselcad(&["check", &example(name)]);
+        assert!(o.status.success(), "{name}: {}", String::from_utf8_lossy(&o.stderr));
+    }
+}
+
+#[test]
+fn check_lists_every_problem_and_exits_1() {
+    let dir = format!("{}/tests/bad_designs", env!("CARGO_MANIFEST_DIR"));
+    let mut checked = 0;
+    for entry in std::fs::read_dir(&dir).unwrap() {
+        let path = entry.unwrap().path();
+        let name = path.file_name().unwrap().to_string_lossy().to_string();
+        if !name.ends_with(".json") || name == "expected.json" || name.starts_with("control_") {
+            continue;
+        }
+        let o = vesselcad(&["check", path.to_str().unwrap()]);
+        let stderr = String::from_utf8_lossy(&o.stderr);
+        assert_eq!(o.status.code(), Some(1), "{name}: {stderr}");
+        assert!(stderr.starts_with("error: "), "{name}: {stderr}");
+        assert!(!stderr.contains("panicked"), "{name}: {stderr}");
+        checked += 1;
+    }
+    assert!(checked >= 30, "only {checked} bad designs");
+}
+
+#[test]
+fn unreadable_files_and_bad_options_exit_2() {
+    let o = vesselcad(&["check", "/nonexistent/design.json"]);
+    assert_eq!(o.status.code(), Some(2));
+    let o = vesselcad(&["build", &example("horizontal-drum"), "-o", "/tmp/x.glb", "--tolerance", "-1"]);
+    assert_eq!(o.status.code(), Some(2), "{}", String::from_utf8_lossy(&o.stderr));
+    assert!(String::from_utf8_lossy(&o.stderr).contains("tolerance"));
+    let o = vesselcad(&["frobnicate"]);
+    assert_eq!(o.status.code(), Some(2));
+}
+
+#[test]
+fn info_reports_figures() {
+    let o = vesselcad(&["info", &example("vertical-column"), "--json"]);
+    assert!(o.status.success());
+    let v: serde_json::Value = serde_json::from_slice(&o.stdout).unwrap();
+    let c = &v[0];
+    assert_eq!(c["tag"], "C-201");
+    assert_eq!(c["tangent_length"], 21000.0);
+    assert_eq!(c["outside_diameter"], 2000.0);
+    assert_eq!(c["nozzles"].as_array().unwrap().len(), 10);
+    // Volume: courses, reducer frustum and two heads (2:1 bottom, F&D top) with
+    // their straight flanges, from closed forms.
+    let pi = std::f64::consts::PI;
+    let courses = pi * 1.0f64.powi(2) * 12.0 + pi * 0.7f64.powi(2) * 8.0;
+    let frustum = pi * 0.9 / 3.0 * (1.0 + 0.7 + 0.49);
+    let two_to_one = pi * 2.0f64.powi(3) / 24.0 + pi * 0.05;
+    let volume = c["volume"].as_f64().unwrap();
+    assert!(volume > courses + frustum + two_to_one && volume < courses + frustum + two_to_one + 0.6, "{volume}");
+    let o = vesselcad(&["info", &example("horizontal-drum")]);
+    assert!(String::from_utf8_lossy(&o.stdout).contains("V-101 (horizontal)"));
+}
+
+#[test]
+fn inch_designs_load_as_millimetres() {
+    let text = std::fs::read_to_string(example("horizontal-drum")).unwrap();
+    let mut json: serde_json::Value = serde_json::from_str(&text).unwrap();
+    json["units"] = "in".into();
+    let v = &mut json["vessels"][0];
+    v["parts"][1]["shell"]["od"] = 100.0.into();
+    v["parts"][1]["shell"]["length"] = 300.0.into();
+    let design = vesselcad::design::parse_unchecked(&json.to_string()).unwrap();
+    let mut d = design.clone();
+    vesselcad::design::units::to_millimetres(&mut d);
+    let vesselcad::design::PartDesign::Shell(s) = &d.vessels[0].parts[1] else { panic!() };
+    assert_eq!((s.od, s.length), (2540.0, 7620.0));
+    assert_eq!(d.units, vesselcad::design::Units::Mm);
+    assert_eq!(d.vessels[0].nozzles[0].size, 8.0, "NPS is a name, never scaled");
+}
