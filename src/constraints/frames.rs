@@ -45,6 +45,29 @@ pub fn orientation_direction(kind: VesselKind, rotation_deg: f64, orientation_de
     }
 }
 
+/// Checks an angle given in degrees (an orientation, a rotation): finite and within
+/// one turn either way, so that every angle has one obvious meaning. Reports and
+/// returns `false` otherwise.
+pub(super) fn check_angle(
+    report: &mut Report,
+    path: &str,
+    entity: Option<&str>,
+    field: &str,
+    degrees: f64,
+) -> bool {
+    let ok = degrees.is_finite() && degrees.abs() <= 360.0;
+    if !ok {
+        report.push(
+            path,
+            entity,
+            field,
+            degrees,
+            "must be a finite angle between -360 and 360 degrees",
+        );
+    }
+    ok
+}
+
 /// The vessel frame, reporting non-finite placement numbers.
 pub(super) fn checked_vessel_frame(vessel: &VesselDesign, report: &mut Report) -> DAffine3 {
     let p = vessel.placement;
@@ -61,16 +84,7 @@ pub(super) fn checked_vessel_frame(vessel: &VesselDesign, report: &mut Report) -
             ok = false;
         }
     }
-    if !p.rotation.is_finite() || p.rotation.abs() > 360.0 {
-        report.push(
-            "placement.rotation",
-            None,
-            "rotation",
-            p.rotation,
-            "must be a finite angle between -360 and 360 degrees",
-        );
-        ok = false;
-    }
+    ok &= check_angle(report, "placement.rotation", None, "rotation", p.rotation);
     if vessel.tag.trim().is_empty() {
         report.push("tag", None, "tag", "\"\"", "a vessel needs a non-empty tag");
     }

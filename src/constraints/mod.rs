@@ -12,11 +12,14 @@
 //!   ends match the courses they join, the skirt top matches the bottom course,
 //!   saddles fit the shell OD and default to 0.2 L from each tangent line, nozzles
 //!   stay on their host (orientation and elevation kept, the neck adapts to keep the
-//!   projection), notes follow their target.
+//!   projection), notes follow their target;
+//! - **carried data** that no builder reads (design conditions, wall thicknesses,
+//!   corrosion allowance) must still make physical sense.
 //!
 //! Every broken rule becomes a [`RuleViolation`] with its JSON path; all of them are
 //! reported, not only the first.
 
+mod conditions;
 mod frames;
 mod geometry;
 mod notes;
@@ -24,6 +27,7 @@ mod nozzles;
 mod stack;
 mod supports;
 
+pub use conditions::{ABSOLUTE_ZERO, FULL_VACUUM, MAX_PRESSURE, MAX_TEMPERATURE};
 pub use frames::{orientation_direction, vessel_frame};
 pub use geometry::PartGeometry;
 
@@ -223,6 +227,7 @@ pub fn resolve_vessel(
         &mut parts,
         &mut report,
     );
+    conditions::check(vessel, &parts, &mut report);
     let nozzles = nozzles::place(vessel, &parts, &stack.courses, &mut report);
     let notes = notes::place(vessel, &parts, &nozzles, &mut report);
     if !report.violations.is_empty() {

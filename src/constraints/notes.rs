@@ -6,6 +6,7 @@ use glam::DVec3;
 
 use super::{NoteTarget, Report, ResolvedNote, ResolvedNozzle, ResolvedPart};
 use crate::design::VesselDesign;
+use crate::parts::MAX_DIMENSION;
 
 /// Resolves every note's target and anchor; reports unknown targets and cycles.
 pub(crate) fn place(
@@ -38,14 +39,16 @@ pub(crate) fn place(
             );
             None
         };
-        if !note.offset.iter().all(|v| v.is_finite()) {
-            report.push(
-                format!("notes[{k}].offset"),
-                Some(&note.id),
-                "offset",
-                format!("{:?}", note.offset),
-                "must be finite numbers",
-            );
+        for (axis, v) in note.offset.iter().enumerate() {
+            if !(v.is_finite() && v.abs() <= MAX_DIMENSION) {
+                report.push(
+                    format!("notes[{k}].offset[{axis}]"),
+                    Some(&note.id),
+                    "offset",
+                    v,
+                    format!("must be a finite number within ±{MAX_DIMENSION} mm"),
+                );
+            }
         }
         targets.push(target);
     }

@@ -11,6 +11,7 @@
 
 use glam::{DAffine3, DMat3, DVec3};
 
+use super::frames::check_angle;
 use super::geometry::{PartGeometry, report_part_error};
 use super::stack::Course;
 use super::{Report, ResolvedNozzle, ResolvedPart, ShowValue, orientation_direction};
@@ -109,14 +110,13 @@ pub(crate) fn place(
             continue;
         };
         let part = nozzle_part(n, &path, report);
-        if !n.orientation.is_finite() || n.orientation.abs() > 360.0 {
-            report.push(
-                format!("{path}.orientation"),
-                id,
-                "orientation",
-                n.orientation,
-                "must be a finite angle between -360 and 360 degrees",
-            );
+        if !check_angle(
+            report,
+            &format!("{path}.orientation"),
+            id,
+            "orientation",
+            n.orientation,
+        ) {
             continue;
         }
         let (Some(mut nozzle), Some(resolved_host)) = (part, parts[host].as_ref()) else {
@@ -186,8 +186,24 @@ pub(crate) fn place(
                     continue;
                 };
                 let host_od = course.diameter_at(z);
-                if pipe_od >= course.d_start.min(course.d_end) {
-                    report.push(format!("{path}.size"), id, "size", n.size, format!("the nozzle OD {pipe_od} mm must be smaller than its host {}'s OD {} mm", n.host, course.d_start.min(course.d_end)));
+                let smallest_od = course.d_start.min(course.d_end);
+                if pipe_od >= smallest_od {
+                    report.push(format!("{path}.size"), id, "size", n.size, format!("the nozzle OD {pipe_od} mm must be smaller than its host {}'s OD {smallest_od} mm", n.host));
+                    continue;
+                }
+                if let Some((pad_od, _)) = pad
+                    && pad_od >= smallest_od
+                {
+                    report.push(
+                        format!("{path}.pad.od"),
+                        id,
+                        "od",
+                        pad_od,
+                        format!(
+                            "the pad OD must be smaller than its host {}'s OD {smallest_od} mm",
+                            n.host
+                        ),
+                    );
                     continue;
                 }
                 if z - reach / 2.0 < course.start - 1e-9 || z + reach / 2.0 > course.end + 1e-9 {

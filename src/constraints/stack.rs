@@ -11,6 +11,7 @@ use std::f64::consts::PI;
 
 use glam::{DAffine3, DMat3, DVec3};
 
+use super::frames::check_angle;
 use super::geometry::{PartGeometry, report_part_error};
 use super::{Report, ResolvedPart, orientation_direction};
 use crate::design::{HeadDesign, HeadShape, PartDesign, VesselDesign};
@@ -195,6 +196,30 @@ pub(crate) fn layout(vessel: &VesselDesign, report: &mut Report) -> StackLayout 
                 ) else {
                     continue; // reported above
                 };
+                if below == above {
+                    report.push(
+                        &path,
+                        Some(&r.id),
+                        "reducer",
+                        &r.id,
+                        format!(
+                            "joins two courses of the same OD {below} mm: a reducer needs \
+                             courses of different diameters (remove it or change an OD)"
+                        ),
+                    );
+                    continue;
+                }
+                if let Some(angle) = r.eccentric
+                    && !check_angle(
+                        report,
+                        &format!("{path}.eccentric"),
+                        Some(&r.id),
+                        "eccentric",
+                        angle,
+                    )
+                {
+                    continue;
+                }
                 let (large, small, frame) = if below >= above {
                     (below, above, translate_z(z))
                 } else {

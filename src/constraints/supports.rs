@@ -11,6 +11,7 @@ use std::f64::consts::FRAC_PI_2;
 
 use glam::{DAffine3, DMat3, DVec3};
 
+use super::frames::check_angle;
 use super::geometry::{PartGeometry, report_part_error};
 use super::stack::Course;
 use super::{Report, ResolvedPart, orientation_direction};
@@ -196,6 +197,16 @@ pub(crate) fn place(
                     wrong_kind(report, "vertical");
                     continue;
                 }
+                let orientation_path = format!("{path}.orientation");
+                if !check_angle(
+                    report,
+                    &orientation_path,
+                    Some(id),
+                    "orientation",
+                    l.orientation,
+                ) {
+                    continue;
+                }
                 let nps = match Nps::try_new(l.size) {
                     Ok(n) => n,
                     Err(e) => {
@@ -250,6 +261,16 @@ pub(crate) fn place(
             PartDesign::Lugs(l) => {
                 if !vertical {
                     wrong_kind(report, "vertical");
+                    continue;
+                }
+                let orientation_path = format!("{path}.orientation");
+                if !check_angle(
+                    report,
+                    &orientation_path,
+                    Some(id),
+                    "orientation",
+                    l.orientation,
+                ) {
                     continue;
                 }
                 let Some(course) =
@@ -356,5 +377,32 @@ pub(crate) fn place(
             _ => continue,
         };
         parts[i] = Some(resolved);
+    }
+    check_saddles_apart(&saddles, parts, report);
+}
+
+/// Two saddles may not overlap along the axis (the default positions never do; two
+/// given positions can).
+fn check_saddles_apart(saddles: &[usize], parts: &[Option<ResolvedPart>], report: &mut Report) {
+    let placed: Vec<(usize, &ResolvedPart)> = saddles
+        .iter()
+        .filter_map(|&i| parts[i].as_ref().map(|p| (i, p)))
+        .collect();
+    for (k, &(i, p)) in placed.iter().enumerate() {
+        if let Some((_, q)) = placed[..k]
+            .iter()
+            .find(|(_, q)| p.span.0 < q.span.1 && q.span.0 < p.span.1)
+        {
+            report.push(
+                format!("parts[{i}].saddle.position"),
+                Some(&p.id),
+                "position",
+                0.5 * (p.span.0 + p.span.1),
+                format!(
+                    "the saddle (from {} to {} mm) overlaps saddle {} (from {} to {} mm)",
+                    p.span.0, p.span.1, q.id, q.span.0, q.span.1
+                ),
+            );
+        }
     }
 }

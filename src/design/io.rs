@@ -116,7 +116,7 @@ fn line_column(text: &str, offset: usize) -> (usize, usize) {
     (line, column)
 }
 
-/// A short description of the JSON value starting `text`, e.g. ``integer `2` ``.
+/// A short description of the JSON value starting `text`, e.g. ``number `2` ``.
 fn describe_token(text: &str) -> String {
     let word: String = text
         .chars()

@@ -7,7 +7,7 @@ use glam::DVec3;
 
 use super::profile::{Segment, xz};
 use crate::nurbs::builders::elliptical_arc;
-use crate::parts::check::positive;
+use crate::parts::check::{in_range, positive};
 use crate::parts::{Analytic, PartError};
 
 /// Profile from the tangent line at `z0` to the pole at `z0 + r / ratio`.
@@ -17,7 +17,7 @@ pub(super) fn profile(
     z0: f64,
     ratio: f64,
 ) -> Result<Vec<Segment>, PartError> {
-    let ratio = positive(part, "ratio", ratio)?;
+    let ratio = in_range(part, "ratio", ratio, 0.1, 100.0, false)?;
     let depth = r / ratio;
     positive(part, "depth", depth)?;
     Ok(vec![Segment {
