@@ -96,6 +96,8 @@ pub(crate) fn place(
     report: &mut Report,
 ) -> Vec<ResolvedNozzle> {
     let mut out = Vec::new();
+    // (mark, centre of the opening on the host, reach radius) of placed nozzles.
+    let mut footprints: Vec<(String, DVec3, f64)> = Vec::new();
     for (k, n) in vessel.nozzles.iter().enumerate() {
         let path = format!("nozzles[{k}]");
         let id = Some(n.mark.as_str());
@@ -160,6 +162,8 @@ pub(crate) fn place(
         let reach = pad.map_or(pipe_od, |p| p.0);
         let reach_name = if pad.is_some() { "pad OD" } else { "nozzle OD" };
         let dir = orientation_direction(vessel.kind, vessel.placement.rotation, n.orientation);
+        // Height along the nozzle axis where it meets its host (for clearances).
+        let surface_z: f64;
         let frame = match &resolved_host.geometry {
             PartGeometry::Shell(_) | PartGeometry::Reducer(_) => {
                 if n.offset.is_some() {
@@ -214,6 +218,7 @@ pub(crate) fn place(
                     report.push(format!("{path}.projection"), id, "projection", n.projection, format!("must exceed the host radius {} mm plus the flange length {flange_length} mm", host_od / 2.0));
                     continue;
                 }
+                surface_z = host_od / 2.0;
                 frame_along(DVec3::new(0.0, 0.0, z), dir, DVec3::Z)
             }
             PartGeometry::Head(head) => {
@@ -260,6 +265,7 @@ pub(crate) fn place(
                     local_dir.y * offset,
                     head.straight_flange,
                 );
+                surface_z = rise;
                 resolved_host.frame * frame_along(origin, DVec3::Z, DVec3::X)
             }
             other => {
@@ -281,6 +287,21 @@ pub(crate) fn place(
             continue;
         }
         nozzle.projection = n.projection;
+        let centre = frame.transform_point3(DVec3::new(0.0, 0.0, surface_z));
+        if let Some((other, _, _)) = footprints
+            .iter()
+            .find(|(_, c, r): &&(String, DVec3, f64)| (*c - centre).length() < r + reach / 2.0)
+        {
+            report.push(
+                format!("{path}.mark"),
+                id,
+                "mark",
+                &n.mark,
+                format!("its opening (reach {reach} mm) overlaps the opening of nozzle {other}: move one of them"),
+            );
+            continue;
+        }
+        footprints.push((n.mark.clone(), centre, reach / 2.0));
         out.push(ResolvedNozzle {
             mark: n.mark.clone(),
             host,
