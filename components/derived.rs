@@ -6,7 +6,11 @@ use std::sync::Arc;
 use bevy_ecs::component::Component;
 use glam::{DAffine3, DVec3};
 
+use bevy_ecs::entity::Entity;
+
 use crate::constraints::PartGeometry;
+use crate::mesh::cdt::Region;
+use crate::nurbs::intersect::IntersectionLoop;
 use crate::mesh::Mesh;
 use crate::parts::{Nozzle, Patch};
 
@@ -60,3 +64,20 @@ pub struct PatchSurface(pub Arc<Patch>);
 /// The triangle mesh of a patch, in its part's local frame.
 #[derive(Component, Clone, Debug, PartialEq)]
 pub struct PatchMesh(pub Arc<Mesh>);
+
+/// A nozzle's opening: where its neck meets its host, computed once and used to
+/// trim both (the host patch gets a hole, the neck its bottom edge).
+#[derive(Component, Clone, Debug, PartialEq)]
+pub struct Opening {
+    /// The host patch the neck cuts.
+    pub host_patch: Entity,
+    /// The nozzle's neck patch.
+    pub neck_patch: Entity,
+    /// The intersection loop, in the host part's frame, with (u, v) on both patches.
+    pub curve: Arc<IntersectionLoop>,
+}
+
+/// The (u, v) region a patch is meshed within: its sides sampled from the edge
+/// curves, with openings as holes or a trimmed bottom.
+#[derive(Component, Clone, Debug, PartialEq)]
+pub struct PatchRegion(pub Arc<Region>);

@@ -11,7 +11,7 @@ mod params;
 mod relations;
 
 pub use derived::{
-    NoteAnchor, PartFrame, PartSpan, PatchMesh, PatchSurface, Shape, VesselFrame, VesselSummary,
+    NoteAnchor, Opening, PartFrame, PartSpan, PatchRegion, PatchMesh, PatchSurface, Shape, VesselFrame, VesselSummary,
 };
 pub use params::{DesignOrder, NoteSpec, NozzleSpec, PartSpec, VesselSpec};
 pub use relations::{AnnotatedBy, Annotates, MountedOn, Mounts, PatchOf, Patches};

@@ -144,6 +144,14 @@ fn main() -> ExitCode {
                     return ExitCode::from(2);
                 }
             };
+            if !model.errors().0.is_empty() {
+                for (entity, violations) in &model.errors().0 {
+                    for v in violations {
+                        eprintln!("error: {entity}: {}", v.rule);
+                    }
+                }
+                return ExitCode::from(1);
+            }
             let scene = model.scene();
             let triangles: usize = scene
                 .vessels

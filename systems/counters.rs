@@ -12,10 +12,16 @@ pub struct WorkCounters {
     pub frames_updated: u64,
     /// Parts and nozzles whose shape changed (their patches were rebuilt).
     pub shapes_rebuilt: u64,
+    /// Nozzle openings (neck–host intersections) recomputed.
+    pub openings_cut: u64,
+    /// Patch regions laid out again.
+    pub regions_laid_out: u64,
     /// Patches rebuilt.
     pub patches_rebuilt: u64,
     /// Patch meshes rebuilt.
     pub meshes_rebuilt: u64,
     /// Triangles in the rebuilt meshes.
     pub triangles_meshed: u64,
+    /// Patches or openings that failed to mesh or cut (details in `ModelErrors`).
+    pub failures: u64,
 }

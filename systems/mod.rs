@@ -10,6 +10,8 @@ mod constrain;
 mod counters;
 mod export;
 mod geometry;
+mod openings;
+mod regions;
 mod tessellate;
 mod validate;
 
@@ -17,6 +19,8 @@ pub use constrain::apply_resolutions;
 pub use counters::WorkCounters;
 pub use export::{ChangeLog, collect_changes};
 pub use geometry::rebuild_dirty_patches;
+pub use openings::{OpeningHosts, cut_openings};
+pub use regions::lay_out_regions;
 pub use tessellate::{Tessellation, remesh_dirty_patches};
 pub use validate::{ModelErrors, PendingResolutions, resolve_dirty_vessels};
 
@@ -53,8 +57,8 @@ pub fn build_schedule() -> Schedule {
     schedule.add_systems((
         resolve_dirty_vessels.in_set(Stage::Validate),
         apply_resolutions.in_set(Stage::Constrain),
-        rebuild_dirty_patches.in_set(Stage::Geometry),
-        remesh_dirty_patches.in_set(Stage::Tessellate),
+        (rebuild_dirty_patches, cut_openings).chain().in_set(Stage::Geometry),
+        (lay_out_regions, remesh_dirty_patches).chain().in_set(Stage::Tessellate),
         collect_changes.in_set(Stage::Export),
     ));
     schedule

@@ -1,48 +1,67 @@
-//! Tessellate stage: re-mesh every patch whose surface changed (or every patch
-//! when the tessellation options changed), in parallel with rayon.
+//! Tessellate stage: mesh every patch whose surface or region changed (or every
+//! patch when the tessellation options changed) with the error-bounded
+//! constrained-Delaunay mesher, in parallel with rayon.
 
 use std::sync::Arc;
 
 use bevy_ecs::entity::Entity;
-use bevy_ecs::query::{Changed, QueryState};
+use bevy_ecs::query::{Changed, Or, QueryState};
 use bevy_ecs::resource::Resource;
 use bevy_ecs::world::World;
 use rayon::prelude::*;
 
-use super::WorkCounters;
-use crate::components::{PatchMesh, PatchSurface};
-use crate::mesh::{TessellationOptions, tessellate};
+use super::{ModelErrors, WorkCounters};
+use crate::components::{PatchMesh, PatchRegion, PatchSurface};
+use crate::design::RuleViolation;
+use crate::mesh::TessellationOptions;
+use crate::mesh::cdt::{Region, mesh_region};
 use crate::parts::Patch;
 
 /// The tessellation options every patch is meshed with.
 #[derive(Resource, Clone, Copy, Debug, PartialEq)]
 pub struct Tessellation(pub TessellationOptions);
 
-/// Meshes every patch whose [`PatchSurface`] changed.
+/// A patch whose surface or region changed.
+pub type DirtyPatch = Or<(Changed<PatchSurface>, Changed<PatchRegion>)>;
+
+/// Meshes every patch whose surface or region changed.
 pub fn remesh_dirty_patches(
     world: &mut World,
-    dirty: &mut QueryState<(Entity, &PatchSurface), Changed<PatchSurface>>,
-    all: &mut QueryState<(Entity, &PatchSurface)>,
+    dirty: &mut QueryState<(Entity, &PatchSurface, &PatchRegion), DirtyPatch>,
+    all: &mut QueryState<(Entity, &PatchSurface, &PatchRegion)>,
 ) {
     let options = world.resource::<Tessellation>().0;
-    let work: Vec<(Entity, Arc<Patch>)> = if world.is_resource_changed::<Tessellation>() {
-        all.iter(world).map(|(e, s)| (e, s.0.clone())).collect()
+    let work: Vec<(Entity, Arc<Patch>, Arc<Region>)> = if world.is_resource_changed::<Tessellation>() {
+        all.iter(world).map(|(e, s, r)| (e, s.0.clone(), r.0.clone())).collect()
     } else {
-        dirty.iter(world).map(|(e, s)| (e, s.0.clone())).collect()
+        dirty.iter(world).map(|(e, s, r)| (e, s.0.clone(), r.0.clone())).collect()
     };
     if work.is_empty() {
         return;
     }
     let meshes: Vec<_> = work
         .par_iter()
-        .map(|(e, p)| (*e, tessellate(&p.surface, &options)))
+        .map(|(e, p, r)| (*e, mesh_region(&p.surface, r, &options)))
         .collect();
     let mut triangles = 0u64;
-    for (e, mesh) in meshes {
-        triangles += mesh.triangle_count() as u64;
-        world.entity_mut(e).insert(PatchMesh(Arc::new(mesh)));
+    let mut failures = 0u64;
+    for (e, result) in meshes {
+        match result {
+            Ok((mesh, _stats)) => {
+                triangles += mesh.triangle_count() as u64;
+                world.entity_mut(e).insert(PatchMesh(Arc::new(mesh)));
+            }
+            Err(err) => {
+                failures += 1;
+                world.resource_mut::<ModelErrors>().0.push((
+                    format!("{e}"),
+                    vec![RuleViolation { path: String::new(), entity: format!("{e}"), field: "mesh".into(), value: String::new(), rule: err.to_string() }],
+                ));
+            }
+        }
     }
     let mut counters = world.resource_mut::<WorkCounters>();
     counters.meshes_rebuilt += work.len() as u64;
     counters.triangles_meshed += triangles;
+    counters.failures += failures;
 }

@@ -7,6 +7,7 @@
 //! in parallel with rayon (tessellation over every patch of the plant at once); the
 //! result is assembled in design order, so it does not depend on scheduling.
 
+use std::collections::HashMap;
 use std::sync::Arc;
 
 use rayon::prelude::*;
@@ -16,7 +17,9 @@ use super::extras::{nozzle_extras, part_extras, vessel_extras};
 use super::scene::{Scene, SceneNode, SceneNodeKind, ScenePatch, SceneVessel};
 use crate::constraints::PartGeometry;
 use crate::design::{Design, resolve};
-use crate::mesh::{Mesh, TessellationOptions, tessellate};
+use crate::mesh::cdt::mesh_region;
+use crate::mesh::{Mesh, TessellationOptions, cut_opening, patch_region};
+use crate::nurbs::intersect::IntersectionLoop;
 use crate::parts::{Nozzle, PartError, Patch};
 
 /// Builds the scene of a whole design: every vessel, its parts then its nozzles in
@@ -85,16 +88,62 @@ pub fn build_scene(design: &Design, options: &TessellationOptions) -> Result<Sce
         }
     }
 
-    // Tessellation: every patch of the plant, in parallel, collected in order.
-    let flat: Vec<(usize, usize, &Patch)> = patches
+    // Openings: every nozzle's neck cut against its host, in parallel.
+    let by_node: HashMap<(usize, usize), &Vec<Patch>> = patches.iter().map(|(k, list)| (*k, list)).collect();
+    let jobs: Vec<(usize, usize, usize)> = resolved
         .iter()
-        .flat_map(|((v, n), list)| list.iter().map(move |p| (*v, *n, p)))
+        .enumerate()
+        .flat_map(|(v, vessel)| {
+            let parts = vessel.parts.len();
+            vessel.nozzles.iter().enumerate().map(move |(i, nozzle)| (v, parts + i, nozzle.host))
+        })
         .collect();
-    let meshes: Vec<Mesh> = flat
+    let cut: Vec<_> = jobs
         .par_iter()
-        .map(|(_, _, patch)| tessellate(&patch.surface, options))
+        .map(|&(v, n, h)| {
+            let hosts: Vec<&Patch> = by_node.get(&(v, h)).map(|l| l.iter().collect()).unwrap_or_default();
+            let neck = by_node.get(&(v, n)).and_then(|l| l.first());
+            let result = match neck {
+                Some(neck) => cut_opening(neck, &vessels[v].nodes[n].frame, &vessels[v].nodes[h].frame, &hosts, options.tolerance),
+                None => Err("the nozzle has no neck patch".to_string()),
+            };
+            ((v, n, h), result)
+        })
         .collect();
-    for ((v, n, patch), mesh) in flat.into_iter().zip(meshes) {
+    let mut holes: HashMap<(usize, usize, usize), Vec<IntersectionLoop>> = HashMap::new();
+    let mut bottoms: HashMap<(usize, usize), IntersectionLoop> = HashMap::new();
+    for ((v, n, h), result) in cut {
+        match result {
+            Ok((k, curve)) => {
+                holes.entry((v, h, k)).or_default().push(curve.clone());
+                bottoms.insert((v, n), curve);
+            }
+            Err(message) => {
+                let entity = format!("{}/{}", vessels[v].tag, vessels[v].nodes[n].id);
+                return Err(ExportError::Mesh { entity, message });
+            }
+        }
+    }
+
+    // Tessellation: every patch of the plant, in parallel, collected in order.
+    let flat: Vec<(usize, usize, usize, &Patch)> = patches
+        .iter()
+        .flat_map(|((v, n), list)| list.iter().enumerate().map(move |(k, p)| (*v, *n, k, p)))
+        .collect();
+    let meshes: Vec<Result<Mesh, String>> = flat
+        .par_iter()
+        .map(|&(v, n, k, patch)| {
+            let hole_list: Vec<&IntersectionLoop> = holes.get(&(v, n, k)).map(|l| l.iter().collect()).unwrap_or_default();
+            let bottom = if k == 0 { bottoms.get(&(v, n)) } else { None };
+            let region = patch_region(&patch.surface, options, &hole_list, bottom).map_err(|e| e.to_string())?;
+            mesh_region(&patch.surface, &region, options).map(|(m, _)| m).map_err(|e| e.to_string())
+        })
+        .collect();
+    for ((v, n, _, patch), mesh) in flat.into_iter().zip(meshes) {
+        let mesh = mesh.map_err(|message| ExportError::Mesh {
+            entity: format!("{}/{}", vessels[v].tag, vessels[v].nodes[n].id),
+            message,
+        })?;
         vessels[v].nodes[n].patches.push(ScenePatch {
             name: patch_name(patch),
             mesh: Arc::new(mesh),

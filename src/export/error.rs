@@ -31,6 +31,14 @@ pub enum ExportError {
         /// The part builder's error.
         source: PartError,
     },
+    /// A nozzle opening could not be cut, or a patch could not be meshed.
+    #[error("{entity}: cannot mesh: {message}")]
+    Mesh {
+        /// Stable id of the part or nozzle, `tag/id`.
+        entity: String,
+        /// What went wrong.
+        message: String,
+    },
     /// A mesh holds a NaN or infinite position or normal, or a zero normal.
     #[error("{entity}/{patch}: vertex {vertex} has a non-finite position or a degenerate normal")]
     NonFiniteVertex {

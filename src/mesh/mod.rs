@@ -4,10 +4,17 @@
 //! [`tessellate`], driven by [`TessellationOptions`]. Exporters convert meshes to
 //! `f32` buffers; the model keeps them in `f64`.
 
+pub mod cdt;
+mod edges;
 mod grid;
+mod layout;
+mod opening;
 mod options;
 
+pub use edges::{MAX_EDGE_SEGMENTS, edge_parameters, edge_segments};
 pub use grid::tessellate;
+pub use opening::cut_opening;
+pub use layout::{LayoutError, SEAM_CUTS, closed_in_u, patch_region};
 pub use options::{OptionsError, TessellationOptions};
 
 use glam::DVec3;

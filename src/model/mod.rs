@@ -26,7 +26,8 @@ use crate::design::{Design, DesignError};
 use crate::export::Scene;
 use crate::mesh::{OptionsError, TessellationOptions};
 use crate::systems::{
-    ChangeLog, ModelErrors, PendingResolutions, Tessellation, WorkCounters, build_schedule,
+    ChangeLog, ModelErrors, OpeningHosts, PendingResolutions, Tessellation, WorkCounters,
+    build_schedule,
 };
 
 /// Why an edit or model construction was refused. The model is unchanged.
@@ -77,6 +78,7 @@ impl Model {
         world.init_resource::<ModelErrors>();
         world.init_resource::<ChangeLog>();
         world.init_resource::<VesselIndex>();
+        world.init_resource::<OpeningHosts>();
         Ok(Self {
             world,
             schedule: build_schedule(),

@@ -155,4 +155,51 @@ pub enum NurbsError {
         /// Cosine of the angle between the unit direction and the unit plane normal.
         cosine: f64,
     },
+    /// A straight generator of a neck-like surface does not meet the host surface
+    /// (the nozzle does not touch its host there, or leaves the host patch).
+    #[error("the neck generator at u = {u} misses the host surface (closest approach {distance} mm)")]
+    GeneratorMissesHost {
+        /// Neck parameter u of the generator.
+        u: f64,
+        /// Closest approach found between the generator and the host, mm.
+        distance: f64,
+    },
+    /// Newton's iteration for a neck–host intersection point did not converge.
+    #[error(
+        "the intersection of the neck generator at u = {u} with the host did not converge (residual {residual} mm)"
+    )]
+    IntersectionNotConverged {
+        /// Neck parameter u of the generator.
+        u: f64,
+        /// Distance between the neck and host points where the iteration stopped, mm.
+        residual: f64,
+    },
+    /// A neck generator meets the host only beyond the ends of the neck.
+    #[error(
+        "the neck generator at u = {u} meets the host at v = {v}, outside the neck's v-domain [{start}, {end}]"
+    )]
+    IntersectionOutsideNeck {
+        /// Neck parameter u of the generator.
+        u: f64,
+        /// Neck parameter v of the meeting point.
+        v: f64,
+        /// Start of the neck's v-domain.
+        start: f64,
+        /// End of the neck's v-domain.
+        end: f64,
+    },
+    /// Following the intersection once around the neck did not return to its start.
+    #[error("the neck–host intersection does not close after one turn of the neck: gap {gap} mm")]
+    IntersectionNotClosed {
+        /// Distance between the first point and the point reached after one turn, mm.
+        gap: f64,
+    },
+    /// Sampling the intersection curve to the chordal tolerance needs too many points.
+    #[error("sampling the intersection curve to {tolerance} mm needs more than {limit} points")]
+    IntersectionTooManySamples {
+        /// The chordal tolerance asked for, mm.
+        tolerance: f64,
+        /// The most samples allowed.
+        limit: usize,
+    },
 }

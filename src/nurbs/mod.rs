@@ -19,6 +19,7 @@ mod error;
 mod gauss;
 pub mod grid;
 mod integrals;
+pub mod intersect;
 mod inversion;
 mod knots;
 mod refine;
@@ -31,6 +32,9 @@ pub use compatible::make_compatible;
 pub use curve::{CurveDerivatives, NurbsCurve, euclidean, homogeneous};
 pub use error::NurbsError;
 pub use gauss::GaussLegendre;
+pub use intersect::{
+    GeneratorHit, IntersectionLoop, MAX_TURNING_ANGLE, intersect_generator, neck_host_intersection,
+};
 pub use inversion::{CurveProjection, SurfaceProjection};
 pub use knots::KnotVector;
 pub use surface::{NurbsSurface, Side, SurfaceDerivatives};

@@ -1,0 +1,84 @@
+//! Errors of the constrained-Delaunay patch mesher.
+//!
+//! Every way [`mesh_region`](super::mesh_region) can fail is one variant here: bad
+//! options or regions are rejected before any work, spade failures that would lose
+//! a loop vertex or a loop segment are reported with the loop and vertex they hit,
+//! and refinement that would exceed its vertex budget stops with a typed error
+//! instead of running away.
+
+use thiserror::Error;
+
+use crate::mesh::OptionsError;
+
+/// A failure of the constrained-Delaunay patch mesher.
+#[derive(Debug, Error, Clone, PartialEq)]
+pub enum CdtError {
+    /// The tessellation options are invalid.
+    #[error(transparent)]
+    Options(#[from] OptionsError),
+    /// A loop of the region is unusable (too few vertices, a non-finite or
+    /// out-of-range coordinate, zero area or the wrong orientation).
+    #[error("loop {loop_index} of the region: {reason}")]
+    InvalidLoop {
+        /// 0 for the outer loop, 1 + k for hole k.
+        loop_index: usize,
+        /// What is wrong with it.
+        reason: &'static str,
+    },
+    /// The surface evaluated to a non-finite point or normal at a vertex.
+    #[error("the surface is not finite at (u, v) = ({u}, {v})")]
+    NonFiniteSurface {
+        /// u parameter of the vertex (as given, before wrapping).
+        u: f64,
+        /// v parameter of the vertex.
+        v: f64,
+    },
+    /// Spade rejected the vertex set.
+    #[error("spade could not triangulate the region: {0}")]
+    Triangulation(spade::InsertionError),
+    /// A loop vertex was merged with another vertex at the same (u, v), so it would
+    /// be lost from the output.
+    #[error("loop {loop_index}, vertex {vertex}: coincides with another vertex in (u, v)")]
+    LoopVertexLost {
+        /// 0 for the outer loop, 1 + k for hole k.
+        loop_index: usize,
+        /// Index of the vertex in its loop.
+        vertex: usize,
+    },
+    /// A loop segment could not be inserted as one constraint edge (it crosses or
+    /// touches another loop), so the region's boundary would not be kept.
+    #[error("loop {loop_index}, segment {segment}: cannot be a constraint edge ({reason})")]
+    ConstraintFailed {
+        /// 0 for the outer loop, 1 + k for hole k.
+        loop_index: usize,
+        /// Index of the segment's first vertex in its loop.
+        segment: usize,
+        /// Why spade refused it.
+        reason: &'static str,
+    },
+    /// The loops do not bound a region: the inside leaks to the convex hull, so a
+    /// loop is open, crosses another or has the wrong orientation.
+    #[error("the loops do not enclose a region (crossing loops or wrong orientation)")]
+    RegionNotClosed,
+    /// Meshing would need more vertices than the budget allows.
+    #[error("meshing needs more than {limit} vertices (tolerance too small for the patch)")]
+    BudgetExceeded {
+        /// The vertex budget.
+        limit: usize,
+    },
+    /// Refinement did not reach the tolerance within its pass limit.
+    #[error("refinement did not converge in {passes} passes ({remaining} triangles still over)")]
+    NotConverged {
+        /// Passes run.
+        passes: usize,
+        /// Triangles still over the tolerance.
+        remaining: usize,
+    },
+    /// A triangle of the result is inverted or of zero area in 3D although it is not
+    /// collapsed at a pole or seam; the mesh is withheld rather than returned broken.
+    #[error("triangle {triangle} is inverted or flat in 3D")]
+    InvalidTriangle {
+        /// Index of the triangle in the mesh being built.
+        triangle: usize,
+    },
+}

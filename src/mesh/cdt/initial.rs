@@ -1,0 +1,203 @@
+//! The initial constrained Delaunay triangulation, built by spade.
+//!
+//! Loop vertices and seeds go into spade in a chart of the parameter plane scaled
+//! by the patch's mean |S_u| and |S_v|, so its Delaunay triangles are roughly well
+//! shaped in 3D; every coordinate is validated before insertion. Each loop segment
+//! is then added as a constraint with `can_add_constraint` / `try_add_constraint`;
+//! a segment that crosses another loop, or runs through another vertex, is an error
+//! (the boundary would not be kept as given), as is a loop vertex that spade merged
+//! with another. Seeds spade rejects are only counted. The triangles inside the
+//! region are found by a flood fill from the left side of every loop segment that
+//! never crosses a loop segment; reaching the convex hull means the loops do not
+//! enclose a region. The result is copied into a [`TriMesh`] for refinement.
+
+use std::collections::{HashMap, HashSet, VecDeque};
+
+use glam::DVec2;
+use rayon::prelude::*;
+use spade::{ConstrainedDelaunayTriangulation, HasPosition, Point2, Triangulation};
+
+use super::patch::PatchInfo;
+use super::region::Region;
+use super::trimesh::TriMesh;
+use super::{CdtError, MeshStats};
+
+/// A vertex in spade's chart, carrying its index in the mesher's vertex list.
+#[derive(Clone, Copy, Debug)]
+struct ChartVertex {
+    position: Point2<f64>,
+    id: u32,
+}
+
+impl HasPosition for ChartVertex {
+    type Scalar = f64;
+
+    fn position(&self) -> Point2<f64> {
+        self.position
+    }
+}
+
+/// The chart position of `uv`, validated for spade.
+fn chart(info: &PatchInfo, uv: DVec2) -> Result<Point2<f64>, spade::InsertionError> {
+    let p = uv * info.scale;
+    spade::validate_coordinate(p.x)?;
+    spade::validate_coordinate(p.y)?;
+    Ok(Point2::new(p.x, p.y))
+}
+
+/// Triangulates the region with its loop vertices (first, in loop order) and the
+/// seeds; returns the mesh of the triangles inside.
+pub(super) fn triangulate(
+    info: &PatchInfo,
+    region: &Region,
+    seeds: &[DVec2],
+    stats: &mut MeshStats,
+) -> Result<TriMesh, CdtError> {
+    let mut uvs: Vec<DVec2> = Vec::with_capacity(region.vertex_count() + seeds.len());
+    let mut chart_vertices = Vec::with_capacity(uvs.capacity());
+    // (loop index, first id) of each loop.
+    let mut loops: Vec<(usize, u32, usize)> = Vec::new();
+    for (loop_index, l) in region.loops().enumerate() {
+        loops.push((loop_index, uvs.len() as u32, l.uv.len()));
+        for &uv in &l.uv {
+            let bad = |reason| CdtError::InvalidLoop { loop_index, reason };
+            info.check_loop_point(uv).map_err(bad)?;
+            let position =
+                chart(info, uv).map_err(|_| bad("a coordinate is outside spade's range"))?;
+            chart_vertices.push(ChartVertex {
+                position,
+                id: uvs.len() as u32,
+            });
+            uvs.push(uv);
+        }
+    }
+    let loop_vertices = uvs.len();
+    for &uv in seeds {
+        match chart(info, uv) {
+            Ok(position) => {
+                chart_vertices.push(ChartVertex {
+                    position,
+                    id: uvs.len() as u32,
+                });
+                uvs.push(uv);
+            }
+            Err(_) => stats.failed_insertions += 1,
+        }
+    }
+    let mut cdt = ConstrainedDelaunayTriangulation::<ChartVertex>::bulk_load(chart_vertices)
+        .map_err(CdtError::Triangulation)?;
+    let mut handle = vec![None; uvs.len()];
+    for h in cdt.fixed_vertices() {
+        handle[cdt.vertex(h).data().id as usize] = Some(h);
+    }
+    stats.failed_insertions += handle[loop_vertices..]
+        .iter()
+        .filter(|h| h.is_none())
+        .count();
+    let mut loop_edges: HashSet<(u32, u32)> = HashSet::new();
+    for &(loop_index, first, len) in &loops {
+        let lost = (0..len).find(|&k| handle[first as usize + k].is_none());
+        if let Some(vertex) = lost {
+            return Err(CdtError::LoopVertexLost { loop_index, vertex });
+        }
+        for k in 0..len {
+            let (a, b) = (first + k as u32, first + ((k + 1) % len) as u32);
+            let (Some(ha), Some(hb)) = (handle[a as usize], handle[b as usize]) else {
+                continue;
+            };
+            let fail = |reason| CdtError::ConstraintFailed {
+                loop_index,
+                segment: k,
+                reason,
+            };
+            if !cdt.exists_constraint(ha, hb) {
+                if !cdt.can_add_constraint(ha, hb) {
+                    stats.failed_constraints += 1;
+                    return Err(fail("it crosses another loop segment"));
+                }
+                let added = cdt.try_add_constraint(ha, hb);
+                if added.len() != 1 {
+                    stats.failed_constraints += 1;
+                    return Err(fail(if added.is_empty() {
+                        "spade refused it"
+                    } else {
+                        "it runs through another vertex"
+                    }));
+                }
+            }
+            loop_edges.insert((a, b));
+        }
+    }
+    let faces: Vec<[u32; 3]> = cdt
+        .inner_faces()
+        .map(|f| f.vertices().map(|v| v.data().id))
+        .collect();
+    let inside = flood(&faces, &loop_edges)?;
+    // Keep the vertices the inside triangles use, loop vertices first.
+    let mut new_index = vec![u32::MAX; uvs.len()];
+    for (k, slot) in new_index.iter_mut().enumerate().take(loop_vertices) {
+        *slot = k as u32;
+    }
+    let mut kept: Vec<u32> = (0..loop_vertices as u32).collect();
+    for tri in &inside {
+        for &v in tri {
+            if new_index[v as usize] == u32::MAX {
+                new_index[v as usize] = kept.len() as u32;
+                kept.push(v);
+            }
+        }
+    }
+    let verts = kept
+        .par_iter()
+        .map(|&k| info.vertex(uvs[k as usize]))
+        .collect::<Result<Vec<_>, _>>()?;
+    let tris: Vec<[u32; 3]> = inside
+        .iter()
+        .map(|t| t.map(|v| new_index[v as usize]))
+        .collect();
+    // Loop vertices keep their indices, so the loop edges are unchanged.
+    Ok(TriMesh::new(verts, tris, |a, b| {
+        loop_edges.contains(&(a, b)) || loop_edges.contains(&(b, a))
+    }))
+}
+
+/// The faces reachable from the left side of a loop segment without crossing one.
+fn flood(faces: &[[u32; 3]], loop_edges: &HashSet<(u32, u32)>) -> Result<Vec<[u32; 3]>, CdtError> {
+    let mut directed: HashMap<(u32, u32), usize> = HashMap::with_capacity(faces.len() * 3);
+    for (f, tri) in faces.iter().enumerate() {
+        for i in 0..3 {
+            directed.insert((tri[i], tri[(i + 1) % 3]), f);
+        }
+    }
+    let mut seen = vec![false; faces.len()];
+    let mut queue = VecDeque::new();
+    let mut starts: Vec<&(u32, u32)> = loop_edges.iter().collect();
+    starts.sort_unstable();
+    for edge in starts {
+        let f = *directed.get(edge).ok_or(CdtError::RegionNotClosed)?;
+        if !seen[f] {
+            seen[f] = true;
+            queue.push_back(f);
+        }
+    }
+    while let Some(f) = queue.pop_front() {
+        let tri = faces[f];
+        for i in 0..3 {
+            let (a, b) = (tri[i], tri[(i + 1) % 3]);
+            if loop_edges.contains(&(a, b)) || loop_edges.contains(&(b, a)) {
+                continue;
+            }
+            let n = *directed.get(&(b, a)).ok_or(CdtError::RegionNotClosed)?;
+            if !seen[n] {
+                seen[n] = true;
+                queue.push_back(n);
+            }
+        }
+    }
+    Ok(faces
+        .iter()
+        .zip(&seen)
+        .filter(|&(_, &s)| s)
+        .map(|(&t, _)| t)
+        .collect())
+}

@@ -1,0 +1,55 @@
+//! The entry points: mesh one region of a patch, from validated input through
+//! seeding, spade's constrained triangulation and chordal refinement to the welded
+//! output.
+
+use super::output::{RegionMesh, finish};
+use super::patch::PatchInfo;
+use super::{CdtError, MeshStats, Region, initial, metric::Sizing, refine, seed};
+use crate::mesh::{Mesh, TessellationOptions};
+use crate::nurbs::NurbsSurface;
+
+/// Most vertices one region may get (seeds, loop vertices and insertions); beyond
+/// it meshing stops with [`CdtError::BudgetExceeded`].
+pub const VERTEX_BUDGET: usize = 4_000_000;
+/// Share of the tolerance the seed lattice aims at, leaving room for the lattice's
+/// irregularities so that refinement has little to add.
+const SEED_SHARE: f64 = 0.96;
+
+/// Meshes the part of `surface` inside `region` to `options` (chordal tolerance,
+/// angle tolerance, maximum edge length).
+///
+/// The loop vertices are kept as they are and no vertex is added on a loop segment
+/// (only on a side that collapses to a point, where every vertex welds into the
+/// pole); every triangle's deviation from the surface at its parametric centroid
+/// and at its interior edge midpoints is within `options.tolerance`. Positions are
+/// exact points `S(u, v)` (u wrapped on a surface closed in u), normals the exact
+/// normals, triangles counter-clockwise in (u, v) so they face along `S_u × S_v`.
+/// Deterministic: the same input gives the same mesh.
+pub fn mesh_region(
+    surface: &NurbsSurface,
+    region: &Region,
+    options: &TessellationOptions,
+) -> Result<(Mesh, MeshStats), CdtError> {
+    let out = mesh_region_with_uvs(surface, region, options)?;
+    Ok((out.mesh, out.stats))
+}
+
+/// [`mesh_region`] that also returns the (u, v) of every output vertex.
+pub fn mesh_region_with_uvs(
+    surface: &NurbsSurface,
+    region: &Region,
+    options: &TessellationOptions,
+) -> Result<RegionMesh, CdtError> {
+    options.validate()?;
+    region.validate()?;
+    let (lo, hi) = region.bounds();
+    let info = PatchInfo::new(surface, lo, hi, |cap| {
+        Sizing::new(options, SEED_SHARE * SEED_SHARE, cap)
+    });
+    let mut stats = MeshStats::default();
+    let budget = VERTEX_BUDGET.saturating_sub(region.vertex_count());
+    let seeds = seed::seeds(&info, region, budget)?;
+    let mut mesh = initial::triangulate(&info, region, &seeds, &mut stats)?;
+    refine::refine(&info, &mut mesh, options, VERTEX_BUDGET, &mut stats)?;
+    finish(&info, &mesh, stats)
+}

@@ -1,0 +1,32 @@
+//! Error-bounded constrained-Delaunay meshing of one patch region.
+//!
+//! This is the Tessellate stage's mesher for trimmed and untrimmed patches: the
+//! caller gives a [`Region`] of the patch's (u, v) domain bounded by loops whose
+//! vertices it chose (shared edges sampled once, so neighbours conform), and
+//! [`mesh_region`] returns a [`Mesh`](crate::mesh::Mesh) whose triangles all lie
+//! within the chordal tolerance of the exact surface.
+//!
+//! Pipeline: `region` (validate) → `seed` (curvature-sized lattice clipped to the
+//! region, in the size `metric` of the surface) → `initial` (spade's constrained
+//! Delaunay triangulation of loop vertices and seeds, inside found by flood fill) →
+//! `refine` (chordal refinement with metric-Delaunay `flip`s on a `trimesh`) →
+//! `output` (weld poles and seams, check every triangle, statistics). `patch` holds
+//! the facts about the surface every stage uses.
+
+mod error;
+mod flip;
+mod initial;
+mod mesher;
+mod metric;
+mod output;
+mod patch;
+mod refine;
+mod region;
+mod seed;
+mod trimesh;
+
+pub use error::CdtError;
+pub use mesher::{VERTEX_BUDGET, mesh_region, mesh_region_with_uvs};
+pub use output::{MeshStats, RegionMesh};
+pub use patch::wrap_u;
+pub use region::{Region, UvLoop};

@@ -1,0 +1,148 @@
+//! The mesher's result: the refined triangulation welded into a [`Mesh`], with the
+//! (u, v) of every output vertex and the counts of what happened.
+//!
+//! Vertices that map to one 3D point (within 10⁻¹² of the patch size) become one
+//! vertex: all vertices on a collapsed side (a pole, an apex) and the two copies of
+//! a point on the seam of a patch closed in u. Triangles that lose a vertex to the
+//! weld are dropped and counted; any other triangle must have positive area and a
+//! normal agreeing with the exact normals at its vertices, or the mesh is withheld
+//! with an error.
+
+use std::collections::HashMap;
+
+use glam::{DVec2, DVec3};
+
+use super::CdtError;
+use super::patch::PatchInfo;
+use super::trimesh::TriMesh;
+use crate::mesh::Mesh;
+
+/// Relative twice-area (to the squared longest edge) below which a triangle is flat.
+const FLAT: f64 = 1e-10;
+
+/// Counts of what happened while meshing, reported not swallowed.
+#[derive(Default, Clone, Copy, Debug, PartialEq)]
+pub struct MeshStats {
+    /// Triangles in the output mesh.
+    pub triangles: usize,
+    /// Vertices inserted by refinement (centroids, edge midpoints, and pole
+    /// vertices welded away on output).
+    pub refinement_insertions: usize,
+    /// Seed points spade rejected (out-of-range coordinates, duplicates).
+    pub failed_insertions: usize,
+    /// Loop segments spade could not insert as constraint edges (each one also
+    /// makes meshing fail).
+    pub failed_constraints: usize,
+    /// Triangles dropped because welding collapsed them (at a pole or seam).
+    pub dropped_degenerate: usize,
+    /// Smallest interior angle of an output triangle, degrees (in 3D).
+    pub min_angle_deg: f64,
+}
+
+/// A meshed region: the mesh, the parameters of its vertices and the statistics.
+#[derive(Clone, Debug, Default, PartialEq)]
+pub struct RegionMesh {
+    /// The triangle mesh.
+    pub mesh: Mesh,
+    /// (u, v) of each vertex as in the loops (u not wrapped); for a welded vertex,
+    /// those of its first copy (a loop vertex when there is one).
+    pub uvs: Vec<DVec2>,
+    /// What happened.
+    pub stats: MeshStats,
+}
+
+/// Smallest interior angle of a triangle, radians.
+fn min_angle(p: [DVec3; 3]) -> f64 {
+    (0..3)
+        .map(|i| {
+            let (a, b) = (p[(i + 1) % 3] - p[i], p[(i + 2) % 3] - p[i]);
+            a.angle_between(b)
+        })
+        .fold(f64::INFINITY, f64::min)
+}
+
+/// Welds `mesh` into the output.
+pub(super) fn finish(
+    info: &PatchInfo,
+    mesh: &TriMesh,
+    mut stats: MeshStats,
+) -> Result<RegionMesh, CdtError> {
+    let tol = info.weld_tolerance;
+    let cell = |p: DVec3| {
+        let c = (p / tol).floor();
+        (c.x as i64, c.y as i64, c.z as i64)
+    };
+    let mut grid: HashMap<(i64, i64, i64), Vec<u32>> = HashMap::new();
+    let mut used = vec![false; mesh.verts.len()];
+    for tri in &mesh.tris {
+        for &k in tri {
+            used[k as usize] = true;
+        }
+    }
+    let mut out = RegionMesh::default();
+    let mut index = vec![u32::MAX; mesh.verts.len()];
+    for (k, v) in mesh.verts.iter().enumerate() {
+        if !used[k] {
+            continue;
+        }
+        let c = cell(v.point);
+        let mut found = None;
+        'search: for dx in -1..=1 {
+            for dy in -1..=1 {
+                for dz in -1..=1 {
+                    let Some(list) = grid.get(&(c.0 + dx, c.1 + dy, c.2 + dz)) else {
+                        continue;
+                    };
+                    if let Some(&o) = list
+                        .iter()
+                        .find(|&&o| (out.mesh.positions[o as usize] - v.point).length() <= tol)
+                    {
+                        found = Some(o);
+                        break 'search;
+                    }
+                }
+            }
+        }
+        index[k] = match found {
+            Some(o) => o,
+            None => {
+                let o = out.mesh.positions.len() as u32;
+                out.mesh.positions.push(v.point);
+                out.mesh.normals.push(v.normal);
+                out.uvs.push(v.uv);
+                grid.entry(c).or_default().push(o);
+                o
+            }
+        };
+    }
+    let mut smallest = f64::INFINITY;
+    for (t, tri) in mesh.tris.iter().enumerate() {
+        let welded = tri.map(|k| index[k as usize]);
+        if welded[0] == welded[1] || welded[1] == welded[2] || welded[2] == welded[0] {
+            stats.dropped_degenerate += 1;
+            continue;
+        }
+        let p = welded.map(|k| out.mesh.positions[k as usize]);
+        let normal = (p[1] - p[0]).cross(p[2] - p[0]);
+        let longest = (0..3)
+            .map(|i| (p[(i + 1) % 3] - p[i]).length_squared())
+            .fold(0.0, f64::max);
+        let turned = tri
+            .iter()
+            .any(|&k| mesh.verts[k as usize].normal.dot(normal) <= 0.0);
+        let area = normal.length();
+        if area.is_nan() || area <= FLAT * longest || turned {
+            return Err(CdtError::InvalidTriangle { triangle: t });
+        }
+        smallest = smallest.min(min_angle(p));
+        out.mesh.indices.extend_from_slice(&welded);
+    }
+    stats.triangles = out.mesh.triangle_count();
+    stats.min_angle_deg = if smallest.is_finite() {
+        smallest.to_degrees()
+    } else {
+        0.0
+    };
+    out.stats = stats;
+    Ok(out)
+}

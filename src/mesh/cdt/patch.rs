@@ -1,0 +1,255 @@
+//! What the mesher needs to know about one surface, computed once per call: whether
+//! it is closed in u (so loop u values wrap), which sides of its domain collapse to a
+//! point (a head's pole, a cone's apex), its size (for welding), the scales of the
+//! (u, v) chart handed to spade, and the sizing; and the evaluation of one mesh
+//! vertex (exact point, exact normal with the pole limit, metric).
+
+use glam::{DVec2, DVec3};
+
+use super::CdtError;
+use super::metric::{Metric, Sizing};
+use crate::nurbs::NurbsSurface;
+
+/// Relative distance below which control points count as coincident (a collapsed
+/// side) and two output vertices are welded, times the patch size.
+pub(super) const COINCIDENT: f64 = 1e-12;
+/// Samples along a collapsed side averaged for the normal of its point.
+const POLE_NORMAL_SAMPLES: usize = 16;
+/// Samples per direction used to average |S_u| and |S_v| over the region.
+const SCALE_SAMPLES: usize = 9;
+
+/// The value `u` wrapped into the u-domain when `surface` is closed in u (its first
+/// and last control columns coincide), `u0 + (u − u0) mod (u1 − u0)`; `u` itself
+/// otherwise.
+pub fn wrap_u(surface: &NurbsSurface, u: f64) -> f64 {
+    let (closed, _) = closed_and_collapsed(surface, net_size(surface));
+    wrap(surface, closed, u)
+}
+
+fn wrap(surface: &NurbsSurface, closed: bool, u: f64) -> f64 {
+    let (u0, u1) = surface.u_knots().domain();
+    if closed {
+        u0 + (u - u0).rem_euclid(u1 - u0)
+    } else {
+        u
+    }
+}
+
+/// Diagonal of the control net's bounding box (at least 1e-300).
+fn net_size(surface: &NurbsSurface) -> f64 {
+    let points = surface.control_points();
+    let Some(&first) = points.first() else {
+        return 1e-300;
+    };
+    let (lo, hi) = points
+        .iter()
+        .fold((first, first), |(lo, hi), &p| (lo.min(p), hi.max(p)));
+    (hi - lo).length().max(1e-300)
+}
+
+/// Whether the surface is closed in u, and which sides collapse to a point:
+/// `[u = u0, u = u1, v = v0, v = v1]`.
+fn closed_and_collapsed(surface: &NurbsSurface, size: f64) -> (bool, [bool; 4]) {
+    let tol = COINCIDENT * size;
+    let (nu, nv) = (surface.u_count(), surface.v_count());
+    let at = |i: usize, j: usize| {
+        let p = surface.homogeneous_point_at(i, j);
+        p.truncate() / p.w
+    };
+    let collapsed = |mut points: Box<dyn Iterator<Item = DVec3> + '_>| {
+        let Some(first) = points.next() else {
+            return false;
+        };
+        points.all(|p| (p - first).length() <= tol)
+    };
+    let closed = (0..nv).all(|j| (at(0, j) - at(nu - 1, j)).length() <= tol);
+    let sides = [
+        collapsed(Box::new((0..nv).map(|j| at(0, j)))),
+        collapsed(Box::new((0..nv).map(|j| at(nu - 1, j)))),
+        collapsed(Box::new((0..nu).map(|i| at(i, 0)))),
+        collapsed(Box::new((0..nu).map(|i| at(i, nv - 1)))),
+    ];
+    (closed, sides)
+}
+
+/// One vertex of the mesh being built.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub(super) struct Vertex {
+    /// Parameters as given (u not wrapped).
+    pub uv: DVec2,
+    /// S(u, v).
+    pub point: DVec3,
+    /// Unit normal, the limit at a pole.
+    pub normal: DVec3,
+    /// Size metric.
+    pub metric: Metric,
+    /// On a side that collapses to a point.
+    pub pole: bool,
+}
+
+/// Facts about the surface being meshed.
+#[derive(Clone, Debug)]
+pub(super) struct PatchInfo<'a> {
+    /// The surface.
+    pub surface: &'a NurbsSurface,
+    /// Closed in u: loop u values wrap.
+    pub closed_u: bool,
+    /// Collapsed sides `[u = u0, u = u1, v = v0, v = v1]`.
+    pub collapsed: [bool; 4],
+    /// Distance within which two vertices are one, mm.
+    pub weld_tolerance: f64,
+    /// Mean |S_u| and |S_v| over the region: mm per unit parameter of spade's chart.
+    pub scale: DVec2,
+    /// Sizes for seeding and flips.
+    pub sizing: Sizing,
+    /// Normal of the point each collapsed side maps to: the mean of the limit
+    /// normals along the side (the limit itself at a smooth pole, the axis
+    /// direction at a cone's apex, where the limit depends on the approach).
+    pole_normals: [Option<DVec3>; 4],
+}
+
+impl<'a> PatchInfo<'a> {
+    /// Facts for meshing the part of `surface` inside the parameter box `lo..hi`;
+    /// `sizing` gets its cap from the box's extent.
+    pub fn new(
+        surface: &'a NurbsSurface,
+        lo: DVec2,
+        hi: DVec2,
+        sizing: impl FnOnce(f64) -> Sizing,
+    ) -> Self {
+        let size = net_size(surface);
+        let (closed_u, collapsed) = closed_and_collapsed(surface, size);
+        let mut sum = DVec2::ZERO;
+        let n = SCALE_SAMPLES;
+        for i in 0..n {
+            for j in 0..n {
+                let t = DVec2::new(i as f64, j as f64) / (n - 1) as f64;
+                let p = lo + (hi - lo) * t;
+                let d = surface.derivatives(wrap(surface, closed_u, p.x), p.y);
+                sum += DVec2::new(d.du.length(), d.dv.length());
+            }
+        }
+        let mean = sum / (n * n) as f64;
+        let fix = |s: f64| if s.is_finite() && s > 0.0 { s } else { size };
+        let scale = DVec2::new(fix(mean.x), fix(mean.y));
+        let extent = ((hi - lo) * scale).max_element().max(size * 1e-9);
+        let ((u0, u1), (v0, v1)) = surface.domain();
+        let side = |k: usize, t: f64| match k {
+            0 => DVec2::new(u0, v0 + (v1 - v0) * t),
+            1 => DVec2::new(u1, v0 + (v1 - v0) * t),
+            2 => DVec2::new(u0 + (u1 - u0) * t, v0),
+            _ => DVec2::new(u0 + (u1 - u0) * t, v1),
+        };
+        let pole_normals = std::array::from_fn(|k| {
+            collapsed[k].then(|| {
+                (0..POLE_NORMAL_SAMPLES)
+                    .map(|i| {
+                        let p = side(k, (i as f64 + 0.5) / POLE_NORMAL_SAMPLES as f64);
+                        surface.normal(p.x, p.y)
+                    })
+                    .sum::<DVec3>()
+                    .normalize_or_zero()
+            })
+        });
+        Self {
+            surface,
+            closed_u,
+            collapsed,
+            weld_tolerance: COINCIDENT * size,
+            scale,
+            sizing: sizing(extent),
+            pole_normals,
+        }
+    }
+
+    /// The normal of the pole `uv` lies on, if it lies on a collapsed side.
+    fn pole_normal(&self, uv: DVec2) -> Option<DVec3> {
+        let ((u0, u1), (v0, v1)) = self.surface.domain();
+        let (eu, ev) = (1e-12 * (u1 - u0), 1e-12 * (v1 - v0));
+        let u = self.wrap_u(uv.x);
+        let on = [
+            !self.closed_u && (u - u0).abs() <= eu,
+            !self.closed_u && (u - u1).abs() <= eu,
+            (uv.y - v0).abs() <= ev,
+            (uv.y - v1).abs() <= ev,
+        ];
+        (0..4)
+            .filter(|&k| on[k])
+            .find_map(|k| self.pole_normals[k])
+            .filter(|n| *n != DVec3::ZERO)
+    }
+
+    /// `u` wrapped into the domain when the surface is closed in u.
+    pub fn wrap_u(&self, u: f64) -> f64 {
+        wrap(self.surface, self.closed_u, u)
+    }
+
+    /// The exact normal at `uv`, the limit along u = `uv.x` at a pole.
+    pub fn normal(&self, uv: DVec2) -> DVec3 {
+        self.surface.normal(self.wrap_u(uv.x), uv.y)
+    }
+
+    /// Checks that loop coordinates lie in the domain (u may leave it only on a
+    /// surface closed in u).
+    pub fn check_loop_point(&self, uv: DVec2) -> Result<(), &'static str> {
+        let ((u0, u1), (v0, v1)) = self.surface.domain();
+        let (eu, ev) = (1e-9 * (u1 - u0), 1e-9 * (v1 - v0));
+        if uv.y < v0 - ev || uv.y > v1 + ev {
+            return Err("a v coordinate is outside the surface's domain");
+        }
+        if !self.closed_u && (uv.x < u0 - eu || uv.x > u1 + eu) {
+            return Err("a u coordinate is outside the domain of a surface open in u");
+        }
+        Ok(())
+    }
+
+    /// The metric at `uv`; at a pole, just inside it.
+    pub fn metric_at(&self, uv: DVec2) -> Metric {
+        let ((u0, u1), (v0, v1)) = self.surface.domain();
+        let mut p = DVec2::new(self.wrap_u(uv.x), uv.y);
+        let centre = DVec2::new(0.5 * (u0 + u1), 0.5 * (v0 + v1));
+        let nudge = DVec2::new(u1 - u0, v1 - v0) * 1e-7;
+        for _ in 0..4 {
+            let d = self.surface.derivatives(p.x, p.y);
+            let n = d.du.cross(d.dv).normalize_or_zero();
+            if n != DVec3::ZERO
+                && let Some(m) = self.sizing.metric(&d, n)
+            {
+                return m;
+            }
+            p += (centre - p).signum() * nudge;
+            p = p.clamp(DVec2::new(u0, v0), DVec2::new(u1, v1));
+        }
+        self.sizing.fallback(self.scale)
+    }
+
+    /// The mesh vertex at `uv`: exact point and normal (the limit at a pole) and
+    /// the metric.
+    pub fn vertex(&self, uv: DVec2) -> Result<Vertex, CdtError> {
+        let u = self.wrap_u(uv.x);
+        let d = self.surface.derivatives(u, uv.y);
+        let cross = d.du.cross(d.dv);
+        let scale = d.du.length_squared().max(d.dv.length_squared());
+        let regular = cross.length_squared() > 1e-20 * scale * scale;
+        let pole = self.pole_normal(uv);
+        let normal = match (pole, regular) {
+            (Some(n), _) => n,
+            (None, true) => cross.normalize(),
+            (None, false) => self.surface.normal(u, uv.y),
+        };
+        let metric = match regular.then(|| self.sizing.metric(&d, normal)).flatten() {
+            Some(m) => m,
+            None => self.metric_at(uv),
+        };
+        if !(d.point.is_finite() && normal.is_finite() && normal != DVec3::ZERO) {
+            return Err(CdtError::NonFiniteSurface { u: uv.x, v: uv.y });
+        }
+        Ok(Vertex {
+            uv,
+            point: d.point,
+            normal,
+            metric,
+            pole: pole.is_some(),
+        })
+    }
+}

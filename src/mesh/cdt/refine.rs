@@ -1,0 +1,279 @@
+//! Chordal refinement: insert points until every triangle is within the tolerance.
+//!
+//! A triangle is measured where a flat triangle departs most from a smooth surface:
+//! the distance from S at its parametric centroid to the triangle's plane, and from
+//! S at the midpoint of each interior (non-loop) edge to that 3D segment. Interior
+//! edges are also checked against the angle tolerance (angle between the exact
+//! normals at its ends) and the maximum edge length. The worst of these, each as a
+//! fraction of its limit, is the triangle's badness; a triangle that is flat or
+//! turned over in 3D (its normal against a vertex normal) is infinitely bad. Each
+//! pass splits every bad triangle at its worst point, worst first, skipping
+//! triangles already changed in the pass, and restores the metric Delaunay property
+//! by flips around the new vertex; passes repeat to a fixed point, with a vertex
+//! budget. Loop edges are never split, so no vertex is added on the boundary,
+//! except on a collapsed side: there a "shadow" vertex is put below each interior
+//! vertex that faces a pole segment, which keeps the triangles around the pole
+//! sector-shaped; all of them weld into the one pole vertex on output.
+
+use glam::DVec2;
+use rayon::prelude::*;
+
+use super::flip::{effective_uv, should_flip, strictly_ccw};
+use super::patch::{PatchInfo, Vertex};
+use super::trimesh::TriMesh;
+use super::{CdtError, MeshStats};
+use crate::mesh::TessellationOptions;
+
+/// Most refinement passes.
+const MAX_PASSES: usize = 200;
+/// Flips allowed per triangle in the initial legalization.
+const INITIAL_FLIPS_PER_TRIANGLE: usize = 20;
+/// Flips allowed after one insertion.
+const FLIPS_PER_INSERTION: usize = 2000;
+/// Relative twice-area (to the squared longest edge) below which a triangle is flat.
+const FLAT: f64 = 1e-10;
+
+/// Where to insert in a bad triangle.
+#[derive(Clone, Copy, Debug, PartialEq)]
+enum Insert {
+    /// Split the triangle at this point strictly inside it.
+    Point(DVec2),
+    /// Split this interior edge at its midpoint.
+    Edge(usize),
+}
+
+/// A bad triangle's worst measure (as a fraction of its limit) and remedy.
+#[derive(Clone, Copy, Debug, PartialEq)]
+struct Candidate {
+    badness: f64,
+    insert: Insert,
+}
+
+/// The limits triangles are held to.
+struct Limits {
+    tolerance: f64,
+    angle: Option<f64>,
+    max_edge: Option<f64>,
+}
+
+/// Refines `mesh` until every triangle is within `options`; at most `budget`
+/// vertices.
+pub(super) fn refine(
+    info: &PatchInfo,
+    mesh: &mut TriMesh,
+    options: &TessellationOptions,
+    budget: usize,
+    stats: &mut MeshStats,
+) -> Result<(), CdtError> {
+    let limits = Limits {
+        tolerance: options.tolerance,
+        angle: options.angle_tolerance.map(f64::to_radians),
+        max_edge: options.max_edge_length,
+    };
+    let mut flips_left = INITIAL_FLIPS_PER_TRIANGLE * mesh.tris.len();
+    let all: Vec<(u32, usize)> = (0..mesh.tris.len() as u32)
+        .flat_map(|t| (0..3).map(move |i| (t, i)))
+        .filter(|&(t, i)| mesh.adj[t as usize][i] > t)
+        .collect();
+    mesh.legalize(all, &mut flips_left, should_flip);
+    let mut cache: Vec<Option<Candidate>> = Vec::new();
+    let mut assessed: Vec<u32> = Vec::new();
+    for _ in 0..MAX_PASSES {
+        mesh.pass += 1;
+        add_shadows(info, mesh, budget, stats)?;
+        let stale: Vec<u32> = (0..mesh.tris.len() as u32)
+            .filter(|&t| {
+                t as usize >= assessed.len() || mesh.touched[t as usize] >= assessed[t as usize]
+            })
+            .collect();
+        let fresh: Vec<Option<Candidate>> = stale
+            .par_iter()
+            .map(|&t| assess(info, mesh, t, &limits))
+            .collect();
+        cache.resize(mesh.tris.len(), None);
+        assessed.resize(mesh.tris.len(), 0);
+        for (&t, c) in stale.iter().zip(fresh) {
+            cache[t as usize] = c;
+            assessed[t as usize] = mesh.pass;
+        }
+        let mut bad: Vec<(f64, u32)> = cache
+            .iter()
+            .enumerate()
+            .filter_map(|(t, c)| c.map(|c| (c.badness, t as u32)))
+            .collect();
+        if bad.is_empty() {
+            return Ok(());
+        }
+        bad.sort_by(|a, b| b.0.total_cmp(&a.0).then(a.1.cmp(&b.1)));
+        mesh.pass += 1;
+        for (_, t) in bad {
+            if mesh.touched[t as usize] == mesh.pass {
+                continue;
+            }
+            let Some(candidate) = cache[t as usize] else {
+                continue;
+            };
+            if mesh.verts.len() >= budget {
+                return Err(CdtError::BudgetExceeded { limit: budget });
+            }
+            let edges = match candidate.insert {
+                Insert::Point(uv) => {
+                    let x = mesh.push_vertex(info.vertex(uv)?);
+                    mesh.split_triangle(t, x)
+                }
+                Insert::Edge(i) => {
+                    let (a, b) = mesh.edge(t, i);
+                    let mid = 0.5 * (mesh.verts[a as usize].uv + mesh.verts[b as usize].uv);
+                    let x = mesh.push_vertex(info.vertex(mid)?);
+                    mesh.split_edge(t, i, x)
+                }
+            };
+            stats.refinement_insertions += 1;
+            let mut flips = FLIPS_PER_INSERTION;
+            mesh.legalize(edges, &mut flips, should_flip);
+        }
+    }
+    let remaining = cache.iter().filter(|c| c.is_some()).count();
+    Err(CdtError::NotConverged {
+        passes: MAX_PASSES,
+        remaining,
+    })
+}
+
+/// Splits each pole segment under the interior vertex of its triangle, so that
+/// every interior vertex facing a collapsed side has a pole vertex at its own u.
+fn add_shadows(
+    info: &PatchInfo,
+    mesh: &mut TriMesh,
+    budget: usize,
+    stats: &mut MeshStats,
+) -> Result<(), CdtError> {
+    if !info.collapsed.iter().any(|&c| c) {
+        return Ok(());
+    }
+    loop {
+        let found: Vec<(u32, usize)> = (0..mesh.tris.len() as u32)
+            .flat_map(|t| (0..3).map(move |i| (t, i)))
+            .filter(|&(t, i)| shadow_at(mesh, t, i).is_some())
+            .collect();
+        if found.is_empty() {
+            return Ok(());
+        }
+        for (t, i) in found {
+            // Flips after an earlier split may have changed this triangle.
+            let Some(uv) = shadow_at(mesh, t, i) else {
+                continue;
+            };
+            if mesh.verts.len() >= budget {
+                return Err(CdtError::BudgetExceeded { limit: budget });
+            }
+            let x = mesh.push_vertex(info.vertex(uv)?);
+            let edges = mesh.split_edge(t, i, x);
+            stats.refinement_insertions += 1;
+            let mut flips = FLIPS_PER_INSERTION;
+            mesh.legalize(edges, &mut flips, should_flip);
+        }
+    }
+}
+
+/// Where edge `i` of `t` needs a shadow: the edge is a pole segment, the third
+/// vertex is not a pole vertex, and its projection falls strictly inside the edge.
+fn shadow_at(mesh: &TriMesh, t: u32, i: usize) -> Option<DVec2> {
+    let (a, b) = mesh.edge(t, i);
+    let c = mesh.tris[t as usize][(i + 2) % 3];
+    let v = |k: u32| &mesh.verts[k as usize];
+    if !(mesh.fixed[t as usize][i] && v(a).pole && v(b).pole && !v(c).pole) {
+        return None;
+    }
+    let (pa, ab) = (v(a).uv, v(b).uv - v(a).uv);
+    let s = (v(c).uv - pa).dot(ab) / ab.length_squared();
+    (s > 1e-9 && s < 1.0 - 1e-9).then(|| pa + ab * s)
+}
+
+/// Whether `p` is strictly inside the (u, v) triangle `[a, b, c]`.
+fn strictly_inside(p: DVec2, [a, b, c]: [DVec2; 3]) -> bool {
+    strictly_ccw(a, b, p) && strictly_ccw(b, c, p) && strictly_ccw(c, a, p)
+}
+
+/// The measure of triangle `t`, or `None` when it is within the limits or
+/// collapsed (two vertices at one 3D point: dropped on output).
+fn assess(info: &PatchInfo, mesh: &TriMesh, t: u32, limits: &Limits) -> Option<Candidate> {
+    let tri = mesh.tris[t as usize];
+    let v = tri.map(|k| &mesh.verts[k as usize]);
+    let p = v.map(|x| x.point);
+    let weld = info.weld_tolerance;
+    if (0..3).any(|i| (p[i] - p[(i + 1) % 3]).length() <= weld) {
+        return None;
+    }
+    let uv = v.map(|x| x.uv);
+    let eff = tri.map(|k| effective_uv(mesh, k, &tri));
+    let centroid = (eff[0] + eff[1] + eff[2]) / 3.0;
+    let inside = if strictly_inside(centroid, uv) {
+        centroid
+    } else {
+        (uv[0] + uv[1] + uv[2]) / 3.0
+    };
+    let normal = (p[1] - p[0]).cross(p[2] - p[0]);
+    let longest = (0..3)
+        .map(|i| (p[(i + 1) % 3] - p[i]).length_squared())
+        .fold(0.0, f64::max);
+    // At a pole the normal that counts is the limit along the triangle's sector.
+    let turned = (0..3).any(|k| {
+        let n = if v[k].pole {
+            info.normal(eff[k])
+        } else {
+            v[k].normal
+        };
+        n.dot(normal) <= 0.0
+    });
+    let area = normal.length();
+    if area.is_nan() || area <= FLAT * longest || turned {
+        return Some(Candidate {
+            badness: f64::INFINITY,
+            insert: Insert::Point(inside),
+        });
+    }
+    let unit = normal.normalize();
+    let surface = |q: DVec2| info.surface.point(info.wrap_u(q.x), q.y);
+    let mut worst = Candidate {
+        badness: (surface(centroid) - p[0]).dot(unit).abs() / limits.tolerance,
+        insert: Insert::Point(inside),
+    };
+    for i in 0..3 {
+        if mesh.fixed[t as usize][i] {
+            continue;
+        }
+        let j = (i + 1) % 3;
+        let (x, y) = (v[i], v[j]);
+        // Towards a pole the edge follows the meridian of its other end.
+        let (mut ux, mut uy) = (x.uv, y.uv);
+        if x.pole && !y.pole {
+            ux.x = uy.x;
+        } else if y.pole && !x.pole {
+            uy.x = ux.x;
+        }
+        let mid = 0.5 * (ux + uy);
+        let mut badness = (surface(mid) - p[0]).dot(unit).abs() / limits.tolerance;
+        if let Some(angle) = limits.angle {
+            let end_normal =
+                |w: &Vertex, at: DVec2| if w.pole { info.normal(at) } else { w.normal };
+            let cos = end_normal(x, ux).dot(end_normal(y, uy));
+            badness = badness.max(cos.clamp(-1.0, 1.0).acos() / angle);
+        }
+        if let Some(max) = limits.max_edge {
+            badness = badness.max((x.point - y.point).length() / max);
+        }
+        if badness > worst.badness {
+            let real_mid = 0.5 * (x.uv + y.uv);
+            let insert = if mid == real_mid {
+                Insert::Edge(i)
+            } else if strictly_inside(mid, uv) {
+                Insert::Point(mid)
+            } else {
+                Insert::Point(inside)
+            };
+            worst = Candidate { badness, insert };
+        }
+    }
+    (worst.badness > 1.0).then_some(worst)
+}

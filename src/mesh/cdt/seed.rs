@@ -1,0 +1,279 @@
+//! Interior seed points: a structured lattice sized by the curvature metric and
+//! clipped to the region.
+//!
+//! Rows run at constant v (the parallels of a revolved patch, so a row's point count
+//! follows its radius and shrinks to a few points next to a pole). Row positions come
+//! from integrating the metric's spacing across v inside each v knot span, so every
+//! interior v knot is a row; each row's points come from integrating the metric's
+//! spacing along u, shifted by half a step on every other row, which makes the
+//! lattice equilateral in the metric: its triangles deviate from the surface by about
+//! the sizing's δ. Points outside the outer loop, inside a hole or nearer a loop than
+//! [`MARGIN`] of the local spacing are dropped, so boundary triangles stay well
+//! shaped and no seed can fall on a loop segment.
+
+use glam::DVec2;
+use rayon::prelude::*;
+
+use super::CdtError;
+use super::metric::Metric;
+use super::patch::PatchInfo;
+use super::region::{Region, inside_by_crossings};
+
+/// Evaluation samples per knot span when integrating spacings.
+const SAMPLES_PER_SPAN: usize = 8;
+/// Seeds closer to a loop than this many local spacings are dropped.
+pub(super) const MARGIN: f64 = 0.55;
+/// Consecutive rows keep one point count while it is at most this factor above
+/// what the row needs.
+const COUNT_SLACK: f64 = 1.1;
+/// Row spacing of an equilateral lattice with unit edges.
+const ROW_HEIGHT: f64 = 0.866_025_403_784_438_6;
+
+/// `intervals + 1` evenly spaced samples of `[a, b]` (at least 2 intervals).
+fn samples(a: f64, b: f64, intervals: usize) -> Vec<f64> {
+    let n = intervals.max(2);
+    (0..=n).map(|k| a + (b - a) * k as f64 / n as f64).collect()
+}
+
+/// Cumulative integral of `density` over `params` (trapezoids).
+fn cumulative(params: &[f64], density: &[f64]) -> Vec<f64> {
+    let mut out = vec![0.0; params.len()];
+    for k in 1..params.len() {
+        out[k] = out[k - 1] + 0.5 * (density[k] + density[k - 1]) * (params[k] - params[k - 1]);
+    }
+    out
+}
+
+/// Points along `params` at shares `k + offset` (k = 0, 1, …) of `n` equal shares
+/// of the integral `cumulative`, up to the last parameter.
+fn place(params: &[f64], cumulative: &[f64], n: usize, offset: f64) -> Vec<f64> {
+    let total = cumulative[params.len() - 1];
+    if !(total.is_finite() && total > 0.0 && n > 0) {
+        return Vec::new();
+    }
+    let n = n as f64;
+    let mut out = Vec::with_capacity(n as usize + 1);
+    let mut seg = 1;
+    let mut k = offset;
+    while k <= n + 1e-9 {
+        let target = total * (k / n).min(1.0);
+        while seg < params.len() - 1 && cumulative[seg] < target {
+            seg += 1;
+        }
+        let (c0, c1) = (cumulative[seg - 1], cumulative[seg]);
+        let t = if c1 > c0 {
+            (target - c0) / (c1 - c0)
+        } else {
+            0.0
+        };
+        out.push(params[seg - 1] + t.clamp(0.0, 1.0) * (params[seg] - params[seg - 1]));
+        k += 1.0;
+    }
+    out
+}
+
+/// The u samples across `lo..hi` and the v samples of each v knot span inside it.
+fn sample_grid(info: &PatchInfo, lo: DVec2, hi: DVec2) -> (Vec<f64>, Vec<Vec<f64>>) {
+    let surface = info.surface;
+    let (u0, u1) = surface.u_knots().domain();
+    let u_spans = surface.u_knots().spans().len().max(1);
+    let periods = (hi.x - lo.x) / (u1 - u0);
+    let us = samples(
+        lo.x,
+        hi.x,
+        (SAMPLES_PER_SPAN as f64 * u_spans as f64 * periods).ceil() as usize,
+    );
+    let mut v_spans: Vec<Vec<f64>> = Vec::new();
+    for (a, b) in surface.v_knots().spans() {
+        let (a, b) = (a.max(lo.y), b.min(hi.y));
+        if b > a {
+            v_spans.push(samples(a, b, SAMPLES_PER_SPAN));
+        }
+    }
+    if v_spans.is_empty() {
+        v_spans.push(samples(lo.y, hi.y, SAMPLES_PER_SPAN));
+    }
+    (us, v_spans)
+}
+
+/// The seed points of `region` (rows of constant v, increasing u), or
+/// [`CdtError::BudgetExceeded`] when the lattice would exceed `budget` points.
+pub(super) fn seeds(
+    info: &PatchInfo,
+    region: &Region,
+    budget: usize,
+) -> Result<Vec<DVec2>, CdtError> {
+    let (lo, hi) = region.bounds();
+    let (us, v_spans) = sample_grid(info, lo, hi);
+    // Row density across v (max over u) and an estimate of the lattice size.
+    let mut rows: Vec<f64> = Vec::new();
+    let mut estimate = 0.0;
+    for vs in &v_spans {
+        let metrics: Vec<Vec<Metric>> = vs
+            .par_iter()
+            .map(|&v| {
+                us.iter()
+                    .map(|&u| info.metric_at(DVec2::new(u, v)))
+                    .collect()
+            })
+            .collect();
+        let density: Vec<f64> = metrics
+            .iter()
+            .map(|row| row.iter().map(Metric::across_v).fold(0.0, f64::max) / ROW_HEIGHT)
+            .collect();
+        for (j, w) in vs.windows(2).enumerate() {
+            for (i, x) in us.windows(2).enumerate() {
+                let cell = [
+                    metrics[j][i],
+                    metrics[j][i + 1],
+                    metrics[j + 1][i],
+                    metrics[j + 1][i + 1],
+                ];
+                let area = Metric::mean(&cell).det().max(0.0).sqrt();
+                estimate += area * (x[1] - x[0]) * (w[1] - w[0]) / ROW_HEIGHT;
+            }
+        }
+        if estimate.is_nan() || estimate > budget as f64 {
+            return Err(CdtError::BudgetExceeded { limit: budget });
+        }
+        let total = cumulative(vs, &density);
+        let count = total[total.len() - 1].ceil() as usize;
+        let placed = place(vs, &total, count.max(1), 0.0);
+        let placed = if placed.is_empty() {
+            vec![vs[0], vs[vs.len() - 1]]
+        } else {
+            placed
+        };
+        for v in placed {
+            if rows.last().is_none_or(|&last| v > last) {
+                rows.push(v);
+            }
+        }
+    }
+    let segments: Vec<(DVec2, DVec2)> = region.loops().flat_map(|l| l.segments()).collect();
+    let profiles: Vec<RowProfile> = rows
+        .par_iter()
+        .map(|&v| RowProfile::new(info, &us, v))
+        .collect();
+    let counts = row_counts(&profiles);
+    let total: usize = counts.iter().sum();
+    if total > budget {
+        return Err(CdtError::BudgetExceeded { limit: budget });
+    }
+    let per_row: Vec<Vec<DVec2>> = profiles
+        .par_iter()
+        .zip(counts.par_iter())
+        .enumerate()
+        .map(|(r, (profile, &n))| profile.seeds(region, &segments, &us, n, r % 2 == 1))
+        .collect();
+    Ok(per_row.into_iter().flatten().collect())
+}
+
+/// Point counts per row: each row needs at least the integral of its spacing
+/// along u; consecutive rows keep the same count while it stays within
+/// [`COUNT_SLACK`] of that, so that blocks of rows form an exact lattice.
+fn row_counts(profiles: &[RowProfile]) -> Vec<usize> {
+    let mut counts = Vec::with_capacity(profiles.len());
+    let mut previous: Option<(usize, f64)> = None;
+    for p in profiles {
+        let need = p.total();
+        let n = match previous {
+            Some((n, _)) if need <= n as f64 && (n as f64) <= need * COUNT_SLACK => n,
+            Some((_, last)) if need > last => {
+                (need * COUNT_SLACK).floor().max(need.ceil()) as usize
+            }
+            _ => need.ceil() as usize,
+        };
+        counts.push(n.max(1));
+        previous = Some((n.max(1), need));
+    }
+    counts
+}
+
+/// The metric along one row and the integral of its spacing.
+struct RowProfile {
+    v: f64,
+    metrics: Vec<Metric>,
+    cumulative: Vec<f64>,
+}
+
+impl RowProfile {
+    fn new(info: &PatchInfo, us: &[f64], v: f64) -> Self {
+        let metrics: Vec<Metric> = us
+            .iter()
+            .map(|&u| info.metric_at(DVec2::new(u, v)))
+            .collect();
+        let density: Vec<f64> = metrics.iter().map(Metric::along_u).collect();
+        let cumulative = cumulative(us, &density);
+        Self {
+            v,
+            metrics,
+            cumulative,
+        }
+    }
+
+    /// Unit spacings along the row.
+    fn total(&self) -> f64 {
+        self.cumulative[self.cumulative.len() - 1]
+    }
+
+    /// The row's `n`-share points, shifted by half a share when `odd`, inside the
+    /// region and clear of its loops.
+    fn seeds(
+        &self,
+        region: &Region,
+        segments: &[(DVec2, DVec2)],
+        us: &[f64],
+        n: usize,
+        odd: bool,
+    ) -> Vec<DVec2> {
+        let v = self.v;
+        let placed = place(us, &self.cumulative, n, if odd { 0.5 } else { 0.0 });
+        let mut crossings = Vec::new();
+        region.row_crossings(v, &mut crossings);
+        // Loop segments that can come within the margin of this row.
+        let reach = self
+            .metrics
+            .iter()
+            .map(|m| m.ball_extent(MARGIN).y)
+            .fold(0.0, f64::max);
+        let near: Vec<(DVec2, DVec2)> = segments
+            .iter()
+            .copied()
+            .filter(|(a, b)| a.y.min(b.y) <= v + reach && a.y.max(b.y) >= v - reach)
+            .collect();
+        let mut out = Vec::with_capacity(placed.len());
+        for u in placed {
+            if !inside_by_crossings(&crossings, u) {
+                continue;
+            }
+            let k = us.partition_point(|&s| s < u).min(us.len() - 1);
+            let metric = self.metrics[k];
+            let p = DVec2::new(u, v);
+            let box_u = metric.ball_extent(MARGIN).x;
+            let clear = near.iter().all(|&(a, b)| {
+                a.x.min(b.x) > u + box_u
+                    || a.x.max(b.x) < u - box_u
+                    || distance_sq(metric, p, a, b) >= MARGIN * MARGIN
+            });
+            if clear {
+                out.push(p);
+            }
+        }
+        out
+    }
+}
+
+/// Squared metric distance from `p` to the segment `a`–`b`.
+fn distance_sq(metric: Metric, p: DVec2, a: DVec2, b: DVec2) -> f64 {
+    let (ab, ap) = (b - a, p - a);
+    let len = metric.length_sq(ab);
+    let dot =
+        metric.uu * ab.x * ap.x + metric.uv * (ab.x * ap.y + ab.y * ap.x) + metric.vv * ab.y * ap.y;
+    let t = if len > 0.0 {
+        (dot / len).clamp(0.0, 1.0)
+    } else {
+        0.0
+    };
+    metric.length_sq(ap - ab * t)
+}

@@ -1,0 +1,254 @@
+//! Region layout: the (u, v) loops a patch is meshed within — its four sides sampled
+//! once from the edge curves, nozzle openings as holes, and a nozzle neck's bottom
+//! replaced by its intersection with the host.
+//!
+//! This sits between the Geometry stage (patches, openings) and the mesher. Sides
+//! are sampled with [`edge_parameters`](super::edge_parameters) from the edge curve
+//! alone, so two patches sharing an edge get the same vertices. A patch closed in u
+//! (every revolved patch) may be cut at any of [`SEAM_CUTS`] angles; the cut is
+//! chosen clear of every hole, and circle edges use a multiple of [`SEAM_CUTS`]
+//! segments so every cut angle is a vertex of every circle.
+
+use glam::DVec2;
+use thiserror::Error;
+
+use super::cdt::{Region, UvLoop};
+use super::{TessellationOptions, edge_parameters};
+use crate::nurbs::intersect::IntersectionLoop;
+use crate::nurbs::{NurbsCurve, NurbsSurface, Side};
+
+/// Number of evenly spaced angles (in u) at which a closed patch may be cut for
+/// meshing: the quarter-circle knots and their midpoints, exact in u.
+pub const SEAM_CUTS: usize = 8;
+
+/// Why a patch's region could not be laid out.
+#[derive(Debug, Error, Clone, PartialEq)]
+pub enum LayoutError {
+    /// Every seam cut angle of a closed patch lies inside an opening.
+    #[error("openings cover every seam cut angle of the patch; spread the nozzles")]
+    SeamBlocked,
+    /// An opening loop does not fit in the patch's parameter domain.
+    #[error("an opening does not lie within one patch (it crosses the patch edge at v = {v})")]
+    OpeningOffPatch {
+        /// The offending v.
+        v: f64,
+    },
+}
+
+/// Relative tolerance for comparing control points and parameters.
+const SAME: f64 = 1e-12;
+
+/// Size of a curve's control polygon (for relative comparisons).
+fn size(curve: &NurbsCurve) -> f64 {
+    curve.control_points().iter().fold(0.0f64, |m, p| m.max(p.abs().max_element())).max(1.0)
+}
+
+/// True when all points of `curve` coincide (a pole).
+fn degenerate(curve: &NurbsCurve) -> bool {
+    let pts = curve.control_points();
+    let s = size(curve);
+    pts.iter().all(|p| (*p - pts[0]).length() <= SAME * s)
+}
+
+/// True when the surface is closed in u: its u0 and u1 edges coincide.
+pub fn closed_in_u(surface: &NurbsSurface) -> bool {
+    let a = surface.boundary(Side::UMin).control_points();
+    let b = surface.boundary(Side::UMax).control_points();
+    let s = a.iter().fold(1.0f64, |m, p| m.max(p.abs().max_element()));
+    a.len() == b.len() && a.iter().zip(&b).all(|(p, q)| (*p - *q).length() <= 1e-9 * s)
+}
+
+/// Parameters along a side curve; a pole gives only its ends.
+fn side(curve: &NurbsCurve, options: &TessellationOptions, multiple: usize) -> Vec<f64> {
+    if degenerate(curve) {
+        let (a, b) = curve.domain();
+        vec![a, b]
+    } else {
+        edge_parameters(curve, options, multiple)
+    }
+}
+
+/// The v-side samples of a closed patch rotated to start at the cut `c`, as u values
+/// from `c` to `c + period` inclusive.
+fn rotated(params: &[f64], u0: f64, period: f64, c: f64) -> Vec<f64> {
+    let eps = SAME * period.max(1.0) * 1e3;
+    let mut out: Vec<f64> = params.iter().copied().filter(|&t| t >= c - eps && t < u0 + period - eps).collect();
+    out.extend(params.iter().copied().filter(|&t| t < c - eps).map(|t| t + period));
+    if out.first().is_none_or(|&t| (t - c).abs() > eps) {
+        out.insert(0, c);
+    } else {
+        out[0] = c;
+    }
+    out.push(c + period);
+    out
+}
+
+/// The u-interval of a loop shifted so its centre lies in `[c, c + period)`.
+fn shifted(uv: &[DVec2], c: f64, period: f64) -> Vec<DVec2> {
+    let mid = uv.iter().map(|p| p.x).sum::<f64>() / uv.len().max(1) as f64;
+    let k = ((mid - c) / period).floor();
+    uv.iter().map(|p| DVec2::new(p.x - k * period, p.y)).collect()
+}
+
+/// Signed area (×2) of a polygon.
+fn area2(uv: &[DVec2]) -> f64 {
+    (0..uv.len()).map(|i| uv[i].perp_dot(uv[(i + 1) % uv.len()])).sum()
+}
+
+/// The loop round a pole as the top of a closed patch cut at `cut`: from
+/// `cut + period` down to `cut`, starting and ending on its seam sample.
+fn around_pole(l: &IntersectionLoop, cut: f64, period: f64) -> Vec<DVec2> {
+    let n = l.host_uv.len();
+    let on_seam = |u: f64| {
+        let r = (u - cut).rem_euclid(period);
+        r.min(period - r) <= 1e-9 * period
+    };
+    let start = (0..n).find(|&i| on_seam(l.host_uv[i].x)).unwrap_or(0);
+    let mut seq: Vec<DVec2> = (0..n).map(|k| l.host_uv[(start + k) % n]).collect();
+    // Unwrap continuously.
+    for k in 1..seq.len() {
+        let d = seq[k].x - seq[k - 1].x;
+        seq[k].x -= period * (d / period).round();
+    }
+    let increasing = seq.last().map_or(0.0, |p| p.x) > seq[0].x;
+    let first = seq[0];
+    seq.push(DVec2::new(first.x + if increasing { period } else { -period }, first.y));
+    if increasing {
+        seq.reverse();
+    }
+    let shift = cut + period - seq[0].x;
+    seq.iter().map(|p| DVec2::new(p.x + shift, p.y)).collect()
+}
+
+/// The region of a patch: its sides, with `holes` (host-side loops of the
+/// openings cutting it) and, for a nozzle neck, `bottom` replacing its v0 side.
+pub fn patch_region(
+    surface: &NurbsSurface,
+    options: &TessellationOptions,
+    holes: &[&IntersectionLoop],
+    bottom: Option<&IntersectionLoop>,
+) -> Result<Region, LayoutError> {
+    let ((u0, u1), (v0, v1)) = surface.domain();
+    let period = u1 - u0;
+    let closed = closed_in_u(surface);
+    let multiple = if closed { SEAM_CUTS } else { 1 };
+    // A loop round the pole (a nozzle centred on a head) replaces the pole side.
+    let (around, holes): (Vec<&IntersectionLoop>, Vec<&IntersectionLoop>) =
+        holes.iter().copied().partition(|h| closed && h.host_turns(surface) != 0);
+    if around.len() > 1 {
+        return Err(LayoutError::SeamBlocked);
+    }
+    let top = around.first().copied();
+    // Choose the cut clear of every hole (after shifting each into one period).
+    let cut = if top.is_some() {
+        // The loop has a sample exactly on the seam angle u0: cut there.
+        let spans: Vec<(f64, f64)> = holes
+            .iter()
+            .map(|h| {
+                let s = shifted(&h.host_uv, u0, period);
+                (s.iter().map(|p| p.x).fold(f64::INFINITY, f64::min), s.iter().map(|p| p.x).fold(f64::NEG_INFINITY, f64::max))
+            })
+            .collect();
+        if spans.iter().any(|&(lo, hi)| (-1..=1).any(|k| (lo..=hi).contains(&(u0 + f64::from(k) * period)))) {
+            return Err(LayoutError::SeamBlocked);
+        }
+        u0
+    } else if closed && !holes.is_empty() {
+        let spans: Vec<(f64, f64)> = holes
+            .iter()
+            .map(|h| {
+                let s = shifted(&h.host_uv, u0, period);
+                let lo = s.iter().map(|p| p.x).fold(f64::INFINITY, f64::min);
+                let hi = s.iter().map(|p| p.x).fold(f64::NEG_INFINITY, f64::max);
+                (lo, hi)
+            })
+            .collect();
+        let blocked = |c: f64| {
+            spans
+                .iter()
+                .any(|&(lo, hi)| (-1..=1).any(|k| (lo..=hi).contains(&(c + f64::from(k) * period))))
+        };
+        (0..SEAM_CUTS)
+            .map(|k| u0 + period * k as f64 / SEAM_CUTS as f64)
+            .find(|&c| !blocked(c))
+            .ok_or(LayoutError::SeamBlocked)?
+    } else {
+        u0
+    };
+    let (left_u, right_u) = (cut, cut + if closed { period } else { u1 - u0 });
+    let params_v0 = side(&surface.boundary(Side::VMin), options, multiple);
+    let params_v1 = side(&surface.boundary(Side::VMax), options, multiple);
+    let (along_v0, along_v1) = if closed {
+        (rotated(&params_v0, u0, period, cut), rotated(&params_v1, u0, period, cut))
+    } else {
+        (params_v0, params_v1)
+    };
+    let mut outer: Vec<DVec2> = Vec::new();
+    // Bottom: the v0 side, or the neck's intersection loop.
+    let bottom_start_v;
+    match bottom {
+        Some(l) => {
+            // Each sample wrapped into [cut, cut + period); the loop is monotonic in
+            // neck u, so starting at the smallest u gives it in order.
+            let mut pts: Vec<DVec2> = l
+                .neck_uv
+                .iter()
+                .map(|p| DVec2::new(cut + (p.x - cut).rem_euclid(period), p.y))
+                .collect();
+            let start = pts.iter().enumerate().min_by(|a, b| a.1.x.total_cmp(&b.1.x)).map_or(0, |(i, _)| i);
+            pts.rotate_left(start);
+            bottom_start_v = pts.first().map_or(v0, |p| p.y);
+            let first_u = pts.first().map_or(cut, |p| p.x);
+            outer.extend(pts.iter().copied());
+            // Close the turn at the seam on the right.
+            outer.push(DVec2::new(first_u + period, bottom_start_v));
+        }
+        None => {
+            bottom_start_v = v0;
+            outer.extend(along_v0.iter().map(|&u| DVec2::new(u, v0)));
+        }
+    }
+    let right_u_end = outer.last().map_or(right_u, |p| p.x);
+    // The top: the v1 side from right to left, or the loop round the pole.
+    let top_path: Vec<DVec2> = match top {
+        Some(l) => around_pole(l, cut, period),
+        None => {
+            let shift = right_u_end - along_v1.last().copied().unwrap_or(right_u);
+            along_v1.iter().rev().map(|&u| DVec2::new(u + shift, v1)).collect()
+        }
+    };
+    let top_v = top_path.first().map_or(v1, |p| p.y);
+    let top_end_v = top_path.last().map_or(v1, |p| p.y);
+    // Right side up, from the bottom to the top (interior samples of the meridian).
+    let meridian = surface.isocurve_u(crate::mesh::cdt::wrap_u(surface, right_u_end));
+    for v in side(&meridian, options, 1) {
+        if v > bottom_start_v.max(v0) + SAME && v < top_v - SAME {
+            outer.push(DVec2::new(right_u_end, v));
+        }
+    }
+    let top_left_u = outer.first().map_or(left_u, |p| p.x);
+    outer.extend(top_path);
+    // Left side down, interior samples only.
+    let mut left: Vec<f64> = side(&surface.isocurve_u(crate::mesh::cdt::wrap_u(surface, top_left_u)), options, 1)
+        .into_iter()
+        .filter(|&v| v > bottom_start_v.max(v0) + SAME && v < top_end_v - SAME)
+        .collect();
+    left.reverse();
+    outer.extend(left.into_iter().map(|v| DVec2::new(top_left_u, v)));
+    outer.dedup_by(|a, b| (*a - *b).length() <= SAME);
+    if outer.len() > 1 && (outer[0] - outer[outer.len() - 1]).length() <= SAME {
+        outer.pop();
+    }
+    let mut region = Region::new(UvLoop::new(outer));
+    for h in holes {
+        let mut uv = shifted(&h.host_uv, cut, period);
+        if let Some(p) = uv.iter().find(|p| p.y < v0 - SAME || p.y > v1 + SAME || (!closed && (p.x < u0 - SAME || p.x > u1 + SAME))) {
+            return Err(LayoutError::OpeningOffPatch { v: p.y });
+        }
+        if area2(&uv) > 0.0 {
+            uv.reverse();
+        }
+        region = region.with_hole(UvLoop::new(uv));
+    }
+    Ok(region)
+}

@@ -1,0 +1,102 @@
+//! Cutting a nozzle opening: the neck placed in its host part's frame, intersected
+//! with the host's patches until one holds the whole loop.
+//!
+//! Shared by the ECS Geometry stage (`systems::cut_openings`) and the direct full
+//! build (`export::build_scene`), so both trim exactly alike. A loop that goes
+//! round the host's pole (a nozzle centred on a head) gets an extra sample exactly
+//! on the host's seam angle, shared by the neck, so the host can be cut there.
+
+use glam::{DAffine3, DVec2};
+
+use crate::nurbs::NurbsSurface;
+use crate::nurbs::intersect::{IntersectionLoop, intersect_generator, neck_host_intersection};
+use crate::parts::Patch;
+
+/// Bisection steps placing the seam sample.
+const SEAM_STEPS: usize = 80;
+
+/// The opening of a nozzle in its host: the index of the host patch it lies in and
+/// the neck–host loop in the host part's frame. `nozzle_frame` and `host_frame` map
+/// the nozzle's and the host's local frames into one common frame (the vessel's).
+pub fn cut_opening(
+    neck: &Patch,
+    nozzle_frame: &DAffine3,
+    host_frame: &DAffine3,
+    host_patches: &[&Patch],
+    tolerance: f64,
+) -> Result<(usize, IntersectionLoop), String> {
+    let relative = host_frame.inverse() * *nozzle_frame;
+    let neck = neck
+        .surface
+        .transformed(&relative)
+        .map_err(|e| format!("cannot place the neck in its host's frame: {e}"))?;
+    let mut last = String::from("the host has no patch");
+    for (k, patch) in host_patches.iter().enumerate() {
+        match neck_host_intersection(&neck, &patch.surface, tolerance) {
+            Ok(mut curve) => {
+                if curve.host_turns(&patch.surface) != 0 {
+                    add_seam_sample(&neck, &patch.surface, &mut curve)?;
+                }
+                return Ok((k, curve));
+            }
+            Err(e) => {
+                last = format!("the opening does not lie within host patch {:?}: {e}", patch.name)
+            }
+        }
+    }
+    Err(last)
+}
+
+/// Inserts a sample of the loop exactly at the host's seam angle u0 (mod period).
+fn add_seam_sample(
+    neck: &NurbsSurface,
+    host: &NurbsSurface,
+    curve: &mut IntersectionLoop,
+) -> Result<(), String> {
+    let ((u0, u1), _) = host.domain();
+    let (nu0, nu1) = neck.domain().0;
+    let (period, neck_period) = (u1 - u0, nu1 - nu0);
+    let n = curve.host_uv.len();
+    let turns = f64::from(curve.host_turns(host));
+    for i in 0..n {
+        let j = (i + 1) % n;
+        let (a, mut b) = (curve.host_uv[i].x, curve.host_uv[j].x);
+        let (na, mut nb) = (curve.neck_uv[i].x, curve.neck_uv[j].x);
+        if j == 0 {
+            b += turns * period;
+            nb += neck_period;
+        }
+        let lo = a.min(b);
+        let target = u0 + ((lo - u0) / period).ceil() * period;
+        if (a - target).abs() <= 1e-12 * period {
+            return Ok(()); // already on the seam
+        }
+        if !(target > lo && target < a.max(b)) {
+            continue;
+        }
+        let (mut x0, mut x1) = (na, nb);
+        let mut hit = None;
+        for _ in 0..SEAM_STEPS {
+            let mid = 0.5 * (x0 + x1);
+            let h = intersect_generator(neck, host, mid).map_err(|e| format!("seam sample: {e}"))?;
+            let expected = a + (b - a) * (mid - na) / (nb - na);
+            let hu = h.host_uv.x + period * ((expected - h.host_uv.x) / period).round();
+            if (hu < target) == (a < target) {
+                x0 = mid;
+            } else {
+                x1 = mid;
+            }
+            hit = Some((mid, h));
+            if (hu - target).abs() <= 1e-13 * period {
+                break;
+            }
+        }
+        let Some((nu, h)) = hit else { return Err("seam sample not found".into()) };
+        let at = i + 1;
+        curve.points.insert(at, h.point);
+        curve.neck_uv.insert(at, DVec2::new(nu, h.neck_v));
+        curve.host_uv.insert(at, DVec2::new(target, h.host_uv.y));
+        return Ok(());
+    }
+    Err("the loop round the pole does not cross the host's seam".into())
+}

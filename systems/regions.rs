@@ -1,0 +1,135 @@
+//! Regions: for every patch whose surface changed, or whose openings changed, lay
+//! out the (u, v) region it is meshed within — its sides sampled from the edge
+//! curves, the openings of the nozzles it hosts as holes, and for a nozzle neck the
+//! intersection with its host as its bottom edge. Runs in the Tessellate stage
+//! before meshing, in parallel with rayon.
+
+use std::collections::BTreeSet;
+use std::sync::Arc;
+
+use bevy_ecs::entity::Entity;
+use bevy_ecs::query::{Changed, QueryState, With};
+use bevy_ecs::world::World;
+use rayon::prelude::*;
+
+use super::{ModelErrors, OpeningHosts, Tessellation, WorkCounters};
+use crate::components::{Mounts, Opening, PatchOf, PatchRegion, PatchSurface};
+use crate::design::RuleViolation;
+use crate::mesh::patch_region;
+use crate::nurbs::intersect::IntersectionLoop;
+use crate::parts::Patch;
+
+/// One region to lay out.
+struct Job {
+    patch: Entity,
+    surface: Arc<Patch>,
+    holes: Vec<Arc<IntersectionLoop>>,
+    bottom: Option<Arc<IntersectionLoop>>,
+}
+
+/// The openings that cut `patch`, and its own trimmed bottom if it is a neck.
+fn trims(world: &World, patch: Entity) -> (Vec<Arc<IntersectionLoop>>, Option<Arc<IntersectionLoop>>) {
+    let Some(owner) = world.get::<PatchOf>(patch).map(|p| p.0) else {
+        return (Vec::new(), None);
+    };
+    let bottom = world
+        .get::<Opening>(owner)
+        .filter(|o| o.neck_patch == patch)
+        .map(|o| o.curve.clone());
+    let holes = world
+        .get::<Mounts>(owner)
+        .map(|m| {
+            m.entities()
+                .iter()
+                .filter_map(|&n| world.get::<Opening>(n))
+                .filter(|o| o.host_patch == patch)
+                .map(|o| o.curve.clone())
+                .collect()
+        })
+        .unwrap_or_default();
+    (holes, bottom)
+}
+
+/// Lays out the region of every patch that needs it.
+pub fn lay_out_regions(
+    world: &mut World,
+    surfaces: &mut QueryState<Entity, Changed<PatchSurface>>,
+    openings: &mut QueryState<(Entity, &Opening), Changed<Opening>>,
+    all: &mut QueryState<Entity, With<PatchSurface>>,
+) {
+    let options = world.resource::<Tessellation>().0;
+    let mut dirty: BTreeSet<Entity> = if world.is_resource_changed::<Tessellation>() {
+        all.iter(world).collect()
+    } else {
+        surfaces.iter(world).collect()
+    };
+    let changed: Vec<(Entity, Entity, Entity)> =
+        openings.iter(world).map(|(n, o)| (n, o.host_patch, o.neck_patch)).collect();
+    let mut hosts = std::mem::take(&mut world.resource_mut::<OpeningHosts>().0);
+    for (nozzle, host, neck) in changed {
+        dirty.insert(host);
+        dirty.insert(neck);
+        if let Some(previous) = hosts.insert(nozzle, host)
+            && previous != host
+        {
+            dirty.insert(previous);
+        }
+    }
+    // Openings that disappeared (nozzle removed, or its opening failed).
+    hosts.retain(|&nozzle, &mut host| {
+        let alive = world.get::<Opening>(nozzle).is_some();
+        if !alive {
+            dirty.insert(host);
+        }
+        alive
+    });
+    world.resource_mut::<OpeningHosts>().0 = hosts;
+    let jobs: Vec<Job> = dirty
+        .into_iter()
+        .filter_map(|patch| {
+            let surface = world.get::<PatchSurface>(patch)?.0.clone();
+            let (holes, bottom) = trims(world, patch);
+            Some(Job { patch, surface, holes, bottom })
+        })
+        .collect();
+    let results: Vec<_> = jobs
+        .par_iter()
+        .map(|j| {
+            let holes: Vec<&IntersectionLoop> = j.holes.iter().map(|h| h.as_ref()).collect();
+            (j.patch, patch_region(&j.surface.surface, &options, &holes, j.bottom.as_deref()))
+        })
+        .collect();
+    let mut laid = 0;
+    let mut failures = 0;
+    for (patch, result) in results {
+        match result {
+            Ok(region) => {
+                let region = PatchRegion(Arc::new(region));
+                let changed = match world.get_mut::<PatchRegion>(patch) {
+                    Some(mut current) => {
+                        let differs = *current != region;
+                        if differs {
+                            *current = region;
+                        }
+                        differs
+                    }
+                    None => {
+                        world.entity_mut(patch).insert(region);
+                        true
+                    }
+                };
+                laid += u64::from(changed);
+            }
+            Err(e) => {
+                failures += 1;
+                world.resource_mut::<ModelErrors>().0.push((
+                    format!("{patch}"),
+                    vec![RuleViolation { path: String::new(), entity: format!("{patch}"), field: "region".into(), value: String::new(), rule: e.to_string() }],
+                ));
+            }
+        }
+    }
+    let mut counters = world.resource_mut::<WorkCounters>();
+    counters.regions_laid_out += laid;
+    counters.failures += failures;
+}
