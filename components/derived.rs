@@ -9,9 +9,9 @@ use glam::{DAffine3, DVec3};
 use bevy_ecs::entity::Entity;
 
 use crate::constraints::PartGeometry;
+use crate::mesh::Mesh;
 use crate::mesh::cdt::Region;
 use crate::nurbs::intersect::IntersectionLoop;
-use crate::mesh::Mesh;
 use crate::parts::{Nozzle, Patch};
 
 /// Vessel local frame → plant frame (mm).
@@ -75,6 +75,8 @@ pub struct Opening {
     pub neck_patch: Entity,
     /// The intersection loop, in the host part's frame, with (u, v) on both patches.
     pub curve: Arc<IntersectionLoop>,
+    /// The reinforcing pad's outer loop on the host, in the host part's frame.
+    pub pad: Option<Arc<IntersectionLoop>>,
 }
 
 /// The (u, v) region a patch is meshed within: its sides sampled from the edge

@@ -11,7 +11,8 @@ mod params;
 mod relations;
 
 pub use derived::{
-    NoteAnchor, Opening, PartFrame, PartSpan, PatchRegion, PatchMesh, PatchSurface, Shape, VesselFrame, VesselSummary,
+    NoteAnchor, Opening, PartFrame, PartSpan, PatchMesh, PatchRegion, PatchSurface, Shape,
+    VesselFrame, VesselSummary,
 };
 pub use params::{DesignOrder, NoteSpec, NozzleSpec, PartSpec, VesselSpec};
-pub use relations::{AnnotatedBy, Annotates, MountedOn, Mounts, PatchOf, Patches};
+pub use relations::{AnnotatedBy, Annotates, MountedOn, Mounts, PadOf, PadPatch, PatchOf, Patches};

@@ -49,3 +49,20 @@ impl Patches {
         &self.0
     }
 }
+
+/// The nozzle a reinforcing-pad patch belongs to.
+#[derive(Component, Clone, Copy, Debug, PartialEq, Eq)]
+#[relationship(relationship_target = PadPatch)]
+pub struct PadOf(pub Entity);
+
+/// A nozzle's reinforcing-pad patch (kept by bevy from [`PadOf`]); despawned with it.
+#[derive(Component, Debug)]
+#[relationship_target(relationship = PadOf, linked_spawn)]
+pub struct PadPatch(Entity);
+
+impl PadPatch {
+    /// The pad patch entity.
+    pub fn entity(&self) -> Entity {
+        self.0
+    }
+}

@@ -10,7 +10,7 @@ use bevy_ecs::resource::Resource;
 use bevy_ecs::system::{Query, ResMut};
 
 use crate::components::{
-    NozzleSpec, PartFrame, PartSpec, PatchMesh, PatchOf, VesselFrame, VesselSpec,
+    NozzleSpec, PadOf, PartFrame, PartSpec, PatchMesh, PatchOf, VesselFrame, VesselSpec,
 };
 
 /// Stable ids changed and removed since the log was last drained.
@@ -32,6 +32,7 @@ pub fn collect_changes(
     vessels: Query<&VesselSpec, Changed<VesselFrame>>,
     moved: Query<Owner, MovedFilter>,
     meshed: Query<&PatchOf, Changed<PatchMesh>>,
+    pads: Query<&PadOf, Changed<PatchMesh>>,
     owners: Query<Owner>,
     tags: Query<&VesselSpec>,
     mut log: ResMut<ChangeLog>,
@@ -52,8 +53,9 @@ pub fn collect_changes(
             log.changed.insert(id);
         }
     }
-    for patch in &meshed {
-        if let Ok((c, p, n)) = owners.get(patch.0)
+    let owner_ids = meshed.iter().map(|p| p.0).chain(pads.iter().map(|p| p.0));
+    for owner in owner_ids {
+        if let Ok((c, p, n)) = owners.get(owner)
             && let Some(id) = id_of(c, p, n)
         {
             log.changed.insert(id);

@@ -57,8 +57,12 @@ pub fn build_schedule() -> Schedule {
     schedule.add_systems((
         resolve_dirty_vessels.in_set(Stage::Validate),
         apply_resolutions.in_set(Stage::Constrain),
-        (rebuild_dirty_patches, cut_openings).chain().in_set(Stage::Geometry),
-        (lay_out_regions, remesh_dirty_patches).chain().in_set(Stage::Tessellate),
+        (rebuild_dirty_patches, cut_openings)
+            .chain()
+            .in_set(Stage::Geometry),
+        (lay_out_regions, remesh_dirty_patches)
+            .chain()
+            .in_set(Stage::Tessellate),
         collect_changes.in_set(Stage::Export),
     ));
     schedule

@@ -14,10 +14,12 @@ use glam::DAffine3;
 use rayon::prelude::*;
 
 use super::{ModelErrors, Tessellation, WorkCounters};
-use crate::components::{MountedOn, Mounts, NozzleSpec, Opening, PartFrame, PatchSurface, Patches, Shape};
+use crate::components::{
+    MountedOn, Mounts, NozzleSpec, Opening, PadOf, PadPatch, PartFrame, PatchSurface, Patches,
+    Shape,
+};
 use crate::design::RuleViolation;
-use crate::mesh::cut_opening;
-use crate::nurbs::intersect::IntersectionLoop;
+use crate::mesh::{Cut, cut_opening, pad_patch};
 use crate::parts::Patch;
 
 /// The host patch each nozzle's opening was last cut in (to re-lay-out a host patch
@@ -26,13 +28,17 @@ use crate::parts::Patch;
 pub struct OpeningHosts(pub HashMap<Entity, Entity>);
 
 /// Nozzles whose own frame or shape changed, or that were re-hosted.
-pub type ChangedNozzle = (With<NozzleSpec>, Or<(Changed<PartFrame>, Changed<Shape>, Changed<MountedOn>)>);
+pub type ChangedNozzle = (
+    With<NozzleSpec>,
+    Or<(Changed<PartFrame>, Changed<Shape>, Changed<MountedOn>)>,
+);
 /// Host parts that moved or changed shape.
 pub type ChangedHost = Or<(Changed<PartFrame>, Changed<Shape>)>;
 
 /// One opening to compute.
 struct Job {
     nozzle: Entity,
+    pad_od: Option<f64>,
     neck_patch: Entity,
     neck: Arc<Patch>,
     frame: DAffine3,
@@ -43,8 +49,35 @@ struct Job {
 fn violation(entity: Entity, rule: String) -> (String, Vec<RuleViolation>) {
     (
         format!("{entity}"),
-        vec![RuleViolation { path: String::new(), entity: format!("{entity}"), field: "opening".into(), value: String::new(), rule }],
+        vec![RuleViolation {
+            path: String::new(),
+            entity: format!("{entity}"),
+            field: "opening".into(),
+            value: String::new(),
+            rule,
+        }],
     )
+}
+
+/// Creates, updates (only if it differs) or removes a nozzle's pad patch.
+fn set_pad(world: &mut World, nozzle: Entity, pad: Option<Patch>) {
+    let existing = world.get::<PadPatch>(nozzle).map(PadPatch::entity);
+    match (existing, pad) {
+        (Some(e), Some(p)) => {
+            if let Some(mut s) = world.get_mut::<PatchSurface>(e)
+                && *s.0 != p
+            {
+                s.0 = Arc::new(p);
+            }
+        }
+        (None, Some(p)) => {
+            world.spawn((PadOf(nozzle), PatchSurface(Arc::new(p))));
+        }
+        (Some(e), None) => {
+            world.despawn(e);
+        }
+        (None, None) => {}
+    }
 }
 
 /// Computes the opening of every nozzle that needs it.
@@ -63,33 +96,84 @@ pub fn cut_openings(
     let tolerance = world.resource::<Tessellation>().0.tolerance;
     let mut jobs = Vec::new();
     for &nozzle in &dirty {
-        let (Some(host), Some(frame)) = (world.get::<MountedOn>(nozzle).map(|m| m.0), world.get::<PartFrame>(nozzle).map(|f| f.0)) else {
+        let (Some(host), Some(frame)) = (
+            world.get::<MountedOn>(nozzle).map(|m| m.0),
+            world.get::<PartFrame>(nozzle).map(|f| f.0),
+        ) else {
             continue;
         };
-        let Some(host_frame) = world.get::<PartFrame>(host).map(|f| f.0) else { continue };
-        let Some(&neck_patch) = world.get::<Patches>(nozzle).and_then(|p| p.entities().first()) else { continue };
-        let Some(neck) = world.get::<PatchSurface>(neck_patch).map(|s| s.0.clone()) else { continue };
+        let Some(host_frame) = world.get::<PartFrame>(host).map(|f| f.0) else {
+            continue;
+        };
+        let Some(&neck_patch) = world
+            .get::<Patches>(nozzle)
+            .and_then(|p| p.entities().first())
+        else {
+            continue;
+        };
+        let Some(neck) = world.get::<PatchSurface>(neck_patch).map(|s| s.0.clone()) else {
+            continue;
+        };
         let hosts: Vec<_> = world
             .get::<Patches>(host)
-            .map(|p| p.entities().iter().filter_map(|&e| Some((e, world.get::<PatchSurface>(e)?.0.clone()))).collect())
+            .map(|p| {
+                p.entities()
+                    .iter()
+                    .filter_map(|&e| Some((e, world.get::<PatchSurface>(e)?.0.clone())))
+                    .collect()
+            })
             .unwrap_or_default();
-        jobs.push(Job { nozzle, neck_patch, neck, frame, host_frame, hosts });
+        let pad_od = match world.get::<Shape>(nozzle) {
+            Some(Shape::Nozzle(_, pad)) => pad.map(|p| p.0),
+            _ => None,
+        };
+        jobs.push(Job {
+            nozzle,
+            pad_od,
+            neck_patch,
+            neck,
+            frame,
+            host_frame,
+            hosts,
+        });
     }
-    let results: Vec<(Entity, Entity, Result<(Entity, IntersectionLoop), String>)> = jobs
+    let results: Vec<(Entity, Entity, Result<(Entity, Cut, Option<Patch>), String>)> = jobs
         .par_iter()
         .map(|job| {
             let hosts: Vec<&Patch> = job.hosts.iter().map(|(_, p)| p.as_ref()).collect();
-            let result = cut_opening(&job.neck, &job.frame, &job.host_frame, &hosts, tolerance)
-                .map(|(k, curve)| (job.hosts[k].0, curve));
+            let result = cut_opening(
+                &job.neck,
+                job.pad_od,
+                &job.frame,
+                &job.host_frame,
+                &hosts,
+                tolerance,
+            )
+            .and_then(|cut| {
+                let pad = match cut.pad {
+                    Some(_) => Some(pad_patch(
+                        hosts[cut.host_patch],
+                        &job.frame,
+                        &job.host_frame,
+                    )?),
+                    None => None,
+                };
+                Ok((job.hosts[cut.host_patch].0, cut, pad))
+            });
             (job.nozzle, job.neck_patch, result)
         })
         .collect();
-    let mut cut = 0;
+    let mut cut_count = 0;
     let mut failures = 0;
     for (nozzle, neck_patch, result) in results {
         match result {
-            Ok((host_patch, curve)) => {
-                let opening = Opening { host_patch, neck_patch, curve: Arc::new(curve) };
+            Ok((host_patch, cut, pad)) => {
+                let opening = Opening {
+                    host_patch,
+                    neck_patch,
+                    curve: Arc::new(cut.neck),
+                    pad: cut.pad.map(Arc::new),
+                };
                 let changed = match world.get_mut::<Opening>(nozzle) {
                     Some(mut current) => {
                         if *current != opening {
@@ -104,16 +188,20 @@ pub fn cut_openings(
                         true
                     }
                 };
-                cut += u64::from(changed);
+                cut_count += u64::from(changed);
+                set_pad(world, nozzle, pad);
             }
             Err(rule) => {
                 failures += 1;
                 world.entity_mut(nozzle).remove::<Opening>();
-                world.resource_mut::<ModelErrors>().0.push(violation(nozzle, rule));
+                world
+                    .resource_mut::<ModelErrors>()
+                    .0
+                    .push(violation(nozzle, rule));
             }
         }
     }
     let mut counters = world.resource_mut::<WorkCounters>();
-    counters.openings_cut += cut;
+    counters.openings_cut += cut_count;
     counters.failures += failures;
 }

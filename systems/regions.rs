@@ -13,24 +13,49 @@ use bevy_ecs::world::World;
 use rayon::prelude::*;
 
 use super::{ModelErrors, OpeningHosts, Tessellation, WorkCounters};
-use crate::components::{Mounts, Opening, PatchOf, PatchRegion, PatchSurface};
+use crate::components::{Mounts, Opening, PadOf, PadPatch, PatchOf, PatchRegion, PatchSurface};
 use crate::design::RuleViolation;
-use crate::mesh::patch_region;
+use crate::mesh::{pad_region, patch_region};
 use crate::nurbs::intersect::IntersectionLoop;
 use crate::parts::Patch;
+
+/// How a patch is trimmed.
+enum Trim {
+    /// A part or nozzle patch: holes of the openings it hosts, and a nozzle neck's
+    /// bottom loop.
+    Patch {
+        holes: Vec<Arc<IntersectionLoop>>,
+        bottom: Option<Arc<IntersectionLoop>>,
+    },
+    /// A reinforcing pad: between its outer loop and the neck's loop.
+    Pad {
+        outer: Arc<IntersectionLoop>,
+        inner: Arc<IntersectionLoop>,
+    },
+}
 
 /// One region to lay out.
 struct Job {
     patch: Entity,
     surface: Arc<Patch>,
-    holes: Vec<Arc<IntersectionLoop>>,
-    bottom: Option<Arc<IntersectionLoop>>,
+    trim: Trim,
 }
 
-/// The openings that cut `patch`, and its own trimmed bottom if it is a neck.
-fn trims(world: &World, patch: Entity) -> (Vec<Arc<IntersectionLoop>>, Option<Arc<IntersectionLoop>>) {
+/// How `patch` is trimmed: by the openings that cut it, its own neck bottom, or as
+/// a pad.
+fn trims(world: &World, patch: Entity) -> Option<Trim> {
+    if let Some(nozzle) = world.get::<PadOf>(patch).map(|p| p.0) {
+        let o = world.get::<Opening>(nozzle)?;
+        return Some(Trim::Pad {
+            outer: o.pad.clone()?,
+            inner: o.curve.clone(),
+        });
+    }
     let Some(owner) = world.get::<PatchOf>(patch).map(|p| p.0) else {
-        return (Vec::new(), None);
+        return Some(Trim::Patch {
+            holes: Vec::new(),
+            bottom: None,
+        });
     };
     let bottom = world
         .get::<Opening>(owner)
@@ -43,11 +68,11 @@ fn trims(world: &World, patch: Entity) -> (Vec<Arc<IntersectionLoop>>, Option<Ar
                 .iter()
                 .filter_map(|&n| world.get::<Opening>(n))
                 .filter(|o| o.host_patch == patch)
-                .map(|o| o.curve.clone())
+                .map(|o| o.pad.clone().unwrap_or_else(|| o.curve.clone()))
                 .collect()
         })
         .unwrap_or_default();
-    (holes, bottom)
+    Some(Trim::Patch { holes, bottom })
 }
 
 /// Lays out the region of every patch that needs it.
@@ -63,8 +88,15 @@ pub fn lay_out_regions(
     } else {
         surfaces.iter(world).collect()
     };
-    let changed: Vec<(Entity, Entity, Entity)> =
-        openings.iter(world).map(|(n, o)| (n, o.host_patch, o.neck_patch)).collect();
+    let changed: Vec<(Entity, Entity, Entity)> = openings
+        .iter(world)
+        .map(|(n, o)| (n, o.host_patch, o.neck_patch))
+        .collect();
+    for &(nozzle, ..) in &changed {
+        if let Some(pad) = world.get::<PadPatch>(nozzle) {
+            dirty.insert(pad.entity());
+        }
+    }
     let mut hosts = std::mem::take(&mut world.resource_mut::<OpeningHosts>().0);
     for (nozzle, host, neck) in changed {
         dirty.insert(host);
@@ -88,15 +120,27 @@ pub fn lay_out_regions(
         .into_iter()
         .filter_map(|patch| {
             let surface = world.get::<PatchSurface>(patch)?.0.clone();
-            let (holes, bottom) = trims(world, patch);
-            Some(Job { patch, surface, holes, bottom })
+            let trim = trims(world, patch)?;
+            Some(Job {
+                patch,
+                surface,
+                trim,
+            })
         })
         .collect();
     let results: Vec<_> = jobs
         .par_iter()
         .map(|j| {
-            let holes: Vec<&IntersectionLoop> = j.holes.iter().map(|h| h.as_ref()).collect();
-            (j.patch, patch_region(&j.surface.surface, &options, &holes, j.bottom.as_deref()))
+            let region = match &j.trim {
+                Trim::Patch { holes, bottom } => {
+                    let holes: Vec<&IntersectionLoop> = holes.iter().map(|h| h.as_ref()).collect();
+                    patch_region(&j.surface.surface, &options, &holes, bottom.as_deref())
+                }
+                Trim::Pad { outer, inner } => {
+                    pad_region(&j.surface.surface, &options, outer, inner)
+                }
+            };
+            (j.patch, region)
         })
         .collect();
     let mut laid = 0;
@@ -124,7 +168,13 @@ pub fn lay_out_regions(
                 failures += 1;
                 world.resource_mut::<ModelErrors>().0.push((
                     format!("{patch}"),
-                    vec![RuleViolation { path: String::new(), entity: format!("{patch}"), field: "region".into(), value: String::new(), rule: e.to_string() }],
+                    vec![RuleViolation {
+                        path: String::new(),
+                        entity: format!("{patch}"),
+                        field: "region".into(),
+                        value: String::new(),
+                        rule: e.to_string(),
+                    }],
                 ));
             }
         }

@@ -31,11 +31,17 @@ pub fn remesh_dirty_patches(
     all: &mut QueryState<(Entity, &PatchSurface, &PatchRegion)>,
 ) {
     let options = world.resource::<Tessellation>().0;
-    let work: Vec<(Entity, Arc<Patch>, Arc<Region>)> = if world.is_resource_changed::<Tessellation>() {
-        all.iter(world).map(|(e, s, r)| (e, s.0.clone(), r.0.clone())).collect()
-    } else {
-        dirty.iter(world).map(|(e, s, r)| (e, s.0.clone(), r.0.clone())).collect()
-    };
+    let work: Vec<(Entity, Arc<Patch>, Arc<Region>)> =
+        if world.is_resource_changed::<Tessellation>() {
+            all.iter(world)
+                .map(|(e, s, r)| (e, s.0.clone(), r.0.clone()))
+                .collect()
+        } else {
+            dirty
+                .iter(world)
+                .map(|(e, s, r)| (e, s.0.clone(), r.0.clone()))
+                .collect()
+        };
     if work.is_empty() {
         return;
     }
@@ -55,7 +61,13 @@ pub fn remesh_dirty_patches(
                 failures += 1;
                 world.resource_mut::<ModelErrors>().0.push((
                     format!("{e}"),
-                    vec![RuleViolation { path: String::new(), entity: format!("{e}"), field: "mesh".into(), value: String::new(), rule: err.to_string() }],
+                    vec![RuleViolation {
+                        path: String::new(),
+                        entity: format!("{e}"),
+                        field: "mesh".into(),
+                        value: String::new(),
+                        rule: err.to_string(),
+                    }],
                 ));
             }
         }

@@ -9,13 +9,17 @@ use std::collections::HashMap;
 
 use glam::{DAffine3, DVec3};
 use proptest::prelude::*;
-use vesselcad::design::{Design, NozzleDesign, PartDesign, load};
+use vesselcad::design::{Design, NozzleDesign, PadDesign, PartDesign, load};
 use vesselcad::export::{Scene, SceneNodeKind};
 use vesselcad::mesh::TessellationOptions;
 use vesselcad::model::Model;
 
 fn example(name: &str) -> Design {
-    load(format!("{}/examples/designs/{name}.json", env!("CARGO_MANIFEST_DIR"))).unwrap()
+    load(format!(
+        "{}/examples/designs/{name}.json",
+        env!("CARGO_MANIFEST_DIR")
+    ))
+    .unwrap()
 }
 
 /// Welds positions on a fine grid (1e-6 mm cells, neighbours checked) into ids.
@@ -53,7 +57,8 @@ impl Welder {
 fn on_a_bore(p: DVec3, bores: &[(DAffine3, f64, f64)]) -> bool {
     bores.iter().any(|(frame, projection, radius)| {
         let q = frame.inverse().transform_point3(p);
-        (q.z - projection).abs() < 1e-6 && (q.truncate().length() - radius).abs() < 1e-6 * radius.max(1.0)
+        (q.z - projection).abs() < 1e-6
+            && (q.truncate().length() - radius).abs() < 1e-6 * radius.max(1.0)
     })
 }
 
@@ -61,7 +66,10 @@ fn on_a_bore(p: DVec3, bores: &[(DAffine3, f64, f64)]) -> bool {
 fn check_vessel(scene: &Scene, tag: &str, bores: &[(DAffine3, f64, f64)]) {
     let vessel = scene.vessels.iter().find(|v| v.tag == tag).unwrap();
     let envelope = ["shell", "head", "reducer"];
-    let mut welder = Welder { cells: HashMap::new(), count: 0 };
+    let mut welder = Welder {
+        cells: HashMap::new(),
+        count: 0,
+    };
     let mut edges: HashMap<(usize, usize), i32> = HashMap::new();
     let mut positions: Vec<DVec3> = Vec::new();
     let mut volume = 0.0;
@@ -86,11 +94,17 @@ fn check_vessel(scene: &Scene, tag: &str, bores: &[(DAffine3, f64, f64)]) {
                 .collect();
             for t in patch.mesh.indices.chunks(3) {
                 let [a, b, c] = [ids[t[0] as usize], ids[t[1] as usize], ids[t[2] as usize]];
-                assert!(a != b && b != c && a != c, "{tag}/{}/{}: degenerate triangle after welding", node.id, patch.name);
+                assert!(
+                    a != b && b != c && a != c,
+                    "{tag}/{}/{}: degenerate triangle after welding",
+                    node.id,
+                    patch.name
+                );
                 let (pa, pb, pc) = (positions[a], positions[b], positions[c]);
                 volume += pa.dot(pb.cross(pc)) / 6.0;
                 for (x, y) in [(a, b), (b, c), (c, a)] {
-                    *edges.entry((x.min(y), x.max(y))).or_insert(0) += if x < y { 1 } else { -1 } * 1000 + 1;
+                    *edges.entry((x.min(y), x.max(y))).or_insert(0) +=
+                        if x < y { 1 } else { -1 } * 1000 + 1;
                 }
             }
         }
@@ -100,7 +114,11 @@ fn check_vessel(scene: &Scene, tag: &str, bores: &[(DAffine3, f64, f64)]) {
         let uses = code.rem_euclid(1000);
         let balance = (code - uses) / 1000;
         match uses {
-            2 => assert_eq!(balance, 0, "{tag}: edge {:?}–{:?} is used twice in one direction (inconsistent orientation)", positions[a], positions[b]),
+            2 => assert_eq!(
+                balance, 0,
+                "{tag}: edge {:?}–{:?} is used twice in one direction (inconsistent orientation)",
+                positions[a], positions[b]
+            ),
             1 => {
                 assert!(
                     on_a_bore(positions[a], bores) && on_a_bore(positions[b], bores),
@@ -110,17 +128,28 @@ fn check_vessel(scene: &Scene, tag: &str, bores: &[(DAffine3, f64, f64)]) {
                 );
                 open += 1;
             }
-            n => panic!("{tag}: edge {:?}–{:?} is shared by {n} triangles", positions[a], positions[b]),
+            n => panic!(
+                "{tag}: edge {:?}–{:?} is shared by {n} triangles",
+                positions[a], positions[b]
+            ),
         }
     }
-    assert!(volume > 0.0, "{tag}: normals point inward (volume {volume})");
+    assert!(
+        volume > 0.0,
+        "{tag}: normals point inward (volume {volume})"
+    );
     let _ = open;
 }
 
 /// The bores of a vessel's open nozzles from the resolved design.
 fn bores(design: &Design, tag: &str) -> Vec<(DAffine3, f64, f64)> {
     let resolved = vesselcad::design::resolve(design).unwrap();
-    let (i, _) = design.vessels.iter().enumerate().find(|(_, v)| v.tag == tag).unwrap();
+    let (i, _) = design
+        .vessels
+        .iter()
+        .enumerate()
+        .find(|(_, v)| v.tag == tag)
+        .unwrap();
     resolved[i]
         .nozzles
         .iter()
@@ -129,7 +158,11 @@ fn bores(design: &Design, tag: &str) -> Vec<(DAffine3, f64, f64)> {
         .map(|(n, _)| {
             let pipe = vesselcad::parts::tables::pipe(n.geometry.nps);
             let wall = pipe.wall(n.geometry.schedule).unwrap();
-            (n.frame, n.geometry.projection, pipe.outside_diameter / 2.0 - wall)
+            (
+                n.frame,
+                n.geometry.projection,
+                pipe.outside_diameter / 2.0 - wall,
+            )
         })
         .collect()
 }
@@ -145,7 +178,12 @@ fn check_design(design: &Design, tolerance: f64) {
 
 #[test]
 fn every_example_is_watertight() {
-    for name in ["horizontal-drum", "vertical-column", "storage-tank", "small-plant"] {
+    for name in [
+        "horizontal-drum",
+        "vertical-column",
+        "storage-tank",
+        "small-plant",
+    ] {
         check_design(&example(name), 1.0);
     }
 }
@@ -168,7 +206,8 @@ proptest! {
             let mut n = template.clone();
             n.mark = format!("N{k}");
             n.size = size;
-            n.pad = None;
+            // Every other nozzle gets a reinforcing pad.
+            n.pad = (k % 2 == 0).then(|| PadDesign { od: size * 25.4 * 2.0 + 50.0, thickness: 12.0 });
             n.orientation = orientation;
             // One axial slot per nozzle so openings never overlap.
             n.elevation = Some(700.0 + 1300.0 * k as f64);

@@ -18,7 +18,7 @@ use super::scene::{Scene, SceneNode, SceneNodeKind, ScenePatch, SceneVessel};
 use crate::constraints::PartGeometry;
 use crate::design::{Design, resolve};
 use crate::mesh::cdt::mesh_region;
-use crate::mesh::{Mesh, TessellationOptions, cut_opening, patch_region};
+use crate::mesh::{Mesh, TessellationOptions, cut_opening, pad_patch, pad_region, patch_region};
 use crate::nurbs::intersect::IntersectionLoop;
 use crate::parts::{Nozzle, PartError, Patch};
 
@@ -89,22 +89,48 @@ pub fn build_scene(design: &Design, options: &TessellationOptions) -> Result<Sce
     }
 
     // Openings: every nozzle's neck cut against its host, in parallel.
-    let by_node: HashMap<(usize, usize), &Vec<Patch>> = patches.iter().map(|(k, list)| (*k, list)).collect();
-    let jobs: Vec<(usize, usize, usize)> = resolved
+    let by_node: HashMap<(usize, usize), &Vec<Patch>> =
+        patches.iter().map(|(k, list)| (*k, list)).collect();
+    let jobs: Vec<(usize, usize, usize, Option<f64>)> = resolved
         .iter()
         .enumerate()
         .flat_map(|(v, vessel)| {
             let parts = vessel.parts.len();
-            vessel.nozzles.iter().enumerate().map(move |(i, nozzle)| (v, parts + i, nozzle.host))
+            vessel
+                .nozzles
+                .iter()
+                .enumerate()
+                .map(move |(i, nozzle)| (v, parts + i, nozzle.host, nozzle.pad.map(|p| p.0)))
         })
         .collect();
     let cut: Vec<_> = jobs
         .par_iter()
-        .map(|&(v, n, h)| {
-            let hosts: Vec<&Patch> = by_node.get(&(v, h)).map(|l| l.iter().collect()).unwrap_or_default();
+        .map(|&(v, n, h, pad)| {
+            let hosts: Vec<&Patch> = by_node
+                .get(&(v, h))
+                .map(|l| l.iter().collect())
+                .unwrap_or_default();
             let neck = by_node.get(&(v, n)).and_then(|l| l.first());
+            let (nozzle_frame, host_frame) =
+                (&vessels[v].nodes[n].frame, &vessels[v].nodes[h].frame);
             let result = match neck {
-                Some(neck) => cut_opening(neck, &vessels[v].nodes[n].frame, &vessels[v].nodes[h].frame, &hosts, options.tolerance),
+                Some(neck) => cut_opening(
+                    neck,
+                    pad,
+                    nozzle_frame,
+                    host_frame,
+                    &hosts,
+                    options.tolerance,
+                )
+                .and_then(|cut| {
+                    let pad = match &cut.pad {
+                        Some(_) => {
+                            Some(pad_patch(hosts[cut.host_patch], nozzle_frame, host_frame)?)
+                        }
+                        None => None,
+                    };
+                    Ok((cut, pad))
+                }),
                 None => Err("the nozzle has no neck patch".to_string()),
             };
             ((v, n, h), result)
@@ -112,11 +138,16 @@ pub fn build_scene(design: &Design, options: &TessellationOptions) -> Result<Sce
         .collect();
     let mut holes: HashMap<(usize, usize, usize), Vec<IntersectionLoop>> = HashMap::new();
     let mut bottoms: HashMap<(usize, usize), IntersectionLoop> = HashMap::new();
+    let mut pads: Vec<((usize, usize), Patch, IntersectionLoop, IntersectionLoop)> = Vec::new();
     for ((v, n, h), result) in cut {
         match result {
-            Ok((k, curve)) => {
-                holes.entry((v, h, k)).or_default().push(curve.clone());
-                bottoms.insert((v, n), curve);
+            Ok((cut, pad)) => {
+                let hole = cut.pad.clone().unwrap_or_else(|| cut.neck.clone());
+                holes.entry((v, h, cut.host_patch)).or_default().push(hole);
+                if let (Some(patch), Some(outer)) = (pad, cut.pad) {
+                    pads.push(((v, n), patch, outer, cut.neck.clone()));
+                }
+                bottoms.insert((v, n), cut.neck);
             }
             Err(message) => {
                 let entity = format!("{}/{}", vessels[v].tag, vessels[v].nodes[n].id);
@@ -125,21 +156,38 @@ pub fn build_scene(design: &Design, options: &TessellationOptions) -> Result<Sce
         }
     }
 
-    // Tessellation: every patch of the plant, in parallel, collected in order.
-    let flat: Vec<(usize, usize, usize, &Patch)> = patches
-        .iter()
-        .flat_map(|((v, n), list)| list.iter().enumerate().map(move |(k, p)| (*v, *n, k, p)))
-        .collect();
+    // Tessellation: every patch of the plant (pads after their nozzle's patches),
+    // in parallel, collected in order.
+    let pad_of: HashMap<(usize, usize), usize> =
+        pads.iter().enumerate().map(|(i, p)| (p.0, i)).collect();
+    let mut flat: Vec<(usize, usize, usize, &Patch, bool)> = Vec::new();
+    for ((v, n), list) in &patches {
+        flat.extend(list.iter().enumerate().map(|(k, p)| (*v, *n, k, p, false)));
+        if let Some(&i) = pad_of.get(&(*v, *n)) {
+            flat.push((*v, *n, usize::MAX, &pads[i].1, true));
+        }
+    }
     let meshes: Vec<Result<Mesh, String>> = flat
         .par_iter()
-        .map(|&(v, n, k, patch)| {
-            let hole_list: Vec<&IntersectionLoop> = holes.get(&(v, n, k)).map(|l| l.iter().collect()).unwrap_or_default();
-            let bottom = if k == 0 { bottoms.get(&(v, n)) } else { None };
-            let region = patch_region(&patch.surface, options, &hole_list, bottom).map_err(|e| e.to_string())?;
-            mesh_region(&patch.surface, &region, options).map(|(m, _)| m).map_err(|e| e.to_string())
+        .map(|&(v, n, k, patch, is_pad)| {
+            let region = if is_pad {
+                let (_, _, outer, inner) = &pads[pad_of[&(v, n)]];
+                pad_region(&patch.surface, options, outer, inner)
+            } else {
+                let hole_list: Vec<&IntersectionLoop> = holes
+                    .get(&(v, n, k))
+                    .map(|l| l.iter().collect())
+                    .unwrap_or_default();
+                let bottom = if k == 0 { bottoms.get(&(v, n)) } else { None };
+                patch_region(&patch.surface, options, &hole_list, bottom)
+            }
+            .map_err(|e| e.to_string())?;
+            mesh_region(&patch.surface, &region, options)
+                .map(|(m, _)| m)
+                .map_err(|e| e.to_string())
         })
         .collect();
-    for ((v, n, _, patch), mesh) in flat.into_iter().zip(meshes) {
+    for ((v, n, _, patch, _), mesh) in flat.into_iter().zip(meshes) {
         let mesh = mesh.map_err(|message| ExportError::Mesh {
             entity: format!("{}/{}", vessels[v].tag, vessels[v].nodes[n].id),
             message,

@@ -40,7 +40,11 @@ const SAME: f64 = 1e-12;
 
 /// Size of a curve's control polygon (for relative comparisons).
 fn size(curve: &NurbsCurve) -> f64 {
-    curve.control_points().iter().fold(0.0f64, |m, p| m.max(p.abs().max_element())).max(1.0)
+    curve
+        .control_points()
+        .iter()
+        .fold(0.0f64, |m, p| m.max(p.abs().max_element()))
+        .max(1.0)
 }
 
 /// True when all points of `curve` coincide (a pole).
@@ -55,7 +59,10 @@ pub fn closed_in_u(surface: &NurbsSurface) -> bool {
     let a = surface.boundary(Side::UMin).control_points();
     let b = surface.boundary(Side::UMax).control_points();
     let s = a.iter().fold(1.0f64, |m, p| m.max(p.abs().max_element()));
-    a.len() == b.len() && a.iter().zip(&b).all(|(p, q)| (*p - *q).length() <= 1e-9 * s)
+    a.len() == b.len()
+        && a.iter()
+            .zip(&b)
+            .all(|(p, q)| (*p - *q).length() <= 1e-9 * s)
 }
 
 /// Parameters along a side curve; a pole gives only its ends.
@@ -72,8 +79,18 @@ fn side(curve: &NurbsCurve, options: &TessellationOptions, multiple: usize) -> V
 /// from `c` to `c + period` inclusive.
 fn rotated(params: &[f64], u0: f64, period: f64, c: f64) -> Vec<f64> {
     let eps = SAME * period.max(1.0) * 1e3;
-    let mut out: Vec<f64> = params.iter().copied().filter(|&t| t >= c - eps && t < u0 + period - eps).collect();
-    out.extend(params.iter().copied().filter(|&t| t < c - eps).map(|t| t + period));
+    let mut out: Vec<f64> = params
+        .iter()
+        .copied()
+        .filter(|&t| t >= c - eps && t < u0 + period - eps)
+        .collect();
+    out.extend(
+        params
+            .iter()
+            .copied()
+            .filter(|&t| t < c - eps)
+            .map(|t| t + period),
+    );
     if out.first().is_none_or(|&t| (t - c).abs() > eps) {
         out.insert(0, c);
     } else {
@@ -87,12 +104,16 @@ fn rotated(params: &[f64], u0: f64, period: f64, c: f64) -> Vec<f64> {
 fn shifted(uv: &[DVec2], c: f64, period: f64) -> Vec<DVec2> {
     let mid = uv.iter().map(|p| p.x).sum::<f64>() / uv.len().max(1) as f64;
     let k = ((mid - c) / period).floor();
-    uv.iter().map(|p| DVec2::new(p.x - k * period, p.y)).collect()
+    uv.iter()
+        .map(|p| DVec2::new(p.x - k * period, p.y))
+        .collect()
 }
 
 /// Signed area (×2) of a polygon.
 fn area2(uv: &[DVec2]) -> f64 {
-    (0..uv.len()).map(|i| uv[i].perp_dot(uv[(i + 1) % uv.len()])).sum()
+    (0..uv.len())
+        .map(|i| uv[i].perp_dot(uv[(i + 1) % uv.len()]))
+        .sum()
 }
 
 /// The loop round a pole as the top of a closed patch cut at `cut`: from
@@ -112,7 +133,10 @@ fn around_pole(l: &IntersectionLoop, cut: f64, period: f64) -> Vec<DVec2> {
     }
     let increasing = seq.last().map_or(0.0, |p| p.x) > seq[0].x;
     let first = seq[0];
-    seq.push(DVec2::new(first.x + if increasing { period } else { -period }, first.y));
+    seq.push(DVec2::new(
+        first.x + if increasing { period } else { -period },
+        first.y,
+    ));
     if increasing {
         seq.reverse();
     }
@@ -133,8 +157,10 @@ pub fn patch_region(
     let closed = closed_in_u(surface);
     let multiple = if closed { SEAM_CUTS } else { 1 };
     // A loop round the pole (a nozzle centred on a head) replaces the pole side.
-    let (around, holes): (Vec<&IntersectionLoop>, Vec<&IntersectionLoop>) =
-        holes.iter().copied().partition(|h| closed && h.host_turns(surface) != 0);
+    let (around, holes): (Vec<&IntersectionLoop>, Vec<&IntersectionLoop>) = holes
+        .iter()
+        .copied()
+        .partition(|h| closed && h.host_turns(surface) != 0);
     if around.len() > 1 {
         return Err(LayoutError::SeamBlocked);
     }
@@ -146,10 +172,16 @@ pub fn patch_region(
             .iter()
             .map(|h| {
                 let s = shifted(&h.host_uv, u0, period);
-                (s.iter().map(|p| p.x).fold(f64::INFINITY, f64::min), s.iter().map(|p| p.x).fold(f64::NEG_INFINITY, f64::max))
+                (
+                    s.iter().map(|p| p.x).fold(f64::INFINITY, f64::min),
+                    s.iter().map(|p| p.x).fold(f64::NEG_INFINITY, f64::max),
+                )
             })
             .collect();
-        if spans.iter().any(|&(lo, hi)| (-1..=1).any(|k| (lo..=hi).contains(&(u0 + f64::from(k) * period)))) {
+        if spans
+            .iter()
+            .any(|&(lo, hi)| (-1..=1).any(|k| (lo..=hi).contains(&(u0 + f64::from(k) * period))))
+        {
             return Err(LayoutError::SeamBlocked);
         }
         u0
@@ -179,7 +211,10 @@ pub fn patch_region(
     let params_v0 = side(&surface.boundary(Side::VMin), options, multiple);
     let params_v1 = side(&surface.boundary(Side::VMax), options, multiple);
     let (along_v0, along_v1) = if closed {
-        (rotated(&params_v0, u0, period, cut), rotated(&params_v1, u0, period, cut))
+        (
+            rotated(&params_v0, u0, period, cut),
+            rotated(&params_v1, u0, period, cut),
+        )
     } else {
         (params_v0, params_v1)
     };
@@ -195,7 +230,11 @@ pub fn patch_region(
                 .iter()
                 .map(|p| DVec2::new(cut + (p.x - cut).rem_euclid(period), p.y))
                 .collect();
-            let start = pts.iter().enumerate().min_by(|a, b| a.1.x.total_cmp(&b.1.x)).map_or(0, |(i, _)| i);
+            let start = pts
+                .iter()
+                .enumerate()
+                .min_by(|a, b| a.1.x.total_cmp(&b.1.x))
+                .map_or(0, |(i, _)| i);
             pts.rotate_left(start);
             bottom_start_v = pts.first().map_or(v0, |p| p.y);
             let first_u = pts.first().map_or(cut, |p| p.x);
@@ -214,7 +253,11 @@ pub fn patch_region(
         Some(l) => around_pole(l, cut, period),
         None => {
             let shift = right_u_end - along_v1.last().copied().unwrap_or(right_u);
-            along_v1.iter().rev().map(|&u| DVec2::new(u + shift, v1)).collect()
+            along_v1
+                .iter()
+                .rev()
+                .map(|&u| DVec2::new(u + shift, v1))
+                .collect()
         }
     };
     let top_v = top_path.first().map_or(v1, |p| p.y);
@@ -229,10 +272,14 @@ pub fn patch_region(
     let top_left_u = outer.first().map_or(left_u, |p| p.x);
     outer.extend(top_path);
     // Left side down, interior samples only.
-    let mut left: Vec<f64> = side(&surface.isocurve_u(crate::mesh::cdt::wrap_u(surface, top_left_u)), options, 1)
-        .into_iter()
-        .filter(|&v| v > bottom_start_v.max(v0) + SAME && v < top_end_v - SAME)
-        .collect();
+    let mut left: Vec<f64> = side(
+        &surface.isocurve_u(crate::mesh::cdt::wrap_u(surface, top_left_u)),
+        options,
+        1,
+    )
+    .into_iter()
+    .filter(|&v| v > bottom_start_v.max(v0) + SAME && v < top_end_v - SAME)
+    .collect();
     left.reverse();
     outer.extend(left.into_iter().map(|v| DVec2::new(top_left_u, v)));
     outer.dedup_by(|a, b| (*a - *b).length() <= SAME);
@@ -242,7 +289,9 @@ pub fn patch_region(
     let mut region = Region::new(UvLoop::new(outer));
     for h in holes {
         let mut uv = shifted(&h.host_uv, cut, period);
-        if let Some(p) = uv.iter().find(|p| p.y < v0 - SAME || p.y > v1 + SAME || (!closed && (p.x < u0 - SAME || p.x > u1 + SAME))) {
+        if let Some(p) = uv.iter().find(|p| {
+            p.y < v0 - SAME || p.y > v1 + SAME || (!closed && (p.x < u0 - SAME || p.x > u1 + SAME))
+        }) {
             return Err(LayoutError::OpeningOffPatch { v: p.y });
         }
         if area2(&uv) > 0.0 {
@@ -251,4 +300,67 @@ pub fn patch_region(
         region = region.with_hole(UvLoop::new(uv));
     }
     Ok(region)
+}
+
+/// The region of a reinforcing pad: the part of its host patch between the pad's
+/// outer loop and the neck's loop (both in the host patch's (u, v)). Around a pole
+/// both loops go round it and the region is the band between them, cut at the seam.
+pub fn pad_region(
+    surface: &NurbsSurface,
+    options: &TessellationOptions,
+    outer: &IntersectionLoop,
+    inner: &IntersectionLoop,
+) -> Result<Region, LayoutError> {
+    let ((u0, u1), _) = surface.domain();
+    let period = u1 - u0;
+    let closed = closed_in_u(surface);
+    let around = closed && outer.host_turns(surface) != 0;
+    if around != (closed && inner.host_turns(surface) != 0) {
+        return Err(LayoutError::SeamBlocked);
+    }
+    if !around {
+        let mut o = shifted(&outer.host_uv, u0, period);
+        let shift = o[0].x - outer.host_uv[0].x;
+        let mut i: Vec<DVec2> = inner
+            .host_uv
+            .iter()
+            .map(|p| DVec2::new(p.x + shift, p.y))
+            .collect();
+        // Keep the inner loop in the outer loop's period.
+        let mid_o = o.iter().map(|p| p.x).sum::<f64>() / o.len() as f64;
+        let mid_i = i.iter().map(|p| p.x).sum::<f64>() / i.len() as f64;
+        let k = ((mid_i - mid_o) / period).round();
+        i.iter_mut().for_each(|p| p.x -= k * period);
+        if area2(&o) < 0.0 {
+            o.reverse();
+        }
+        if area2(&i) > 0.0 {
+            i.reverse();
+        }
+        return Ok(Region::new(UvLoop::new(o)).with_hole(UvLoop::new(i)));
+    }
+    // Both round the pole: bottom = the pad's loop (further from the pole), top =
+    // the neck's, both cut at the seam u0 where each has a sample.
+    let cut = u0;
+    let mut bottom = around_pole(outer, cut, period);
+    bottom.reverse(); // from cut to cut + period
+    let top = around_pole(inner, cut, period); // from cut + period to cut
+    let (vb, vt) = (
+        bottom.first().map_or(0.0, |p| p.y),
+        top.first().map_or(0.0, |p| p.y),
+    );
+    let (lo, hi) = (vb.min(vt), vb.max(vt));
+    let meridian = surface.isocurve_u(cut);
+    let inside: Vec<f64> = side(&meridian, options, 1)
+        .into_iter()
+        .filter(|&v| v > lo + SAME && v < hi - SAME)
+        .collect();
+    let mut outer_loop = bottom;
+    outer_loop.extend(inside.iter().map(|&v| DVec2::new(cut + period, v)));
+    outer_loop.extend(top);
+    outer_loop.extend(inside.iter().rev().map(|&v| DVec2::new(cut, v)));
+    if area2(&outer_loop) < 0.0 {
+        outer_loop.reverse();
+    }
+    Ok(Region::new(UvLoop::new(outer_loop)))
 }

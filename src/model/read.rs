@@ -7,8 +7,8 @@ use bevy_ecs::world::World;
 
 use super::VesselIndex;
 use crate::components::{
-    DesignOrder, NoteSpec, NozzleSpec, PartFrame, PartSpan, PartSpec, PatchMesh, PatchSurface,
-    Patches, Shape, VesselFrame, VesselSpec, VesselSummary,
+    DesignOrder, NoteSpec, NozzleSpec, PadPatch, PartFrame, PartSpan, PartSpec, PatchMesh,
+    PatchSurface, Patches, Shape, VesselFrame, VesselSpec, VesselSummary,
 };
 use crate::constraints::{ResolvedNozzle, ResolvedPart, ResolvedVessel};
 use crate::design::{Design, FORMAT, Units, VesselDesign};
@@ -146,14 +146,17 @@ fn resolved(world: &World, entity: Entity) -> Option<(VesselDesign, ResolvedVess
     Some((design, resolved))
 }
 
-/// The meshed patches of a part or nozzle entity, in build order.
+/// The meshed patches of a part or nozzle entity, in build order (a nozzle's pad
+/// last).
 fn scene_patches(world: &World, entity: Entity) -> Vec<ScenePatch> {
     let Some(patches) = world.get::<Patches>(entity) else {
         return Vec::new();
     };
+    let pad = world.get::<PadPatch>(entity).map(PadPatch::entity);
     patches
         .entities()
         .iter()
+        .chain(pad.as_ref())
         .filter_map(|&p| {
             let surface = world.get::<PatchSurface>(p)?;
             let mesh = world.get::<PatchMesh>(p)?;

@@ -199,3 +199,74 @@ mod tests {
         assert!((c.distance(DVec3::new(0.0, 0.0, 1.0)) - 0.5f64.sqrt()).abs() < 1e-15);
     }
 }
+
+impl Analytic {
+    /// The same surface after a rigid motion `m` (rotation and translation; a
+    /// scale would change radii and is not supported: the linear part must be
+    /// orthonormal).
+    pub fn transformed(&self, m: &glam::DAffine3) -> Analytic {
+        let p = |x: DVec3| m.transform_point3(x);
+        let v = |x: DVec3| m.transform_vector3(x).normalize_or_zero();
+        match *self {
+            Analytic::Plane { point, normal } => Analytic::Plane {
+                point: p(point),
+                normal: v(normal),
+            },
+            Analytic::Cylinder {
+                point,
+                axis,
+                radius,
+            } => Analytic::Cylinder {
+                point: p(point),
+                axis: v(axis),
+                radius,
+            },
+            Analytic::Cone {
+                apex,
+                axis,
+                half_angle,
+            } => Analytic::Cone {
+                apex: p(apex),
+                axis: v(axis),
+                half_angle,
+            },
+            Analytic::ObliqueCone {
+                apex,
+                base_center,
+                base_normal,
+                radius,
+            } => Analytic::ObliqueCone {
+                apex: p(apex),
+                base_center: p(base_center),
+                base_normal: v(base_normal),
+                radius,
+            },
+            Analytic::Sphere { center, radius } => Analytic::Sphere {
+                center: p(center),
+                radius,
+            },
+            Analytic::Torus {
+                center,
+                axis,
+                major,
+                minor,
+            } => Analytic::Torus {
+                center: p(center),
+                axis: v(axis),
+                major,
+                minor,
+            },
+            Analytic::Spheroid {
+                center,
+                axis,
+                equatorial,
+                polar,
+            } => Analytic::Spheroid {
+                center: p(center),
+                axis: v(axis),
+                equatorial,
+                polar,
+            },
+        }
+    }
+}

@@ -1,10 +1,15 @@
 //! Chordal refinement: insert points until every triangle is within the tolerance.
 //!
 //! A triangle is measured where a flat triangle departs most from a smooth surface:
-//! the distance from S at its parametric centroid to the triangle's plane, and from
-//! S at the midpoint of each interior (non-loop) edge to that 3D segment. Interior
-//! edges are also checked against the angle tolerance (angle between the exact
-//! normals at its ends) and the maximum edge length. The worst of these, each as a
+//! the distance to the triangle's plane from S at its parametric centroid and from S
+//! at the parametric midpoint of each interior (non-loop) edge. For edges the plane
+//! is used rather than the 3D segment: the parametric midpoint of an edge along a
+//! parallel near a pole lies off the chord *within* the tangent plane (the parallel
+//! bends towards the pole), which is no deviation of the surface from the triangle;
+//! the plane distance counts only the deviation along the normal, which is what the
+//! distance from the chord to the surface is. Interior edges are also checked
+//! against the angle tolerance (angle between the exact normals at its ends) and the
+//! maximum edge length. The worst of these, each as a
 //! fraction of its limit, is the triangle's badness; a triangle that is flat or
 //! turned over in 3D (its normal against a vertex normal) is infinitely bad. Each
 //! pass splits every bad triangle at its worst point, worst first, skipping
@@ -15,7 +20,7 @@
 //! vertex that faces a pole segment, which keeps the triangles around the pole
 //! sector-shaped; all of them weld into the one pole vertex on output.
 
-use glam::DVec2;
+use glam::{DVec2, DVec3};
 use rayon::prelude::*;
 
 use super::flip::{effective_uv, should_flip, strictly_ccw};
@@ -54,6 +59,59 @@ struct Limits {
     tolerance: f64,
     angle: Option<f64>,
     max_edge: Option<f64>,
+    /// Per loop vertex, the longest loop segment at it and the largest angle
+    /// between the normals at the ends of one: an interior edge at the vertex may
+    /// be that long and turn that much, since the caller's loop does (splitting
+    /// interior edges could never make the triangles on that segment comply).
+    allowance: Vec<(f64, f64)>,
+}
+
+impl Limits {
+    /// Length and angle an interior edge between `a` and `b` is allowed.
+    fn edge_allowance(&self, a: u32, b: u32) -> (f64, f64) {
+        let at = |k: u32| {
+            self.allowance
+                .get(k as usize)
+                .copied()
+                .unwrap_or((0.0, 0.0))
+        };
+        let (x, y) = (at(a), at(b));
+        (x.0.max(y.0), x.1.max(y.1))
+    }
+}
+
+/// The allowances of [`Limits::allowance`] from the loop segments of `mesh`.
+fn loop_allowances(info: &PatchInfo, mesh: &TriMesh) -> Vec<(f64, f64)> {
+    let mut out = vec![(0.0f64, 0.0f64); mesh.verts.len()];
+    for t in 0..mesh.tris.len() as u32 {
+        for i in 0..3 {
+            if !mesh.fixed[t as usize][i] {
+                continue;
+            }
+            let (a, b) = mesh.edge(t, i);
+            let (x, y) = (&mesh.verts[a as usize], &mesh.verts[b as usize]);
+            let length = (x.point - y.point).length();
+            let angle = end_normal(info, x, y.uv)
+                .dot(end_normal(info, y, x.uv))
+                .clamp(-1.0, 1.0)
+                .acos();
+            for k in [a, b] {
+                let slot = &mut out[k as usize];
+                *slot = (slot.0.max(length), slot.1.max(angle));
+            }
+        }
+    }
+    out
+}
+
+/// The normal at vertex `w` of an edge whose other end is at `other`: at a pole,
+/// the limit along the edge's meridian.
+fn end_normal(info: &PatchInfo, w: &Vertex, other: DVec2) -> DVec3 {
+    if w.pole {
+        info.normal(DVec2::new(other.x, w.uv.y))
+    } else {
+        w.normal
+    }
 }
 
 /// Refines `mesh` until every triangle is within `options`; at most `budget`
@@ -69,6 +127,7 @@ pub(super) fn refine(
         tolerance: options.tolerance,
         angle: options.angle_tolerance.map(f64::to_radians),
         max_edge: options.max_edge_length,
+        allowance: loop_allowances(info, mesh),
     };
     let mut flips_left = INITIAL_FLIPS_PER_TRIANGLE * mesh.tris.len();
     let all: Vec<(u32, usize)> = (0..mesh.tris.len() as u32)
@@ -254,14 +313,13 @@ fn assess(info: &PatchInfo, mesh: &TriMesh, t: u32, limits: &Limits) -> Option<C
         }
         let mid = 0.5 * (ux + uy);
         let mut badness = (surface(mid) - p[0]).dot(unit).abs() / limits.tolerance;
+        let (long, turn) = limits.edge_allowance(tri[i], tri[j]);
         if let Some(angle) = limits.angle {
-            let end_normal =
-                |w: &Vertex, at: DVec2| if w.pole { info.normal(at) } else { w.normal };
-            let cos = end_normal(x, ux).dot(end_normal(y, uy));
-            badness = badness.max(cos.clamp(-1.0, 1.0).acos() / angle);
+            let cos = end_normal(info, x, y.uv).dot(end_normal(info, y, x.uv));
+            badness = badness.max(cos.clamp(-1.0, 1.0).acos() / angle.max(turn));
         }
         if let Some(max) = limits.max_edge {
-            badness = badness.max((x.point - y.point).length() / max);
+            badness = badness.max((x.point - y.point).length() / max.max(long));
         }
         if badness > worst.badness {
             let real_mid = 0.5 * (x.uv + y.uv);

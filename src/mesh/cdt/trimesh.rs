@@ -219,3 +219,93 @@ impl TriMesh {
         }
     }
 }
+
+#[cfg(test)]
+mod tests {
+    use glam::{DVec2, DVec3};
+
+    use super::super::flip::strictly_ccw;
+    use super::super::metric::Metric;
+    use super::*;
+
+    fn vertex(uv: DVec2) -> Vertex {
+        Vertex {
+            uv,
+            point: uv.extend(0.0),
+            normal: DVec3::Z,
+            metric: Metric {
+                uu: 1.0,
+                uv: 0.0,
+                vv: 1.0,
+            },
+            pole: false,
+        }
+    }
+
+    /// Neighbour links are mutual, every triangle is counter-clockwise, the area is
+    /// kept, and exactly the boundary edges are fixed.
+    fn assert_valid(m: &TriMesh) {
+        let mut area = 0.0;
+        for t in 0..m.tris.len() as u32 {
+            let [a, b, c] = m.tris[t as usize].map(|k| m.verts[k as usize].uv);
+            assert!(
+                strictly_ccw(a, b, c),
+                "triangle {t} is not counter-clockwise"
+            );
+            area += 0.5 * (b - a).perp_dot(c - a);
+            for i in 0..3 {
+                let n = m.adj[t as usize][i];
+                assert_eq!(n == NONE, m.fixed[t as usize][i], "edge {i} of {t}");
+                if n != NONE {
+                    let (x, y) = m.edge(t, i);
+                    let j = m.index_of(n, t);
+                    assert_eq!(m.edge(n, j), (y, x), "edge {i} of {t} and its twin");
+                    assert_eq!(m.adj[n as usize][j], t);
+                }
+            }
+        }
+        assert!((area - 1.0).abs() < 1e-12, "area {area}");
+    }
+
+    #[test]
+    fn splits_and_flips_keep_the_triangulation_valid() {
+        let corners = [(0.0, 0.0), (1.0, 0.0), (1.0, 1.0), (0.0, 1.0)];
+        let verts = corners.map(|(u, v)| vertex(DVec2::new(u, v))).to_vec();
+        let boundary = |a: u32, b: u32| (a + 1) % 4 == b || (b + 1) % 4 == a;
+        let mut m = TriMesh::new(verts, vec![[0, 1, 2], [0, 2, 3]], boundary);
+        assert_valid(&m);
+        let mut state = 0x2545_f491_4f6c_dd1du64;
+        let mut next = |n: usize| {
+            state ^= state << 13;
+            state ^= state >> 7;
+            state ^= state << 17;
+            (state % n as u64) as usize
+        };
+        for _ in 0..600 {
+            let t = next(m.tris.len()) as u32;
+            let i = next(3);
+            let [a, b, c] = m.tris[t as usize].map(|k| m.verts[k as usize].uv);
+            match next(3) {
+                0 => {
+                    let x = m.push_vertex(vertex((a + b + c) / 3.0));
+                    m.split_triangle(t, x);
+                }
+                1 => {
+                    let (p, q) = m.edge(t, i);
+                    let mid = 0.5 * (m.verts[p as usize].uv + m.verts[q as usize].uv);
+                    let x = m.push_vertex(vertex(mid));
+                    m.split_edge(t, i, x);
+                }
+                _ => {
+                    if let Some(([p, q, r, s], _)) = m.quad(t, i) {
+                        let uv = |k: u32| m.verts[k as usize].uv;
+                        if strictly_ccw(uv(r), uv(p), uv(s)) && strictly_ccw(uv(s), uv(q), uv(r)) {
+                            m.flip(t, i);
+                        }
+                    }
+                }
+            }
+            assert_valid(&m);
+        }
+    }
+}
