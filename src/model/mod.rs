@@ -148,4 +148,10 @@ impl Model {
     pub fn world(&self) -> &World {
         &self.world
     }
+
+    /// The ECS world, mutably: for building query states. Writing parameter or
+    /// derived components here bypasses the edit checks; use [`apply`](Self::apply).
+    pub fn world_mut(&mut self) -> &mut World {
+        &mut self.world
+    }
 }
