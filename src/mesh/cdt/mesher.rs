@@ -3,7 +3,7 @@
 //! output.
 
 use super::output::{RegionMesh, finish};
-use super::patch::PatchInfo;
+use super::patch::{PatchInfo, wants_transpose};
 use super::{CdtError, MeshStats, Region, initial, metric::Sizing, refine, seed};
 use crate::mesh::{Mesh, TessellationOptions};
 use crate::nurbs::NurbsSurface;
@@ -24,6 +24,10 @@ const SEED_SHARE: f64 = 0.96;
 /// and at its interior edge midpoints is within `options.tolerance`. Positions are
 /// exact points `S(u, v)` (u wrapped on a surface closed in u), normals the exact
 /// normals, triangles counter-clockwise in (u, v) so they face along `S_u × S_v`.
+/// Vertices at one 3D point (a pole, the two sides of a seam) are welded into one.
+/// A surface whose collapsed side is a u side, or that is closed in v only, is
+/// meshed with u and v exchanged internally (so there v may wrap instead of u);
+/// the result is expressed in the surface's own (u, v) all the same.
 /// Deterministic: the same input gives the same mesh.
 pub fn mesh_region(
     surface: &NurbsSurface,
@@ -42,6 +46,19 @@ pub fn mesh_region_with_uvs(
 ) -> Result<RegionMesh, CdtError> {
     options.validate()?;
     region.validate()?;
+    if wants_transpose(surface) {
+        let out = mesh_oriented(&surface.transposed(), &region.transposed(), options)?;
+        return Ok(out.transposed());
+    }
+    mesh_oriented(surface, region, options)
+}
+
+/// Meshes a validated region of a surface whose rows run along u.
+fn mesh_oriented(
+    surface: &NurbsSurface,
+    region: &Region,
+    options: &TessellationOptions,
+) -> Result<RegionMesh, CdtError> {
     let (lo, hi) = region.bounds();
     let info = PatchInfo::new(surface, lo, hi, |cap| {
         Sizing::new(options, SEED_SHARE * SEED_SHARE, cap)

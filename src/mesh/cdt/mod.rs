@@ -9,13 +9,15 @@
 //! Pipeline: `region` (validate) → `seed` (curvature-sized lattice clipped to the
 //! region, in the size `metric` of the surface) → `initial` (spade's constrained
 //! Delaunay triangulation of loop vertices and seeds, inside found by flood fill) →
-//! `refine` (chordal refinement with metric-Delaunay `flip`s on a `trimesh`) →
+//! `refine` (chordal refinement, deviations by `measure`, with metric-Delaunay
+//! `flip`s on a `trimesh`) →
 //! `output` (weld poles and seams, check every triangle, statistics). `patch` holds
 //! the facts about the surface every stage uses.
 
 mod error;
 mod flip;
 mod initial;
+mod measure;
 mod mesher;
 mod metric;
 mod output;

@@ -51,6 +51,24 @@ pub struct RegionMesh {
     pub stats: MeshStats,
 }
 
+impl RegionMesh {
+    /// The mesh of the transposed problem mapped back: (u, v) exchanged, normals
+    /// turned over (`S_v × S_u = −S_u × S_v`) and triangles rewound so they are
+    /// counter-clockwise in the original (u, v).
+    pub(super) fn transposed(mut self) -> RegionMesh {
+        for uv in &mut self.uvs {
+            *uv = DVec2::new(uv.y, uv.x);
+        }
+        for n in &mut self.mesh.normals {
+            *n = -*n;
+        }
+        for tri in self.mesh.indices.chunks_mut(3) {
+            tri.swap(1, 2);
+        }
+        self
+    }
+}
+
 /// Smallest interior angle of a triangle, radians.
 fn min_angle(p: [DVec3; 3]) -> f64 {
     (0..3)

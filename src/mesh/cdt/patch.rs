@@ -26,6 +26,19 @@ pub fn wrap_u(surface: &NurbsSurface, u: f64) -> f64 {
     wrap(surface, closed, u)
 }
 
+/// Whether `surface` is better meshed transposed: the mesher lays its seed rows
+/// along u and wraps only u, so a surface whose collapsed sides are u-sides (a
+/// pole at u = u0 or u1), or that is closed in v but not in u, is meshed with u and
+/// v exchanged.
+pub(super) fn wants_transpose(surface: &NurbsSurface) -> bool {
+    let size = net_size(surface);
+    let (closed_u, collapsed) = closed_and_collapsed(surface, size);
+    let (closed_v, _) = closed_and_collapsed(&surface.transposed(), size);
+    let u_poles = collapsed[0] || collapsed[1];
+    let v_poles = collapsed[2] || collapsed[3];
+    (u_poles && !v_poles) || (closed_v && !closed_u && !v_poles)
+}
+
 fn wrap(surface: &NurbsSurface, closed: bool, u: f64) -> f64 {
     let (u0, u1) = surface.u_knots().domain();
     if closed {
@@ -56,20 +69,22 @@ fn closed_and_collapsed(surface: &NurbsSurface, size: f64) -> (bool, [bool; 4]) 
         let p = surface.homogeneous_point_at(i, j);
         p.truncate() / p.w
     };
-    let collapsed = |mut points: Box<dyn Iterator<Item = DVec3> + '_>| {
-        let Some(first) = points.next() else {
-            return false;
-        };
-        points.all(|p| (p - first).length() <= tol)
-    };
     let closed = (0..nv).all(|j| (at(0, j) - at(nu - 1, j)).length() <= tol);
     let sides = [
-        collapsed(Box::new((0..nv).map(|j| at(0, j)))),
-        collapsed(Box::new((0..nv).map(|j| at(nu - 1, j)))),
-        collapsed(Box::new((0..nu).map(|i| at(i, 0)))),
-        collapsed(Box::new((0..nu).map(|i| at(i, nv - 1)))),
+        coincide((0..nv).map(|j| at(0, j)), tol),
+        coincide((0..nv).map(|j| at(nu - 1, j)), tol),
+        coincide((0..nu).map(|i| at(i, 0)), tol),
+        coincide((0..nu).map(|i| at(i, nv - 1)), tol),
     ];
     (closed, sides)
+}
+
+/// Whether all `points` lie within `tol` of the first.
+fn coincide(mut points: impl Iterator<Item = DVec3>, tol: f64) -> bool {
+    let Some(first) = points.next() else {
+        return false;
+    };
+    points.all(|p| (p - first).length() <= tol)
 }
 
 /// One vertex of the mesh being built.

@@ -1,15 +1,14 @@
 //! Chordal refinement: insert points until every triangle is within the tolerance.
 //!
 //! A triangle is measured where a flat triangle departs most from a smooth surface:
-//! the distance to the triangle's plane from S at its parametric centroid and from S
-//! at the parametric midpoint of each interior (non-loop) edge. For edges the plane
-//! is used rather than the 3D segment: the parametric midpoint of an edge along a
-//! parallel near a pole lies off the chord *within* the tangent plane (the parallel
-//! bends towards the pole), which is no deviation of the surface from the triangle;
-//! the plane distance counts only the deviation along the normal, which is what the
-//! distance from the chord to the surface is. Interior edges are also checked
-//! against the angle tolerance (angle between the exact normals at its ends) and the
-//! maximum edge length. The worst of these, each as a
+//! at its centroid and at the midpoint of each interior (non-loop) edge, each by
+//! [`deviation`] (the distance from S at the parametric point to the triangle's
+//! plane, and from the 3D point to the surface). For edges the plane is used rather
+//! than the 3D segment: the parametric midpoint of an edge along a parallel near a
+//! pole lies off the chord *within* the tangent plane (the parallel bends towards
+//! the pole), which is no deviation of the surface from the triangle. Interior
+//! edges are also checked against the angle tolerance (angle between the exact
+//! normals at its ends) and the maximum edge length. The worst of these, each as a
 //! fraction of its limit, is the triangle's badness; a triangle that is flat or
 //! turned over in 3D (its normal against a vertex normal) is infinitely bad. Each
 //! pass splits every bad triangle at its worst point, worst first, skipping
@@ -24,6 +23,7 @@ use glam::{DVec2, DVec3};
 use rayon::prelude::*;
 
 use super::flip::{effective_uv, should_flip, strictly_ccw};
+use super::measure::deviation;
 use super::patch::{PatchInfo, Vertex};
 use super::trimesh::TriMesh;
 use super::{CdtError, MeshStats};
@@ -293,9 +293,9 @@ fn assess(info: &PatchInfo, mesh: &TriMesh, t: u32, limits: &Limits) -> Option<C
         });
     }
     let unit = normal.normalize();
-    let surface = |q: DVec2| info.surface.point(info.wrap_u(q.x), q.y);
+    let probe = |point: DVec3, at: DVec2| deviation(info, point, at, p[0], unit);
     let mut worst = Candidate {
-        badness: (surface(centroid) - p[0]).dot(unit).abs() / limits.tolerance,
+        badness: probe((p[0] + p[1] + p[2]) / 3.0, centroid) / limits.tolerance,
         insert: Insert::Point(inside),
     };
     for i in 0..3 {
@@ -312,7 +312,7 @@ fn assess(info: &PatchInfo, mesh: &TriMesh, t: u32, limits: &Limits) -> Option<C
             uy.x = ux.x;
         }
         let mid = 0.5 * (ux + uy);
-        let mut badness = (surface(mid) - p[0]).dot(unit).abs() / limits.tolerance;
+        let mut badness = probe(0.5 * (x.point + y.point), mid) / limits.tolerance;
         let (long, turn) = limits.edge_allowance(tri[i], tri[j]);
         if let Some(angle) = limits.angle {
             let cos = end_normal(info, x, y.uv).dot(end_normal(info, y, x.uv));

@@ -123,6 +123,17 @@ impl Region {
         Ok(())
     }
 
+    /// The same region with u and v exchanged (loops reversed, so the outer loop
+    /// stays counter-clockwise).
+    pub(super) fn transposed(&self) -> Region {
+        let swap =
+            |l: &UvLoop| UvLoop::new(l.uv.iter().rev().map(|p| DVec2::new(p.y, p.x)).collect());
+        Region {
+            outer: swap(&self.outer),
+            holes: self.holes.iter().map(swap).collect(),
+        }
+    }
+
     /// Bounds `(min, max)` of the outer loop's vertices.
     pub fn bounds(&self) -> (DVec2, DVec2) {
         bounds_of(&self.outer.uv)

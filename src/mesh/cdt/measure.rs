@@ -1,0 +1,60 @@
+//! How far a flat triangle departs from the surface at one probe: the measures
+//! refinement holds every triangle to.
+//!
+//! A probe is a 3D point of the triangle (its centroid, an edge midpoint) with the
+//! parameters where the surface should be nearest (the parametric centroid or
+//! midpoint). Two distances are taken and the larger counts: from S at those
+//! parameters to the triangle's plane (the chordal deviation of the seed reports,
+//! cheap and exact for the normal offset), and from the 3D point to the surface,
+//! found by Gauss–Newton steps from those parameters until they converge (the orthogonal distance of a
+//! point inversion, which is what a check of the finished mesh measures). The
+//! Gauss–Newton distance is that of a surface point actually reached, so it never
+//! understates the true distance.
+
+use glam::{DVec2, DVec3};
+
+use super::patch::PatchInfo;
+
+/// Most Gauss–Newton steps per probe (two are usual).
+const MAX_STEPS: usize = 8;
+/// A step shorter than this share of the distance has converged: the distance
+/// found then exceeds the true one by at most half its square, 5·10⁻⁵.
+const CONVERGED: f64 = 1e-2;
+
+/// The deviation at a probe: `point` on the triangle, `uv` its parameters, and
+/// the triangle's plane through `origin` with unit normal `unit`.
+pub(super) fn deviation(
+    info: &PatchInfo,
+    point: DVec3,
+    uv: DVec2,
+    origin: DVec3,
+    unit: DVec3,
+) -> f64 {
+    let ((u0, u1), (v0, v1)) = info.surface.domain();
+    let mut at = uv;
+    let mut plane = None;
+    let mut nearest = f64::INFINITY;
+    for _ in 0..MAX_STEPS {
+        let d = info.surface.derivatives(info.wrap_u(at.x), at.y);
+        let r = d.point - point;
+        let distance = r.length();
+        nearest = nearest.min(distance);
+        plane.get_or_insert_with(|| (d.point - origin).dot(unit).abs());
+        let (e, f, g) = (d.du.dot(d.du), d.du.dot(d.dv), d.dv.dot(d.dv));
+        let det = e * g - f * f;
+        if det.is_nan() || det <= 1e-12 * e * g {
+            break;
+        }
+        let (a, b) = (r.dot(d.du), r.dot(d.dv));
+        let step = -DVec2::new(g * a - f * b, e * b - f * a) / det;
+        if (d.du * step.x + d.dv * step.y).length() <= CONVERGED * distance {
+            break;
+        }
+        at += step;
+        at.y = at.y.clamp(v0, v1);
+        if !info.closed_u {
+            at.x = at.x.clamp(u0, u1);
+        }
+    }
+    nearest.max(plane.unwrap_or(0.0))
+}
