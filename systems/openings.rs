@@ -35,6 +35,9 @@ pub type ChangedNozzle = (
 /// Host parts that moved or changed shape.
 pub type ChangedHost = Or<(Changed<PartFrame>, Changed<Shape>)>;
 
+/// A cut opening: the host patch entity, the loops and the pad patch, or why not.
+type CutResult = Result<(Entity, Cut, Option<Patch>), String>;
+
 /// One opening to compute.
 struct Job {
     nozzle: Entity,
@@ -137,7 +140,7 @@ pub fn cut_openings(
             hosts,
         });
     }
-    let results: Vec<(Entity, Entity, Result<(Entity, Cut, Option<Patch>), String>)> = jobs
+    let results: Vec<(Entity, Entity, CutResult)> = jobs
         .par_iter()
         .map(|job| {
             let hosts: Vec<&Patch> = job.hosts.iter().map(|(_, p)| p.as_ref()).collect();

@@ -207,7 +207,7 @@ proptest! {
             n.mark = format!("N{k}");
             n.size = size;
             // Every other nozzle gets a reinforcing pad.
-            n.pad = (k % 2 == 0).then(|| PadDesign { od: size * 25.4 * 2.0 + 50.0, thickness: 12.0 });
+            n.pad = (k % 2 == 0).then_some(PadDesign { od: size * 25.4 * 2.0 + 50.0, thickness: 12.0 });
             n.orientation = orientation;
             // One axial slot per nozzle so openings never overlap.
             n.elevation = Some(700.0 + 1300.0 * k as f64);

@@ -175,31 +175,6 @@ impl Analytic {
     }
 }
 
-#[cfg(test)]
-mod tests {
-    use super::*;
-
-    #[test]
-    fn distances_of_known_points() {
-        let s = Analytic::Spheroid {
-            center: DVec3::ZERO,
-            axis: DVec3::Z,
-            equatorial: 2.0,
-            polar: 1.0,
-        };
-        assert!(s.distance(DVec3::new(2.0, 0.0, 0.0)) < 1e-15);
-        assert!((s.distance(DVec3::new(0.0, 0.0, 3.0)) - 2.0).abs() < 1e-12);
-        assert!((s.distance(DVec3::new(0.0, 3.0, 0.0)) - 1.0).abs() < 1e-12);
-        let c = Analytic::Cone {
-            apex: DVec3::ZERO,
-            axis: DVec3::Z,
-            half_angle: std::f64::consts::FRAC_PI_4,
-        };
-        assert!(c.distance(DVec3::new(1.0, 0.0, 1.0)) < 1e-15);
-        assert!((c.distance(DVec3::new(0.0, 0.0, 1.0)) - 0.5f64.sqrt()).abs() < 1e-15);
-    }
-}
-
 impl Analytic {
     /// The same surface after a rigid motion `m` (rotation and translation; a
     /// scale would change radii and is not supported: the linear part must be
@@ -268,5 +243,30 @@ impl Analytic {
                 polar,
             },
         }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn distances_of_known_points() {
+        let s = Analytic::Spheroid {
+            center: DVec3::ZERO,
+            axis: DVec3::Z,
+            equatorial: 2.0,
+            polar: 1.0,
+        };
+        assert!(s.distance(DVec3::new(2.0, 0.0, 0.0)) < 1e-15);
+        assert!((s.distance(DVec3::new(0.0, 0.0, 3.0)) - 2.0).abs() < 1e-12);
+        assert!((s.distance(DVec3::new(0.0, 3.0, 0.0)) - 1.0).abs() < 1e-12);
+        let c = Analytic::Cone {
+            apex: DVec3::ZERO,
+            axis: DVec3::Z,
+            half_angle: std::f64::consts::FRAC_PI_4,
+        };
+        assert!(c.distance(DVec3::new(1.0, 0.0, 1.0)) < 1e-15);
+        assert!((c.distance(DVec3::new(0.0, 0.0, 1.0)) - 0.5f64.sqrt()).abs() < 1e-15);
     }
 }
