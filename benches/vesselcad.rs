@@ -1,6 +1,6 @@
 //! Benchmarks of vesselcad: one criterion entry point, one module per topic.
 //!
-//! Run with `cargo bench --bench vesselcad` (or `-- grid` / `-- model` for one
+//! Run with `cargo bench --bench vesselcad` (or `-- grid` / `-- mesh` / `-- model` for one
 //! topic); each topic keeps its measurement short so the whole run takes a few
 //! minutes.
 
@@ -8,7 +8,9 @@ use criterion::criterion_main;
 
 #[path = "vesselcad/grid.rs"]
 mod grid;
+#[path = "vesselcad/mesh.rs"]
+mod mesh;
 #[path = "vesselcad/model.rs"]
 mod model;
 
-criterion_main!(grid::group, model::group);
+criterion_main!(grid::group, mesh::group, model::group);

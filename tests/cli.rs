@@ -5,11 +5,17 @@
 use std::process::Command;
 
 fn vesselcad(args: &[&str]) -> std::process::Output {
-    Command::new(env!("CARGO_BIN_EXE_vesselcad")).args(args).output().expect("the binary runs")
+    Command::new(env!("CARGO_BIN_EXE_vesselcad"))
+        .args(args)
+        .output()
+        .expect("the binary runs")
 }
 
 fn example(name: &str) -> String {
-    format!("{}/examples/designs/{name}.json", env!("CARGO_MANIFEST_DIR"))
+    format!(
+        "{}/examples/designs/{name}.json",
+        env!("CARGO_MANIFEST_DIR")
+    )
 }
 
 #[test]
@@ -17,7 +23,14 @@ fn build_writes_a_glb() {
     let dir = std::env::temp_dir().join(format!("vesselcad-cli-{}", std::process::id()));
     std::fs::create_dir_all(&dir).unwrap();
     let out = dir.join("drum.glb");
-    let o = vesselcad(&["build", &example("horizontal-drum"), "-o", out.to_str().unwrap(), "--tolerance", "1"]);
+    let o = vesselcad(&[
+        "build",
+        &example("horizontal-drum"),
+        "-o",
+        out.to_str().unwrap(),
+        "--tolerance",
+        "1",
+    ]);
     assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
     let bytes = std::fs::read(&out).unwrap();
     assert_eq!(&bytes[..4], b"glTF");
@@ -25,16 +38,36 @@ fn build_writes_a_glb() {
     assert!(doc.nodes().any(|n| n.name() == Some("V-101")));
     // Same design, same bytes.
     let again = dir.join("again.glb");
-    assert!(vesselcad(&["build", &example("horizontal-drum"), "-o", again.to_str().unwrap(), "--tolerance", "1"]).status.success());
+    assert!(
+        vesselcad(&[
+            "build",
+            &example("horizontal-drum"),
+            "-o",
+            again.to_str().unwrap(),
+            "--tolerance",
+            "1"
+        ])
+        .status
+        .success()
+    );
     assert!(bytes == std::fs::read(&again).unwrap());
     std::fs::remove_dir_all(&dir).ok();
 }
 
 #[test]
 fn check_accepts_every_example() {
-    for name in ["horizontal-drum", "vertical-column", "storage-tank", "small-plant"] {
+    for name in [
+        "horizontal-drum",
+        "vertical-column",
+        "storage-tank",
+        "small-plant",
+    ] {
         let o = vesselcad(&["check", &example(name)]);
-        assert!(o.status.success(), "{name}: {}", String::from_utf8_lossy(&o.stderr));
+        assert!(
+            o.status.success(),
+            "{name}: {}",
+            String::from_utf8_lossy(&o.stderr)
+        );
     }
 }
 
@@ -62,8 +95,20 @@ fn check_lists_every_problem_and_exits_1() {
 fn unreadable_files_and_bad_options_exit_2() {
     let o = vesselcad(&["check", "/nonexistent/design.json"]);
     assert_eq!(o.status.code(), Some(2));
-    let o = vesselcad(&["build", &example("horizontal-drum"), "-o", "/tmp/x.glb", "--tolerance", "-1"]);
-    assert_eq!(o.status.code(), Some(2), "{}", String::from_utf8_lossy(&o.stderr));
+    let o = vesselcad(&[
+        "build",
+        &example("horizontal-drum"),
+        "-o",
+        "/tmp/x.glb",
+        "--tolerance",
+        "-1",
+    ]);
+    assert_eq!(
+        o.status.code(),
+        Some(2),
+        "{}",
+        String::from_utf8_lossy(&o.stderr)
+    );
     assert!(String::from_utf8_lossy(&o.stderr).contains("tolerance"));
     let o = vesselcad(&["frobnicate"]);
     assert_eq!(o.status.code(), Some(2));
@@ -86,7 +131,10 @@ fn info_reports_figures() {
     let frustum = pi * 0.9 / 3.0 * (1.0 + 0.7 + 0.49);
     let two_to_one = pi * 2.0f64.powi(3) / 24.0 + pi * 0.05;
     let volume = c["volume"].as_f64().unwrap();
-    assert!(volume > courses + frustum + two_to_one && volume < courses + frustum + two_to_one + 0.6, "{volume}");
+    assert!(
+        volume > courses + frustum + two_to_one && volume < courses + frustum + two_to_one + 0.6,
+        "{volume}"
+    );
     let o = vesselcad(&["info", &example("horizontal-drum")]);
     assert!(String::from_utf8_lossy(&o.stdout).contains("V-101 (horizontal)"));
 }
@@ -102,8 +150,13 @@ fn inch_designs_load_as_millimetres() {
     let design = vesselcad::design::parse_unchecked(&json.to_string()).unwrap();
     let mut d = design.clone();
     vesselcad::design::units::to_millimetres(&mut d);
-    let vesselcad::design::PartDesign::Shell(s) = &d.vessels[0].parts[1] else { panic!() };
+    let vesselcad::design::PartDesign::Shell(s) = &d.vessels[0].parts[1] else {
+        panic!()
+    };
     assert_eq!((s.od, s.length), (2540.0, 7620.0));
     assert_eq!(d.units, vesselcad::design::Units::Mm);
-    assert_eq!(d.vessels[0].nozzles[0].size, 8.0, "NPS is a name, never scaled");
+    assert_eq!(
+        d.vessels[0].nozzles[0].size, 8.0,
+        "NPS is a name, never scaled"
+    );
 }

@@ -16,7 +16,11 @@ const TOLERANCE: f64 = 1.0;
 fn every_triangle_is_within_the_tolerance() {
     let mut histogram = [0usize; 4];
     for name in ["horizontal-drum", "vertical-column", "storage-tank"] {
-        let design = load(format!("{}/examples/designs/{name}.json", env!("CARGO_MANIFEST_DIR"))).unwrap();
+        let design = load(format!(
+            "{}/examples/designs/{name}.json",
+            env!("CARGO_MANIFEST_DIR")
+        ))
+        .unwrap();
         let mut model = Model::from_design(&design, TessellationOptions::chord(TOLERANCE)).unwrap();
         assert!(model.errors().0.is_empty(), "{name}: {:?}", model.errors());
         let world = model_world(&mut model);
@@ -29,24 +33,53 @@ fn every_triangle_is_within_the_tolerance() {
             for t in m.indices.chunks(3) {
                 let [a, b, c] = [t[0], t[1], t[2]].map(|i| m.positions[i as usize]);
                 let n = (b - a).cross(c - a);
-                assert!(n.length() > 0.0, "{name}/{}: zero-area triangle", surface.0.name);
-                let exact = [t[0], t[1], t[2]].map(|i| m.normals[i as usize]).into_iter().fold(glam::DVec3::ZERO, |x, y| x + y);
-                assert!(n.dot(exact) > 0.0, "{name}/{}: triangle faces against the surface", surface.0.name);
-                for q in [(a + b + c) / 3.0, (a + b) / 2.0, (b + c) / 2.0, (c + a) / 2.0] {
+                assert!(
+                    n.length() > 0.0,
+                    "{name}/{}: zero-area triangle",
+                    surface.0.name
+                );
+                let exact = [t[0], t[1], t[2]]
+                    .map(|i| m.normals[i as usize])
+                    .into_iter()
+                    .fold(glam::DVec3::ZERO, |x, y| x + y);
+                assert!(
+                    n.dot(exact) > 0.0,
+                    "{name}/{}: triangle faces against the surface",
+                    surface.0.name
+                );
+                for q in [
+                    (a + b + c) / 3.0,
+                    (a + b) / 2.0,
+                    (b + c) / 2.0,
+                    (c + a) / 2.0,
+                ] {
                     let d = s.closest_point(q).unwrap().distance;
                     if d > TOLERANCE {
                         eprintln!("{name}/{}: {d} at {q}", surface.0.name);
                     }
                     worst = worst.max(d);
                 }
-                let angles = [(b - a).angle_between(c - a), (a - b).angle_between(c - b), (a - c).angle_between(b - c)];
-                let min = angles.iter().copied().fold(f64::INFINITY, f64::min).to_degrees();
+                let angles = [
+                    (b - a).angle_between(c - a),
+                    (a - b).angle_between(c - b),
+                    (a - c).angle_between(b - c),
+                ];
+                let min = angles
+                    .iter()
+                    .copied()
+                    .fold(f64::INFINITY, f64::min)
+                    .to_degrees();
                 histogram[((min / 10.0) as usize).min(3)] += 1;
                 triangles += 1;
             }
         }
-        println!("{name}: {triangles} triangles, max deviation {worst:.4} mm at tolerance {TOLERANCE} mm");
-        assert!(worst <= TOLERANCE * 1.0001, "{name}: deviation {worst} mm exceeds {TOLERANCE} mm");
+        println!(
+            "{name}: {triangles} triangles, max deviation {worst:.4} mm at tolerance {TOLERANCE} mm"
+        );
+        assert!(
+            worst <= TOLERANCE * 1.0001,
+            "{name}: deviation {worst} mm exceeds {TOLERANCE} mm"
+        );
     }
     let total: usize = histogram.iter().sum();
     println!(

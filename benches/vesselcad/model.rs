@@ -13,15 +13,20 @@ use vesselcad::mesh::TessellationOptions;
 use vesselcad::model::{Edit, Model};
 
 fn column() -> Design {
-    load(concat!(env!("CARGO_MANIFEST_DIR"), "/examples/designs/vertical-column.json"))
-        .expect("the example column is valid")
+    load(concat!(
+        env!("CARGO_MANIFEST_DIR"),
+        "/examples/designs/vertical-column.json"
+    ))
+    .expect("the example column is valid")
 }
 
 fn bench(c: &mut Criterion) {
     let design = column();
     let options = TessellationOptions::DEFAULT;
     let mut group = c.benchmark_group("model");
-    group.measurement_time(Duration::from_secs(5)).sample_size(20);
+    group
+        .measurement_time(Duration::from_secs(5))
+        .sample_size(20);
     group.bench_function("column full build (ECS model)", |b| {
         b.iter(|| black_box(Model::from_design(&design, options).expect("valid")))
     });
@@ -39,7 +44,10 @@ fn bench(c: &mut Criterion) {
             let mut n = nozzle.clone();
             n.projection += if flip { 50.0 } else { 0.0 };
             let counters = model
-                .edit(Edit::SetNozzle { vessel: "C-201".into(), nozzle: n })
+                .edit(Edit::SetNozzle {
+                    vessel: "C-201".into(),
+                    nozzle: n,
+                })
                 .expect("valid edit");
             black_box(counters)
         })
@@ -49,7 +57,14 @@ fn bench(c: &mut Criterion) {
     group.bench_function("column move + update", |b| {
         b.iter(|| {
             placement.position[0] += 1.0;
-            black_box(model.edit(Edit::MoveVessel { tag: "C-201".into(), placement }).expect("valid"))
+            black_box(
+                model
+                    .edit(Edit::MoveVessel {
+                        tag: "C-201".into(),
+                        placement,
+                    })
+                    .expect("valid"),
+            )
         })
     });
     group.finish();

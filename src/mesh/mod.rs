@@ -13,8 +13,8 @@ mod options;
 
 pub use edges::{MAX_EDGE_SEGMENTS, edge_parameters, edge_segments};
 pub use grid::tessellate;
-pub use opening::{Cut, PAD_PATCH, cut_opening, pad_patch};
 pub use layout::{LayoutError, SEAM_CUTS, closed_in_u, pad_region, patch_region};
+pub use opening::{Cut, PAD_PATCH, cut_opening, pad_patch};
 pub use options::{OptionsError, TessellationOptions};
 
 use glam::DVec3;

@@ -157,7 +157,9 @@ pub enum NurbsError {
     },
     /// A straight generator of a neck-like surface does not meet the host surface
     /// (the nozzle does not touch its host there, or leaves the host patch).
-    #[error("the neck generator at u = {u} misses the host surface (closest approach {distance} mm)")]
+    #[error(
+        "the neck generator at u = {u} misses the host surface (closest approach {distance} mm)"
+    )]
     GeneratorMissesHost {
         /// Neck parameter u of the generator.
         u: f64,
