@@ -177,7 +177,7 @@ fn report(design: &vesselcad::design::Design, tolerance: f64) -> Result<Report, 
         }
         slivers.push((p.label.clone(), under, p.mesh.triangle_count()));
     }
-    slivers.sort_by(|a, b| b.1.cmp(&a.1));
+    slivers.sort_by_key(|s| std::cmp::Reverse(s.1));
     slivers.truncate(SLIVER_PATCHES);
     Ok(Report {
         tolerance,

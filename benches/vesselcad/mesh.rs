@@ -15,10 +15,21 @@
 //! MEASURED deviation: [`max_deviation`] samples every triangle at its centroid and
 //! edge midpoints, inverts each sample onto the exact surface with
 //! `NurbsSurface::closest_point` and takes the largest distance. vesselcad is run at
-//! 0.1 mm; curvo's `norm_tolerance` is then searched ([`tune_curvo`]) for the
-//! coarsest mesh whose measured deviation is at most vesselcad's. Where curvo cannot
-//! get there (it stops dividing cells that touch a pole), the finest setting tried is
-//! kept and reported.
+//! 0.1 mm; curvo's settings are then searched ([`tune_curvo`], with
+//! `MESH_BENCH_TUNE=1`) for the fewest triangles at a measured deviation at most
+//! vesselcad's, over several families: `norm_tolerance` alone, `norm_tolerance`
+//! after `min_depth` 4–10 forced divisions, a uniform grid (`min_divs_u/v`), and
+//! `max_edge_length`. The winners are recorded in [`TUNED`], so a normal run only
+//! measures them. What the search found (curvo 0.3.3):
+//!
+//! - `norm_tolerance` alone cannot get below 1.10 mm on the F&D head nor 4.18 mm on
+//!   the sphere, however small (2.6 M and 1.3 M triangles): curvo stops dividing a
+//!   cell once a corner's normal is degenerate, which every cell at a pole is.
+//! - On the shell with openings no setting reaches 0.1 mm: the trimmed path
+//!   triangulates curvo's grid points and the hole polylines by a Delaunay
+//!   triangulation in (u, v); the cylinder's linear direction gets no grid points,
+//!   so triangles chord across the shell (1139 mm with `norm_tolerance` alone), and
+//!   `max_edge_length` 100 mm already makes 2.5 M triangles at 0.40 mm.
 //!
 //! # Ideal triangle count
 //!
@@ -27,14 +38,17 @@
 //! δ = ρ − √(ρ² − r²), so r² = δ(2ρ − δ). With δ = tolerance t and κ the local
 //! largest principal curvature, the triangle covers `a(κ) = (3√3/4)·t·(2/κ − t)`;
 //! the ideal count is `∫ dA / a(κ)`, summed here over the triangles of vesselcad's
-//! own mesh (area × 1/a(κ) at the triangle's parametric centroid, [`ideal_count`]).
+//! own mesh (area × 1/a(κ) at the triangle's parametric centroid, [`ideal_counts`]).
 //! For the sphere R = 1000 at 0.1 mm this is 4πR²/a = 48 370. Using the LARGEST
 //! curvature makes it an isotropic ideal: on a cylinder, triangles stretched along
-//! the axis could need fewer.
+//! the axis could need fewer. The table also gives an anisotropic ideal, triangles
+//! equilateral in the second fundamental form, `a = (3√3/2)·t/√K` where the Gaussian
+//! curvature K > 0 (0 where K ≤ 0: the shell's has no finite ideal).
 //!
 //! Targets (the issue): at most 1.3× the ideal count, and at least 5× curvo's speed
 //! per triangle. The setup prints one table with the figures; criterion then times
-//! each mesher with throughput in triangles.
+//! each mesher with throughput in triangles. `MESH_BENCH_CASE=sphere` limits the
+//! setup to the cases whose name contains the text.
 
 use std::hint::black_box;
 use std::sync::OnceLock;
