@@ -98,75 +98,10 @@ impl Boot {
         for patch in self.head_part().patches()? {
             out.push(Patch {
                 surface: patch.surface.transformed(&lift)?,
-                analytic: translated(patch.analytic, offset),
+                analytic: patch.analytic.transformed(&lift),
                 ..patch
             });
         }
         Ok(out)
-    }
-}
-
-/// `analytic` moved by `offset`.
-fn translated(analytic: Analytic, offset: DVec3) -> Analytic {
-    match analytic {
-        Analytic::Plane { point, normal } => Analytic::Plane {
-            point: point + offset,
-            normal,
-        },
-        Analytic::Cylinder {
-            point,
-            axis,
-            radius,
-        } => Analytic::Cylinder {
-            point: point + offset,
-            axis,
-            radius,
-        },
-        Analytic::Cone {
-            apex,
-            axis,
-            half_angle,
-        } => Analytic::Cone {
-            apex: apex + offset,
-            axis,
-            half_angle,
-        },
-        Analytic::ObliqueCone {
-            apex,
-            base_center,
-            base_normal,
-            radius,
-        } => Analytic::ObliqueCone {
-            apex: apex + offset,
-            base_center: base_center + offset,
-            base_normal,
-            radius,
-        },
-        Analytic::Sphere { center, radius } => Analytic::Sphere {
-            center: center + offset,
-            radius,
-        },
-        Analytic::Torus {
-            center,
-            axis,
-            major,
-            minor,
-        } => Analytic::Torus {
-            center: center + offset,
-            axis,
-            major,
-            minor,
-        },
-        Analytic::Spheroid {
-            center,
-            axis,
-            equatorial,
-            polar,
-        } => Analytic::Spheroid {
-            center: center + offset,
-            axis,
-            equatorial,
-            polar,
-        },
     }
 }
