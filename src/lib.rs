@@ -30,6 +30,7 @@ pub mod mesh;
 pub mod model;
 pub mod nurbs;
 pub mod parts;
+pub mod project;
 pub mod report;
 #[path = "../systems/mod.rs"]
 pub mod systems;
