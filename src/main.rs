@@ -39,6 +39,10 @@ enum Command {
         /// Chordal tolerance of the meshes, mm.
         #[arg(long, default_value_t = TessellationOptions::DEFAULT.tolerance, allow_negative_numbers = true)]
         tolerance: f64,
+        /// Largest ratio between a triangle's sizes in two directions (≥ 1; e.g. 3
+        /// for analysis-quality triangles). No limit by default.
+        #[arg(long, allow_negative_numbers = true)]
+        max_stretch: Option<f64>,
     },
     /// Check a design: exit 0 when valid, 1 with every problem listed otherwise.
     Check {
@@ -130,13 +134,17 @@ fn main() -> ExitCode {
             design,
             output,
             tolerance,
+            max_stretch,
         } => {
             let start = Instant::now();
             let d = match load(&design) {
                 Ok(d) => d,
                 Err(e) => return fail(&e),
             };
-            let model = match Model::from_design(&d, TessellationOptions::chord(tolerance)) {
+            let model = match Model::from_design(
+                &d,
+                TessellationOptions::chord(tolerance).with_max_stretch(max_stretch),
+            ) {
                 Ok(m) => m,
                 Err(ModelError::Design(e)) => return fail(&e),
                 Err(e) => {

@@ -14,7 +14,7 @@ use super::{ModelErrors, WorkCounters};
 use crate::components::{PatchMesh, PatchRegion, PatchSurface};
 use crate::design::RuleViolation;
 use crate::mesh::TessellationOptions;
-use crate::mesh::cdt::{Region, mesh_region};
+use crate::mesh::cdt::{Region, mesh_patch_region};
 use crate::parts::Patch;
 
 /// The tessellation options every patch is meshed with.
@@ -47,7 +47,7 @@ pub fn remesh_dirty_patches(
     }
     let meshes: Vec<_> = work
         .par_iter()
-        .map(|(e, p, r)| (*e, mesh_region(&p.surface, r, &options)))
+        .map(|(e, p, r)| (*e, mesh_patch_region(p, r, &options)))
         .collect();
     let mut triangles = 0u64;
     let mut failures = 0u64;

@@ -168,7 +168,11 @@ fn bores(design: &Design, tag: &str) -> Vec<(DAffine3, f64, f64)> {
 }
 
 fn check_design(design: &Design, tolerance: f64) {
-    let model = Model::from_design(design, TessellationOptions::chord(tolerance)).unwrap();
+    check_design_with(design, TessellationOptions::chord(tolerance));
+}
+
+fn check_design_with(design: &Design, options: TessellationOptions) {
+    let model = Model::from_design(design, options).unwrap();
     assert!(model.errors().0.is_empty(), "{:?}", model.errors());
     let scene = model.scene();
     for v in &design.vessels {
@@ -185,6 +189,18 @@ fn every_example_is_watertight() {
         "small-plant",
     ] {
         check_design(&example(name), 1.0);
+    }
+}
+
+/// A stretch limit samples the seams of closed patches more finely (inside the
+/// patch only): the envelopes stay closed.
+#[test]
+fn examples_with_a_stretch_limit_are_watertight() {
+    for name in ["horizontal-drum", "vertical-column"] {
+        check_design_with(
+            &example(name),
+            TessellationOptions::chord(1.0).with_max_stretch(Some(3.0)),
+        );
     }
 }
 

@@ -17,7 +17,7 @@ use super::extras::{nozzle_extras, part_extras, vessel_extras};
 use super::scene::{Scene, SceneNode, SceneNodeKind, ScenePatch, SceneVessel};
 use crate::constraints::PartGeometry;
 use crate::design::{Design, resolve};
-use crate::mesh::cdt::mesh_region;
+use crate::mesh::cdt::mesh_patch_region;
 use crate::mesh::{Mesh, TessellationOptions, cut_opening, pad_patch, pad_region, patch_region};
 use crate::nurbs::intersect::IntersectionLoop;
 use crate::parts::{Nozzle, PartError, Patch};
@@ -182,7 +182,7 @@ pub fn build_scene(design: &Design, options: &TessellationOptions) -> Result<Sce
                 patch_region(&patch.surface, options, &hole_list, bottom)
             }
             .map_err(|e| e.to_string())?;
-            mesh_region(&patch.surface, &region, options)
+            mesh_patch_region(patch, &region, options)
                 .map(|(m, _)| m)
                 .map_err(|e| e.to_string())
         })

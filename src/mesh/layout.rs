@@ -210,6 +210,29 @@ pub fn patch_region(
     let (left_u, right_u) = (cut, cut + if closed { period } else { u1 - u0 });
     let params_v0 = side(&surface.boundary(Side::VMin), options, multiple);
     let params_v1 = side(&surface.boundary(Side::VMax), options, multiple);
+    // The seam sides of a closed patch belong to it alone: sample them no coarser
+    // than `max_stretch` times the spacing along its v sides, so that the triangles
+    // along a straight generator are not needles.
+    let meridian_options = if let (true, Some(stretch)) = (closed, options.max_stretch) {
+        let spacing = |params: &[f64], v: f64| {
+            params
+                .windows(2)
+                .map(|w| (surface.point(w[1], v) - surface.point(w[0], v)).length())
+                .fold(0.0f64, f64::max)
+        };
+        let across = [spacing(&params_v0, v0), spacing(&params_v1, v1)]
+            .into_iter()
+            .filter(|&s| s > SAME)
+            .fold(f64::INFINITY, f64::min);
+        if across.is_finite() {
+            let cap = stretch * across;
+            options.with_max_edge_length(Some(options.max_edge_length.map_or(cap, |m| m.min(cap))))
+        } else {
+            *options
+        }
+    } else {
+        *options
+    };
     let (along_v0, along_v1) = if closed {
         (
             rotated(&params_v0, u0, period, cut),
@@ -264,7 +287,7 @@ pub fn patch_region(
     let top_end_v = top_path.last().map_or(v1, |p| p.y);
     // Right side up, from the bottom to the top (interior samples of the meridian).
     let meridian = surface.isocurve_u(crate::mesh::cdt::wrap_u(surface, right_u_end));
-    for v in side(&meridian, options, 1) {
+    for v in side(&meridian, &meridian_options, 1) {
         if v > bottom_start_v.max(v0) + SAME && v < top_v - SAME {
             outer.push(DVec2::new(right_u_end, v));
         }
@@ -274,7 +297,7 @@ pub fn patch_region(
     // Left side down, interior samples only.
     let mut left: Vec<f64> = side(
         &surface.isocurve_u(crate::mesh::cdt::wrap_u(surface, top_left_u)),
-        options,
+        &meridian_options,
         1,
     )
     .into_iter()

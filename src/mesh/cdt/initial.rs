@@ -11,7 +11,9 @@
 //! never crosses a loop segment; reaching the convex hull means the loops do not
 //! enclose a region. The result is copied into a [`TriMesh`] for refinement.
 
-use std::collections::{HashMap, HashSet, VecDeque};
+use std::collections::VecDeque;
+
+use rustc_hash::{FxHashMap as HashMap, FxHashSet as HashSet};
 
 use glam::DVec2;
 use rayon::prelude::*;
@@ -94,7 +96,7 @@ pub(super) fn triangulate(
         .iter()
         .filter(|h| h.is_none())
         .count();
-    let mut loop_edges: HashSet<(u32, u32)> = HashSet::new();
+    let mut loop_edges: HashSet<(u32, u32)> = HashSet::default();
     for &(loop_index, first, len) in &loops {
         let lost = (0..len).find(|&k| handle[first as usize + k].is_none());
         if let Some(vertex) = lost {
@@ -163,7 +165,8 @@ pub(super) fn triangulate(
 
 /// The faces reachable from the left side of a loop segment without crossing one.
 fn flood(faces: &[[u32; 3]], loop_edges: &HashSet<(u32, u32)>) -> Result<Vec<[u32; 3]>, CdtError> {
-    let mut directed: HashMap<(u32, u32), usize> = HashMap::with_capacity(faces.len() * 3);
+    let mut directed: HashMap<(u32, u32), usize> = HashMap::default();
+    directed.reserve(faces.len() * 3);
     for (f, tri) in faces.iter().enumerate() {
         for i in 0..3 {
             directed.insert((tri[i], tri[(i + 1) % 3]), f);

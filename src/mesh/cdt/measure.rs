@@ -9,7 +9,11 @@
 //! found by Gauss–Newton steps from those parameters until they converge (the orthogonal distance of a
 //! point inversion, which is what a check of the finished mesh measures). The
 //! Gauss–Newton distance is that of a surface point actually reached, so it never
-//! understates the true distance.
+//! understates the true distance. When the patch's analytic surface is known (a
+//! plane, cylinder, cone, sphere, torus or spheroid, on which the NURBS lies to
+//! rounding), the second distance is that surface's closed-form distance and the
+//! first needs only S, not its derivatives: the cheap path the mesher takes for
+//! every vessel patch.
 
 use glam::{DVec2, DVec3};
 
@@ -30,6 +34,10 @@ pub(super) fn deviation(
     origin: DVec3,
     unit: DVec3,
 ) -> f64 {
+    if let Some(analytic) = &info.analytic {
+        let s = info.surface.point(info.wrap_u(uv.x), uv.y);
+        return analytic.distance(point).max((s - origin).dot(unit).abs());
+    }
     let ((u0, u1), (v0, v1)) = info.surface.domain();
     let mut at = uv;
     let mut plane = None;

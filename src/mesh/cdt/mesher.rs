@@ -7,6 +7,7 @@ use super::patch::{PatchInfo, wants_transpose};
 use super::{CdtError, MeshStats, Region, initial, metric::Sizing, refine, seed};
 use crate::mesh::{Mesh, TessellationOptions};
 use crate::nurbs::NurbsSurface;
+use crate::parts::{Analytic, Patch};
 
 /// Most vertices one region may get (seeds, loop vertices and insertions); beyond
 /// it meshing stops with [`CdtError::BudgetExceeded`].
@@ -38,31 +39,61 @@ pub fn mesh_region(
     Ok((out.mesh, out.stats))
 }
 
+/// [`mesh_region`] of a vessel patch: the same mesh contract, with the deviation
+/// probes measured against the patch's analytic surface in closed form (much
+/// cheaper than inverting the NURBS, and equal to it to rounding since the patch
+/// lies on that surface).
+pub fn mesh_patch_region(
+    patch: &Patch,
+    region: &Region,
+    options: &TessellationOptions,
+) -> Result<(Mesh, MeshStats), CdtError> {
+    let out = mesh_with(&patch.surface, Some(&patch.analytic), region, options)?;
+    Ok((out.mesh, out.stats))
+}
+
 /// [`mesh_region`] that also returns the (u, v) of every output vertex.
 pub fn mesh_region_with_uvs(
     surface: &NurbsSurface,
     region: &Region,
     options: &TessellationOptions,
 ) -> Result<RegionMesh, CdtError> {
+    mesh_with(surface, None, region, options)
+}
+
+/// Validates, transposes when the surface wants it, and meshes.
+fn mesh_with(
+    surface: &NurbsSurface,
+    analytic: Option<&Analytic>,
+    region: &Region,
+    options: &TessellationOptions,
+) -> Result<RegionMesh, CdtError> {
     options.validate()?;
     region.validate()?;
     if wants_transpose(surface) {
-        let out = mesh_oriented(&surface.transposed(), &region.transposed(), options)?;
+        let out = mesh_oriented(
+            &surface.transposed(),
+            analytic,
+            &region.transposed(),
+            options,
+        )?;
         return Ok(out.transposed());
     }
-    mesh_oriented(surface, region, options)
+    mesh_oriented(surface, analytic, region, options)
 }
 
 /// Meshes a validated region of a surface whose rows run along u.
 fn mesh_oriented(
     surface: &NurbsSurface,
+    analytic: Option<&Analytic>,
     region: &Region,
     options: &TessellationOptions,
 ) -> Result<RegionMesh, CdtError> {
     let (lo, hi) = region.bounds();
     let info = PatchInfo::new(surface, lo, hi, |cap| {
         Sizing::new(options, SEED_SHARE * SEED_SHARE, cap)
-    });
+    })
+    .with_analytic(analytic);
     let mut stats = MeshStats::default();
     let budget = VERTEX_BUDGET.saturating_sub(region.vertex_count());
     let seeds = seed::seeds(&info, region, budget)?;

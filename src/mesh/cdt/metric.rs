@@ -6,8 +6,10 @@
 //! circumscribed circle has sagitta δ on a sphere of radius ρ, so an equilateral
 //! triangle of side h deviates from the surface by δ at its centroid (an edge of
 //! that length has sagitta only ¾ δ at its midpoint). The angle tolerance and the
-//! maximum edge length shorten h further, and a cap (the size of the region) keeps
-//! flat directions finite. The result is stored as a symmetric 2×2 [`Metric`] in
+//! maximum edge length shorten h further, a cap (the size of the region) keeps
+//! flat directions finite, and no direction may be more than
+//! [`max_stretch`](TessellationOptions::max_stretch) times longer than the other (no needles along straight
+//! generators). The result is stored as a symmetric 2×2 [`Metric`] in
 //! (u, v): a parameter step d has length √(dᵀ M d) in units of the target size, so
 //! the seed lattice is equilateral and the flip criterion is Delaunay in it.
 
@@ -103,6 +105,8 @@ pub(super) struct Sizing {
     pub max_edge: Option<f64>,
     /// Longest size in any direction (the region's extent), mm.
     pub cap: f64,
+    /// Largest ratio between the sizes in two directions.
+    pub stretch: Option<f64>,
 }
 
 impl Sizing {
@@ -113,6 +117,7 @@ impl Sizing {
             angle: options.angle_tolerance.map(f64::to_radians),
             max_edge: options.max_edge_length,
             cap,
+            stretch: options.max_stretch,
         }
     }
 
@@ -174,7 +179,10 @@ impl Sizing {
             DVec2::Y
         };
         let y2 = y1.perp();
-        let (w1, w2) = (self.size(k1).powi(-2), self.size(k2).powi(-2));
+        let (h1, h2) = (self.size(k1), self.size(k2));
+        let longest = self.stretch.map_or(f64::INFINITY, |r| r * h1.min(h2));
+        let (h1, h2) = (h1.min(longest), h2.min(longest));
+        let (w1, w2) = (h1.powi(-2), h2.powi(-2));
         // W = Σ wᵢ yᵢ yᵢᵀ, then M = L W Lᵀ.
         let (w11, w12, w22) = (
             w1 * y1.x * y1.x + w2 * y2.x * y2.x,

@@ -8,7 +8,7 @@
 //! normal agreeing with the exact normals at its vertices, or the mesh is withheld
 //! with an error.
 
-use std::collections::HashMap;
+use rustc_hash::FxHashMap as HashMap;
 
 use glam::{DVec2, DVec3};
 
@@ -69,14 +69,15 @@ impl RegionMesh {
     }
 }
 
-/// Smallest interior angle of a triangle, radians.
+/// Smallest interior angle of a triangle, radians: the angle opposite its
+/// shortest side.
 fn min_angle(p: [DVec3; 3]) -> f64 {
-    (0..3)
-        .map(|i| {
-            let (a, b) = (p[(i + 1) % 3] - p[i], p[(i + 2) % 3] - p[i]);
-            a.angle_between(b)
-        })
-        .fold(f64::INFINITY, f64::min)
+    let opposite = |i: usize| (p[(i + 2) % 3] - p[(i + 1) % 3]).length_squared();
+    let i = (0..3)
+        .min_by(|&a, &b| opposite(a).total_cmp(&opposite(b)))
+        .unwrap_or(0);
+    let (a, b) = (p[(i + 1) % 3] - p[i], p[(i + 2) % 3] - p[i]);
+    a.cross(b).length().atan2(a.dot(b))
 }
 
 /// Welds `mesh` into the output.
@@ -90,17 +91,31 @@ pub(super) fn finish(
         let c = (p / tol).floor();
         (c.x as i64, c.y as i64, c.z as i64)
     };
-    let mut grid: HashMap<(i64, i64, i64), Vec<u32>> = HashMap::new();
+    let mut grid: HashMap<(i64, i64, i64), Vec<u32>> = HashMap::default();
+    // Only vertices on the loops (where poles and seam copies lie) can share a 3D
+    // point with another vertex; interior vertices are strictly inside the region.
     let mut used = vec![false; mesh.verts.len()];
-    for tri in &mesh.tris {
-        for &k in tri {
-            used[k as usize] = true;
+    let mut on_loop = vec![false; mesh.verts.len()];
+    for (tri, fixed) in mesh.tris.iter().zip(&mesh.fixed) {
+        for i in 0..3 {
+            used[tri[i] as usize] = true;
+            if fixed[i] {
+                on_loop[tri[i] as usize] = true;
+                on_loop[tri[(i + 1) % 3] as usize] = true;
+            }
         }
     }
     let mut out = RegionMesh::default();
     let mut index = vec![u32::MAX; mesh.verts.len()];
     for (k, v) in mesh.verts.iter().enumerate() {
         if !used[k] {
+            continue;
+        }
+        if !on_loop[k] {
+            index[k] = out.mesh.positions.len() as u32;
+            out.mesh.positions.push(v.point);
+            out.mesh.normals.push(v.normal);
+            out.uvs.push(v.uv);
             continue;
         }
         let c = cell(v.point);

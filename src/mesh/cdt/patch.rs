@@ -9,6 +9,7 @@ use glam::{DVec2, DVec3};
 use super::CdtError;
 use super::metric::{Metric, Sizing};
 use crate::nurbs::NurbsSurface;
+use crate::parts::Analytic;
 
 /// Relative distance below which control points count as coincident (a collapsed
 /// side) and two output vertices are welded, times the patch size.
@@ -117,6 +118,10 @@ pub(super) struct PatchInfo<'a> {
     pub scale: DVec2,
     /// Sizes for seeding and flips.
     pub sizing: Sizing,
+    /// The analytic surface the patch lies on, when its distance query is exact
+    /// (every kind but the oblique cone): probes then measure the distance in
+    /// closed form instead of inverting the NURBS.
+    pub analytic: Option<Analytic>,
     /// Normal of the point each collapsed side maps to: the mean of the limit
     /// normals along the side (the limit itself at a smooth pole, the axis
     /// direction at a cone's apex, where the limit depends on the approach).
@@ -173,8 +178,18 @@ impl<'a> PatchInfo<'a> {
             weld_tolerance: COINCIDENT * size,
             scale,
             sizing: sizing(extent),
+            analytic: None,
             pole_normals,
         }
+    }
+
+    /// The same facts with the exact `analytic` surface the patch lies on (ignored
+    /// when its distance is not exact).
+    pub fn with_analytic(mut self, analytic: Option<&Analytic>) -> Self {
+        self.analytic = analytic
+            .copied()
+            .filter(|a| !matches!(a, Analytic::ObliqueCone { .. }));
+        self
     }
 
     /// The normal of the pole `uv` lies on, if it lies on a collapsed side.

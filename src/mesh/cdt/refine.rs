@@ -315,8 +315,12 @@ fn assess(info: &PatchInfo, mesh: &TriMesh, t: u32, limits: &Limits) -> Option<C
         let mut badness = probe(0.5 * (x.point + y.point), mid) / limits.tolerance;
         let (long, turn) = limits.edge_allowance(tri[i], tri[j]);
         if let Some(angle) = limits.angle {
+            let limit = angle.max(turn);
             let cos = end_normal(info, x, y.uv).dot(end_normal(info, y, x.uv));
-            badness = badness.max(cos.clamp(-1.0, 1.0).acos() / angle.max(turn));
+            // Within the limit the angle cannot make the triangle bad: skip the acos.
+            if cos < limit.cos() {
+                badness = badness.max(cos.clamp(-1.0, 1.0).acos() / limit);
+            }
         }
         if let Some(max) = limits.max_edge {
             badness = badness.max((x.point - y.point).length() / max.max(long));

@@ -41,8 +41,9 @@ impl TriMesh {
         tris: Vec<[u32; 3]>,
         is_fixed: impl Fn(u32, u32) -> bool,
     ) -> Self {
-        let mut directed: std::collections::HashMap<(u32, u32), (u32, usize)> =
-            std::collections::HashMap::with_capacity(tris.len() * 3);
+        let mut directed: rustc_hash::FxHashMap<(u32, u32), (u32, usize)> =
+            rustc_hash::FxHashMap::default();
+        directed.reserve(tris.len() * 3);
         for (t, tri) in tris.iter().enumerate() {
             for i in 0..3 {
                 directed.insert((tri[i], tri[(i + 1) % 3]), (t as u32, i));
