@@ -5,6 +5,9 @@
 //! knot values exactly and at the domain ends, and on random rational surfaces of
 //! degree 1–4 with repeated knots.
 
+mod common;
+
+use common::heads::head_kinds;
 use glam::{DVec3, DVec4};
 use proptest::prelude::*;
 use proptest::test_runner::RngSeed;
@@ -25,31 +28,7 @@ const RANDOM_NORMAL_TOL: f64 = 1e-10;
 const SAMPLES: usize = 41;
 
 fn all_heads() -> Vec<Head> {
-    let kinds = [
-        HeadKind::Hemispherical,
-        HeadKind::TWO_TO_ONE,
-        HeadKind::Ellipsoidal { ratio: 1.7 },
-        HeadKind::asme_fd(OD),
-        HeadKind::eighty_ten(OD),
-        HeadKind::Toriconical {
-            half_angle: 30.0,
-            knuckle_radius: 0.1 * OD,
-        },
-        HeadKind::Conical {
-            half_angle: 30.0,
-            small_diameter: 0.0,
-        },
-        HeadKind::Conical {
-            half_angle: 45.0,
-            small_diameter: 0.25 * OD,
-        },
-        HeadKind::Flat {
-            knuckle_radius: 0.0,
-        },
-        HeadKind::Flat {
-            knuckle_radius: 0.05 * OD,
-        },
-    ];
+    let kinds = head_kinds(OD);
     kinds
         .into_iter()
         .flat_map(|k| {

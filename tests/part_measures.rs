@@ -2,6 +2,9 @@
 //! closed forms derived independently here for every kind of head (with and without
 //! straight flange), the shell course and the concentric reducer.
 
+mod common;
+
+use common::heads::head_kinds;
 use std::f64::consts::{FRAC_PI_2, PI};
 
 use vesselcad::parts::heads::{Head, HeadKind};
@@ -134,31 +137,7 @@ fn assert_close(what: &str, got: f64, expect: f64) {
 }
 
 fn kinds() -> Vec<HeadKind> {
-    vec![
-        HeadKind::Hemispherical,
-        HeadKind::TWO_TO_ONE,
-        HeadKind::Ellipsoidal { ratio: 1.7 },
-        HeadKind::asme_fd(OD),
-        HeadKind::eighty_ten(OD),
-        HeadKind::Toriconical {
-            half_angle: 30.0,
-            knuckle_radius: 0.1 * OD,
-        },
-        HeadKind::Conical {
-            half_angle: 30.0,
-            small_diameter: 0.0,
-        },
-        HeadKind::Conical {
-            half_angle: 45.0,
-            small_diameter: 0.25 * OD,
-        },
-        HeadKind::Flat {
-            knuckle_radius: 0.0,
-        },
-        HeadKind::Flat {
-            knuckle_radius: 0.05 * OD,
-        },
-    ]
+    head_kinds(OD)
 }
 
 #[test]

@@ -2,28 +2,12 @@
 //! tiny, impossible combinations — with either valid finite geometry or a
 //! `PartError::InvalidParameter` naming the field; it never panics.
 
+mod common;
+
+use common::numbers::any_number_up_to;
 use proptest::prelude::*;
 use vesselcad::parts::heads::{Head, HeadKind};
 use vesselcad::parts::{PartError, Patch, Reducer, ReducerAlignment, Shell};
-
-/// Any f64 a user could type or a file could hold, weighted towards trouble.
-fn any_number() -> impl Strategy<Value = f64> {
-    prop_oneof![
-        Just(f64::NAN),
-        Just(f64::INFINITY),
-        Just(f64::NEG_INFINITY),
-        Just(0.0),
-        Just(-0.0),
-        Just(f64::MIN_POSITIVE),
-        Just(f64::MAX),
-        Just(1e-300),
-        Just(1e300),
-        -1e4..1e4f64,
-        0.0..5000.0f64,
-        0.0..90.0f64,
-        proptest::num::f64::ANY,
-    ]
-}
 
 /// Valid geometry (all control points finite) or a parameter error.
 fn check(result: Result<Vec<Patch>, PartError>) -> Result<(), TestCaseError> {
@@ -50,24 +34,36 @@ fn check(result: Result<Vec<Patch>, PartError>) -> Result<(), TestCaseError> {
 fn head_kind() -> impl Strategy<Value = HeadKind> {
     prop_oneof![
         Just(HeadKind::Hemispherical),
-        any_number().prop_map(|ratio| HeadKind::Ellipsoidal { ratio }),
-        (any_number(), any_number()).prop_map(|(crown_radius, knuckle_radius)| {
-            HeadKind::Torispherical {
-                crown_radius,
-                knuckle_radius,
-            }
-        }),
-        (any_number(), any_number()).prop_map(|(half_angle, knuckle_radius)| {
-            HeadKind::Toriconical {
+        any_number_up_to(5000.0, 90.0).prop_map(|ratio| HeadKind::Ellipsoidal { ratio }),
+        (
+            any_number_up_to(5000.0, 90.0),
+            any_number_up_to(5000.0, 90.0)
+        )
+            .prop_map(|(crown_radius, knuckle_radius)| {
+                HeadKind::Torispherical {
+                    crown_radius,
+                    knuckle_radius,
+                }
+            }),
+        (
+            any_number_up_to(5000.0, 90.0),
+            any_number_up_to(5000.0, 90.0)
+        )
+            .prop_map(|(half_angle, knuckle_radius)| {
+                HeadKind::Toriconical {
+                    half_angle,
+                    knuckle_radius,
+                }
+            }),
+        (
+            any_number_up_to(5000.0, 90.0),
+            any_number_up_to(5000.0, 90.0)
+        )
+            .prop_map(|(half_angle, small_diameter)| HeadKind::Conical {
                 half_angle,
-                knuckle_radius,
-            }
-        }),
-        (any_number(), any_number()).prop_map(|(half_angle, small_diameter)| HeadKind::Conical {
-            half_angle,
-            small_diameter
-        }),
-        any_number().prop_map(|knuckle_radius| HeadKind::Flat { knuckle_radius }),
+                small_diameter
+            }),
+        any_number_up_to(5000.0, 90.0).prop_map(|knuckle_radius| HeadKind::Flat { knuckle_radius }),
     ]
 }
 
@@ -75,7 +71,7 @@ proptest! {
     #![proptest_config(ProptestConfig { cases: 2000, failure_persistence: None, ..ProptestConfig::default() })]
 
     #[test]
-    fn heads_never_panic(d in any_number(), sf in any_number(), kind in head_kind()) {
+    fn heads_never_panic(d in any_number_up_to(5000.0, 90.0), sf in any_number_up_to(5000.0, 90.0), kind in head_kind()) {
         let head = Head { outside_diameter: d, straight_flange: sf, kind };
         check(head.patches())?;
         // Depth is finite whenever the head is valid.
@@ -85,12 +81,12 @@ proptest! {
     }
 
     #[test]
-    fn shells_never_panic(d in any_number(), l in any_number()) {
+    fn shells_never_panic(d in any_number_up_to(5000.0, 90.0), l in any_number_up_to(5000.0, 90.0)) {
         check(Shell { outside_diameter: d, length: l }.patches())?;
     }
 
     #[test]
-    fn reducers_never_panic(a in any_number(), b in any_number(), l in any_number(), side in any_number(), eccentric in any::<bool>()) {
+    fn reducers_never_panic(a in any_number_up_to(5000.0, 90.0), b in any_number_up_to(5000.0, 90.0), l in any_number_up_to(5000.0, 90.0), side in any_number_up_to(5000.0, 90.0), eccentric in any::<bool>()) {
         let alignment = if eccentric { ReducerAlignment::Eccentric { flat_side: side } } else { ReducerAlignment::Concentric };
         check(Reducer { large_diameter: a, small_diameter: b, length: l, alignment }.patches())?;
     }

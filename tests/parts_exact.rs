@@ -3,6 +3,8 @@
 
 mod common;
 
+use common::heads::head_kinds;
+
 use common::*;
 use glam::DVec3;
 use vesselcad::parts::heads::{Head, HeadKind};
@@ -12,31 +14,7 @@ const OD: f64 = 2400.0;
 const TOL: f64 = 1e-9 * OD;
 
 fn all_heads(od: f64) -> Vec<Head> {
-    let kinds = [
-        HeadKind::Hemispherical,
-        HeadKind::TWO_TO_ONE,
-        HeadKind::Ellipsoidal { ratio: 1.7 },
-        HeadKind::asme_fd(od),
-        HeadKind::eighty_ten(od),
-        HeadKind::Toriconical {
-            half_angle: 30.0,
-            knuckle_radius: 0.1 * od,
-        },
-        HeadKind::Conical {
-            half_angle: 30.0,
-            small_diameter: 0.0,
-        },
-        HeadKind::Conical {
-            half_angle: 45.0,
-            small_diameter: 0.25 * od,
-        },
-        HeadKind::Flat {
-            knuckle_radius: 0.0,
-        },
-        HeadKind::Flat {
-            knuckle_radius: 0.05 * od,
-        },
-    ];
+    let kinds = head_kinds(od);
     kinds
         .into_iter()
         .flat_map(|k| {

@@ -4,6 +4,7 @@
 
 mod common;
 
+use common::supports::*;
 use common::*;
 use glam::DVec3;
 use proptest::prelude::*;
@@ -11,56 +12,7 @@ use vesselcad::nurbs::Side;
 use vesselcad::parts::heads::HeadKind;
 use vesselcad::parts::{Boot, Legs, Lugs, Patch, Saddle, Skirt};
 
-const OD: f64 = 2400.0;
 const TOL: f64 = 1e-9 * OD;
-
-fn skirt(flare_angle: f64, base_ring_width: f64) -> Skirt {
-    Skirt {
-        top_diameter: OD,
-        height: 3000.0,
-        flare_angle,
-        thickness: 12.0,
-        base_ring_width,
-    }
-}
-
-fn saddle() -> Saddle {
-    Saddle {
-        shell_diameter: OD,
-        contact_angle: 120.0,
-        width: 300.0,
-        height: 1600.0,
-        web_thickness: 12.0,
-        base_length: 2400.0,
-        base_width: 250.0,
-        base_thickness: 20.0,
-    }
-}
-
-fn legs() -> Legs {
-    Legs {
-        count: 4,
-        pipe_diameter: 219.1,
-        length: 1800.0,
-        shell_diameter: OD,
-        first_angle: 45.0,
-    }
-}
-
-fn lugs() -> Lugs {
-    Lugs {
-        count: 4,
-        shell_diameter: OD,
-        height: 400.0,
-        projection: 300.0,
-        width: 250.0,
-        first_angle: 0.0,
-    }
-}
-
-fn boot() -> Boot {
-    Boot::new(600.0, 900.0, OD)
-}
 
 /// Asserts every grid normal of `patch` is `expected(point)` (unit, within 1e-9).
 fn assert_normals(patch: &Patch, expected: impl Fn(DVec3) -> DVec3) {
@@ -86,7 +38,7 @@ fn radial(x: DVec3) -> DVec3 {
 fn skirts_are_exact_cylinders_and_cones_with_a_base_ring() {
     for angle in [0.0, 7.5, 30.0, 45.0] {
         for ring in [0.0, 150.0] {
-            let s = skirt(angle, ring);
+            let s = skirt_with(angle, ring);
             let patches = s.patches().unwrap();
             assert_eq!(patches.len(), if ring > 0.0 { 2 } else { 1 });
             assert_on_analytic(&patches, TOL);

@@ -2,11 +2,13 @@
 //! out-of-range angles and counts, impossible combinations — with
 //! `PartError::InvalidParameter` naming the field, and never panic.
 
+mod common;
+
+use common::numbers::any_number_up_to;
+use common::supports::*;
 use proptest::prelude::*;
 use vesselcad::parts::heads::HeadKind;
 use vesselcad::parts::{Boot, Legs, Lugs, MAX_LEGS, MAX_LUGS, PartError, Patch, Saddle, Skirt};
-
-const OD: f64 = 2400.0;
 
 /// Values no dimension accepts.
 const BAD: [f64; 7] = [
@@ -28,50 +30,6 @@ const BAD_PLAN_ANGLES: [f64; 6] = [
     -400.0,
     1e300,
 ];
-
-fn skirt() -> Skirt {
-    Skirt {
-        top_diameter: OD,
-        height: 3000.0,
-        flare_angle: 15.0,
-        thickness: 12.0,
-        base_ring_width: 150.0,
-    }
-}
-
-fn saddle() -> Saddle {
-    Saddle {
-        shell_diameter: OD,
-        contact_angle: 120.0,
-        width: 300.0,
-        height: 1600.0,
-        web_thickness: 12.0,
-        base_length: 2400.0,
-        base_width: 250.0,
-        base_thickness: 20.0,
-    }
-}
-
-fn legs() -> Legs {
-    Legs {
-        count: 4,
-        pipe_diameter: 219.1,
-        length: 1800.0,
-        shell_diameter: OD,
-        first_angle: 45.0,
-    }
-}
-
-fn lugs() -> Lugs {
-    Lugs {
-        count: 4,
-        shell_diameter: OD,
-        height: 400.0,
-        projection: 300.0,
-        width: 250.0,
-        first_angle: 0.0,
-    }
-}
 
 /// Asserts `result` is an `InvalidParameter` naming `field`.
 fn assert_rejects(result: Result<Vec<Patch>, PartError>, field: &str, value: impl std::fmt::Debug) {
@@ -117,7 +75,7 @@ fn skirt_rejects_bad_numbers() {
     ];
     let ring = &[-1.0, f64::NAN, f64::INFINITY, f64::NEG_INFINITY, 1e300];
     assert_fields(
-        skirt(),
+        skirt_with(15.0, 150.0),
         Skirt::patches,
         &[
             ("top_diameter", |s, v| s.top_diameter = v, true, &[]),
@@ -245,25 +203,6 @@ fn boot_rejects_bad_numbers() {
     }
 }
 
-/// Any f64 a user could type or a file could hold, weighted towards trouble.
-fn any_number() -> impl Strategy<Value = f64> {
-    prop_oneof![
-        Just(f64::NAN),
-        Just(f64::INFINITY),
-        Just(f64::NEG_INFINITY),
-        Just(0.0),
-        Just(-0.0),
-        Just(f64::MIN_POSITIVE),
-        Just(f64::MAX),
-        Just(1e-300),
-        Just(1e300),
-        -1e4..1e4f64,
-        0.0..5000.0f64,
-        0.0..180.0f64,
-        proptest::num::f64::ANY,
-    ]
-}
-
 fn any_count() -> impl Strategy<Value = u32> {
     prop_oneof![0..40u32, any::<u32>()]
 }
@@ -290,13 +229,13 @@ proptest! {
     #![proptest_config(ProptestConfig { cases: 1000, failure_persistence: None, ..ProptestConfig::default() })]
 
     #[test]
-    fn skirts_never_panic(d in any_number(), h in any_number(), a in any_number(), t in any_number(), w in any_number()) {
+    fn skirts_never_panic(d in any_number_up_to(5000.0, 180.0), h in any_number_up_to(5000.0, 180.0), a in any_number_up_to(5000.0, 180.0), t in any_number_up_to(5000.0, 180.0), w in any_number_up_to(5000.0, 180.0)) {
         let s = Skirt { top_diameter: d, height: h, flare_angle: a, thickness: t, base_ring_width: w };
         check(s.patches(), &["top_diameter", "height", "flare_angle", "thickness", "base_ring_width"])?;
     }
 
     #[test]
-    fn saddles_never_panic(v in proptest::collection::vec(any_number(), 8)) {
+    fn saddles_never_panic(v in proptest::collection::vec(any_number_up_to(5000.0, 180.0), 8)) {
         let s = Saddle {
             shell_diameter: v[0], contact_angle: v[1], width: v[2], height: v[3],
             web_thickness: v[4], base_length: v[5], base_width: v[6], base_thickness: v[7],
@@ -306,19 +245,19 @@ proptest! {
     }
 
     #[test]
-    fn legs_never_panic(count in any_count(), p in any_number(), l in any_number(), d in any_number(), a in any_number()) {
+    fn legs_never_panic(count in any_count(), p in any_number_up_to(5000.0, 180.0), l in any_number_up_to(5000.0, 180.0), d in any_number_up_to(5000.0, 180.0), a in any_number_up_to(5000.0, 180.0)) {
         let legs = Legs { count, pipe_diameter: p, length: l, shell_diameter: d, first_angle: a };
         check(legs.patches(), &["count", "pipe_diameter", "length", "shell_diameter", "first_angle"])?;
     }
 
     #[test]
-    fn lugs_never_panic(count in any_count(), v in proptest::collection::vec(any_number(), 5)) {
+    fn lugs_never_panic(count in any_count(), v in proptest::collection::vec(any_number_up_to(5000.0, 180.0), 5)) {
         let lugs = Lugs { count, shell_diameter: v[0], height: v[1], projection: v[2], width: v[3], first_angle: v[4] };
         check(lugs.patches(), &["count", "shell_diameter", "height", "projection", "width", "first_angle"])?;
     }
 
     #[test]
-    fn boots_never_panic(d in any_number(), l in any_number(), host in any_number(), ratio in any_number()) {
+    fn boots_never_panic(d in any_number_up_to(5000.0, 180.0), l in any_number_up_to(5000.0, 180.0), host in any_number_up_to(5000.0, 180.0), ratio in any_number_up_to(5000.0, 180.0)) {
         let boot = Boot::new(d, l, host).with_head(HeadKind::Ellipsoidal { ratio });
         check(boot.patches(), &["diameter", "length", "host_diameter", "ratio", "outside_diameter", "depth"])?;
     }

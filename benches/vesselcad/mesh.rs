@@ -64,7 +64,7 @@ use nalgebra::{Point2, Point4};
 use rayon::prelude::*;
 use vesselcad::components::{PatchRegion, PatchSurface};
 use vesselcad::design::{Design, parse};
-use vesselcad::mesh::cdt::{Region, mesh_region, mesh_region_with_uvs};
+use vesselcad::mesh::cdt::{Region, mesh_region_on, mesh_region_with_uvs};
 use vesselcad::mesh::{Mesh, TessellationOptions, patch_region};
 use vesselcad::model::Model;
 use vesselcad::nurbs::NurbsSurface;
@@ -294,7 +294,7 @@ fn region_of<'a>(
 fn ours(piece: &Piece, options: &TessellationOptions) -> Mesh {
     let mut laid_out = None;
     let region = region_of(piece, options, &mut laid_out);
-    mesh_region(&piece.surface, region, options)
+    mesh_region_on(&piece.surface, &piece.analytic, region, options)
         .expect("the patch meshes")
         .0
 }

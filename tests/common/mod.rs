@@ -3,6 +3,10 @@
 
 #![allow(dead_code, reason = "each test binary uses a different subset")]
 
+pub mod heads;
+pub mod numbers;
+pub mod supports;
+
 use glam::DVec3;
 use vesselcad::nurbs::NurbsSurface;
 use vesselcad::parts::Patch;

@@ -48,7 +48,17 @@ pub fn mesh_patch_region(
     region: &Region,
     options: &TessellationOptions,
 ) -> Result<(Mesh, MeshStats), CdtError> {
-    let out = mesh_with(&patch.surface, Some(&patch.analytic), region, options)?;
+    mesh_region_on(&patch.surface, &patch.analytic, region, options)
+}
+
+/// [`mesh_patch_region`] for a surface and the analytic surface it lies on.
+pub fn mesh_region_on(
+    surface: &NurbsSurface,
+    analytic: &Analytic,
+    region: &Region,
+    options: &TessellationOptions,
+) -> Result<(Mesh, MeshStats), CdtError> {
+    let out = mesh_with(surface, Some(analytic), region, options)?;
     Ok((out.mesh, out.stats))
 }
 

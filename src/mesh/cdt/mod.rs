@@ -28,7 +28,9 @@ mod seed;
 mod trimesh;
 
 pub use error::CdtError;
-pub use mesher::{VERTEX_BUDGET, mesh_patch_region, mesh_region, mesh_region_with_uvs};
+pub use mesher::{
+    VERTEX_BUDGET, mesh_patch_region, mesh_region, mesh_region_on, mesh_region_with_uvs,
+};
 pub use output::{MeshStats, RegionMesh};
 pub use patch::wrap_u;
 pub use region::{Region, UvLoop};
