@@ -116,29 +116,51 @@ fn project_homogeneous(projection: &ParallelProjection, p: DVec4) -> DVec4 {
     homogeneous(projection.project_point(euclidean(p)), p.w)
 }
 
+/// What transforms and projections need of a curve or surface: its homogeneous
+/// control points, and the same shape over other points.
+trait ControlNet: Sized {
+    fn net(&self) -> &[DVec4];
+    fn with_net(&self, points: Vec<DVec4>) -> Result<Self, NurbsError>;
+
+    /// The shape with every homogeneous control point mapped by `f`.
+    fn map_net(&self, f: impl Fn(DVec4) -> DVec4) -> Result<Self, NurbsError> {
+        self.with_net(self.net().iter().map(|&p| f(p)).collect())
+    }
+}
+
+impl ControlNet for NurbsCurve {
+    fn net(&self) -> &[DVec4] {
+        self.homogeneous_points()
+    }
+
+    fn with_net(&self, points: Vec<DVec4>) -> Result<Self, NurbsError> {
+        NurbsCurve::try_new(self.knots().clone(), points)
+    }
+}
+
+impl ControlNet for NurbsSurface {
+    fn net(&self) -> &[DVec4] {
+        self.homogeneous_points()
+    }
+
+    fn with_net(&self, points: Vec<DVec4>) -> Result<Self, NurbsError> {
+        NurbsSurface::try_new(self.u_knots().clone(), self.v_knots().clone(), points)
+    }
+}
+
 impl NurbsCurve {
     /// The curve mapped by `transform` (control points mapped, weights kept).
     /// Errors if the transform has a non-finite entry or a mapped point overflows.
     pub fn transformed(&self, transform: &DAffine3) -> Result<NurbsCurve, NurbsError> {
         check_affine(transform)?;
-        let points = self
-            .homogeneous_points()
-            .iter()
-            .map(|&p| transform_homogeneous(transform, p))
-            .collect();
-        NurbsCurve::try_new(self.knots().clone(), points)
+        self.map_net(|p| transform_homogeneous(transform, p))
     }
 
     /// The curve projected by `projection` (control points projected, weights
     /// kept). Every point of the result lies on the projection plane. Errors only
     /// if a projected point overflows.
     pub fn projected(&self, projection: &ParallelProjection) -> Result<NurbsCurve, NurbsError> {
-        let points = self
-            .homogeneous_points()
-            .iter()
-            .map(|&p| project_homogeneous(projection, p))
-            .collect();
-        NurbsCurve::try_new(self.knots().clone(), points)
+        self.map_net(|p| project_homogeneous(projection, p))
     }
 }
 
@@ -147,24 +169,14 @@ impl NurbsSurface {
     /// Errors if the transform has a non-finite entry or a mapped point overflows.
     pub fn transformed(&self, transform: &DAffine3) -> Result<NurbsSurface, NurbsError> {
         check_affine(transform)?;
-        let points = self
-            .homogeneous_points()
-            .iter()
-            .map(|&p| transform_homogeneous(transform, p))
-            .collect();
-        NurbsSurface::try_new(self.u_knots().clone(), self.v_knots().clone(), points)
+        self.map_net(|p| transform_homogeneous(transform, p))
     }
 
     /// The surface projected by `projection` (control points projected, weights
     /// kept). Every point of the result lies on the projection plane. Errors only
     /// if a projected point overflows.
     pub fn projected(&self, projection: &ParallelProjection) -> Result<NurbsSurface, NurbsError> {
-        let points = self
-            .homogeneous_points()
-            .iter()
-            .map(|&p| project_homogeneous(projection, p))
-            .collect();
-        NurbsSurface::try_new(self.u_knots().clone(), self.v_knots().clone(), points)
+        self.map_net(|p| project_homogeneous(projection, p))
     }
 }
 
