@@ -1,7 +1,9 @@
-//! Openings: for every nozzle whose frame or shape changed, or whose host part
-//! changed or moved, compute the curve where its neck meets its host — once, in the
-//! host's frame — and store it as the nozzle's [`Opening`]. Runs in the Geometry
-//! stage after the patches are rebuilt, in parallel with rayon.
+//! Openings: for every nozzle (or boot) whose frame or shape changed, or whose host
+//! part changed or moved, compute the curve where its neck (the boot's shell) meets
+//! its host — once, in the host's frame — and store it as its [`Opening`]. Every
+//! entity `MountedOn` a host is cut this way: nozzles on their host part, a boot on
+//! its shell course. Runs in the Geometry stage after the patches are rebuilt, in
+//! parallel with rayon.
 
 use std::collections::{BTreeSet, HashMap};
 use std::sync::Arc;
@@ -15,8 +17,7 @@ use rayon::prelude::*;
 
 use super::{ModelErrors, Tessellation, WorkCounters};
 use crate::components::{
-    MountedOn, Mounts, NozzleSpec, Opening, PadOf, PadPatch, PartFrame, PatchSurface, Patches,
-    Shape,
+    MountedOn, Mounts, Opening, PadOf, PadPatch, PartFrame, PatchSurface, Patches, Shape,
 };
 use crate::design::RuleViolation;
 use crate::mesh::{Cut, cut_opening, pad_patch};
@@ -27,9 +28,9 @@ use crate::parts::Patch;
 #[derive(Resource, Default, Debug)]
 pub struct OpeningHosts(pub HashMap<Entity, Entity>);
 
-/// Nozzles whose own frame or shape changed, or that were re-hosted.
+/// Nozzles and boots whose own frame or shape changed, or that were re-hosted.
 pub type ChangedNozzle = (
-    With<NozzleSpec>,
+    With<MountedOn>,
     Or<(Changed<PartFrame>, Changed<Shape>, Changed<MountedOn>)>,
 );
 /// Host parts that moved or changed shape.

@@ -1,15 +1,15 @@
-//! Each vessel's pressure envelope — heads, courses, reducers and nozzles with
-//! their openings — meshes into a closed, consistently oriented 2-manifold, apart
-//! from the intended open ends (the bores of open nozzles): every other edge is
-//! shared by exactly two triangles, once in each direction, and the enclosed volume
-//! is positive (normals outward). Checked on every example design and on randomized
-//! nozzle layouts.
+//! Each vessel's pressure envelope — heads, courses, reducers, the boot and the
+//! nozzles with their openings — meshes into a closed, consistently oriented
+//! 2-manifold, apart from the intended open ends (the bores of open nozzles): every
+//! other edge is shared by exactly two triangles, once in each direction, and the
+//! enclosed volume is positive (normals outward). Checked on every example design,
+//! on randomized nozzle layouts and on randomized boots.
 
 use std::collections::HashMap;
 
 use glam::{DAffine3, DVec3};
 use proptest::prelude::*;
-use vesselcad::design::{Design, NozzleDesign, PadDesign, PartDesign, load};
+use vesselcad::design::{Design, HeadShape, NozzleDesign, PadDesign, PartDesign, load};
 use vesselcad::export::{Scene, SceneNodeKind};
 use vesselcad::mesh::TessellationOptions;
 use vesselcad::model::Model;
@@ -65,7 +65,7 @@ fn on_a_bore(p: DVec3, bores: &[(DAffine3, f64, f64)]) -> bool {
 /// Checks one vessel of the scene; `bores` are (nozzle frame in vessel, face z, bore radius).
 fn check_vessel(scene: &Scene, tag: &str, bores: &[(DAffine3, f64, f64)]) {
     let vessel = scene.vessels.iter().find(|v| v.tag == tag).unwrap();
-    let envelope = ["shell", "head", "reducer"];
+    let envelope = ["shell", "head", "reducer", "boot"];
     let mut welder = Welder {
         cells: HashMap::new(),
         count: 0,
@@ -216,5 +216,46 @@ proptest! {
         if vesselcad::design::validate(&design).is_ok() {
             check_design(&design, 1.0);
         }
+    }
+}
+
+proptest! {
+    #![proptest_config(ProptestConfig { cases: 8, failure_persistence: None, ..ProptestConfig::default() })]
+
+    /// Random boots under the drum: position, diameter (up to 0.8 of the shell's),
+    /// length and head shape. The boot's shell is cut at its intersection with the
+    /// drum's shell, which gets the matching hole.
+    #[test]
+    fn random_boots_are_watertight(
+        at in 0.0..1.0f64,
+        fraction in 0.1..0.8f64,
+        length in 200.0..1500.0f64,
+        head in prop_oneof![
+            Just(HeadShape::Ellipsoidal),
+            Just(HeadShape::Hemispherical),
+            Just(HeadShape::Torispherical),
+            Just(HeadShape::Flat),
+        ],
+    ) {
+        let mut design = example("horizontal-drum");
+        let v = &mut design.vessels[0];
+        v.nozzles.clear();
+        v.notes.clear();
+        let (shell_od, shell_length) = v.parts.iter().find_map(|p| match p {
+            PartDesign::Shell(s) => Some((s.od, s.length)),
+            _ => None,
+        }).unwrap();
+        let od = (fraction * shell_od).round();
+        for p in &mut v.parts {
+            if let PartDesign::Boot(b) = p {
+                // Anywhere wholly under the course.
+                b.position = od / 2.0 + 1.0 + at * (shell_length - od - 2.0);
+                b.od = od;
+                b.length = length;
+                b.head = head;
+            }
+        }
+        vesselcad::design::validate(&design).unwrap();
+        check_design(&design, 1.0);
     }
 }

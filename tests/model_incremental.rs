@@ -137,6 +137,75 @@ fn shell_diameter_rebuilds_its_dependents_in_its_vessel_only() {
     assert_matches_full_build(&m);
 }
 
+/// The boot of V-101 in the small plant.
+fn boot(m: &Model) -> vesselcad::design::BootDesign {
+    m.design().vessels[0]
+        .parts
+        .iter()
+        .find_map(|p| match p {
+            PartDesign::Boot(b) => Some(b.clone()),
+            _ => None,
+        })
+        .unwrap()
+}
+
+#[test]
+fn boot_length_rebuilds_only_the_boot_and_its_host_patch() {
+    let mut m = model("small-plant");
+    m.take_changes();
+    let mut b = boot(&m);
+    b.length += 250.0;
+    let c = m
+        .edit(Edit::SetPart {
+            vessel: "V-101".into(),
+            part: PartDesign::Boot(b),
+        })
+        .unwrap();
+    assert_eq!(c.shapes_rebuilt, 1, "{c:?}");
+    // The boot's shell is cut again against the course; the boot's own patches
+    // and at most the course's one patch (if the hole's samples moved) re-mesh.
+    assert_eq!(c.openings_cut, 1, "{c:?}");
+    assert!(c.patches_rebuilt > 0, "{c:?}");
+    assert!(
+        c.meshes_rebuilt >= c.patches_rebuilt && c.meshes_rebuilt <= c.patches_rebuilt + 1,
+        "{c:?}"
+    );
+    let changed = m.take_changes().changed;
+    assert!(changed.contains("V-101/B1"), "{changed:?}");
+    assert!(
+        changed
+            .iter()
+            .all(|id| id == "V-101/B1" || id == "V-101/S1"),
+        "{changed:?}"
+    );
+    assert_matches_full_build(&m);
+}
+
+#[test]
+fn moving_the_boot_recuts_its_opening_without_rebuilding_patches() {
+    let mut m = model("small-plant");
+    m.take_changes();
+    let mut b = boot(&m);
+    b.position += 700.0;
+    let c = m
+        .edit(Edit::SetPart {
+            vessel: "V-101".into(),
+            part: PartDesign::Boot(b),
+        })
+        .unwrap();
+    assert_eq!((c.shapes_rebuilt, c.patches_rebuilt), (0, 0), "{c:?}");
+    assert_eq!(c.frames_updated, 1, "{c:?}");
+    // The hole moves in the course: the boot's shell and the course re-mesh, at
+    // most (the boot's own bottom loop is unchanged in its (u, v)).
+    assert_eq!(c.openings_cut, 1, "{c:?}");
+    assert!(c.meshes_rebuilt >= 1 && c.meshes_rebuilt <= 2, "{c:?}");
+    assert_eq!(
+        m.take_changes().changed.into_iter().collect::<Vec<_>>(),
+        vec!["V-101/B1".to_string(), "V-101/S1".to_string()]
+    );
+    assert_matches_full_build(&m);
+}
+
 #[test]
 fn lengthening_a_course_moves_what_is_above_without_rebuilding_it() {
     let mut m = model("vertical-column");

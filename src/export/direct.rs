@@ -88,7 +88,9 @@ pub fn build_scene(design: &Design, options: &TessellationOptions) -> Result<Sce
         }
     }
 
-    // Openings: every nozzle's neck cut against its host, in parallel.
+    // Openings: every boot's shell and every nozzle's neck cut against its host, in
+    // parallel. Per vessel the boots come first, then the nozzles in design order:
+    // the order the model relates them to their hosts, so holes are listed alike.
     let by_node: HashMap<(usize, usize), &Vec<Patch>> =
         patches.iter().map(|(k, list)| (*k, list)).collect();
     let jobs: Vec<(usize, usize, usize, Option<f64>)> = resolved
@@ -96,11 +98,17 @@ pub fn build_scene(design: &Design, options: &TessellationOptions) -> Result<Sce
         .enumerate()
         .flat_map(|(v, vessel)| {
             let parts = vessel.parts.len();
-            vessel
+            let boots = vessel
+                .parts
+                .iter()
+                .enumerate()
+                .filter_map(move |(i, part)| part.host.map(|h| (v, i, h, None)));
+            let nozzles = vessel
                 .nozzles
                 .iter()
                 .enumerate()
-                .map(move |(i, nozzle)| (v, parts + i, nozzle.host, nozzle.pad.map(|p| p.0)))
+                .map(move |(i, nozzle)| (v, parts + i, nozzle.host, nozzle.pad.map(|p| p.0)));
+            boots.chain(nozzles)
         })
         .collect();
     let cut: Vec<_> = jobs
@@ -131,7 +139,7 @@ pub fn build_scene(design: &Design, options: &TessellationOptions) -> Result<Sce
                     };
                     Ok((cut, pad))
                 }),
-                None => Err("the nozzle has no neck patch".to_string()),
+                None => Err("the part has no patch to cut into its host".to_string()),
             };
             ((v, n, h), result)
         })

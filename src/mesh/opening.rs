@@ -1,5 +1,6 @@
-//! Cutting a nozzle opening: the neck placed in its host part's frame, intersected
-//! with the host's patches until one holds the whole loop.
+//! Cutting an opening: a nozzle's neck (or a boot's shell, which is cut the same
+//! way) placed in its host part's frame, intersected with the host's patches until
+//! one holds the whole loop.
 //!
 //! Shared by the ECS Geometry stage (`systems::cut_openings`) and the direct full
 //! build (`export::build_scene`), so both trim exactly alike. A loop that goes
