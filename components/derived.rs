@@ -9,8 +9,8 @@ use glam::{DAffine3, DVec3};
 use bevy_ecs::entity::Entity;
 
 use crate::constraints::PartGeometry;
-use crate::mesh::Mesh;
 use crate::mesh::cdt::Region;
+use crate::mesh::{HostTrim, Mesh};
 use crate::nurbs::intersect::IntersectionLoop;
 use crate::parts::{Nozzle, Patch};
 
@@ -70,8 +70,9 @@ pub struct PatchMesh(pub Arc<Mesh>);
 /// its bottom edge).
 #[derive(Component, Clone, Debug, PartialEq)]
 pub struct Opening {
-    /// The host patch the neck cuts.
-    pub host_patch: Entity,
+    /// The host patches the neck cuts, with how it trims each: one patch with a
+    /// hole, or the two patches whose seam the opening crosses, with notches.
+    pub hosts: Vec<(Entity, HostTrim)>,
     /// The nozzle's neck patch (the boot's shell patch).
     pub neck_patch: Entity,
     /// The intersection loop, in the host part's frame, with (u, v) on both patches.

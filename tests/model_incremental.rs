@@ -207,6 +207,64 @@ fn moving_the_boot_recuts_its_opening_without_rebuilding_patches() {
 }
 
 #[test]
+fn a_nozzle_across_a_head_seam_recuts_both_host_patches_incrementally() {
+    // N3 moved out to cross the knuckle–crown seam of the torispherical top head
+    // (at a radius of about 655 mm).
+    let mut design = example("vertical-column");
+    let n3 = design.vessels[0]
+        .nozzles
+        .iter_mut()
+        .find(|n| n.mark == "N3")
+        .unwrap();
+    n3.size = 3.0;
+    n3.offset = Some(640.0);
+    let mut m = Model::from_design(&design, options()).unwrap();
+    assert!(m.errors().0.is_empty(), "{:?}", m.errors());
+    assert_matches_full_build(&m);
+    m.take_changes();
+    let mut n = m.design().vessels[0]
+        .nozzles
+        .iter()
+        .find(|n| n.mark == "N3")
+        .unwrap()
+        .clone();
+    n.orientation = 100.0;
+    let c = m
+        .edit(Edit::SetNozzle {
+            vessel: "C-201".into(),
+            nozzle: n,
+        })
+        .unwrap();
+    assert_eq!((c.frames_updated, c.patches_rebuilt), (1, 0), "{c:?}");
+    // The neck, the knuckle and the crown, nothing else.
+    assert_eq!(c.openings_cut, 1, "{c:?}");
+    assert_eq!(c.meshes_rebuilt, 3, "{c:?}");
+    assert_eq!(
+        m.take_changes().changed.into_iter().collect::<Vec<_>>(),
+        vec!["C-201/H2".to_string(), "C-201/N3".to_string()]
+    );
+    assert!(m.errors().0.is_empty(), "{:?}", m.errors());
+    assert_matches_full_build(&m);
+    // Moved inside the crown: the knuckle loses its notch and is re-meshed whole.
+    let mut n = m.design().vessels[0]
+        .nozzles
+        .iter()
+        .find(|n| n.mark == "N3")
+        .unwrap()
+        .clone();
+    n.offset = Some(400.0);
+    let c = m
+        .edit(Edit::SetNozzle {
+            vessel: "C-201".into(),
+            nozzle: n,
+        })
+        .unwrap();
+    assert_eq!(c.meshes_rebuilt, 3, "{c:?}");
+    assert!(m.errors().0.is_empty(), "{:?}", m.errors());
+    assert_matches_full_build(&m);
+}
+
+#[test]
 fn lengthening_a_course_moves_what_is_above_without_rebuilding_it() {
     let mut m = model("vertical-column");
     m.take_changes();
