@@ -9,8 +9,8 @@ use glam::{DAffine3, DVec3};
 use bevy_ecs::entity::Entity;
 
 use crate::constraints::PartGeometry;
-use crate::mesh::Mesh;
 use crate::mesh::cdt::Region;
+use crate::mesh::{HostTrim, Mesh};
 use crate::nurbs::intersect::IntersectionLoop;
 use crate::parts::{Nozzle, Patch};
 
@@ -65,13 +65,15 @@ pub struct PatchSurface(pub Arc<Patch>);
 #[derive(Component, Clone, Debug, PartialEq)]
 pub struct PatchMesh(pub Arc<Mesh>);
 
-/// A nozzle's opening: where its neck meets its host, computed once and used to
-/// trim both (the host patch gets a hole, the neck its bottom edge).
+/// A nozzle's (or a boot's) opening: where its neck (the boot's shell) meets its
+/// host, computed once and used to trim both (the host patch gets a hole, the neck
+/// its bottom edge).
 #[derive(Component, Clone, Debug, PartialEq)]
 pub struct Opening {
-    /// The host patch the neck cuts.
-    pub host_patch: Entity,
-    /// The nozzle's neck patch.
+    /// The host patches the neck cuts, with how it trims each: one patch with a
+    /// hole, or the two patches whose seam the opening crosses, with notches.
+    pub hosts: Vec<(Entity, HostTrim)>,
+    /// The nozzle's neck patch (the boot's shell patch).
     pub neck_patch: Entity,
     /// The intersection loop, in the host part's frame, with (u, v) on both patches.
     pub curve: Arc<IntersectionLoop>,

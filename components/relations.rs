@@ -6,12 +6,13 @@
 use bevy_ecs::component::Component;
 use bevy_ecs::entity::Entity;
 
-/// The host part a nozzle is mounted on.
+/// The host part a nozzle is mounted on, or the shell course a boot hangs from:
+/// its first patch is cut at their intersection.
 #[derive(Component, Clone, Copy, Debug, PartialEq, Eq)]
 #[relationship(relationship_target = Mounts)]
 pub struct MountedOn(pub Entity);
 
-/// The nozzles mounted on a part (kept by bevy from [`MountedOn`]).
+/// The nozzles (and boot) mounted on a part (kept by bevy from [`MountedOn`]).
 #[derive(Component, Debug, Default)]
 #[relationship_target(relationship = MountedOn)]
 pub struct Mounts(Vec<Entity>);

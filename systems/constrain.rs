@@ -1,6 +1,6 @@
 //! Constrain stage: write each resolved vessel into its entities — the vessel frame
-//! and summary, every part's and nozzle's frame and shape, the nozzle-on-host and
-//! note-target relations, and note anchors — each only where the value differs.
+//! and summary, every part's and nozzle's frame and shape, the nozzle-on-host
+//! (and boot-on-course) and note-target relations, and note anchors — each only where the value differs.
 
 use bevy_ecs::change_detection::DetectChangesMut;
 use bevy_ecs::component::{Component, Mutable};
@@ -10,8 +10,8 @@ use bevy_ecs::world::World;
 
 use super::{PendingResolutions, WorkCounters};
 use crate::components::{
-    Annotates, MountedOn, NoteAnchor, NoteSpec, NozzleSpec, PartFrame, PartSpan, PartSpec, Shape,
-    VesselFrame, VesselSummary,
+    Annotates, MountedOn, NoteAnchor, NoteSpec, NozzleSpec, Opening, PartFrame, PartSpan, PartSpec,
+    Shape, VesselFrame, VesselSummary,
 };
 use crate::constraints::{NoteTarget, ResolvedVessel};
 
@@ -91,15 +91,28 @@ fn apply(world: &mut World, vessel: Entity, r: ResolvedVessel) -> u64 {
     );
     let ids = Lookup::of(world, vessel);
     let mut frames = 0;
-    let mut part_entities = Vec::with_capacity(r.parts.len());
-    for p in r.parts {
+    let hosts: Vec<Option<String>> = r
+        .parts
+        .iter()
+        .map(|p| p.host.and_then(|h| r.parts.get(h)).map(|h| h.id.clone()))
+        .collect();
+    for (p, host_id) in r.parts.into_iter().zip(hosts) {
         let Some(e) = Lookup::find(&ids.parts, &p.id) else {
             continue;
         };
         frames += u64::from(put(world, e, PartFrame(p.frame)));
         put(world, e, PartSpan(p.span.0, p.span.1));
         put(world, e, Shape::Part(p.geometry));
-        part_entities.push((p.id, e));
+        // A part cut into another (a boot into its course) is mounted on it, like a
+        // nozzle on its host, so the Geometry stage cuts its opening.
+        match host_id.and_then(|h| Lookup::find(&ids.parts, &h)) {
+            Some(host) => relate(world, e, MountedOn(host)),
+            None => {
+                if world.get::<MountedOn>(e).is_some() {
+                    world.entity_mut(e).remove::<(MountedOn, Opening)>();
+                }
+            }
+        }
     }
     let mut nozzle_entities = Vec::with_capacity(r.nozzles.len());
     for n in r.nozzles {

@@ -1,12 +1,15 @@
-//! Openings: for every nozzle whose frame or shape changed, or whose host part
-//! changed or moved, compute the curve where its neck meets its host — once, in the
-//! host's frame — and store it as the nozzle's [`Opening`]. Runs in the Geometry
-//! stage after the patches are rebuilt, in parallel with rayon.
+//! Openings: for every nozzle (or boot) whose frame or shape changed, or whose host
+//! part changed or moved, compute the curve where its neck (the boot's shell) meets
+//! its host — once, in the host's frame — and store it as its [`Opening`]. Every
+//! entity `MountedOn` a host is cut this way: nozzles on their host part, a boot on
+//! its shell course. Runs in the Geometry stage after the patches are rebuilt, in
+//! parallel with rayon.
 
 use std::collections::{BTreeSet, HashMap};
 use std::sync::Arc;
 
 use bevy_ecs::entity::Entity;
+use bevy_ecs::hierarchy::ChildOf;
 use bevy_ecs::query::{Changed, Or, QueryState, With};
 use bevy_ecs::resource::Resource;
 use bevy_ecs::world::World;
@@ -15,28 +18,29 @@ use rayon::prelude::*;
 
 use super::{ModelErrors, Tessellation, WorkCounters};
 use crate::components::{
-    MountedOn, Mounts, NozzleSpec, Opening, PadOf, PadPatch, PartFrame, PatchSurface, Patches,
-    Shape,
+    MountedOn, Mounts, NozzleSpec, Opening, PadOf, PadPatch, PartFrame, PartSpec, PatchSurface,
+    Patches, Shape, VesselSpec,
 };
 use crate::design::RuleViolation;
-use crate::mesh::{Cut, cut_opening, pad_patch};
+use crate::mesh::{Cut, HostTrim, cut_opening, pad_patch};
 use crate::parts::Patch;
 
-/// The host patch each nozzle's opening was last cut in (to re-lay-out a host patch
-/// whose opening moved away or disappeared).
+/// The host patches each nozzle's opening was last cut in (to re-lay-out a host
+/// patch whose opening moved away or disappeared).
 #[derive(Resource, Default, Debug)]
-pub struct OpeningHosts(pub HashMap<Entity, Entity>);
+pub struct OpeningHosts(pub HashMap<Entity, Vec<Entity>>);
 
-/// Nozzles whose own frame or shape changed, or that were re-hosted.
+/// Nozzles and boots whose own frame or shape changed, or that were re-hosted.
 pub type ChangedNozzle = (
-    With<NozzleSpec>,
+    With<MountedOn>,
     Or<(Changed<PartFrame>, Changed<Shape>, Changed<MountedOn>)>,
 );
 /// Host parts that moved or changed shape.
 pub type ChangedHost = Or<(Changed<PartFrame>, Changed<Shape>)>;
 
-/// A cut opening: the host patch entity, the loops and the pad patch, or why not.
-type CutResult = Result<(Entity, Cut, Option<Patch>), String>;
+/// A cut opening: the host patch entities with their trims, the loops and the pad
+/// patch, or why not.
+type CutResult = Result<(Vec<(Entity, HostTrim)>, Cut, Option<Patch>), String>;
 
 /// One opening to compute.
 struct Job {
@@ -49,14 +53,37 @@ struct Job {
     hosts: Vec<(Entity, Arc<Patch>)>,
 }
 
-fn violation(entity: Entity, rule: String) -> (String, Vec<RuleViolation>) {
+/// The stable id (`tag/id`) of a part or nozzle, or the entity where it has none.
+fn stable_id(world: &World, entity: Entity) -> String {
+    let id = world
+        .get::<PartSpec>(entity)
+        .map(|p| p.0.id().to_string())
+        .or_else(|| world.get::<NozzleSpec>(entity).map(|n| n.0.mark.clone()));
+    let tag = world
+        .get::<ChildOf>(entity)
+        .and_then(|c| world.get::<VesselSpec>(c.parent()))
+        .map(|v| v.tag.clone());
+    match (tag, id) {
+        (Some(tag), Some(id)) => format!("{tag}/{id}"),
+        _ => format!("{entity}"),
+    }
+}
+
+/// The error of an opening that cannot be cut: the nozzle (or boot), and as value
+/// the host it is mounted on.
+fn violation(world: &World, entity: Entity, rule: String) -> (String, Vec<RuleViolation>) {
+    let id = stable_id(world, entity);
+    let host = world
+        .get::<MountedOn>(entity)
+        .map(|m| stable_id(world, m.0))
+        .unwrap_or_default();
     (
-        format!("{entity}"),
+        id.clone(),
         vec![RuleViolation {
             path: String::new(),
-            entity: format!("{entity}"),
+            entity: id,
             field: "opening".into(),
-            value: String::new(),
+            value: host,
             rule,
         }],
     )
@@ -153,15 +180,20 @@ pub fn cut_openings(
                 tolerance,
             )
             .and_then(|cut| {
-                let pad = match cut.pad {
-                    Some(_) => Some(pad_patch(
-                        hosts[cut.host_patch],
-                        &job.frame,
-                        &job.host_frame,
-                    )?),
-                    None => None,
+                // A pad is only cut on one host patch (`cut_opening` refuses one
+                // across a seam).
+                let pad = match (&cut.pad, cut.hosts.first()) {
+                    (Some(_), Some(&(k, _))) => {
+                        Some(pad_patch(hosts[k], &job.frame, &job.host_frame)?)
+                    }
+                    _ => None,
                 };
-                Ok((job.hosts[cut.host_patch].0, cut, pad))
+                let trims = cut
+                    .hosts
+                    .iter()
+                    .map(|(k, trim)| (job.hosts[*k].0, trim.clone()))
+                    .collect();
+                Ok((trims, cut, pad))
             });
             (job.nozzle, job.neck_patch, result)
         })
@@ -170,9 +202,9 @@ pub fn cut_openings(
     let mut failures = 0;
     for (nozzle, neck_patch, result) in results {
         match result {
-            Ok((host_patch, cut, pad)) => {
+            Ok((hosts, cut, pad)) => {
                 let opening = Opening {
-                    host_patch,
+                    hosts,
                     neck_patch,
                     curve: Arc::new(cut.neck),
                     pad: cut.pad.map(Arc::new),
@@ -197,10 +229,8 @@ pub fn cut_openings(
             Err(rule) => {
                 failures += 1;
                 world.entity_mut(nozzle).remove::<Opening>();
-                world
-                    .resource_mut::<ModelErrors>()
-                    .0
-                    .push(violation(nozzle, rule));
+                let error = violation(world, nozzle, rule);
+                world.resource_mut::<ModelErrors>().0.push(error);
             }
         }
     }

@@ -15,16 +15,17 @@ use rayon::prelude::*;
 use super::{ModelErrors, OpeningHosts, Tessellation, WorkCounters};
 use crate::components::{Mounts, Opening, PadOf, PadPatch, PatchOf, PatchRegion, PatchSurface};
 use crate::design::RuleViolation;
-use crate::mesh::{pad_region, patch_region};
+use crate::mesh::{HostTrim, Notch, host_region, pad_region};
 use crate::nurbs::intersect::IntersectionLoop;
 use crate::parts::Patch;
 
 /// How a patch is trimmed.
 enum Trim {
-    /// A part or nozzle patch: holes of the openings it hosts, and a nozzle neck's
-    /// bottom loop.
+    /// A part or nozzle patch: holes of the openings it hosts, notches of those
+    /// crossing its seams, and a nozzle neck's bottom loop.
     Patch {
         holes: Vec<Arc<IntersectionLoop>>,
+        notches: Vec<Arc<[Notch]>>,
         bottom: Option<Arc<IntersectionLoop>>,
     },
     /// A reinforcing pad: between its outer loop and the neck's loop.
@@ -54,6 +55,7 @@ fn trims(world: &World, patch: Entity) -> Option<Trim> {
     let Some(owner) = world.get::<PatchOf>(patch).map(|p| p.0) else {
         return Some(Trim::Patch {
             holes: Vec::new(),
+            notches: Vec::new(),
             bottom: None,
         });
     };
@@ -61,18 +63,26 @@ fn trims(world: &World, patch: Entity) -> Option<Trim> {
         .get::<Opening>(owner)
         .filter(|o| o.neck_patch == patch)
         .map(|o| o.curve.clone());
-    let holes = world
+    let mut holes = Vec::new();
+    let mut notches = Vec::new();
+    let openings = world
         .get::<Mounts>(owner)
-        .map(|m| {
-            m.entities()
-                .iter()
-                .filter_map(|&n| world.get::<Opening>(n))
-                .filter(|o| o.host_patch == patch)
-                .map(|o| o.pad.clone().unwrap_or_else(|| o.curve.clone()))
-                .collect()
-        })
-        .unwrap_or_default();
-    Some(Trim::Patch { holes, bottom })
+        .map(|m| m.entities())
+        .unwrap_or_default()
+        .iter()
+        .filter_map(|&n| world.get::<Opening>(n));
+    for o in openings {
+        match o.hosts.iter().find(|(h, _)| *h == patch).map(|(_, t)| t) {
+            Some(HostTrim::Hole) => holes.push(o.pad.clone().unwrap_or_else(|| o.curve.clone())),
+            Some(HostTrim::Notches(n)) => notches.push(n.clone()),
+            None => {}
+        }
+    }
+    Some(Trim::Patch {
+        holes,
+        notches,
+        bottom,
+    })
 }
 
 /// Lays out the region of every patch that needs it.
@@ -88,9 +98,9 @@ pub fn lay_out_regions(
     } else {
         surfaces.iter(world).collect()
     };
-    let changed: Vec<(Entity, Entity, Entity)> = openings
+    let changed: Vec<(Entity, Vec<Entity>, Entity)> = openings
         .iter(world)
-        .map(|(n, o)| (n, o.host_patch, o.neck_patch))
+        .map(|(n, o)| (n, o.hosts.iter().map(|h| h.0).collect(), o.neck_patch))
         .collect();
     for &(nozzle, ..) in &changed {
         if let Some(pad) = world.get::<PadPatch>(nozzle) {
@@ -99,19 +109,17 @@ pub fn lay_out_regions(
     }
     let mut hosts = std::mem::take(&mut world.resource_mut::<OpeningHosts>().0);
     for (nozzle, host, neck) in changed {
-        dirty.insert(host);
+        dirty.extend(host.iter().copied());
         dirty.insert(neck);
-        if let Some(previous) = hosts.insert(nozzle, host)
-            && previous != host
-        {
-            dirty.insert(previous);
+        if let Some(previous) = hosts.insert(nozzle, host) {
+            dirty.extend(previous);
         }
     }
     // Openings that disappeared (nozzle removed, or its opening failed).
-    hosts.retain(|&nozzle, &mut host| {
+    hosts.retain(|&nozzle, host| {
         let alive = world.get::<Opening>(nozzle).is_some();
         if !alive {
-            dirty.insert(host);
+            dirty.extend(host.iter().copied());
         }
         alive
     });
@@ -132,9 +140,20 @@ pub fn lay_out_regions(
         .par_iter()
         .map(|j| {
             let region = match &j.trim {
-                Trim::Patch { holes, bottom } => {
+                Trim::Patch {
+                    holes,
+                    notches,
+                    bottom,
+                } => {
                     let holes: Vec<&IntersectionLoop> = holes.iter().map(|h| h.as_ref()).collect();
-                    patch_region(&j.surface.surface, &options, &holes, bottom.as_deref())
+                    let notches: Vec<&Notch> = notches.iter().flat_map(|n| n.iter()).collect();
+                    host_region(
+                        &j.surface.surface,
+                        &options,
+                        &holes,
+                        &notches,
+                        bottom.as_deref(),
+                    )
                 }
                 Trim::Pad { outer, inner } => {
                     pad_region(&j.surface.surface, &options, outer, inner)

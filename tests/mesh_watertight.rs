@@ -1,15 +1,15 @@
-//! Each vessel's pressure envelope — heads, courses, reducers and nozzles with
-//! their openings — meshes into a closed, consistently oriented 2-manifold, apart
-//! from the intended open ends (the bores of open nozzles): every other edge is
-//! shared by exactly two triangles, once in each direction, and the enclosed volume
-//! is positive (normals outward). Checked on every example design and on randomized
-//! nozzle layouts.
+//! Each vessel's pressure envelope — heads, courses, reducers, the boot and the
+//! nozzles with their openings — meshes into a closed, consistently oriented
+//! 2-manifold, apart from the intended open ends (the bores of open nozzles): every
+//! other edge is shared by exactly two triangles, once in each direction, and the
+//! enclosed volume is positive (normals outward). Checked on every example design,
+//! on randomized nozzle layouts and on randomized boots.
 
 use std::collections::HashMap;
 
 use glam::{DAffine3, DVec3};
 use proptest::prelude::*;
-use vesselcad::design::{Design, NozzleDesign, PadDesign, PartDesign, load};
+use vesselcad::design::{Design, HeadShape, NozzleDesign, PadDesign, PartDesign, load};
 use vesselcad::export::{Scene, SceneNodeKind};
 use vesselcad::mesh::TessellationOptions;
 use vesselcad::model::Model;
@@ -65,7 +65,7 @@ fn on_a_bore(p: DVec3, bores: &[(DAffine3, f64, f64)]) -> bool {
 /// Checks one vessel of the scene; `bores` are (nozzle frame in vessel, face z, bore radius).
 fn check_vessel(scene: &Scene, tag: &str, bores: &[(DAffine3, f64, f64)]) {
     let vessel = scene.vessels.iter().find(|v| v.tag == tag).unwrap();
-    let envelope = ["shell", "head", "reducer"];
+    let envelope = ["shell", "head", "reducer", "boot"];
     let mut welder = Welder {
         cells: HashMap::new(),
         count: 0,
@@ -167,17 +167,20 @@ fn bores(design: &Design, tag: &str) -> Vec<(DAffine3, f64, f64)> {
         .collect()
 }
 
-fn check_design(design: &Design, tolerance: f64) {
-    check_design_with(design, TessellationOptions::chord(tolerance));
+/// Builds the design's model and checks every vessel; returns the model.
+fn check_design(design: &Design, tolerance: f64) -> Model {
+    check_design_with(design, TessellationOptions::chord(tolerance))
 }
 
-fn check_design_with(design: &Design, options: TessellationOptions) {
+/// [`check_design`] with any tessellation options.
+fn check_design_with(design: &Design, options: TessellationOptions) -> Model {
     let model = Model::from_design(design, options).unwrap();
     assert!(model.errors().0.is_empty(), "{:?}", model.errors());
     let scene = model.scene();
     for v in &design.vessels {
         check_vessel(&scene, &v.tag, &bores(design, &v.tag));
     }
+    model
 }
 
 #[test]
@@ -233,4 +236,152 @@ proptest! {
             check_design(&design, 1.0);
         }
     }
+}
+
+proptest! {
+    #![proptest_config(ProptestConfig { cases: 8, failure_persistence: None, ..ProptestConfig::default() })]
+
+    /// Random boots under the drum: position, diameter (up to 0.8 of the shell's),
+    /// length and head shape. The boot's shell is cut at its intersection with the
+    /// drum's shell, which gets the matching hole.
+    #[test]
+    fn random_boots_are_watertight(
+        at in 0.0..1.0f64,
+        fraction in 0.1..0.8f64,
+        length in 200.0..1500.0f64,
+        head in prop_oneof![
+            Just(HeadShape::Ellipsoidal),
+            Just(HeadShape::Hemispherical),
+            Just(HeadShape::Torispherical),
+            Just(HeadShape::Flat),
+        ],
+    ) {
+        let mut design = example("horizontal-drum");
+        let v = &mut design.vessels[0];
+        v.nozzles.clear();
+        v.notes.clear();
+        let (shell_od, shell_length) = v.parts.iter().find_map(|p| match p {
+            PartDesign::Shell(s) => Some((s.od, s.length)),
+            _ => None,
+        }).unwrap();
+        let od = (fraction * shell_od).round();
+        for p in &mut v.parts {
+            if let PartDesign::Boot(b) = p {
+                // Anywhere wholly under the course.
+                b.position = od / 2.0 + 1.0 + at * (shell_length - od - 2.0);
+                b.od = od;
+                b.length = length;
+                b.head = head;
+            }
+        }
+        vesselcad::design::validate(&design).unwrap();
+        check_design(&design, 1.0);
+    }
+}
+
+/// Radius of the knuckle–crown seam of a vessel's torispherical head `id`.
+fn crown_seam_radius(design: &Design, id: &str) -> f64 {
+    let resolved = vesselcad::design::resolve(design).unwrap();
+    let part = resolved[0].parts.iter().find(|p| p.id == id).unwrap();
+    let patches = part.geometry.patches().unwrap();
+    let crown = patches.iter().find(|p| p.name == "crown").unwrap();
+    let p = crown
+        .surface
+        .boundary(vesselcad::nurbs::Side::VMin)
+        .control_points()[0];
+    p.truncate().length()
+}
+
+/// The column with `nozzles` `(size, orientation, t)` on its torispherical top head
+/// H2 in place of N3, each centred at the knuckle–crown seam radius plus `t` times
+/// its neck radius, so its opening crosses the seam.
+fn column_with_seam_nozzles(nozzles: &[(f64, f64, f64)]) -> Design {
+    let mut design = example("vertical-column");
+    let seam = crown_seam_radius(&design, "H2");
+    let v = &mut design.vessels[0];
+    v.notes.clear();
+    let template = v.nozzles.iter().find(|n| n.mark == "N3").unwrap().clone();
+    v.nozzles.retain(|n| n.host != "H2");
+    for (k, &(size, orientation, t)) in nozzles.iter().enumerate() {
+        let mut n = template.clone();
+        n.mark = format!("X{k}");
+        n.size = size;
+        n.orientation = orientation;
+        let r =
+            vesselcad::parts::tables::pipe(vesselcad::parts::tables::Nps::try_new(size).unwrap())
+                .outside_diameter
+                / 2.0;
+        n.offset = Some(seam + t * r);
+        v.nozzles.push(n);
+    }
+    design
+}
+
+/// How many openings of the model's nozzles cross a seam between two host patches.
+fn openings_across_seams(mut model: Model) -> usize {
+    let world = model.world_mut();
+    let mut query = world.query::<&vesselcad::components::Opening>();
+    query.iter(world).filter(|o| o.hosts.len() == 2).count()
+}
+
+#[test]
+fn a_head_nozzle_across_the_knuckle_crown_seam_is_watertight() {
+    let design = column_with_seam_nozzles(&[(4.0, 30.0, -0.5)]);
+    vesselcad::design::validate(&design).unwrap();
+    assert_eq!(openings_across_seams(check_design(&design, 1.0)), 1);
+}
+
+proptest! {
+    #![proptest_config(ProptestConfig { cases: 10, failure_persistence: None, ..ProptestConfig::default() })]
+
+    /// Random nozzles across the knuckle–crown seam of the column's top head: one
+    /// or two (opposite each other), of random size, orientation and position
+    /// across the seam.
+    #[test]
+    fn random_openings_across_a_head_seam_are_watertight(
+        size in prop_oneof![Just(2.0), Just(3.0), Just(4.0), Just(6.0)],
+        orientation in 0.0..360.0f64,
+        along in 0.0..1.0f64,
+        second in proptest::option::of((prop_oneof![Just(2.0), Just(3.0), Just(4.0)], 0.0..1.0f64)),
+    ) {
+        // t from −0.9 to as far out as the head radius allows.
+        let design = example("vertical-column");
+        let (seam, radius) = (crown_seam_radius(&design, "H2"), 700.0);
+        let t = |size: f64, along: f64| {
+            let r = vesselcad::parts::tables::pipe(vesselcad::parts::tables::Nps::try_new(size).unwrap())
+                .outside_diameter / 2.0;
+            let hi = ((radius - 1.0 - r - seam) / r).min(0.9);
+            -0.9 + along * (hi + 0.9)
+        };
+        let mut nozzles = vec![(size, orientation, t(size, along))];
+        if let Some((s2, a2)) = second {
+            nozzles.push((s2, (orientation + 180.0) % 360.0, t(s2, a2)));
+        }
+        let design = column_with_seam_nozzles(&nozzles);
+        vesselcad::design::validate(&design).unwrap();
+        prop_assert_eq!(openings_across_seams(check_design(&design, 1.0)), nozzles.len());
+    }
+}
+
+#[test]
+fn a_pad_across_a_head_seam_is_refused_clearly() {
+    let mut design = column_with_seam_nozzles(&[(3.0, 30.0, -0.5)]);
+    let n = design.vessels[0].nozzles.last_mut().unwrap();
+    n.pad = Some(PadDesign {
+        od: 120.0,
+        thickness: 10.0,
+    });
+    vesselcad::design::validate(&design).unwrap();
+    let model = Model::from_design(&design, TessellationOptions::chord(1.0)).unwrap();
+    let errors = &model.errors().0;
+    assert_eq!(errors.len(), 1, "{errors:?}");
+    let v = &errors[0].1[0];
+    assert_eq!(
+        (v.entity.as_str(), v.field.as_str(), v.value.as_str()),
+        ("C-201/X0", "opening", "C-201/H2")
+    );
+    assert!(
+        v.rule.contains("\"knuckle\", \"crown\"") && v.rule.contains("reinforcing pad"),
+        "{v}"
+    );
 }

@@ -137,6 +137,133 @@ fn shell_diameter_rebuilds_its_dependents_in_its_vessel_only() {
     assert_matches_full_build(&m);
 }
 
+/// The boot of V-101 in the small plant.
+fn boot(m: &Model) -> vesselcad::design::BootDesign {
+    m.design().vessels[0]
+        .parts
+        .iter()
+        .find_map(|p| match p {
+            PartDesign::Boot(b) => Some(b.clone()),
+            _ => None,
+        })
+        .unwrap()
+}
+
+#[test]
+fn boot_length_rebuilds_only_the_boot_and_its_host_patch() {
+    let mut m = model("small-plant");
+    m.take_changes();
+    let mut b = boot(&m);
+    b.length += 250.0;
+    let c = m
+        .edit(Edit::SetPart {
+            vessel: "V-101".into(),
+            part: PartDesign::Boot(b),
+        })
+        .unwrap();
+    assert_eq!(c.shapes_rebuilt, 1, "{c:?}");
+    // The boot's shell is cut again against the course; the boot's own patches
+    // and at most the course's one patch (if the hole's samples moved) re-mesh.
+    assert_eq!(c.openings_cut, 1, "{c:?}");
+    assert!(c.patches_rebuilt > 0, "{c:?}");
+    assert!(
+        c.meshes_rebuilt >= c.patches_rebuilt && c.meshes_rebuilt <= c.patches_rebuilt + 1,
+        "{c:?}"
+    );
+    let changed = m.take_changes().changed;
+    assert!(changed.contains("V-101/B1"), "{changed:?}");
+    assert!(
+        changed
+            .iter()
+            .all(|id| id == "V-101/B1" || id == "V-101/S1"),
+        "{changed:?}"
+    );
+    assert_matches_full_build(&m);
+}
+
+#[test]
+fn moving_the_boot_recuts_its_opening_without_rebuilding_patches() {
+    let mut m = model("small-plant");
+    m.take_changes();
+    let mut b = boot(&m);
+    b.position += 700.0;
+    let c = m
+        .edit(Edit::SetPart {
+            vessel: "V-101".into(),
+            part: PartDesign::Boot(b),
+        })
+        .unwrap();
+    assert_eq!((c.shapes_rebuilt, c.patches_rebuilt), (0, 0), "{c:?}");
+    assert_eq!(c.frames_updated, 1, "{c:?}");
+    // The hole moves in the course: the boot's shell and the course re-mesh, at
+    // most (the boot's own bottom loop is unchanged in its (u, v)).
+    assert_eq!(c.openings_cut, 1, "{c:?}");
+    assert!(c.meshes_rebuilt >= 1 && c.meshes_rebuilt <= 2, "{c:?}");
+    assert_eq!(
+        m.take_changes().changed.into_iter().collect::<Vec<_>>(),
+        vec!["V-101/B1".to_string(), "V-101/S1".to_string()]
+    );
+    assert_matches_full_build(&m);
+}
+
+#[test]
+fn a_nozzle_across_a_head_seam_recuts_both_host_patches_incrementally() {
+    // N3 moved out to cross the knuckle–crown seam of the torispherical top head
+    // (at a radius of about 655 mm).
+    let mut design = example("vertical-column");
+    let n3 = design.vessels[0]
+        .nozzles
+        .iter_mut()
+        .find(|n| n.mark == "N3")
+        .unwrap();
+    n3.size = 3.0;
+    n3.offset = Some(640.0);
+    let mut m = Model::from_design(&design, options()).unwrap();
+    assert!(m.errors().0.is_empty(), "{:?}", m.errors());
+    assert_matches_full_build(&m);
+    m.take_changes();
+    let mut n = m.design().vessels[0]
+        .nozzles
+        .iter()
+        .find(|n| n.mark == "N3")
+        .unwrap()
+        .clone();
+    n.orientation = 100.0;
+    let c = m
+        .edit(Edit::SetNozzle {
+            vessel: "C-201".into(),
+            nozzle: n,
+        })
+        .unwrap();
+    assert_eq!((c.frames_updated, c.patches_rebuilt), (1, 0), "{c:?}");
+    // The neck, the knuckle and the crown, nothing else.
+    assert_eq!(c.openings_cut, 1, "{c:?}");
+    assert_eq!(c.meshes_rebuilt, 3, "{c:?}");
+    assert_eq!(
+        m.take_changes().changed.into_iter().collect::<Vec<_>>(),
+        vec!["C-201/H2".to_string(), "C-201/N3".to_string()]
+    );
+    assert!(m.errors().0.is_empty(), "{:?}", m.errors());
+    assert_matches_full_build(&m);
+    // Moved inside the crown: the knuckle loses its notch and is re-meshed whole.
+    let mut n = m.design().vessels[0]
+        .nozzles
+        .iter()
+        .find(|n| n.mark == "N3")
+        .unwrap()
+        .clone();
+    n.offset = Some(400.0);
+    let c = m
+        .edit(Edit::SetNozzle {
+            vessel: "C-201".into(),
+            nozzle: n,
+        })
+        .unwrap();
+    assert_eq!(c.meshes_rebuilt, 3, "{c:?}");
+    assert!(m.errors().0.is_empty(), "{:?}", m.errors());
+    assert_matches_full_build(&m);
+}
+
 #[test]
 fn lengthening_a_course_moves_what_is_above_without_rebuilding_it() {
     let mut m = model("vertical-column");

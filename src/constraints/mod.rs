@@ -47,6 +47,9 @@ pub struct ResolvedPart {
     pub geometry: PartGeometry,
     /// Axial extent `[start, end]` of the part in the vessel frame, mm.
     pub span: (f64, f64),
+    /// Index in [`ResolvedVessel::parts`] of the part this one is cut into, like a
+    /// nozzle into its host: a boot's shell course. `None` for every other part.
+    pub host: Option<usize>,
 }
 
 /// A nozzle with its resolved parameters and frame.

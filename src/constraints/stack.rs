@@ -162,6 +162,7 @@ pub(crate) fn layout(vessel: &VesselDesign, report: &mut Report) -> StackLayout 
                             frame: translate_z(z),
                             geometry: PartGeometry::Shell(shell),
                             span: (z, z + s.length),
+                            host: None,
                         });
                         z += s.length;
                     }
@@ -257,6 +258,7 @@ pub(crate) fn layout(vessel: &VesselDesign, report: &mut Report) -> StackLayout 
                             frame,
                             geometry: PartGeometry::Reducer(reducer),
                             span: (z, z + r.length),
+                            host: None,
                         });
                         z += r.length;
                     }
@@ -288,6 +290,7 @@ pub(crate) fn layout(vessel: &VesselDesign, report: &mut Report) -> StackLayout 
                 frame: flipped_at(sf),
                 geometry: PartGeometry::Head(head),
                 span: (sf - height, sf),
+                host: None,
             });
         }
     }
@@ -301,6 +304,7 @@ pub(crate) fn layout(vessel: &VesselDesign, report: &mut Report) -> StackLayout 
                 frame: translate_z(z),
                 geometry: PartGeometry::Head(head),
                 span: (z, z + height),
+                host: None,
             });
             tangent_length = z + h.straight_flange;
         }

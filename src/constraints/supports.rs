@@ -110,6 +110,7 @@ pub(crate) fn place(
                     frame: translate_z(-s.height),
                     geometry: PartGeometry::Skirt(skirt),
                     span: (-s.height, 0.0),
+                    host: None,
                 }
             }
             PartDesign::Saddle(s) => {
@@ -190,6 +191,7 @@ pub(crate) fn place(
                     frame: translate_z(position),
                     geometry: PartGeometry::Saddle(saddle),
                     span: (position - s.width / 2.0, position + s.width / 2.0),
+                    host: None,
                 }
             }
             PartDesign::Legs(l) => {
@@ -256,6 +258,7 @@ pub(crate) fn place(
                     frame: translate_z(-l.length),
                     geometry: PartGeometry::Legs(legs),
                     span: (-l.length, 0.0),
+                    host: None,
                 }
             }
             PartDesign::Lugs(l) => {
@@ -311,6 +314,7 @@ pub(crate) fn place(
                     frame: translate_z(l.elevation),
                     geometry: PartGeometry::Lugs(lugs),
                     span: (l.elevation, l.elevation + l.height),
+                    host: None,
                 }
             }
             PartDesign::Boot(b) => {
@@ -372,6 +376,7 @@ pub(crate) fn place(
                     frame,
                     geometry: PartGeometry::Boot(boot),
                     span: (b.position - b.od / 2.0, b.position + b.od / 2.0),
+                    host: Some(course.part),
                 }
             }
             _ => continue,

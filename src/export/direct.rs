@@ -18,7 +18,9 @@ use super::scene::{Scene, SceneNode, SceneNodeKind, ScenePatch, SceneVessel};
 use crate::constraints::PartGeometry;
 use crate::design::{Design, resolve};
 use crate::mesh::cdt::mesh_patch_region;
-use crate::mesh::{Mesh, TessellationOptions, cut_opening, pad_patch, pad_region, patch_region};
+use crate::mesh::{
+    HostTrim, Mesh, Notch, TessellationOptions, cut_opening, host_region, pad_patch, pad_region,
+};
 use crate::nurbs::intersect::IntersectionLoop;
 use crate::parts::{Nozzle, PartError, Patch};
 
@@ -88,7 +90,9 @@ pub fn build_scene(design: &Design, options: &TessellationOptions) -> Result<Sce
         }
     }
 
-    // Openings: every nozzle's neck cut against its host, in parallel.
+    // Openings: every boot's shell and every nozzle's neck cut against its host, in
+    // parallel. Per vessel the boots come first, then the nozzles in design order:
+    // the order the model relates them to their hosts, so holes are listed alike.
     let by_node: HashMap<(usize, usize), &Vec<Patch>> =
         patches.iter().map(|(k, list)| (*k, list)).collect();
     let jobs: Vec<(usize, usize, usize, Option<f64>)> = resolved
@@ -96,11 +100,17 @@ pub fn build_scene(design: &Design, options: &TessellationOptions) -> Result<Sce
         .enumerate()
         .flat_map(|(v, vessel)| {
             let parts = vessel.parts.len();
-            vessel
+            let boots = vessel
+                .parts
+                .iter()
+                .enumerate()
+                .filter_map(move |(i, part)| part.host.map(|h| (v, i, h, None)));
+            let nozzles = vessel
                 .nozzles
                 .iter()
                 .enumerate()
-                .map(move |(i, nozzle)| (v, parts + i, nozzle.host, nozzle.pad.map(|p| p.0)))
+                .map(move |(i, nozzle)| (v, parts + i, nozzle.host, nozzle.pad.map(|p| p.0)));
+            boots.chain(nozzles)
         })
         .collect();
     let cut: Vec<_> = jobs
@@ -123,27 +133,39 @@ pub fn build_scene(design: &Design, options: &TessellationOptions) -> Result<Sce
                     options.tolerance,
                 )
                 .and_then(|cut| {
-                    let pad = match &cut.pad {
-                        Some(_) => {
-                            Some(pad_patch(hosts[cut.host_patch], nozzle_frame, host_frame)?)
+                    // A pad is only cut on one host patch.
+                    let pad = match (&cut.pad, cut.hosts.first()) {
+                        (Some(_), Some(&(k, _))) => {
+                            Some(pad_patch(hosts[k], nozzle_frame, host_frame)?)
                         }
-                        None => None,
+                        _ => None,
                     };
                     Ok((cut, pad))
                 }),
-                None => Err("the nozzle has no neck patch".to_string()),
+                None => Err("the part has no patch to cut into its host".to_string()),
             };
             ((v, n, h), result)
         })
         .collect();
     let mut holes: HashMap<(usize, usize, usize), Vec<IntersectionLoop>> = HashMap::new();
+    let mut notches: HashMap<(usize, usize, usize), Vec<Notch>> = HashMap::new();
     let mut bottoms: HashMap<(usize, usize), IntersectionLoop> = HashMap::new();
     let mut pads: Vec<((usize, usize), Patch, IntersectionLoop, IntersectionLoop)> = Vec::new();
     for ((v, n, h), result) in cut {
         match result {
             Ok((cut, pad)) => {
-                let hole = cut.pad.clone().unwrap_or_else(|| cut.neck.clone());
-                holes.entry((v, h, cut.host_patch)).or_default().push(hole);
+                for (k, trim) in &cut.hosts {
+                    match trim {
+                        HostTrim::Hole => {
+                            let hole = cut.pad.clone().unwrap_or_else(|| cut.neck.clone());
+                            holes.entry((v, h, *k)).or_default().push(hole);
+                        }
+                        HostTrim::Notches(list) => notches
+                            .entry((v, h, *k))
+                            .or_default()
+                            .extend(list.iter().cloned()),
+                    }
+                }
                 if let (Some(patch), Some(outer)) = (pad, cut.pad) {
                     pads.push(((v, n), patch, outer, cut.neck.clone()));
                 }
@@ -178,8 +200,12 @@ pub fn build_scene(design: &Design, options: &TessellationOptions) -> Result<Sce
                     .get(&(v, n, k))
                     .map(|l| l.iter().collect())
                     .unwrap_or_default();
+                let notch_list: Vec<&Notch> = notches
+                    .get(&(v, n, k))
+                    .map(|l| l.iter().collect())
+                    .unwrap_or_default();
                 let bottom = if k == 0 { bottoms.get(&(v, n)) } else { None };
-                patch_region(&patch.surface, options, &hole_list, bottom)
+                host_region(&patch.surface, options, &hole_list, &notch_list, bottom)
             }
             .map_err(|e| e.to_string())?;
             mesh_patch_region(patch, &region, options)

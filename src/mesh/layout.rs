@@ -13,6 +13,7 @@ use glam::DVec2;
 use thiserror::Error;
 
 use super::cdt::{Region, UvLoop};
+use super::seams::Notch;
 use super::{TessellationOptions, edge_parameters};
 use crate::nurbs::intersect::IntersectionLoop;
 use crate::nurbs::{NurbsCurve, NurbsSurface, Side};
@@ -27,6 +28,13 @@ pub enum LayoutError {
     /// Every seam cut angle of a closed patch lies inside an opening.
     #[error("openings cover every seam cut angle of the patch; spread the nozzles")]
     SeamBlocked,
+    /// An opening across the patch's seam meets a patch that is also cut round its
+    /// pole or trimmed as a nozzle neck.
+    #[error(
+        "an opening crosses the seam of a patch that is also cut round its pole or \
+         trimmed as a nozzle neck; move the nozzle inside one patch"
+    )]
+    NotchBlocked,
     /// An opening loop does not fit in the patch's parameter domain.
     #[error("an opening does not lie within one patch (it crosses the patch edge at v = {v})")]
     OpeningOffPatch {
@@ -109,6 +117,61 @@ fn shifted(uv: &[DVec2], c: f64, period: f64) -> Vec<DVec2> {
         .collect()
 }
 
+/// The side at `v` through the u samples `along` (increasing), each notch (sorted
+/// or not, all within `along`'s range) replacing the samples between its ends. A
+/// sample closer to a notch's end than a quarter of its spacing to its neighbours
+/// is left out too, unless it is a seam cut angle (a vertex of every circle), so no
+/// sliver is left beside a crossing; both patches at a seam decide alike.
+fn notched(
+    along: &[f64],
+    v: f64,
+    mut notches: Vec<Vec<DVec2>>,
+    u0: f64,
+    period: f64,
+) -> Vec<DVec2> {
+    if notches.is_empty() {
+        return along.iter().map(|&u| DVec2::new(u, v)).collect();
+    }
+    notches.sort_by(|a, b| a[0].x.total_cmp(&b[0].x));
+    let eps = SAME * period.max(1.0) * 1e3;
+    let ends: Vec<(f64, f64)> = notches.iter().map(|n| (n[0].x, n[n.len() - 1].x)).collect();
+    let on_cut = |u: f64| {
+        let step = period / SEAM_CUTS as f64;
+        let k = (u - u0) / step;
+        let r = (k - k.round()).abs() * step;
+        r <= eps
+    };
+    let mut out = Vec::with_capacity(along.len() + notches.iter().map(Vec::len).sum::<usize>());
+    let mut next = 0;
+    for (i, &u) in along.iter().enumerate() {
+        while next < notches.len() && ends[next].0 <= u + eps {
+            out.extend(notches[next].iter().copied());
+            next += 1;
+        }
+        let spacing = {
+            let before = i.checked_sub(1).map_or(f64::INFINITY, |j| u - along[j]);
+            let after = along.get(i + 1).map_or(f64::INFINITY, |&w| w - u);
+            before.min(after)
+        };
+        let margin = if on_cut(u) {
+            eps
+        } else {
+            eps.max(0.25 * spacing)
+        };
+        if ends
+            .iter()
+            .any(|&(a, b)| u >= a - margin && u <= b + margin)
+        {
+            continue;
+        }
+        out.push(DVec2::new(u, v));
+    }
+    for n in &notches[next..] {
+        out.extend(n.iter().copied());
+    }
+    out
+}
+
 /// Signed area (×2) of a polygon.
 fn area2(uv: &[DVec2]) -> f64 {
     (0..uv.len())
@@ -152,6 +215,19 @@ pub fn patch_region(
     holes: &[&IntersectionLoop],
     bottom: Option<&IntersectionLoop>,
 ) -> Result<Region, LayoutError> {
+    host_region(surface, options, holes, &[], bottom)
+}
+
+/// [`patch_region`] with `notches` too: pieces of openings that cross the patch's
+/// v0 or v1 side (a seam with its neighbour), each replacing the side's samples
+/// between its ends.
+pub fn host_region(
+    surface: &NurbsSurface,
+    options: &TessellationOptions,
+    holes: &[&IntersectionLoop],
+    notches: &[&Notch],
+    bottom: Option<&IntersectionLoop>,
+) -> Result<Region, LayoutError> {
     let ((u0, u1), (v0, v1)) = surface.domain();
     let period = u1 - u0;
     let closed = closed_in_u(surface);
@@ -165,41 +241,34 @@ pub fn patch_region(
         return Err(LayoutError::SeamBlocked);
     }
     let top = around.first().copied();
-    // Choose the cut clear of every hole (after shifting each into one period).
+    if !notches.is_empty() && (top.is_some() || bottom.is_some()) {
+        return Err(LayoutError::NotchBlocked);
+    }
+    // The u-spans of the holes and notches (after shifting each into one period).
+    let spans: Vec<(f64, f64)> = holes
+        .iter()
+        .map(|h| h.host_uv.as_slice())
+        .chain(notches.iter().map(|n| n.path.as_slice()))
+        .map(|uv| {
+            let s = shifted(uv, u0, period);
+            let lo = s.iter().map(|p| p.x).fold(f64::INFINITY, f64::min);
+            let hi = s.iter().map(|p| p.x).fold(f64::NEG_INFINITY, f64::max);
+            (lo, hi)
+        })
+        .collect();
+    let blocked = |c: f64| {
+        spans
+            .iter()
+            .any(|&(lo, hi)| (-1..=1).any(|k| (lo..=hi).contains(&(c + f64::from(k) * period))))
+    };
+    // Choose the cut clear of every hole and notch.
     let cut = if top.is_some() {
         // The loop has a sample exactly on the seam angle u0: cut there.
-        let spans: Vec<(f64, f64)> = holes
-            .iter()
-            .map(|h| {
-                let s = shifted(&h.host_uv, u0, period);
-                (
-                    s.iter().map(|p| p.x).fold(f64::INFINITY, f64::min),
-                    s.iter().map(|p| p.x).fold(f64::NEG_INFINITY, f64::max),
-                )
-            })
-            .collect();
-        if spans
-            .iter()
-            .any(|&(lo, hi)| (-1..=1).any(|k| (lo..=hi).contains(&(u0 + f64::from(k) * period))))
-        {
+        if blocked(u0) {
             return Err(LayoutError::SeamBlocked);
         }
         u0
-    } else if closed && !holes.is_empty() {
-        let spans: Vec<(f64, f64)> = holes
-            .iter()
-            .map(|h| {
-                let s = shifted(&h.host_uv, u0, period);
-                let lo = s.iter().map(|p| p.x).fold(f64::INFINITY, f64::min);
-                let hi = s.iter().map(|p| p.x).fold(f64::NEG_INFINITY, f64::max);
-                (lo, hi)
-            })
-            .collect();
-        let blocked = |c: f64| {
-            spans
-                .iter()
-                .any(|&(lo, hi)| (-1..=1).any(|k| (lo..=hi).contains(&(c + f64::from(k) * period))))
-        };
+    } else if closed && !spans.is_empty() {
         (0..SEAM_CUTS)
             .map(|k| u0 + period * k as f64 / SEAM_CUTS as f64)
             .find(|&c| !blocked(c))
@@ -241,6 +310,21 @@ pub fn patch_region(
     } else {
         (params_v0, params_v1)
     };
+    // Each notch shifted into the window [cut, cut + period], by side.
+    let window = |side: Side| -> Vec<Vec<DVec2>> {
+        notches
+            .iter()
+            .filter(|n| n.side == side)
+            .map(|n| {
+                if closed {
+                    shifted(&n.path, cut, period)
+                } else {
+                    n.path.clone()
+                }
+            })
+            .collect()
+    };
+    let (notches_v0, notches_v1) = (window(Side::VMin), window(Side::VMax));
     let mut outer: Vec<DVec2> = Vec::new();
     // Bottom: the v0 side, or the neck's intersection loop.
     let bottom_start_v;
@@ -267,7 +351,7 @@ pub fn patch_region(
         }
         None => {
             bottom_start_v = v0;
-            outer.extend(along_v0.iter().map(|&u| DVec2::new(u, v0)));
+            outer.extend(notched(&along_v0, v0, notches_v0, u0, period));
         }
     }
     let right_u_end = outer.last().map_or(right_u, |p| p.x);
@@ -276,11 +360,10 @@ pub fn patch_region(
         Some(l) => around_pole(l, cut, period),
         None => {
             let shift = right_u_end - along_v1.last().copied().unwrap_or(right_u);
-            along_v1
-                .iter()
-                .rev()
-                .map(|&u| DVec2::new(u + shift, v1))
-                .collect()
+            let mut path = notched(&along_v1, v1, notches_v1, u0, period);
+            path.reverse();
+            path.iter_mut().for_each(|p| p.x += shift);
+            path
         }
     };
     let top_v = top_path.first().map_or(v1, |p| p.y);

@@ -10,12 +10,14 @@ mod grid;
 mod layout;
 mod opening;
 mod options;
+mod seams;
 
 pub use edges::{MAX_EDGE_SEGMENTS, edge_parameters, edge_segments};
 pub use grid::tessellate;
-pub use layout::{LayoutError, SEAM_CUTS, closed_in_u, pad_region, patch_region};
+pub use layout::{LayoutError, SEAM_CUTS, closed_in_u, host_region, pad_region, patch_region};
 pub use opening::{Cut, PAD_PATCH, cut_opening, pad_patch};
 pub use options::{OptionsError, TessellationOptions};
+pub use seams::{HostTrim, Notch};
 
 use glam::DVec3;
 

@@ -1,8 +1,11 @@
-//! Cutting a nozzle opening: the neck placed in its host part's frame, intersected
-//! with the host's patches until one holds the whole loop.
+//! Cutting an opening: a nozzle's neck (or a boot's shell, which is cut the same
+//! way) placed in its host part's frame, intersected with the host's patches until
+//! one holds the whole loop.
 //!
 //! Shared by the ECS Geometry stage (`systems::cut_openings`) and the direct full
-//! build (`export::build_scene`), so both trim exactly alike. A loop that goes
+//! build (`export::build_scene`), so both trim exactly alike. An opening that no
+//! single host patch holds is cut on neighbouring patches joined in v and split at
+//! their seam (`seams`). A loop that goes
 //! round the host's pole (a nozzle centred on a head) gets an extra sample exactly
 //! on the host's seam angle, shared by the neck, so the host can be cut there.
 
@@ -12,6 +15,7 @@ use glam::{DAffine3, DVec2, DVec3};
 
 use crate::nurbs::builders::{line, revolve};
 
+use super::seams::{HostTrim, Placed, insert_seam_samples, split_at_seams};
 use crate::nurbs::NurbsSurface;
 use crate::nurbs::intersect::{IntersectionLoop, intersect_generator, neck_host_intersection};
 use crate::parts::Patch;
@@ -19,12 +23,16 @@ use crate::parts::Patch;
 /// Bisection steps placing the seam sample.
 const SEAM_STEPS: usize = 80;
 
-/// A nozzle's cut in its host, in the host part's frame.
+/// A nozzle's (or boot's) cut in its host, in the host part's frame.
 #[derive(Clone, Debug, PartialEq)]
 pub struct Cut {
-    /// Index of the host patch the opening lies in.
-    pub host_patch: usize,
-    /// Where the neck meets the host.
+    /// The host patches the opening cuts, by index, with how it trims each: one
+    /// patch holding the whole loop ([`HostTrim::Hole`]), or the neighbouring
+    /// patches whose seam the loop crosses ([`HostTrim::Notches`]).
+    pub hosts: Vec<(usize, HostTrim)>,
+    /// Where the neck meets the host. Its host (u, v) are those of the one host
+    /// patch holding it; for an opening across a seam, those of the host patches
+    /// joined in v (the notches carry each patch's own).
     pub neck: IntersectionLoop,
     /// Where the reinforcing pad's outside edge meets the host, if it has a pad.
     pub pad: Option<IntersectionLoop>,
@@ -91,7 +99,7 @@ pub fn cut_opening(
                 None => None,
             };
             Ok(Cut {
-                host_patch: k,
+                hosts: vec![(k, HostTrim::Hole)],
                 neck: neck_loop,
                 pad: pad_loop,
             })
@@ -106,7 +114,73 @@ pub fn cut_opening(
             }
         }
     }
-    Err(last)
+    match cut_across_seams(&neck, pad.is_some(), host_patches, tolerance)? {
+        Some(cut) => Ok(cut),
+        None => Err(last),
+    }
+}
+
+/// The opening cut across the seams of a run of neighbouring host patches (joined
+/// in v), if one holds the loop: `Ok(None)` if none does, an error if one does but
+/// the opening cannot be cut there.
+fn cut_across_seams(
+    neck: &NurbsSurface,
+    has_pad: bool,
+    host_patches: &[&Patch],
+    tolerance: f64,
+) -> Result<Option<Cut>, String> {
+    let count = host_patches.len();
+    for len in 2..=count {
+        for first in 0..=count - len {
+            let run = &host_patches[first..first + len];
+            let rest: Vec<&NurbsSurface> = run[1..].iter().map(|p| &p.surface).collect();
+            let Ok((joined, shifts)) = run[0].surface.joined_v(&rest) else {
+                continue;
+            };
+            let Ok(mut curve) = neck_host_intersection(neck, &joined, tolerance) else {
+                continue;
+            };
+            let names: Vec<&str> = run.iter().map(|p| p.name).collect();
+            let across = format!("the opening crosses the seam between host patches {names:?}");
+            if curve.host_turns(&joined) != 0 {
+                return Err(format!(
+                    "{across} and goes round the head's pole; such an opening is not \
+                     supported: move the nozzle off the centre or inside one patch"
+                ));
+            }
+            if has_pad {
+                return Err(format!(
+                    "{across}; a reinforcing pad there would lie on two surfaces and is \
+                     not supported: remove the pad or move the nozzle inside one patch"
+                ));
+            }
+            let placed: Vec<Placed> = run
+                .iter()
+                .zip(&shifts)
+                .map(|(p, &shift)| Placed {
+                    v: p.surface.domain().1,
+                    shift,
+                })
+                .collect();
+            let seams: Vec<f64> = placed[..len - 1].iter().map(|p| p.v.1 + p.shift).collect();
+            insert_seam_samples(neck, &joined, &mut curve, &seams)
+                .map_err(|e| format!("{across}: {e}"))?;
+            let notches =
+                split_at_seams(&curve, &placed, &names).map_err(|e| format!("{across}: {e}"))?;
+            let hosts = notches
+                .into_iter()
+                .enumerate()
+                .filter(|(_, n)| !n.is_empty())
+                .map(|(k, n)| (first + k, HostTrim::Notches(n.into())))
+                .collect();
+            return Ok(Some(Cut {
+                hosts,
+                neck: curve,
+                pad: None,
+            }));
+        }
+    }
+    Ok(None)
 }
 
 /// Inserts a sample of the loop exactly at the host's seam angle u0 (mod period).

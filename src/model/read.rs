@@ -7,8 +7,8 @@ use bevy_ecs::world::World;
 
 use super::VesselIndex;
 use crate::components::{
-    DesignOrder, NoteSpec, NozzleSpec, PadPatch, PartFrame, PartSpan, PartSpec, PatchMesh,
-    PatchSurface, Patches, Shape, VesselFrame, VesselSpec, VesselSummary,
+    DesignOrder, MountedOn, NoteSpec, NozzleSpec, PadPatch, PartFrame, PartSpan, PartSpec,
+    PatchMesh, PatchSurface, Patches, Shape, VesselFrame, VesselSpec, VesselSummary,
 };
 use crate::constraints::{ResolvedNozzle, ResolvedPart, ResolvedVessel};
 use crate::design::{Design, FORMAT, Units, VesselDesign};
@@ -111,6 +111,9 @@ fn resolved(world: &World, entity: Entity) -> Option<(VesselDesign, ResolvedVess
                 frame: f.0,
                 geometry: g.clone(),
                 span: (span.0, span.1),
+                host: world
+                    .get::<MountedOn>(*e)
+                    .and_then(|m| part_entities.iter().position(|(p, _)| *p == m.0)),
             });
         }
     }

@@ -21,6 +21,7 @@ pub mod grid;
 mod integrals;
 pub mod intersect;
 mod inversion;
+mod join;
 mod knots;
 mod refine;
 mod surface;

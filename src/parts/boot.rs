@@ -4,8 +4,9 @@
 //! Local frame: the boot axis is +Z pointing away from the host vessel (the
 //! placement turns it downwards), and the origin is on the boot axis at the host's
 //! axis. The boot cylinder runs from z = 0, inside the host, to its tangent line at
-//! z = host radius + `length`; the part of it inside the host is to be trimmed off
-//! by the host–boot intersection in a later stage. Beyond the tangent line the head
+//! z = host radius + `length`; the part of it inside the host is trimmed off by the
+//! host–boot intersection, cut exactly like a nozzle neck (`mesh::cut_opening`):
+//! the host course gets the matching hole. Beyond the tangent line the head
 //! (any [`HeadKind`], 2:1 ellipsoidal by default) closes the boot.
 //!
 //! The surfaces are the outsides of the boot and its head; plate thicknesses are
