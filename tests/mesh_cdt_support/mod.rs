@@ -238,16 +238,61 @@ pub fn check(s: &NurbsSurface, region: &Region, out: &RegionMesh, tol: f64, what
             plane
         })
         .reduce(|| 0.0, f64::max);
+    // Loop vertices on sides a neighbour shares are kept exactly. The seam of a
+    // patch closed across its whole period belongs to that patch alone, so the
+    // mesher may place its own vertices on it; there the mesh must instead be
+    // stitched: every open edge runs between two kept loop vertices.
+    let on_seam = seam_test(s, region, closed_uv);
+    let mut kept = Vec::new();
     for l in region.loops() {
         for &uv in &l.uv {
+            if on_seam(uv) {
+                continue;
+            }
             let x = surface_at(s, uv);
             assert!(
                 m.positions.iter().any(|&p| (p - x).length() < 1e-9),
                 "{what}: loop vertex {uv} is missing"
             );
+            kept.push(x);
+        }
+    }
+    let mut uses: HashMap<(u32, u32), u32> = HashMap::new();
+    for tri in m.indices.chunks(3) {
+        for i in 0..3 {
+            let (a, b) = (tri[i], tri[(i + 1) % 3]);
+            *uses.entry((a.min(b), a.max(b))).or_default() += 1;
+        }
+    }
+    for (&(a, b), &n) in &uses {
+        assert!(n <= 2, "{what}: edge {a}-{b} is shared by {n} triangles");
+        if n == 1 {
+            for k in [a, b] {
+                let x = m.positions[k as usize];
+                assert!(
+                    kept.iter().any(|&p| (p - x).length() < 1e-9),
+                    "{what}: open edge {a}-{b} leaves the region's sides at {x}"
+                );
+            }
         }
     }
     worst
+}
+
+/// Whether a parameter point lies strictly inside the seam of a region that spans
+/// the whole period of a closed direction (its two copies of the seam).
+fn seam_test(s: &NurbsSurface, region: &Region, closed_uv: [bool; 2]) -> impl Fn(DVec2) -> bool {
+    let (lo, hi) = region.bounds();
+    let ((u0, u1), (v0, v1)) = s.domain();
+    let eps = 1e-12 * ((hi - lo).max_element() + (u1 - u0) + (v1 - v0));
+    let whole_u = closed_uv[0] && ((hi.x - lo.x) - (u1 - u0)).abs() <= eps;
+    let whole_v = closed_uv[1] && ((hi.y - lo.y) - (v1 - v0)).abs() <= eps;
+    move |uv: DVec2| {
+        let at = |x: f64, a: f64, b: f64| (x - a).abs() <= eps || (x - b).abs() <= eps;
+        let inside = |x: f64, a: f64, b: f64| x > a + eps && x < b - eps;
+        (whole_u && at(uv.x, lo.x, hi.x) && inside(uv.y, lo.y, hi.y))
+            || (whole_v && at(uv.y, lo.y, hi.y) && inside(uv.x, lo.x, hi.x))
+    }
 }
 
 /// Meshes the whole patch at `tol` and checks it; returns the stats.

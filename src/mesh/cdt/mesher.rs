@@ -4,7 +4,8 @@
 
 use super::output::{RegionMesh, finish};
 use super::patch::{PatchInfo, wants_transpose};
-use super::{CdtError, MeshStats, Region, initial, metric::Sizing, refine, seed};
+use super::trimesh::TriMesh;
+use super::{CdtError, MeshStats, Region, initial, metric::Sizing, refine, rings, seed};
 use crate::mesh::{Mesh, TessellationOptions};
 use crate::nurbs::NurbsSurface;
 use crate::parts::{Analytic, Patch};
@@ -106,6 +107,28 @@ fn mesh_oriented(
     .with_analytic(analytic);
     let mut stats = MeshStats::default();
     let budget = VERTEX_BUDGET.saturating_sub(region.vertex_count());
+    if let Some((mut mesh, seam)) = rings::triangulate(&info, region, budget)?
+        && seam
+            .iter()
+            .all(|&(t, i)| refine::edge_within(&info, &mesh, t, i, options))
+    {
+        rings::fix_seam(&mut mesh, &seam);
+        let assessment = refine::assess_all(&info, &mesh, options);
+        if !assessment.all_good() {
+            // Give the rings neighbour links and refine what is left.
+            let fixed: rustc_hash::FxHashSet<(u32, u32)> = (0..mesh.tris.len() as u32)
+                .flat_map(|t| (0..3).map(move |i| (t, i)))
+                .filter(|&(t, i)| mesh.fixed[t as usize][i])
+                .map(|(t, i)| mesh.edge(t, i))
+                .collect();
+            let TriMesh { verts, tris, .. } = mesh;
+            mesh = TriMesh::new(verts, tris, |a, b| {
+                fixed.contains(&(a, b)) || fixed.contains(&(b, a))
+            });
+            refine::refine_assessed(&info, &mut mesh, VERTEX_BUDGET, &mut stats, assessment)?;
+        }
+        return finish(&info, &mesh, stats);
+    }
     let seeds = seed::seeds(&info, region, budget)?;
     let mut mesh = initial::triangulate(&info, region, &seeds, &mut stats)?;
     refine::refine(&info, &mut mesh, options, VERTEX_BUDGET, &mut stats)?;

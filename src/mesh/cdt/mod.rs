@@ -6,7 +6,9 @@
 //! [`mesh_region`] returns a [`Mesh`](crate::mesh::Mesh) whose triangles all lie
 //! within the chordal tolerance of the exact surface.
 //!
-//! Pipeline: `region` (validate) → `seed` (curvature-sized lattice clipped to the
+//! Pipeline: `region` (validate) → for a whole patch closed in u, `rings` (the
+//! lattice's rows zipped seam to seam, checked, refined only if needed); otherwise
+//! `seed` (curvature-sized lattice clipped to the
 //! region, in the size `metric` of the surface) → `initial` (spade's constrained
 //! Delaunay triangulation of loop vertices and seeds, inside found by flood fill) →
 //! `refine` (chordal refinement, deviations by `measure`, with metric-Delaunay
@@ -24,6 +26,7 @@ mod output;
 mod patch;
 mod refine;
 mod region;
+mod rings;
 mod seed;
 mod trimesh;
 

@@ -111,7 +111,7 @@ pub(super) fn finish(
         if !used[k] {
             continue;
         }
-        if !on_loop[k] {
+        if !(on_loop[k] || v.pole) {
             index[k] = out.mesh.positions.len() as u32;
             out.mesh.positions.push(v.point);
             out.mesh.normals.push(v.normal);

@@ -123,20 +123,103 @@ pub(super) fn refine(
     budget: usize,
     stats: &mut MeshStats,
 ) -> Result<(), CdtError> {
-    let limits = Limits {
-        tolerance: options.tolerance,
-        angle: options.angle_tolerance.map(f64::to_radians),
-        max_edge: options.max_edge_length,
-        allowance: loop_allowances(info, mesh),
-    };
+    let limits = limits(info, mesh, options);
     let mut flips_left = INITIAL_FLIPS_PER_TRIANGLE * mesh.tris.len();
     let all: Vec<(u32, usize)> = (0..mesh.tris.len() as u32)
         .flat_map(|t| (0..3).map(move |i| (t, i)))
         .filter(|&(t, i)| mesh.adj[t as usize][i] > t)
         .collect();
     mesh.legalize(all, &mut flips_left, should_flip);
-    let mut cache: Vec<Option<Candidate>> = Vec::new();
-    let mut assessed: Vec<u32> = Vec::new();
+    run(info, mesh, &limits, budget, stats, Vec::new(), Vec::new())
+}
+
+/// Every triangle of a mesh measured against the limits: what [`refine`] starts
+/// from, computed once when the caller wants to know whether any work is left.
+pub(super) struct Assessment {
+    limits: Limits,
+    cache: Vec<Option<Candidate>>,
+}
+
+impl Assessment {
+    /// Whether every triangle is within the limits.
+    pub fn all_good(&self) -> bool {
+        self.cache.iter().all(Option::is_none)
+    }
+}
+
+/// Measures every triangle of `mesh` (in parallel) without changing it.
+pub(super) fn assess_all(
+    info: &PatchInfo,
+    mesh: &TriMesh,
+    options: &TessellationOptions,
+) -> Assessment {
+    let limits = limits(info, mesh, options);
+    let cache = (0..mesh.tris.len() as u32)
+        .into_par_iter()
+        .map(|t| assess(info, mesh, t, &limits))
+        .collect();
+    Assessment { limits, cache }
+}
+
+/// Whether the edge `i` of triangle `t` — a loop segment the caller chose itself
+/// (a seam that belongs to the patch alone) — is within the limits as an interior
+/// edge would have to be.
+pub(super) fn edge_within(
+    info: &PatchInfo,
+    mesh: &TriMesh,
+    t: u32,
+    i: usize,
+    options: &TessellationOptions,
+) -> bool {
+    let limits = Limits {
+        tolerance: options.tolerance,
+        angle: options.angle_tolerance.map(f64::to_radians),
+        max_edge: options.max_edge_length,
+        allowance: Vec::new(),
+    };
+    let tri = mesh.tris[t as usize];
+    let p = tri.map(|k| mesh.verts[k as usize].point);
+    let normal = (p[1] - p[0]).cross(p[2] - p[0]);
+    normal.length() > 0.0
+        && edge_badness(info, mesh, tri, i, p[0], normal.normalize(), &limits) <= 1.0
+}
+
+/// [`refine`] of a mesh already measured by [`assess_all`] (no initial flips: the
+/// caller built it well shaped); `mesh` must have its neighbour links and be
+/// unchanged since.
+pub(super) fn refine_assessed(
+    info: &PatchInfo,
+    mesh: &mut TriMesh,
+    budget: usize,
+    stats: &mut MeshStats,
+    assessment: Assessment,
+) -> Result<(), CdtError> {
+    let assessed = vec![mesh.pass + 1; mesh.tris.len()];
+    let Assessment { limits, cache } = assessment;
+    run(info, mesh, &limits, budget, stats, cache, assessed)
+}
+
+/// The limits of `options` for `mesh`.
+fn limits(info: &PatchInfo, mesh: &TriMesh, options: &TessellationOptions) -> Limits {
+    Limits {
+        tolerance: options.tolerance,
+        angle: options.angle_tolerance.map(f64::to_radians),
+        max_edge: options.max_edge_length,
+        allowance: loop_allowances(info, mesh),
+    }
+}
+
+/// The refinement passes, from a cache of measures (`assessed[t]` the pass each
+/// was taken in; empty to measure everything first).
+fn run(
+    info: &PatchInfo,
+    mesh: &mut TriMesh,
+    limits: &Limits,
+    budget: usize,
+    stats: &mut MeshStats,
+    mut cache: Vec<Option<Candidate>>,
+    mut assessed: Vec<u32>,
+) -> Result<(), CdtError> {
     for _ in 0..MAX_PASSES {
         mesh.pass += 1;
         add_shadows(info, mesh, budget, stats)?;
@@ -147,7 +230,7 @@ pub(super) fn refine(
             .collect();
         let fresh: Vec<Option<Candidate>> = stale
             .par_iter()
-            .map(|&t| assess(info, mesh, t, &limits))
+            .map(|&t| assess(info, mesh, t, limits))
             .collect();
         cache.resize(mesh.tris.len(), None);
         assessed.resize(mesh.tris.len(), 0);
@@ -249,6 +332,50 @@ fn shadow_at(mesh: &TriMesh, t: u32, i: usize) -> Option<DVec2> {
     (s > 1e-9 && s < 1.0 - 1e-9).then(|| pa + ab * s)
 }
 
+/// The parameters probed on the edge between `x` and `y`: the midpoint, except
+/// that towards a pole the edge follows the meridian of its other end.
+fn edge_probe_uv(x: &Vertex, y: &Vertex) -> DVec2 {
+    let (mut ux, mut uy) = (x.uv, y.uv);
+    if x.pole && !y.pole {
+        ux.x = uy.x;
+    } else if y.pole && !x.pole {
+        uy.x = ux.x;
+    }
+    0.5 * (ux + uy)
+}
+
+/// The badness of edge `i` of triangle `tri` (plane through `origin` with unit
+/// normal `unit`): its midpoint's deviation, and the angle and length limits, each
+/// as a fraction of its limit.
+fn edge_badness(
+    info: &PatchInfo,
+    mesh: &TriMesh,
+    tri: [u32; 3],
+    i: usize,
+    origin: DVec3,
+    unit: DVec3,
+    limits: &Limits,
+) -> f64 {
+    let j = (i + 1) % 3;
+    let (x, y) = (&mesh.verts[tri[i] as usize], &mesh.verts[tri[j] as usize]);
+    let mid = edge_probe_uv(x, y);
+    let mut badness =
+        deviation(info, 0.5 * (x.point + y.point), mid, origin, unit) / limits.tolerance;
+    let (long, turn) = limits.edge_allowance(tri[i], tri[j]);
+    if let Some(angle) = limits.angle {
+        let limit = angle.max(turn);
+        let cos = end_normal(info, x, y.uv).dot(end_normal(info, y, x.uv));
+        // Within the limit the angle cannot make the triangle bad: skip the acos.
+        if cos < limit.cos() {
+            badness = badness.max(cos.clamp(-1.0, 1.0).acos() / limit);
+        }
+    }
+    if let Some(max) = limits.max_edge {
+        badness = badness.max((x.point - y.point).length() / max.max(long));
+    }
+    badness
+}
+
 /// Whether `p` is strictly inside the (u, v) triangle `[a, b, c]`.
 fn strictly_inside(p: DVec2, [a, b, c]: [DVec2; 3]) -> bool {
     strictly_ccw(a, b, p) && strictly_ccw(b, c, p) && strictly_ccw(c, a, p)
@@ -302,30 +429,10 @@ fn assess(info: &PatchInfo, mesh: &TriMesh, t: u32, limits: &Limits) -> Option<C
         if mesh.fixed[t as usize][i] {
             continue;
         }
-        let j = (i + 1) % 3;
-        let (x, y) = (v[i], v[j]);
-        // Towards a pole the edge follows the meridian of its other end.
-        let (mut ux, mut uy) = (x.uv, y.uv);
-        if x.pole && !y.pole {
-            ux.x = uy.x;
-        } else if y.pole && !x.pole {
-            uy.x = ux.x;
-        }
-        let mid = 0.5 * (ux + uy);
-        let mut badness = probe(0.5 * (x.point + y.point), mid) / limits.tolerance;
-        let (long, turn) = limits.edge_allowance(tri[i], tri[j]);
-        if let Some(angle) = limits.angle {
-            let limit = angle.max(turn);
-            let cos = end_normal(info, x, y.uv).dot(end_normal(info, y, x.uv));
-            // Within the limit the angle cannot make the triangle bad: skip the acos.
-            if cos < limit.cos() {
-                badness = badness.max(cos.clamp(-1.0, 1.0).acos() / limit);
-            }
-        }
-        if let Some(max) = limits.max_edge {
-            badness = badness.max((x.point - y.point).length() / max.max(long));
-        }
+        let badness = edge_badness(info, mesh, tri, i, p[0], unit, limits);
         if badness > worst.badness {
+            let (x, y) = (v[i], v[(i + 1) % 3]);
+            let mid = edge_probe_uv(x, y);
             let real_mid = 0.5 * (x.uv + y.uv);
             let insert = if mid == real_mid {
                 Insert::Edge(i)

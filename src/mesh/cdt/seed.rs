@@ -96,13 +96,17 @@ fn sample_grid(info: &PatchInfo, lo: DVec2, hi: DVec2) -> (Vec<f64>, Vec<Vec<f64
     (us, v_spans)
 }
 
-/// The seed points of `region` (rows of constant v, increasing u), or
-/// [`CdtError::BudgetExceeded`] when the lattice would exceed `budget` points.
-pub(super) fn seeds(
-    info: &PatchInfo,
-    region: &Region,
-    budget: usize,
-) -> Result<Vec<DVec2>, CdtError> {
+/// The lattice's plan: u samples, one profile per row (constant v, increasing),
+/// and each row's point count.
+struct Plan {
+    us: Vec<f64>,
+    profiles: Vec<RowProfile>,
+    counts: Vec<usize>,
+}
+
+/// Plans the lattice of `region`, or [`CdtError::BudgetExceeded`] when it would
+/// exceed `budget` points.
+fn plan(info: &PatchInfo, region: &Region, budget: usize) -> Result<Plan, CdtError> {
     let (lo, hi) = region.bounds();
     let (us, v_spans) = sample_grid(info, lo, hi);
     // Row density across v (max over u) and an estimate of the lattice size.
@@ -150,7 +154,6 @@ pub(super) fn seeds(
             }
         }
     }
-    let segments: Vec<(DVec2, DVec2)> = region.loops().flat_map(|l| l.segments()).collect();
     let profiles: Vec<RowProfile> = rows
         .par_iter()
         .map(|&v| RowProfile::new(info, &us, v))
@@ -160,6 +163,26 @@ pub(super) fn seeds(
     if total > budget {
         return Err(CdtError::BudgetExceeded { limit: budget });
     }
+    Ok(Plan {
+        us,
+        profiles,
+        counts,
+    })
+}
+
+/// The seed points of `region` (rows of constant v, increasing u), or
+/// [`CdtError::BudgetExceeded`] when the lattice would exceed `budget` points.
+pub(super) fn seeds(
+    info: &PatchInfo,
+    region: &Region,
+    budget: usize,
+) -> Result<Vec<DVec2>, CdtError> {
+    let Plan {
+        us,
+        profiles,
+        counts,
+    } = plan(info, region, budget)?;
+    let segments: Vec<(DVec2, DVec2)> = region.loops().flat_map(|l| l.segments()).collect();
     let per_row: Vec<Vec<DVec2>> = profiles
         .par_iter()
         .zip(counts.par_iter())
@@ -167,6 +190,47 @@ pub(super) fn seeds(
         .map(|(r, (profile, &n))| profile.seeds(region, &segments, &us, n, r % 2 == 1))
         .collect();
     Ok(per_row.into_iter().flatten().collect())
+}
+
+/// The lattice's rows strictly inside `lo.y..hi.y` across the whole u range of the
+/// region, as `(v, u values)`: every row runs from `lo.x` to `hi.x` (the ends
+/// included), every other one shifted by half a step in between. The rows of the
+/// structured path for whole closed patches, where the row ends lie on the seam.
+pub(super) fn rows(
+    info: &PatchInfo,
+    region: &Region,
+    budget: usize,
+) -> Result<Vec<(f64, Vec<f64>)>, CdtError> {
+    let (lo, hi) = region.bounds();
+    let eps = 1e-9 * (hi.y - lo.y);
+    let Plan {
+        us,
+        profiles,
+        counts,
+    } = plan(info, region, budget)?;
+    let out = profiles
+        .iter()
+        .zip(&counts)
+        .filter(|(p, _)| p.v > lo.y + eps && p.v < hi.y - eps)
+        .enumerate()
+        .map(|(r, (p, &n))| {
+            let mut u = place(&us, &p.cumulative, n, if r % 2 == 1 { 0.5 } else { 0.0 });
+            if r % 2 == 1 {
+                u.insert(0, lo.x);
+                u.push(hi.x);
+            }
+            // The ends exactly on the seam; no repeated values.
+            if let Some(first) = u.first_mut() {
+                *first = lo.x;
+            }
+            if let Some(last) = u.last_mut() {
+                *last = hi.x;
+            }
+            u.dedup_by(|a, b| *a <= *b);
+            (p.v, u)
+        })
+        .collect();
+    Ok(out)
 }
 
 /// Point counts per row: each row needs at least the integral of its spacing
