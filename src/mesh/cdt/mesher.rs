@@ -5,7 +5,7 @@
 use super::output::{RegionMesh, finish};
 use super::patch::{PatchInfo, wants_transpose};
 use super::trimesh::TriMesh;
-use super::{CdtError, MeshStats, Region, initial, metric::Sizing, refine, rings, seed};
+use super::{CdtError, MeshStats, Region, initial, metric::Sizing, refine, rings, screen, seed};
 use crate::mesh::{Mesh, TessellationOptions};
 use crate::nurbs::NurbsSurface;
 use crate::parts::{Analytic, Patch};
@@ -107,26 +107,30 @@ fn mesh_oriented(
     .with_analytic(analytic);
     let mut stats = MeshStats::default();
     let budget = VERTEX_BUDGET.saturating_sub(region.vertex_count());
-    if let Some((mut mesh, seam)) = rings::triangulate(&info, region, budget)?
-        && seam
+    if let Some(mut rings) = rings::triangulate(&info, region, budget)?
+        && rings
+            .seam
             .iter()
-            .all(|&(t, i)| refine::edge_within(&info, &mesh, t, i, options))
+            .all(|&(t, i)| refine::edge_within(&info, &rings.mesh, t, i, options))
     {
-        rings::fix_seam(&mut mesh, &seam);
-        let assessment = refine::assess_all(&info, &mesh, options);
-        if !assessment.all_good() {
-            // Give the rings neighbour links and refine what is left.
-            let fixed: rustc_hash::FxHashSet<(u32, u32)> = (0..mesh.tris.len() as u32)
-                .flat_map(|t| (0..3).map(move |i| (t, i)))
-                .filter(|&(t, i)| mesh.fixed[t as usize][i])
-                .map(|(t, i)| mesh.edge(t, i))
-                .collect();
-            let TriMesh { verts, tris, .. } = mesh;
-            mesh = TriMesh::new(verts, tris, |a, b| {
-                fixed.contains(&(a, b)) || fixed.contains(&(b, a))
-            });
-            refine::refine_assessed(&info, &mut mesh, VERTEX_BUDGET, &mut stats, assessment)?;
+        rings::fix_seam(&mut rings.mesh, &rings.seam);
+        let within = screen::screen(&info, &rings.mesh, &rings.strips, options);
+        let assessment = refine::assess_all(&info, &rings.mesh, options, within.as_deref());
+        if assessment.all_good() {
+            return finish(&info, &rings.mesh, stats);
         }
+        // Give the rings neighbour links and refine what is left.
+        let mesh = rings.mesh;
+        let fixed: rustc_hash::FxHashSet<(u32, u32)> = (0..mesh.tris.len() as u32)
+            .flat_map(|t| (0..3).map(move |i| (t, i)))
+            .filter(|&(t, i)| mesh.fixed[t as usize][i])
+            .map(|(t, i)| mesh.edge(t, i))
+            .collect();
+        let TriMesh { verts, tris, .. } = mesh;
+        let mut mesh = TriMesh::new(verts, tris, |a, b| {
+            fixed.contains(&(a, b)) || fixed.contains(&(b, a))
+        });
+        refine::refine_assessed(&info, &mut mesh, VERTEX_BUDGET, &mut stats, assessment)?;
         return finish(&info, &mesh, stats);
     }
     let seeds = seed::seeds(&info, region, budget)?;

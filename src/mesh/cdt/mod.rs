@@ -27,6 +27,7 @@ mod patch;
 mod refine;
 mod region;
 mod rings;
+mod screen;
 mod seed;
 mod trimesh;
 

@@ -147,16 +147,25 @@ impl Assessment {
     }
 }
 
-/// Measures every triangle of `mesh` (in parallel) without changing it.
+/// Measures every triangle of `mesh` (in parallel) without changing it; with
+/// `within`, only the triangles a faster check (`screen`) did not already find
+/// within the limits.
 pub(super) fn assess_all(
     info: &PatchInfo,
     mesh: &TriMesh,
     options: &TessellationOptions,
+    within: Option<&[bool]>,
 ) -> Assessment {
     let limits = limits(info, mesh, options);
     let cache = (0..mesh.tris.len() as u32)
         .into_par_iter()
-        .map(|t| assess(info, mesh, t, &limits))
+        .map(|t| {
+            if within.is_some_and(|w| w[t as usize]) {
+                None
+            } else {
+                assess(info, mesh, t, &limits)
+            }
+        })
         .collect();
     Assessment { limits, cache }
 }
@@ -334,7 +343,7 @@ fn shadow_at(mesh: &TriMesh, t: u32, i: usize) -> Option<DVec2> {
 
 /// The parameters probed on the edge between `x` and `y`: the midpoint, except
 /// that towards a pole the edge follows the meridian of its other end.
-fn edge_probe_uv(x: &Vertex, y: &Vertex) -> DVec2 {
+pub(super) fn edge_probe_uv(x: &Vertex, y: &Vertex) -> DVec2 {
     let (mut ux, mut uy) = (x.uv, y.uv);
     if x.pole && !y.pole {
         ux.x = uy.x;

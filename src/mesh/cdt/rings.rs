@@ -18,6 +18,8 @@
 //! no hashing in the common case: this is where whole heads and courses get their
 //! speed.
 
+use std::ops::Range;
+
 use glam::DVec2;
 use rayon::prelude::*;
 
@@ -36,15 +38,24 @@ enum Side {
     Pole,
 }
 
-/// The structured mesh of `region` and its seam edges (as `(triangle, edge)`),
-/// when the region is a whole patch closed in u; `None` for any other region.
-/// Seam edges are left unfixed so that the checks probe them; the caller fixes
-/// them (with [`fix_seam`]) before output or refinement.
+/// A structured mesh of a whole closed patch.
+pub(super) struct Rings {
+    /// The triangles, strip by strip from the bottom chain up.
+    pub mesh: TriMesh,
+    /// The seam edges, as `(triangle, edge)`: left unfixed so that the checks probe
+    /// them; the caller fixes them (with [`fix_seam`]) before output or refinement.
+    pub seam: Vec<(u32, usize)>,
+    /// Each strip's range of triangles.
+    pub strips: Vec<Range<u32>>,
+}
+
+/// The structured mesh of `region` when it is a whole patch closed in u; `None`
+/// for any other region.
 pub(super) fn triangulate(
     info: &PatchInfo,
     region: &Region,
     budget: usize,
-) -> Result<Option<(TriMesh, Vec<(u32, usize)>)>, CdtError> {
+) -> Result<Option<Rings>, CdtError> {
     let Some((bottom, top)) = sides(info, region) else {
         return Ok(None);
     };
@@ -81,8 +92,10 @@ pub(super) fn triangulate(
         ..TriMesh::default()
     };
     let mut seam = Vec::new();
+    let mut strips = Vec::with_capacity(chains.len());
     let last_chain = chains.len() - 1;
     for k in 0..last_chain {
+        let start = mesh.tris.len() as u32;
         let (a, b) = (&uvs[k], &uvs[k + 1]);
         match (a.is_empty(), b.is_empty()) {
             (false, false) => zip(
@@ -107,8 +120,9 @@ pub(super) fn triangulate(
                 fix_ring(&mut mesh, start, len, bottom);
             }
         }
+        strips.push(start..mesh.tris.len() as u32);
     }
-    Ok(Some((mesh, seam)))
+    Ok(Some(Rings { mesh, seam, strips }))
 }
 
 /// Marks the seam edges fixed (loop segments of the region).
