@@ -111,7 +111,7 @@ fn screen_strip(
         let normal = (p[1] - p[0]).cross(p[2] - p[0]);
         let turned = v.iter().any(|x| x.pole || x.normal.dot(normal) <= 0.0);
         let area = normal.length();
-        if !(area > 0.0) || turned {
+        if area.is_nan() || area <= 0.0 || turned {
             within[(t - first) as usize] = false;
             planes.push(None);
             continue;
@@ -151,7 +151,7 @@ fn screen_strip(
             let s = row.point(info.wrap_u(q.uv.x));
             let deviation = analytic.distance(q.point).max((s - origin).dot(unit).abs());
             // NaN counts as outside.
-            if !(deviation <= tolerance) {
+            if deviation.is_nan() || deviation > tolerance {
                 within[k] = false;
             }
         }
