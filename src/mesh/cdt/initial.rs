@@ -1,8 +1,8 @@
 //! The initial constrained Delaunay triangulation, built by spade.
 //!
-//! Loop vertices and seeds go into spade in a chart of the parameter plane scaled
-//! by the patch's mean |S_u| and |S_v|, so its Delaunay triangles are roughly well
-//! shaped in 3D; every coordinate is validated before insertion. Each loop segment
+//! Loop vertices and seeds go into spade in a chart of the parameter plane mapped
+//! by the patch's mean size metric, so its Delaunay triangles are roughly the
+//! shapes refinement wants; every coordinate is validated before insertion. Each loop segment
 //! is then added as a constraint with `can_add_constraint` / `try_add_constraint`;
 //! a segment that crosses another loop, or runs through another vertex, is an error
 //! (the boundary would not be kept as given), as is a loop vertex that spade merged
@@ -19,6 +19,7 @@ use glam::DVec2;
 use rayon::prelude::*;
 use spade::{ConstrainedDelaunayTriangulation, HasPosition, Point2, Triangulation};
 
+use super::metric::Metric;
 use super::patch::PatchInfo;
 use super::region::Region;
 use super::trimesh::TriMesh;
@@ -40,11 +41,45 @@ impl HasPosition for ChartVertex {
 }
 
 /// The chart position of `uv`, validated for spade.
-fn chart(info: &PatchInfo, uv: DVec2) -> Result<Point2<f64>, spade::InsertionError> {
-    let p = uv * info.scale;
+fn chart(metric: &Metric, uv: DVec2) -> Result<Point2<f64>, spade::InsertionError> {
+    let p = metric.chart(uv);
     spade::validate_coordinate(p.x)?;
     spade::validate_coordinate(p.y)?;
     Ok(Point2::new(p.x, p.y))
+}
+
+/// Samples per direction of the region's bounds for the chart's metric.
+const CHART_SAMPLES: usize = 3;
+
+/// The metric of spade's chart: the size metric averaged over the region's
+/// bounds, so that where it hardly varies (a course, a cone) spade's Delaunay
+/// triangles already are the metric-Delaunay ones refinement keeps, and few flips
+/// remain to be made; the patch's mean |S_u|, |S_v| scales where the size metric
+/// is degenerate.
+fn chart_metric(info: &PatchInfo, region: &Region) -> Metric {
+    let (lo, hi) = region.bounds();
+    let mut samples = Vec::with_capacity(CHART_SAMPLES * CHART_SAMPLES);
+    for i in 0..CHART_SAMPLES {
+        for j in 0..CHART_SAMPLES {
+            let t = DVec2::new(i as f64 + 0.5, j as f64 + 0.5) / CHART_SAMPLES as f64;
+            samples.push(info.metric_at(lo + (hi - lo) * t));
+        }
+    }
+    let mean = Metric::mean(&samples);
+    let det = mean.uu * mean.vv - mean.uv * mean.uv;
+    if mean.uu.is_finite()
+        && mean.vv.is_finite()
+        && mean.uu > 0.0
+        && det > 1e-12 * mean.uu * mean.vv
+    {
+        mean
+    } else {
+        Metric {
+            uu: info.scale.x * info.scale.x,
+            uv: 0.0,
+            vv: info.scale.y * info.scale.y,
+        }
+    }
 }
 
 /// Triangulates the region with its loop vertices (first, in loop order) and the
@@ -58,6 +93,7 @@ pub(super) fn triangulate(
     let mut uvs: Vec<DVec2> = Vec::with_capacity(region.vertex_count() + seeds.len());
     let mut chart_vertices = Vec::with_capacity(uvs.capacity());
     // (loop index, first id) of each loop.
+    let metric = chart_metric(info, region);
     let mut loops: Vec<(usize, u32, usize)> = Vec::new();
     for (loop_index, l) in region.loops().enumerate() {
         loops.push((loop_index, uvs.len() as u32, l.uv.len()));
@@ -65,7 +101,7 @@ pub(super) fn triangulate(
             let bad = |reason| CdtError::InvalidLoop { loop_index, reason };
             info.check_loop_point(uv).map_err(bad)?;
             let position =
-                chart(info, uv).map_err(|_| bad("a coordinate is outside spade's range"))?;
+                chart(&metric, uv).map_err(|_| bad("a coordinate is outside spade's range"))?;
             chart_vertices.push(ChartVertex {
                 position,
                 id: uvs.len() as u32,
@@ -75,7 +111,7 @@ pub(super) fn triangulate(
     }
     let loop_vertices = uvs.len();
     for &uv in seeds {
-        match chart(info, uv) {
+        match chart(&metric, uv) {
             Ok(position) => {
                 chart_vertices.push(ChartVertex {
                     position,
