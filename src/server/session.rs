@@ -14,7 +14,7 @@
 //! it given a revision and acknowledged. Any failure before that leaves the model,
 //! the design and the journal as they were.
 
-use std::collections::BTreeSet;
+use std::collections::{BTreeMap, BTreeSet};
 use std::path::{Path, PathBuf};
 use axum::body::Bytes;
 
@@ -23,7 +23,7 @@ use serde_json::{Value, json};
 use super::error::{ApiError, ServeError};
 use super::journal::{Journal, fingerprint, write_atomically};
 use crate::design::{self, Design, DesignError, to_canonical_json};
-use crate::export::{Scene, scene_ids, write_delta_glb, write_glb};
+use crate::export::{Scene, node_id, scene_ids, write_delta_glb, write_glb};
 use crate::mesh::TessellationOptions;
 use crate::model::{Edit, Model, ModelError};
 use crate::systems::WorkCounters;
@@ -77,6 +77,10 @@ pub struct Session {
     journal: Journal,
     /// The full GLB of the current revision, built on first request.
     full: Option<Snapshot>,
+    /// Each node's `extras` (kind, parameters, resolved figures) as last sent, by
+    /// stable id: a node whose metadata changed without its frame or geometry
+    /// (a nozzle's service, a vessel's overall length) is sent again too.
+    extras: BTreeMap<String, Value>,
 }
 
 impl Session {
@@ -104,6 +108,7 @@ impl Session {
         let mut session = Session {
             path: path.to_path_buf(),
             design: design_value(&model.design()),
+            extras: node_extras(&model.scene()),
             model,
             revision: replay.base_revision,
             journal,
@@ -121,6 +126,7 @@ impl Session {
             session.revision = entry.revision;
         }
         session.model.take_changes();
+        session.extras = node_extras(&session.model.scene());
         Ok(session)
     }
 
@@ -151,8 +157,15 @@ impl Session {
         self.design = next;
         self.revision += 1;
         self.full = None;
-        let log = self.model.take_changes();
+        let mut log = self.model.take_changes();
         let scene = self.model.scene();
+        let extras = node_extras(&scene);
+        for (id, value) in &extras {
+            if self.extras.get(id) != Some(value) {
+                log.changed.insert(id.clone());
+            }
+        }
+        self.extras = extras;
         let delta_glb = delta_or_empty(&scene, &log.changed);
         Ok(Accepted {
             revision: self.revision,
@@ -286,6 +299,18 @@ fn without_position(error: DesignError) -> DesignError {
         }
         other => other,
     }
+}
+
+/// Every node's `extras` by stable id.
+fn node_extras(scene: &Scene) -> BTreeMap<String, Value> {
+    let mut out = BTreeMap::new();
+    for vessel in &scene.vessels {
+        out.insert(vessel.tag.clone(), vessel.extras.clone());
+        for node in &vessel.nodes {
+            out.insert(node_id(&vessel.tag, &node.id), node.extras.clone());
+        }
+    }
+    out
 }
 
 /// A design as the JSON value patches apply to (its canonical form).
