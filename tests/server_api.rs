@@ -168,8 +168,12 @@ fn bad_edits_are_refused_with_a_clear_error_and_change_nothing() {
     assert_eq!(violations[0]["field"], "length");
     assert_eq!(violations[0]["path"], "vessels[0].parts[1].shell.length");
     assert_eq!(server.request("GET", "/model.glb", &[], b"").body, glb_before);
-    // Still editable after all that.
-    let r = server.edit(&json!([{ "op": "replace", "path": length, "value": 7000 }]));
+    // Still editable after all that; a `test` compares numbers by value (7200 is
+    // the design's 7200.0), as RFC 6902 says.
+    let r = server.edit(&json!([
+        { "op": "test", "path": length, "value": 7200 },
+        { "op": "replace", "path": length, "value": 7000 }
+    ]));
     assert_eq!((r.status, r.json()["revision"].clone()), (200, json!(1)));
 }
 

@@ -120,7 +120,9 @@ impl Session {
                 path: journal_path.clone(),
                 message: format!("revision {} cannot be replayed: {e}", entry.revision),
             };
-            let patch = parse_patch(entry.patch.clone()).map_err(replay_error)?;
+            let mut value = entry.patch.clone();
+            canonical_numbers(&mut value);
+            let patch = parse_patch(value).map_err(replay_error)?;
             let (next, _) = session.stage(&patch).map_err(replay_error)?;
             session.design = next;
             session.revision = entry.revision;
@@ -143,7 +145,9 @@ impl Session {
     pub fn apply_patch(&mut self, body: &[u8]) -> Result<Accepted, ApiError> {
         let value: Value = serde_json::from_slice(body)
             .map_err(|e| ApiError::Malformed(format!("the body is not JSON: {e}")))?;
-        let patch = parse_patch(value.clone())?;
+        let mut normalized = value.clone();
+        canonical_numbers(&mut normalized);
+        let patch = parse_patch(normalized)?;
         let previous = self.design.clone();
         let (next, work) = self.stage(&patch)?;
         if let Err(e) = self.journal.append(self.revision + 1, &value) {
@@ -180,6 +184,7 @@ impl Session {
     /// design JSON and the work done. On error the model is unchanged.
     fn stage(&mut self, patch: &json_patch::Patch) -> Result<(Value, WorkCounters), ApiError> {
         let mut doc = self.design.clone();
+        canonical_numbers(&mut doc);
         json_patch::patch(&mut doc, patch).map_err(|e| match e.kind {
             json_patch::PatchErrorKind::TestFailed => ApiError::TestFailed(e.to_string()),
             _ => ApiError::Unappliable(e.to_string()),
@@ -298,6 +303,29 @@ fn without_position(error: DesignError) -> DesignError {
             DesignError::Syntax { path, message }
         }
         other => other,
+    }
+}
+
+/// Writes every whole number as an integer, so that a `test` of `7200` matches a
+/// design value `7200.0`: RFC 6902 compares numbers by value, serde_json by
+/// representation. Fractional and very large numbers are left as they are.
+fn canonical_numbers(value: &mut Value) {
+    /// Integers up to 2^53 are exact in f64.
+    const EXACT: f64 = 9_007_199_254_740_992.0;
+    match value {
+        Value::Number(n) => {
+            if let Some(f) = n.as_f64()
+                && !n.is_i64()
+                && !n.is_u64()
+                && f.fract() == 0.0
+                && f.abs() <= EXACT
+            {
+                *value = Value::from(f as i64);
+            }
+        }
+        Value::Array(items) => items.iter_mut().for_each(canonical_numbers),
+        Value::Object(map) => map.values_mut().for_each(canonical_numbers),
+        _ => {}
     }
 }
 
