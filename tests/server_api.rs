@@ -33,7 +33,11 @@ fn an_edit_gets_a_revision_and_rebuilds_only_what_it_changes() {
     assert_eq!(answer["revision"], 1);
     // The neck is rebuilt and its opening cut again, so the host shell patch
     // holding the opening is re-meshed too; nothing else.
-    assert_eq!(answer["changed"], json!(["V-101/N3", "V-101/S1"]), "{answer}");
+    assert_eq!(
+        answer["changed"],
+        json!(["V-101/N3", "V-101/S1"]),
+        "{answer}"
+    );
     assert_eq!(answer["removed"], json!([]));
     let work = &answer["work"];
     assert_eq!(work["shapes_rebuilt"], 1, "{work}");
@@ -54,7 +58,10 @@ fn an_edit_gets_a_revision_and_rebuilds_only_what_it_changes() {
     ]));
     assert_eq!(r.status, 200, "{}", r.text());
     assert_eq!(r.json()["revision"], 2);
-    assert_eq!(r.json()["changed"], json!(["V-101/N3", "V-101/N4", "V-101/S1"]));
+    assert_eq!(
+        r.json()["changed"],
+        json!(["V-101/N3", "V-101/N4", "V-101/S1"])
+    );
 
     // The model served is the edited one.
     let glb = server.request("GET", "/model.glb", &[], b"");
@@ -72,7 +79,8 @@ fn bad_edits_are_refused_with_a_clear_error_and_change_nothing() {
     let glb_before = server.request("GET", "/model.glb", &[], b"").body;
     let length = "/vessels/0/parts/1/shell/length";
     let limit_message = format!("the limit is {MAX_BODY} bytes");
-    let cases: Vec<(&str, Vec<u8>, u16, &str, &str)> = vec![
+    let cases: Vec<(&str, Vec<u8>, u16, &str, &str)> =
+        vec![
         ("malformed JSON", b"[{\"op\":".to_vec(), 400, "malformed", "not JSON"),
         ("not a patch", br#"{"op":"replace"}"#.to_vec(), 400, "malformed", "array of operations"),
         (
@@ -157,8 +165,15 @@ fn bad_edits_are_refused_with_a_clear_error_and_change_nothing() {
         let answer = r.json();
         assert_eq!(answer["kind"], kind, "{name}: {answer}");
         let error = answer["error"].as_str().unwrap();
-        assert!(error.contains(needle), "{name}: {error:?} should mention {needle:?}");
-        assert_eq!(state(&server), before, "{name} changed the design or revision");
+        assert!(
+            error.contains(needle),
+            "{name}: {error:?} should mention {needle:?}"
+        );
+        assert_eq!(
+            state(&server),
+            before,
+            "{name} changed the design or revision"
+        );
     }
     let violations = server
         .edit(&json!([{ "op": "replace", "path": length, "value": -5 }]))
@@ -167,7 +182,10 @@ fn bad_edits_are_refused_with_a_clear_error_and_change_nothing() {
     assert_eq!(violations[0]["entity"], "V-101/S1");
     assert_eq!(violations[0]["field"], "length");
     assert_eq!(violations[0]["path"], "vessels[0].parts[1].shell.length");
-    assert_eq!(server.request("GET", "/model.glb", &[], b"").body, glb_before);
+    assert_eq!(
+        server.request("GET", "/model.glb", &[], b"").body,
+        glb_before
+    );
     // Still editable after all that; a `test` compares numbers by value (7200 is
     // the design's 7200.0), as RFC 6902 says.
     let r = server.edit(&json!([
@@ -183,10 +201,19 @@ fn edits_need_the_token_when_one_is_set() {
     let server = ServerProcess::start(&design, &["--token", "s3cret"]);
     let patch = json!([{ "op": "replace", "path": "/vessels/0/placement/rotation", "value": 10 }])
         .to_string();
-    for headers in [vec![], vec![("Authorization", "Bearer wrong")], vec![("Authorization", "s3cret")]] {
+    for headers in [
+        vec![],
+        vec![("Authorization", "Bearer wrong")],
+        vec![("Authorization", "s3cret")],
+    ] {
         let r = server.request("POST", "/edit", &headers, patch.as_bytes());
         assert_eq!(r.status, 401, "{headers:?}");
-        assert!(r.json()["error"].as_str().unwrap().contains("Authorization: Bearer"));
+        assert!(
+            r.json()["error"]
+                .as_str()
+                .unwrap()
+                .contains("Authorization: Bearer")
+        );
         let r = server.request("POST", "/save", &headers, b"");
         assert_eq!(r.status, 401, "save {headers:?}");
     }
@@ -208,7 +235,10 @@ fn static_files_cannot_escape_their_folder_and_unknown_routes_are_404() {
     assert!(page.text().contains("/static/viewer.js"));
     let bundle = server.request("GET", "/static/three-bundle.js", &[], b"");
     assert_eq!(bundle.status, 200);
-    assert!(bundle.text().starts_with("/**\n * @license"), "licence header kept");
+    assert!(
+        bundle.text().starts_with("/**\n * @license"),
+        "licence header kept"
+    );
     for path in [
         "/static/../Cargo.toml",
         "/static/%2e%2e/Cargo.toml",
@@ -227,7 +257,10 @@ fn static_files_cannot_escape_their_folder_and_unknown_routes_are_404() {
             r.status,
             r.text()
         );
-        assert!(!r.text().contains("[package]") && !r.text().contains("root:"), "{path}");
+        assert!(
+            !r.text().contains("[package]") && !r.text().contains("root:"),
+            "{path}"
+        );
     }
     // The drawing route checks its query and the vessel.
     assert_eq!(server.request("GET", "/drawing.svg", &[], b"").status, 400);

@@ -54,7 +54,11 @@ fn drive(server: &ServerProcess, args: &[&str]) -> Option<Value> {
 }
 
 fn floats(v: &Value) -> Vec<f64> {
-    v.as_array().unwrap().iter().map(|x| x.as_f64().unwrap()).collect()
+    v.as_array()
+        .unwrap()
+        .iter()
+        .map(|x| x.as_f64().unwrap())
+        .collect()
 }
 
 /// Sizes of a `[min xyz, max xyz]` box, largest first.
@@ -84,7 +88,10 @@ fn an_edit_in_one_page_changes_the_geometry_in_another() {
     assert_eq!(report["statusA"], "accepted as revision 1");
     // The bad value: error shown in page A, nothing changed in page B.
     let error = report["errorText"].as_str().unwrap();
-    assert!(error.starts_with("422:") && error.contains("length = -5"), "{error}");
+    assert!(
+        error.starts_with("422:") && error.contains("length = -5"),
+        "{error}"
+    );
     assert_eq!(report["revision2"], 1);
     assert_eq!(report["afterBad"], report["after"]);
     assert_eq!(report["gaps"], 0, "page B missed a revision");
@@ -97,7 +104,10 @@ fn an_edit_in_one_page_changes_the_geometry_in_another() {
     );
     if report["webgl"] == true {
         let picked = report["picked"].as_str().unwrap();
-        assert!(picked.starts_with("V-101/"), "clicking the view picked {picked:?}");
+        assert!(
+            picked.starts_with("V-101/"),
+            "clicking the view picked {picked:?}"
+        );
     }
     let page_errors: Vec<&str> = report["consoleErrors"]
         .as_array()
@@ -108,5 +118,8 @@ fn an_edit_in_one_page_changes_the_geometry_in_another() {
         // drawing module is merged.
         .filter(|e| !e.contains("status of 422") && !e.contains("status of 501"))
         .collect();
-    assert!(page_errors.is_empty(), "errors in the page: {page_errors:?}");
+    assert!(
+        page_errors.is_empty(),
+        "errors in the page: {page_errors:?}"
+    );
 }

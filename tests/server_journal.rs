@@ -29,7 +29,11 @@ fn expected(n: usize, count: usize, original: f64) -> f64 {
 fn every_acknowledged_edit_survives_kill_9() {
     let design = design_copy("horizontal-drum.json", "journal-kill");
     let original = load(&design).unwrap();
-    let projections: Vec<f64> = original.vessels[0].nozzles.iter().map(|n| n.projection).collect();
+    let projections: Vec<f64> = original.vessels[0]
+        .nozzles
+        .iter()
+        .map(|n| n.projection)
+        .collect();
 
     let mut server = ServerProcess::start(&design, &[]);
     for k in 0..EDITS {
@@ -60,28 +64,42 @@ fn every_acknowledged_edit_survives_kill_9() {
     let r = server.request("POST", "/save", &[], b"");
     assert_eq!(r.status, 200, "{}", r.text());
     let journal = design.with_file_name("design.json.journal");
-    assert_eq!(std::fs::read_to_string(&journal).unwrap().lines().count(), 1);
+    assert_eq!(
+        std::fs::read_to_string(&journal).unwrap().lines().count(),
+        1
+    );
     let saved = load(&design).unwrap();
-    assert_eq!(saved.vessels[0].nozzles[EDITS % 7].projection, expected(EDITS % 7, EDITS + 1, 0.0));
+    assert_eq!(
+        saved.vessels[0].nozzles[EDITS % 7].projection,
+        expected(EDITS % 7, EDITS + 1, 0.0)
+    );
     server.kill9();
     let mut server = ServerProcess::start(&design, &[]);
     let r = server.request("GET", "/design.json", &[], b"");
-    assert_eq!(r.header("x-vesselcad-revision"), Some(&*(EDITS + 1).to_string()));
+    assert_eq!(
+        r.header("x-vesselcad-revision"),
+        Some(&*(EDITS + 1).to_string())
+    );
     assert_eq!(r.json(), serde_json::to_value(&saved).unwrap());
 
     // A clean shutdown (SIGTERM) saves too.
-    let r = server.edit(&json!([{ "op": "replace", "path": "/vessels/0/placement/rotation", "value": 45 }]));
+    let r = server
+        .edit(&json!([{ "op": "replace", "path": "/vessels/0/placement/rotation", "value": 45 }]));
     assert_eq!(r.status, 200);
     assert!(server.terminate(), "clean shutdown failed");
     assert_eq!(load(&design).unwrap().vessels[0].placement.rotation, 45.0);
-    assert_eq!(std::fs::read_to_string(&journal).unwrap().lines().count(), 1);
+    assert_eq!(
+        std::fs::read_to_string(&journal).unwrap().lines().count(),
+        1
+    );
 }
 
 #[test]
 fn a_design_changed_behind_the_journal_is_refused_at_start() {
     let design = design_copy("storage-tank.json", "journal-changed");
     let mut server = ServerProcess::start(&design, &[]);
-    let r = server.edit(&json!([{ "op": "replace", "path": "/vessels/0/placement/rotation", "value": 30 }]));
+    let r = server
+        .edit(&json!([{ "op": "replace", "path": "/vessels/0/placement/rotation", "value": 30 }]));
     assert_eq!(r.status, 200);
     server.kill9();
     // Someone edits the file by hand while the journal holds an edit.

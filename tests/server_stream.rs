@@ -31,7 +31,11 @@ struct ModelView {
 }
 
 fn transform_of(node: &gltf::Node) -> String {
-    format!("{:?} {:?}", node.transform().decomposed(), node.extras().as_ref().map(|e| e.get()))
+    format!(
+        "{:?} {:?}",
+        node.transform().decomposed(),
+        node.extras().as_ref().map(|e| e.get())
+    )
 }
 
 /// The view of a GLB (full or delta).
@@ -78,10 +82,16 @@ fn same(applied: &ModelView, full: &ModelView, revision: usize) {
         "revision {revision}: nodes"
     );
     for (tag, t) in &applied.vessels {
-        assert!(t == &full.vessels[tag], "revision {revision}: vessel {tag} differs from the full model");
+        assert!(
+            t == &full.vessels[tag],
+            "revision {revision}: vessel {tag} differs from the full model"
+        );
     }
     for (id, n) in &applied.nodes {
-        assert!(n == &full.nodes[id], "revision {revision}: {id} differs from the full model");
+        assert!(
+            n == &full.nodes[id],
+            "revision {revision}: {id} differs from the full model"
+        );
     }
 }
 
@@ -113,7 +123,8 @@ async fn connect(server: &ServerProcess) -> Socket {
 async fn post_edit(server: &ServerProcess, patch: Value) -> Value {
     let address = server.address;
     tokio::task::spawn_blocking(move || {
-        let r = server_support::request(address, "POST", "/edit", &[], patch.to_string().as_bytes());
+        let r =
+            server_support::request(address, "POST", "/edit", &[], patch.to_string().as_bytes());
         assert_eq!(r.status, 200, "{}", r.text());
         r.json()
     })
@@ -248,8 +259,15 @@ fn many_viewers_get_every_revision_and_a_stalled_one_blocks_nobody() {
         }
         let editing = start.elapsed();
         for reader in readers {
-            let revisions = tokio::time::timeout(TIMEOUT, reader).await.unwrap().unwrap();
-            assert_eq!(revisions, (1..=EDITS).collect::<Vec<_>>(), "lost, duplicated or reordered");
+            let revisions = tokio::time::timeout(TIMEOUT, reader)
+                .await
+                .unwrap()
+                .unwrap();
+            assert_eq!(
+                revisions,
+                (1..=EDITS).collect::<Vec<_>>(),
+                "lost, duplicated or reordered"
+            );
         }
         // The stalled viewer now reads: it is consistent (each delta follows the
         // previous revision, or a resync restarts it) and reaches the last one.
@@ -275,6 +293,8 @@ fn many_viewers_get_every_revision_and_a_stalled_one_blocks_nobody() {
         // 80 deltas of the whole drum (~0.3 MB each) overflow the stalled
         // viewer's socket buffers and then its queue of VIEWER_QUEUE updates.
         assert!(resyncs >= 1, "the stalled viewer was never resynced");
-        eprintln!("{EDITS} edits in {editing:?}; the stalled viewer was resynced {resyncs} time(s)");
+        eprintln!(
+            "{EDITS} edits in {editing:?}; the stalled viewer was resynced {resyncs} time(s)"
+        );
     });
 }

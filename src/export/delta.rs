@@ -105,14 +105,15 @@ mod tests {
     #[test]
     fn keeps_only_changed_parts_under_their_vessels() {
         let scene = Scene {
-            vessels: vec![vessel("A", &["S1", "H1"]), vessel("B", &["S1"]), vessel("C", &[])],
+            vessels: vec![
+                vessel("A", &["S1", "H1"]),
+                vessel("B", &["S1"]),
+                vessel("C", &[]),
+            ],
         };
         let changed: BTreeSet<String> = ["A/H1", "C", "Z/gone"].map(String::from).into();
         let delta = delta_scene(&scene, &changed);
         assert_eq!(scene_ids(&delta), ["A", "A/H1", "C"]);
-        assert_eq!(
-            scene_ids(&scene),
-            ["A", "A/S1", "A/H1", "B", "B/S1", "C"]
-        );
+        assert_eq!(scene_ids(&scene), ["A", "A/S1", "A/H1", "B", "B/S1", "C"]);
     }
 }

@@ -59,7 +59,14 @@ mod tests {
     #[test]
     fn only_listed_names_resolve() {
         assert!(lookup("viewer.js").is_some());
-        for name in ["../viewer.js", "./viewer.js", "/viewer.js", "assets/viewer.js", "", ".."] {
+        for name in [
+            "../viewer.js",
+            "./viewer.js",
+            "/viewer.js",
+            "assets/viewer.js",
+            "",
+            "..",
+        ] {
             assert!(lookup(name).is_none(), "{name}");
         }
     }

@@ -181,10 +181,7 @@ async fn send_pair<S>(sink: &mut S, header: String, glb: &Bytes) -> Result<(), E
 where
     S: SinkExt<Message> + Unpin,
 {
-    for message in [
-        Message::Text(header.into()),
-        Message::Binary(glb.clone()),
-    ] {
+    for message in [Message::Text(header.into()), Message::Binary(glb.clone())] {
         match tokio::time::timeout(VIEWER_SEND_TIMEOUT, sink.send(message)).await {
             Ok(Ok(())) => {}
             _ => return Err(Ended::Gone),

@@ -34,6 +34,12 @@ pub struct ServeArgs {
 /// Runs `vesselcad serve`; exit 1 for a design or journal that cannot be opened,
 /// 2 for a socket or file-system failure.
 pub fn serve_command(args: ServeArgs) -> ExitCode {
+    if !args.bind.is_loopback() && args.token.is_none() {
+        eprintln!(
+            "warning: listening on {} without --token: anyone who can reach it can edit",
+            args.bind
+        );
+    }
     let options = ServeOptions {
         design: args.design,
         bind: args.bind,

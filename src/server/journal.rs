@@ -199,11 +199,21 @@ impl Journal {
         &self.path
     }
 
+    /// Appends one line and flushes it. On failure the file is cut back to where
+    /// it was, so a half-written line never sits in front of the next one.
     fn write_line(&mut self, line: &Line) -> std::io::Result<()> {
         let mut bytes = serde_json::to_vec(line)?;
         bytes.push(b'\n');
-        self.file.write_all(&bytes)?;
-        self.file.sync_data()
+        let before = self.file.metadata()?.len();
+        let written = self
+            .file
+            .write_all(&bytes)
+            .and_then(|()| self.file.sync_data());
+        if written.is_err() {
+            // Best effort: if even this fails, replay drops a torn last line.
+            let _ = self.file.set_len(before);
+        }
+        written
     }
 }
 
@@ -212,9 +222,8 @@ impl Journal {
 fn read_lines(path: &Path, lines: &[&str], print: &str) -> Result<Replay, ServeError> {
     let mut parsed = Vec::with_capacity(lines.len());
     for (k, line) in lines.iter().enumerate() {
-        let line: Line = serde_json::from_str(line).map_err(|e| {
-            journal_error(path, format!("line {}: not a journal line: {e}", k + 1))
-        })?;
+        let line: Line = serde_json::from_str(line)
+            .map_err(|e| journal_error(path, format!("line {}: not a journal line: {e}", k + 1)))?;
         parsed.push(line);
     }
     let (base, base_revision) = match parsed.first() {
@@ -306,7 +315,8 @@ mod tests {
     use serde_json::json;
 
     fn temp_design(name: &str, text: &str) -> PathBuf {
-        let dir = std::env::temp_dir().join(format!("vesselcad-journal-{name}-{}", std::process::id()));
+        let dir =
+            std::env::temp_dir().join(format!("vesselcad-journal-{name}-{}", std::process::id()));
         std::fs::create_dir_all(&dir).unwrap();
         let path = dir.join("d.json");
         std::fs::write(&path, text).unwrap();
@@ -319,14 +329,21 @@ mod tests {
         let design = temp_design("torn", "{}");
         let (mut j, replay) = Journal::open(&design, b"{}").unwrap();
         assert!(replay.edits.is_empty());
-        j.append(1, &json!([{"op": "add", "path": "/a", "value": 1}])).unwrap();
+        j.append(1, &json!([{"op": "add", "path": "/a", "value": 1}]))
+            .unwrap();
         j.append(2, &json!([])).unwrap();
         drop(j);
-        let mut f = OpenOptions::new().append(true).open(journal_path(&design)).unwrap();
+        let mut f = OpenOptions::new()
+            .append(true)
+            .open(journal_path(&design))
+            .unwrap();
         f.write_all(b"{\"revision\":3,\"pat").unwrap();
         drop(f);
         let (mut j, replay) = Journal::open(&design, b"{}").unwrap();
-        assert_eq!(replay.edits.iter().map(|e| e.revision).collect::<Vec<_>>(), [1, 2]);
+        assert_eq!(
+            replay.edits.iter().map(|e| e.revision).collect::<Vec<_>>(),
+            [1, 2]
+        );
         j.append(3, &json!([])).unwrap();
         drop(j);
         let (_, replay) = Journal::open(&design, b"{}").unwrap();
@@ -349,6 +366,9 @@ mod tests {
         assert_eq!((replay.base_revision, replay.edits.len()), (1, 1));
         // Changed by hand: refused.
         let err = Journal::open(&design, b"{\"b\":2}").unwrap_err();
-        assert!(err.to_string().contains("changed outside the server"), "{err}");
+        assert!(
+            err.to_string().contains("changed outside the server"),
+            "{err}"
+        );
     }
 }

@@ -109,11 +109,7 @@ pub fn router(state: AppState) -> Router {
 }
 
 fn asset_response(asset: Asset) -> Response {
-    (
-        [(header::CONTENT_TYPE, asset.content_type)],
-        asset.bytes,
-    )
-        .into_response()
+    ([(header::CONTENT_TYPE, asset.content_type)], asset.bytes).into_response()
 }
 
 async fn index() -> Response {
@@ -142,7 +138,10 @@ async fn model_glb(State(state): State<AppState>) -> Response {
     let snapshot = state.with_session(|s, _| s.snapshot()).await;
     (
         [
-            (header::CONTENT_TYPE, HeaderValue::from_static("model/gltf-binary")),
+            (
+                header::CONTENT_TYPE,
+                HeaderValue::from_static("model/gltf-binary"),
+            ),
             revision_header(snapshot.revision),
         ],
         snapshot.glb,
@@ -156,7 +155,10 @@ async fn design_json(State(state): State<AppState>) -> Response {
         .await;
     (
         [
-            (header::CONTENT_TYPE, HeaderValue::from_static("application/json")),
+            (
+                header::CONTENT_TYPE,
+                HeaderValue::from_static("application/json"),
+            ),
             revision_header(revision),
         ],
         text,
@@ -192,10 +194,7 @@ async fn edit(
     Ok(axum::Json(answer).into_response())
 }
 
-async fn save(
-    State(state): State<AppState>,
-    headers: HeaderMap,
-) -> Result<Response, ApiError> {
+async fn save(State(state): State<AppState>, headers: HeaderMap) -> Result<Response, ApiError> {
     state.authorize(&headers)?;
     let (revision, path) = state
         .with_session(|s, _| Ok::<_, ApiError>((s.save()?, s.path().display().to_string())))

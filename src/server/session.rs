@@ -14,9 +14,9 @@
 //! it given a revision and acknowledged. Any failure before that leaves the model,
 //! the design and the journal as they were.
 
+use axum::body::Bytes;
 use std::collections::{BTreeMap, BTreeSet};
 use std::path::{Path, PathBuf};
-use axum::body::Bytes;
 
 use serde_json::{Value, json};
 
@@ -190,8 +190,8 @@ impl Session {
             _ => ApiError::Unappliable(e.to_string()),
         })?;
         // Parsed from text like a design file, for its exact error paths.
-        let text = serde_json::to_string_pretty(&doc)
-            .map_err(|e| ApiError::Malformed(e.to_string()))?;
+        let text =
+            serde_json::to_string_pretty(&doc).map_err(|e| ApiError::Malformed(e.to_string()))?;
         let parsed = design::parse(&text).map_err(|e| ApiError::Invalid(without_position(e)))?;
         let work = self
             .model

@@ -23,7 +23,9 @@ pub fn design_copy(example: &str, test: &str) -> PathBuf {
     let _ = std::fs::remove_dir_all(&dir);
     std::fs::create_dir_all(&dir).unwrap();
     let path = dir.join("design.json");
-    let source = Path::new(env!("CARGO_MANIFEST_DIR")).join("examples/designs").join(example);
+    let source = Path::new(env!("CARGO_MANIFEST_DIR"))
+        .join("examples/designs")
+        .join(example);
     std::fs::copy(source, &path).unwrap();
     path
 }
@@ -99,7 +101,13 @@ impl ServerProcess {
     }
 
     /// A request; see [`request`].
-    pub fn request(&self, method: &str, path: &str, headers: &[(&str, &str)], body: &[u8]) -> Response {
+    pub fn request(
+        &self,
+        method: &str,
+        path: &str,
+        headers: &[(&str, &str)],
+        body: &[u8],
+    ) -> Response {
         request(self.address, method, path, headers, body)
     }
 
@@ -196,7 +204,11 @@ pub fn request(
     if chunked {
         body = dechunk(&body);
     }
-    Response { status, headers, body }
+    Response {
+        status,
+        headers,
+        body,
+    }
 }
 
 /// Decodes a chunked body.
@@ -207,7 +219,8 @@ fn dechunk(mut data: &[u8]) -> Vec<u8> {
             return out;
         };
         let size_text = String::from_utf8_lossy(&data[..end]);
-        let size = usize::from_str_radix(size_text.split(';').next().unwrap_or("0").trim(), 16).unwrap_or(0);
+        let size = usize::from_str_radix(size_text.split(';').next().unwrap_or("0").trim(), 16)
+            .unwrap_or(0);
         if size == 0 {
             return out;
         }

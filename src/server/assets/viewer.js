@@ -78,7 +78,7 @@ function fitCamera() {
   if (box.isEmpty()) return;
   const center = box.getCenter(new Vector3());
   const size = box.getSize(new Vector3()).length() || 1;
-  camera.position.copy(center).add(new Vector3(0.7, 0.5, 0.9).multiplyScalar(size));
+  camera.position.copy(center).add(new Vector3(0.45, 0.35, 0.6).multiplyScalar(size));
   camera.near = size / 1000;
   camera.far = size * 20;
   camera.updateProjectionMatrix();
