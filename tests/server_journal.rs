@@ -20,8 +20,7 @@ fn edit(k: usize) -> serde_json::Value {
 /// Expected projection of nozzle `n` after edits `0..count`.
 fn expected(n: usize, count: usize, original: f64) -> f64 {
     (0..count)
-        .filter(|k| k % 7 == n)
-        .last()
+        .rfind(|k| k % 7 == n)
         .map_or(original, |k| (1450 + 10 * k) as f64)
 }
 

@@ -9,7 +9,7 @@ mod server_support;
 use std::collections::BTreeMap;
 use std::time::{Duration, Instant};
 
-use futures_util::{SinkExt, StreamExt};
+use futures_util::StreamExt;
 use gltf::Gltf;
 use serde_json::{Value, json};
 use server_support::{ServerProcess, TIMEOUT, design_copy};
