@@ -298,3 +298,37 @@ fn many_viewers_get_every_revision_and_a_stalled_one_blocks_nobody() {
         );
     });
 }
+
+#[test]
+fn a_viewer_message_over_the_limit_closes_only_that_viewer() {
+    let design = design_copy("storage-tank.json", "stream-oversized");
+    let server = ServerProcess::start(&design, &[]);
+    runtime().block_on(async {
+        use futures_util::SinkExt;
+        let mut loud = connect(&server).await;
+        let mut quiet = connect(&server).await;
+        next_pair(&mut loud).await;
+        next_pair(&mut quiet).await;
+        let big = "x".repeat(vesselcad::server::MAX_VIEWER_MESSAGE + 1);
+        loud.send(Message::Text(big.into())).await.unwrap();
+        // The server drops that viewer: its stream ends (close frame or error).
+        let ended = tokio::time::timeout(TIMEOUT, async {
+            loop {
+                match loud.next().await {
+                    None | Some(Err(_)) | Some(Ok(Message::Close(_))) => break,
+                    Some(Ok(_)) => {}
+                }
+            }
+        })
+        .await;
+        assert!(ended.is_ok(), "the oversized viewer was not closed");
+        // The other viewer and the editor carry on.
+        let answer = post_edit(
+            &server,
+            json!([{ "op": "replace", "path": "/vessels/0/placement/rotation", "value": 15 }]),
+        )
+        .await;
+        let (delta, _) = next_pair(&mut quiet).await;
+        assert_eq!(delta["revision"], answer["revision"]);
+    });
+}
