@@ -268,3 +268,30 @@ fn static_files_cannot_escape_their_folder_and_unknown_routes_are_404() {
     assert_eq!(r.status, 404);
     assert!(r.json()["error"].as_str().unwrap().contains("NOPE"));
 }
+
+#[test]
+fn serve_refuses_a_missing_or_invalid_design_at_start() {
+    let run = |path: &std::path::Path| {
+        std::process::Command::new(env!("CARGO_BIN_EXE_vesselcad"))
+            .args(["serve", path.to_str().unwrap(), "--port", "0"])
+            .output()
+            .unwrap()
+    };
+    let design = design_copy("storage-tank.json", "api-refuse");
+    let missing = run(&design.with_file_name("nope.json"));
+    assert_eq!(missing.status.code(), Some(2));
+    assert!(String::from_utf8_lossy(&missing.stderr).contains("cannot read"));
+    let text = std::fs::read_to_string(&design)
+        .unwrap()
+        .replace("\"od\": 8000", "\"od\": -8000");
+    std::fs::write(&design, text).unwrap();
+    let invalid = run(&design);
+    assert_eq!(invalid.status.code(), Some(1));
+    let stderr = String::from_utf8_lossy(&invalid.stderr);
+    assert!(
+        stderr.contains("TK-301/S1") && stderr.contains("od = -8000"),
+        "{stderr}"
+    );
+    // Nothing was written beside the refused design.
+    assert!(!design.with_file_name("design.json.journal").exists());
+}

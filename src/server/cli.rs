@@ -8,7 +8,9 @@ use std::process::ExitCode;
 use clap::Args;
 
 use super::{ServeError, ServeOptions, run};
+use crate::design::DesignError;
 use crate::mesh::TessellationOptions;
+use crate::model::ModelError;
 
 /// Arguments of `vesselcad serve`.
 #[derive(Args, Debug)]
@@ -31,8 +33,8 @@ pub struct ServeArgs {
     pub tolerance: f64,
 }
 
-/// Runs `vesselcad serve`; exit 1 for a design or journal that cannot be opened,
-/// 2 for a socket or file-system failure.
+/// Runs `vesselcad serve`; exit 1 for an invalid design or a journal that cannot
+/// be replayed, 2 for a file that cannot be read or written or a socket failure.
 pub fn serve_command(args: ServeArgs) -> ExitCode {
     if !args.bind.is_loopback() && args.token.is_none() {
         eprintln!(
@@ -52,6 +54,10 @@ pub fn serve_command(args: ServeArgs) -> ExitCode {
         Err(e) => {
             eprintln!("error: {e}");
             match e {
+                ServeError::Design {
+                    source: ModelError::Design(DesignError::Io { .. }),
+                    ..
+                } => ExitCode::from(2),
                 ServeError::Design { .. } | ServeError::Journal { .. } => ExitCode::from(1),
                 ServeError::Listen { .. } | ServeError::Save { .. } => ExitCode::from(2),
             }
