@@ -26,6 +26,7 @@ use tokio::io::{AsyncReadExt, AsyncWriteExt};
 use tokio::net::TcpStream;
 use tokio::sync::Mutex;
 use tokio_tungstenite::tungstenite::Message;
+use tokio_tungstenite::tungstenite::protocol::WebSocketConfig;
 use vesselcad::mesh::TessellationOptions;
 use vesselcad::server::{ServeOptions, start};
 
@@ -80,6 +81,7 @@ struct Seen {
     covered_by_resync: Vec<(u64, u64)>,
     last: u64,
     bytes: usize,
+    error: Option<String>,
 }
 
 /// One POST /edit over a fresh loopback connection; the revision it got.
@@ -149,7 +151,11 @@ async fn main() {
         let ready = ready_tx.clone();
         let stop_at = stop_at.clone();
         viewer_tasks.push(tokio::spawn(async move {
-            let (mut ws, _) = tokio_tungstenite::connect_async(url)
+            // Whole-plant GLBs can pass tungstenite's default 16 MiB message limit.
+            let config = WebSocketConfig::default()
+                .max_message_size(None)
+                .max_frame_size(None);
+            let (mut ws, _) = tokio_tungstenite::connect_async_with_config(url, Some(config), true)
                 .await
                 .expect("ws connect");
             let mut seen = Seen::default();
@@ -158,7 +164,14 @@ async fn main() {
                 let next = tokio::time::timeout(Duration::from_secs(1), ws.next()).await;
                 let message = match next {
                     Ok(Some(Ok(m))) => m,
-                    Ok(_) => break,
+                    Ok(Some(Err(e))) => {
+                        seen.error = Some(e.to_string());
+                        break;
+                    }
+                    Ok(None) => {
+                        seen.error = Some("the server closed the socket".into());
+                        break;
+                    }
                     Err(_) => {
                         // Idle: finished once the editors are done and we are at the end.
                         if let Some(last) = *stop_at.lock().await
@@ -262,6 +275,9 @@ async fn main() {
             .await
             .expect("a viewer did not finish")
             .expect("viewer");
+        if let Some(e) = &seen.error {
+            eprintln!("a viewer failed: {e}");
+        }
         resyncs += seen.resyncs;
         duplicated += seen.duplicates;
         bytes += seen.bytes;
