@@ -123,6 +123,15 @@ fn bad_edits_are_refused_with_a_clear_error_and_change_nothing() {
             "entity V-101/S1, length = -5",
         ),
         (
+            "duplicate vessel tag",
+            json!([{ "op": "copy", "from": "/vessels/0", "path": "/vessels/-" }])
+                .to_string()
+                .into_bytes(),
+            422,
+            "invalid",
+            "vessels[1].tag: duplicate tag",
+        ),
+        (
             "failed test",
             json!([
                 { "op": "test", "path": length, "value": 1 },

@@ -189,14 +189,21 @@ impl Session {
             json_patch::PatchErrorKind::TestFailed => ApiError::TestFailed(e.to_string()),
             _ => ApiError::Unappliable(e.to_string()),
         })?;
-        // Parsed from text like a design file, for its exact error paths.
+        // Parsed from text like a design file, for its exact error paths. The
+        // rules are checked by the model's staging, on the vessels that differ
+        // only (the others were valid already): the same checks as a design file,
+        // without resolving the whole plant on every edit.
         let text =
             serde_json::to_string_pretty(&doc).map_err(|e| ApiError::Malformed(e.to_string()))?;
-        let parsed = design::parse(&text).map_err(|e| ApiError::Invalid(without_position(e)))?;
+        let parsed =
+            design::parse_unchecked(&text).map_err(|e| ApiError::Invalid(without_position(e)))?;
         let work = self
             .model
             .edit(Edit::ReplaceDesign(parsed))
-            .map_err(ApiError::Refused)?;
+            .map_err(|e| match e {
+                ModelError::Design(e) => ApiError::Invalid(e),
+                other => ApiError::Refused(other),
+            })?;
         Ok((design_value(&self.model.design()), work))
     }
 
