@@ -32,6 +32,7 @@ pub mod nurbs;
 pub mod parts;
 pub mod project;
 pub mod report;
+pub mod server;
 #[path = "../systems/mod.rs"]
 pub mod systems;
 

@@ -15,6 +15,7 @@ use vesselcad::export::write_glb_to;
 use vesselcad::mesh::TessellationOptions;
 use vesselcad::model::{Model, ModelError};
 use vesselcad::report::report;
+use vesselcad::server::cli::{ServeArgs, serve_command};
 
 #[derive(Parser)]
 #[command(
@@ -49,6 +50,9 @@ enum Command {
         /// The design file.
         design: PathBuf,
     },
+    /// Serve a live redesign session: viewer page, JSON Patch edits, journal,
+    /// glTF deltas over WebSocket (see `vesselcad::server`).
+    Serve(ServeArgs),
     /// Report each vessel's parts, nozzles, lengths, OD, volume and area.
     Info {
         /// The design file.
@@ -71,6 +75,7 @@ fn fail(error: &DesignError) -> ExitCode {
 fn main() -> ExitCode {
     let cli = Cli::parse();
     match cli.command {
+        Command::Serve(args) => serve_command(args),
         Command::Check { design } => match load(&design) {
             Ok(d) => {
                 println!(

@@ -9,7 +9,10 @@
 //!   metadata comes from [`vessel_extras`], [`part_extras`] and [`nozzle_extras`].
 //! - [`write_glb`] / [`write_glb_to`] write a scene as binary glTF 2.0 (Y-up,
 //!   metres, deterministic bytes).
+//! - [`write_delta_glb`] writes only the changed parts of a scene, keyed by their
+//!   stable ids, for live viewers.
 
+mod delta;
 mod direct;
 mod error;
 mod extras;
@@ -19,6 +22,7 @@ mod gltf_document;
 mod gltf_materials;
 mod scene;
 
+pub use delta::{delta_scene, node_id, scene_ids, write_delta_glb};
 pub use direct::{build_scene, patch_name};
 pub use error::ExportError;
 pub use extras::{nozzle_extras, part_extras, vessel_extras};

@@ -1,0 +1,66 @@
+//! The `vesselcad serve` command line: its arguments and the few lines that turn
+//! them into [`ServeOptions`] and run the server, so `main.rs` only names it.
+
+use std::net::IpAddr;
+use std::path::PathBuf;
+use std::process::ExitCode;
+
+use clap::Args;
+
+use super::{ServeError, ServeOptions, run};
+use crate::design::DesignError;
+use crate::mesh::TessellationOptions;
+use crate::model::ModelError;
+
+/// Arguments of `vesselcad serve`.
+#[derive(Args, Debug)]
+pub struct ServeArgs {
+    /// The design file (JSON, vesselcad/1). Edits are journaled beside it in
+    /// `<design>.journal` and replayed on restart.
+    pub design: PathBuf,
+    /// Port to listen on (0: any free port; the URL is printed).
+    #[arg(long, default_value_t = 8080)]
+    pub port: u16,
+    /// Address to listen on. Loopback by default; anything else exposes the
+    /// session to the network.
+    #[arg(long, default_value = "127.0.0.1")]
+    pub bind: IpAddr,
+    /// Require `Authorization: Bearer <token>` on edits and saves.
+    #[arg(long)]
+    pub token: Option<String>,
+    /// Chordal tolerance of the meshes, mm.
+    #[arg(long, default_value_t = TessellationOptions::DEFAULT.tolerance, allow_negative_numbers = true)]
+    pub tolerance: f64,
+}
+
+/// Runs `vesselcad serve`; exit 1 for an invalid design or a journal that cannot
+/// be replayed, 2 for a file that cannot be read or written or a socket failure.
+pub fn serve_command(args: ServeArgs) -> ExitCode {
+    if !args.bind.is_loopback() && args.token.is_none() {
+        eprintln!(
+            "warning: listening on {} without --token: anyone who can reach it can edit",
+            args.bind
+        );
+    }
+    let options = ServeOptions {
+        design: args.design,
+        bind: args.bind,
+        port: args.port,
+        token: args.token,
+        tessellation: TessellationOptions::chord(args.tolerance),
+    };
+    match run(options) {
+        Ok(()) => ExitCode::SUCCESS,
+        Err(e) => {
+            eprintln!("error: {e}");
+            match e {
+                ServeError::Design {
+                    source: ModelError::Design(DesignError::Io { .. }),
+                    ..
+                } => ExitCode::from(2),
+                ServeError::Design { .. } | ServeError::Journal { .. } => ExitCode::from(1),
+                ServeError::Listen { .. } | ServeError::Save { .. } => ExitCode::from(2),
+            }
+        }
+    }
+}

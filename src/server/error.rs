@@ -1,0 +1,168 @@
+//! Errors of the live-session server, in two domains: [`ServeError`] stops the
+//! server from starting (bad design, corrupt journal, port in use); [`ApiError`] is
+//! one refused request, answered with a 4xx/5xx status and a JSON body that says
+//! what was wrong — the session is unchanged.
+//!
+//! Every response error body has the shape
+//! `{"error": "<message>", "kind": "<kind>", "violations": [...]?}` where
+//! `violations` lists the broken design rules (path, entity, field, value, rule).
+
+use axum::Json;
+use axum::http::StatusCode;
+use axum::response::{IntoResponse, Response};
+use serde_json::json;
+use thiserror::Error;
+
+use crate::design::{DesignError, RuleViolation};
+use crate::model::ModelError;
+
+/// Why `vesselcad serve` could not start or stopped.
+#[derive(Debug, Error)]
+pub enum ServeError {
+    /// The design file could not be loaded or built.
+    #[error("{path}: {source}")]
+    Design {
+        /// The design file.
+        path: String,
+        /// What was wrong.
+        source: ModelError,
+    },
+    /// The journal beside the design could not be read, written or replayed.
+    #[error("journal {path}: {message}")]
+    Journal {
+        /// The journal file.
+        path: String,
+        /// What was wrong.
+        message: String,
+    },
+    /// The listening socket could not be opened or the server failed.
+    #[error("cannot listen on {address}: {source}")]
+    Listen {
+        /// The address asked for.
+        address: String,
+        /// The I/O error.
+        source: std::io::Error,
+    },
+    /// Saving the design at shutdown failed (the journal still holds every edit).
+    #[error("cannot save {path}: {source}")]
+    Save {
+        /// The design file.
+        path: String,
+        /// The I/O error.
+        source: std::io::Error,
+    },
+}
+
+/// One refused request. The session, its model and its journal are unchanged.
+#[derive(Debug, Error)]
+pub enum ApiError {
+    /// The body is not JSON, or not a JSON Patch document (RFC 6902). 400.
+    #[error("malformed edit: {0}")]
+    Malformed(String),
+    /// The body is larger than the stated limit. 413.
+    #[error("request body too large: the limit is {limit} bytes")]
+    TooLarge {
+        /// The limit, bytes.
+        limit: usize,
+    },
+    /// An operation's path does not exist in the design, or an operation cannot be
+    /// applied to what it names. 422.
+    #[error("patch cannot be applied: {0}")]
+    Unappliable(String),
+    /// A `test` operation failed: the design is not what the editor expected
+    /// (typically another editor changed it first). 409.
+    #[error("patch test failed: {0}")]
+    TestFailed(String),
+    /// The patched document is not a valid design: a wrong type, an unknown field,
+    /// or values breaking design rules (all listed). 422.
+    #[error("the edited design is invalid: {0}")]
+    Invalid(DesignError),
+    /// The model refused the edit. 422.
+    #[error("the model refused the edit: {0}")]
+    Refused(ModelError),
+    /// Editing needs `Authorization: Bearer <token>` and it was missing or wrong. 401.
+    #[error("editing needs the header `Authorization: Bearer <token>` with the server's --token")]
+    Unauthorized,
+    /// No such vessel (e.g. in `/drawing.svg?vessel=`). 404.
+    #[error("no vessel has the tag {0:?}")]
+    UnknownVessel(String),
+    /// No such file or route. 404.
+    #[error("not found: {0}")]
+    NotFound(String),
+    /// A query parameter is missing or malformed. 400.
+    #[error("bad query: {0}")]
+    BadQuery(String),
+    /// The feature is not in this build. 501.
+    #[error("not implemented in this build: {0}")]
+    NotImplemented(String),
+    /// The edit was valid but could not be made durable (journal write failed);
+    /// the model was put back as it was. 500.
+    #[error("edit not saved, nothing changed: {0}")]
+    Storage(String),
+}
+
+impl ApiError {
+    /// The HTTP status of this error.
+    pub fn status(&self) -> StatusCode {
+        match self {
+            ApiError::Malformed(_) | ApiError::BadQuery(_) => StatusCode::BAD_REQUEST,
+            ApiError::TooLarge { .. } => StatusCode::PAYLOAD_TOO_LARGE,
+            ApiError::Unappliable(_) | ApiError::Invalid(_) | ApiError::Refused(_) => {
+                StatusCode::UNPROCESSABLE_ENTITY
+            }
+            ApiError::TestFailed(_) => StatusCode::CONFLICT,
+            ApiError::Unauthorized => StatusCode::UNAUTHORIZED,
+            ApiError::UnknownVessel(_) | ApiError::NotFound(_) => StatusCode::NOT_FOUND,
+            ApiError::NotImplemented(_) => StatusCode::NOT_IMPLEMENTED,
+            ApiError::Storage(_) => StatusCode::INTERNAL_SERVER_ERROR,
+        }
+    }
+
+    /// A short machine-readable name of the error kind.
+    pub fn kind(&self) -> &'static str {
+        match self {
+            ApiError::Malformed(_) => "malformed",
+            ApiError::TooLarge { .. } => "too_large",
+            ApiError::Unappliable(_) => "unappliable",
+            ApiError::TestFailed(_) => "test_failed",
+            ApiError::Invalid(_) => "invalid",
+            ApiError::Refused(_) => "refused",
+            ApiError::Unauthorized => "unauthorized",
+            ApiError::UnknownVessel(_) => "unknown_vessel",
+            ApiError::NotFound(_) => "not_found",
+            ApiError::BadQuery(_) => "bad_query",
+            ApiError::NotImplemented(_) => "not_implemented",
+            ApiError::Storage(_) => "storage",
+        }
+    }
+
+    /// The broken design rules, if any.
+    fn violations(&self) -> &[RuleViolation] {
+        match self {
+            ApiError::Invalid(e) | ApiError::Refused(ModelError::Design(e)) => e.violations(),
+            _ => &[],
+        }
+    }
+}
+
+impl IntoResponse for ApiError {
+    fn into_response(self) -> Response {
+        let mut body = json!({ "error": self.to_string(), "kind": self.kind() });
+        let violations = self.violations();
+        if !violations.is_empty() {
+            body["violations"] = violations
+                .iter()
+                .map(|v| {
+                    json!({
+                        "path": v.path, "entity": v.entity, "field": v.field,
+                        "value": v.value, "rule": v.rule,
+                    })
+                })
+                .collect();
+        }
+        if let ApiError::TooLarge { limit } = self {
+            body["limit"] = json!(limit);
+        }
+        (self.status(), Json(body)).into_response()
+    }
+}

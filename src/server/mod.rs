@@ -1,0 +1,221 @@
+//! Live redesign sessions: `vesselcad serve` — an HTTP and WebSocket server that
+//! applies edits to one design, journals them, and streams glTF deltas to browser
+//! viewers.
+//!
+//! Where it sits in the data flow: edits arrive as JSON Patch documents
+//! (`POST /edit`), become one transactional [`crate::model::Edit`] on the
+//! incremental model ([`session`]), are made durable in the journal before they are
+//! acknowledged ([`journal`]), and the ids the model reports as changed go out to
+//! every viewer as a small JSON delta plus a GLB of only the changed parts
+//! ([`broadcast`], [`crate::export::write_delta_glb`]). The viewer page and its
+//! three.js bundle are embedded ([`assets`]); the routes are in [`routes`].
+//!
+//! Limits: request bodies [`MAX_BODY`] bytes; a viewer's queue [`VIEWER_QUEUE`]
+//! updates (beyond: full resync); a viewer's socket [`VIEWER_SEND_TIMEOUT`] per
+//! message (beyond: dropped); viewer messages [`MAX_VIEWER_MESSAGE`] bytes.
+
+pub mod assets;
+pub mod broadcast;
+pub mod cli;
+pub mod error;
+pub mod journal;
+pub mod routes;
+pub mod session;
+
+use std::net::{IpAddr, Ipv4Addr, SocketAddr};
+use std::path::PathBuf;
+use std::sync::{Arc, Mutex};
+
+pub use broadcast::{MAX_VIEWER_MESSAGE, VIEWER_QUEUE, VIEWER_SEND_TIMEOUT};
+pub use error::{ApiError, ServeError};
+pub use routes::MAX_BODY;
+
+use crate::mesh::TessellationOptions;
+use broadcast::Hub;
+use routes::{AppState, router};
+use session::Session;
+use tokio::sync::watch;
+use tokio::task::JoinHandle;
+
+/// How to serve a design.
+#[derive(Clone, Debug)]
+pub struct ServeOptions {
+    /// The design file; its journal is `<design>.journal` beside it.
+    pub design: PathBuf,
+    /// The address to listen on (loopback by default).
+    pub bind: IpAddr,
+    /// The port (0: any free port).
+    pub port: u16,
+    /// The token edits and saves need, if any.
+    pub token: Option<String>,
+    /// Meshing options of the model.
+    pub tessellation: TessellationOptions,
+}
+
+impl ServeOptions {
+    /// Serve `design` on 127.0.0.1:8080, no token, default meshing.
+    pub fn new(design: impl Into<PathBuf>) -> ServeOptions {
+        ServeOptions {
+            design: design.into(),
+            bind: IpAddr::V4(Ipv4Addr::LOCALHOST),
+            port: 8080,
+            token: None,
+            tessellation: TessellationOptions::DEFAULT,
+        }
+    }
+}
+
+/// A running server.
+pub struct Server {
+    address: SocketAddr,
+    session: Arc<Mutex<Session>>,
+    shutdown: watch::Sender<bool>,
+    task: JoinHandle<std::io::Result<()>>,
+}
+
+/// Opens the session (design + journal replay) and starts serving it on the
+/// current tokio runtime.
+///
+/// # Errors
+///
+/// [`ServeError`] when the design or journal cannot be opened or the address
+/// cannot be bound.
+pub async fn start(options: ServeOptions) -> Result<Server, ServeError> {
+    let design = options.design.clone();
+    let tessellation = options.tessellation;
+    let session = tokio::task::spawn_blocking(move || Session::open(&design, tessellation))
+        .await
+        .map_err(|e| ServeError::Journal {
+            path: options.design.display().to_string(),
+            message: format!("opening the session panicked: {e}"),
+        })??;
+    let session = Arc::new(Mutex::new(session));
+    let address = SocketAddr::new(options.bind, options.port);
+    let listener = tokio::net::TcpListener::bind(address)
+        .await
+        .map_err(|source| ServeError::Listen {
+            address: address.to_string(),
+            source,
+        })?;
+    let address = listener.local_addr().map_err(|source| ServeError::Listen {
+        address: address.to_string(),
+        source,
+    })?;
+    let (shutdown, watching) = watch::channel(false);
+    let state = AppState {
+        session: session.clone(),
+        hub: Hub::default(),
+        token: options.token,
+        shutdown: watching.clone(),
+    };
+    let app = router(state);
+    let mut stop = watching;
+    let task = tokio::spawn(async move {
+        axum::serve(listener, app)
+            .with_graceful_shutdown(async move {
+                let _ = stop.wait_for(|s| *s).await;
+            })
+            .await
+    });
+    Ok(Server {
+        address,
+        session,
+        shutdown,
+        task,
+    })
+}
+
+impl Server {
+    /// The address it listens on.
+    pub fn address(&self) -> SocketAddr {
+        self.address
+    }
+
+    /// Stops serving (viewers are closed), waits for requests in flight, then
+    /// saves the design and starts a fresh journal.
+    ///
+    /// # Errors
+    ///
+    /// [`ServeError::Save`] if the design cannot be saved (the journal still
+    /// holds every edit), [`ServeError::Listen`] if the server had failed.
+    pub async fn shutdown(self) -> Result<(), ServeError> {
+        let _ = self.shutdown.send(true);
+        let served = self.task.await;
+        let address = self.address.to_string();
+        let session = self.session;
+        let saved = tokio::task::spawn_blocking(move || {
+            let mut s = session.lock().unwrap_or_else(|p| p.into_inner());
+            let path = s.path().display().to_string();
+            s.save().map_err(|e| ServeError::Save {
+                path,
+                source: std::io::Error::other(e.to_string()),
+            })
+        })
+        .await;
+        match served {
+            Ok(Ok(())) => {}
+            Ok(Err(source)) => return Err(ServeError::Listen { address, source }),
+            Err(e) => {
+                return Err(ServeError::Listen {
+                    address,
+                    source: std::io::Error::other(e.to_string()),
+                });
+            }
+        }
+        match saved {
+            Ok(result) => result.map(|_| ()),
+            Err(e) => Err(ServeError::Save {
+                path: String::new(),
+                source: std::io::Error::other(e.to_string()),
+            }),
+        }
+    }
+}
+
+/// `vesselcad serve`: serves until Ctrl-C or SIGTERM, then saves. Prints the URL
+/// on its first line of output.
+///
+/// # Errors
+///
+/// As [`start`] and [`Server::shutdown`].
+pub fn run(options: ServeOptions) -> Result<(), ServeError> {
+    let runtime = tokio::runtime::Builder::new_multi_thread()
+        .enable_all()
+        .build()
+        .map_err(|source| ServeError::Listen {
+            address: format!("{}:{}", options.bind, options.port),
+            source,
+        })?;
+    runtime.block_on(async move {
+        let server = start(options).await?;
+        println!("vesselcad serve: http://{}/", server.address());
+        // Flush so a parent process reading our output sees the address now.
+        use std::io::Write;
+        let _ = std::io::stdout().flush();
+        stop_signal().await;
+        println!("vesselcad serve: shutting down, saving the design");
+        server.shutdown().await
+    })
+}
+
+/// Waits for Ctrl-C or (on Unix) SIGTERM.
+async fn stop_signal() {
+    let ctrl_c = async {
+        let _ = tokio::signal::ctrl_c().await;
+    };
+    #[cfg(unix)]
+    let term = async {
+        match tokio::signal::unix::signal(tokio::signal::unix::SignalKind::terminate()) {
+            Ok(mut s) => {
+                s.recv().await;
+            }
+            Err(_) => std::future::pending::<()>().await,
+        }
+    };
+    #[cfg(not(unix))]
+    let term = std::future::pending::<()>();
+    tokio::select! {
+        () = ctrl_c => {}
+        () = term => {}
+    }
+}

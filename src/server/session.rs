@@ -1,0 +1,378 @@
+//! A live session: the model of one design file, its revision, its journal and the
+//! current design as JSON — the state every request reads and every edit changes.
+//!
+//! Where it sits: the routes lock the session (one edit at a time), call
+//! [`Session::apply_patch`], and hand the returned [`Accepted`] to the broadcast
+//! hub while still holding the lock, so viewers get deltas in revision order.
+//!
+//! An edit is a JSON Patch (RFC 6902) against the design's canonical JSON (mm, as
+//! `GET /design.json` serves it). It is applied to a copy; the result is parsed and
+//! checked as a design file would be, then given to the model as one
+//! [`Edit::ReplaceDesign`], which touches only the vessels that differ and, inside
+//! them, rebuilds only the parts whose parameters changed (the model's change
+//! detection). The edit is then appended to the journal and flushed; only then is
+//! it given a revision and acknowledged. Any failure before that leaves the model,
+//! the design and the journal as they were.
+
+use axum::body::Bytes;
+use std::collections::{BTreeMap, BTreeSet};
+use std::path::{Path, PathBuf};
+
+use serde_json::{Value, json};
+
+use super::error::{ApiError, ServeError};
+use super::journal::{Journal, fingerprint, write_atomically};
+use crate::design::{self, Design, DesignError, to_canonical_json};
+use crate::export::{Scene, node_id, scene_ids, write_delta_glb, write_glb};
+use crate::mesh::TessellationOptions;
+use crate::model::{Edit, Model, ModelError};
+use crate::systems::WorkCounters;
+
+/// An accepted edit: its revision, what changed and the delta for viewers.
+#[derive(Debug, Clone)]
+pub struct Accepted {
+    /// The new revision.
+    pub revision: u64,
+    /// Stable ids whose frame or geometry changed.
+    pub changed: Vec<String>,
+    /// Stable ids removed.
+    pub removed: Vec<String>,
+    /// Work the model did for this edit.
+    pub work: WorkCounters,
+    /// GLB of the changed parts only (see [`crate::export::write_delta_glb`]).
+    pub delta_glb: Bytes,
+}
+
+impl Accepted {
+    /// The JSON answer to the editor and the delta header for viewers.
+    pub fn to_json(&self, kind: &str) -> Value {
+        json!({
+            "type": kind,
+            "revision": self.revision,
+            "changed": self.changed,
+            "removed": self.removed,
+            "work": work_json(&self.work),
+        })
+    }
+}
+
+/// A full snapshot for a viewer: revision, every stable id, the whole GLB.
+#[derive(Debug, Clone)]
+pub struct Snapshot {
+    /// The revision it shows.
+    pub revision: u64,
+    /// Every stable id in the model.
+    pub ids: Vec<String>,
+    /// The whole model as GLB.
+    pub glb: Bytes,
+}
+
+/// One design file being edited live.
+pub struct Session {
+    path: PathBuf,
+    model: Model,
+    /// The current design as canonical JSON: the document patches apply to.
+    design: Value,
+    revision: u64,
+    journal: Journal,
+    /// The full GLB of the current revision, built on first request.
+    full: Option<Snapshot>,
+    /// Each node's `extras` (kind, parameters, resolved figures) as last sent, by
+    /// stable id: a node whose metadata changed without its frame or geometry
+    /// (a nozzle's service, a vessel's overall length) is sent again too.
+    extras: BTreeMap<String, Value>,
+}
+
+impl Session {
+    /// Opens the design file at `path`, builds its model and replays its journal.
+    ///
+    /// # Errors
+    ///
+    /// [`ServeError::Design`] for a design that cannot be loaded or built,
+    /// [`ServeError::Journal`] for a journal that cannot be read or replayed.
+    pub fn open(path: &Path, options: TessellationOptions) -> Result<Session, ServeError> {
+        let design_error = |source: ModelError| ServeError::Design {
+            path: path.display().to_string(),
+            source,
+        };
+        let bytes = std::fs::read(path).map_err(|source| {
+            design_error(ModelError::Design(DesignError::Io {
+                path: path.display().to_string(),
+                source,
+            }))
+        })?;
+        let text = String::from_utf8_lossy(&bytes);
+        let parsed = design::parse(&text).map_err(|e| design_error(e.into()))?;
+        let model = Model::from_design(&parsed, options).map_err(design_error)?;
+        let (journal, replay) = Journal::open(path, &bytes)?;
+        let mut session = Session {
+            path: path.to_path_buf(),
+            design: design_value(&model.design()),
+            extras: node_extras(&model.scene()),
+            model,
+            revision: replay.base_revision,
+            journal,
+            full: None,
+        };
+        let journal_path = session.journal.path().display().to_string();
+        for entry in replay.edits {
+            let replay_error = |e: ApiError| ServeError::Journal {
+                path: journal_path.clone(),
+                message: format!("revision {} cannot be replayed: {e}", entry.revision),
+            };
+            let mut value = entry.patch.clone();
+            canonical_numbers(&mut value);
+            let patch = parse_patch(value).map_err(replay_error)?;
+            let (next, _) = session.stage(&patch).map_err(replay_error)?;
+            session.design = next;
+            session.revision = entry.revision;
+        }
+        session.model.take_changes();
+        session.extras = node_extras(&session.model.scene());
+        Ok(session)
+    }
+
+    /// Applies a JSON Patch document (the request body) as one edit: all of it or
+    /// nothing. On success the edit is durable in the journal.
+    ///
+    /// # Errors
+    ///
+    /// [`ApiError::Malformed`] for a body that is not a JSON Patch document,
+    /// [`ApiError::Unappliable`] / [`ApiError::TestFailed`] for operations that do
+    /// not apply, [`ApiError::Invalid`] / [`ApiError::Refused`] for a result that
+    /// is not a valid design, [`ApiError::Storage`] if the journal cannot be
+    /// written. In every case the session is unchanged.
+    pub fn apply_patch(&mut self, body: &[u8]) -> Result<Accepted, ApiError> {
+        let value: Value = serde_json::from_slice(body)
+            .map_err(|e| ApiError::Malformed(format!("the body is not JSON: {e}")))?;
+        let mut normalized = value.clone();
+        canonical_numbers(&mut normalized);
+        let patch = parse_patch(normalized)?;
+        let previous = self.design.clone();
+        let (next, work) = self.stage(&patch)?;
+        if let Err(e) = self.journal.append(self.revision + 1, &value) {
+            // Not durable: put the model back as it was before answering.
+            self.restore(&previous);
+            return Err(ApiError::Storage(format!(
+                "cannot write the journal {}: {e}",
+                self.journal.path().display()
+            )));
+        }
+        self.design = next;
+        self.revision += 1;
+        self.full = None;
+        let mut log = self.model.take_changes();
+        let scene = self.model.scene();
+        let extras = node_extras(&scene);
+        for (id, value) in &extras {
+            if self.extras.get(id) != Some(value) {
+                log.changed.insert(id.clone());
+            }
+        }
+        self.extras = extras;
+        let delta_glb = delta_or_empty(&scene, &log.changed);
+        Ok(Accepted {
+            revision: self.revision,
+            changed: log.changed.into_iter().collect(),
+            removed: log.removed.into_iter().collect(),
+            work,
+            delta_glb: Bytes::from(delta_glb),
+        })
+    }
+
+    /// Applies a parsed patch to the model (not yet journaled): returns the new
+    /// design JSON and the work done. On error the model is unchanged.
+    fn stage(&mut self, patch: &json_patch::Patch) -> Result<(Value, WorkCounters), ApiError> {
+        let mut doc = self.design.clone();
+        canonical_numbers(&mut doc);
+        json_patch::patch(&mut doc, patch).map_err(|e| match e.kind {
+            json_patch::PatchErrorKind::TestFailed => ApiError::TestFailed(e.to_string()),
+            _ => ApiError::Unappliable(e.to_string()),
+        })?;
+        // Parsed from text like a design file, for its exact error paths. The
+        // rules are checked by the model's staging, on the vessels that differ
+        // only (the others were valid already): the same checks as a design file,
+        // without resolving the whole plant on every edit.
+        let text =
+            serde_json::to_string_pretty(&doc).map_err(|e| ApiError::Malformed(e.to_string()))?;
+        let parsed =
+            design::parse_unchecked(&text).map_err(|e| ApiError::Invalid(without_position(e)))?;
+        let work = self
+            .model
+            .edit(Edit::ReplaceDesign(parsed))
+            .map_err(|e| match e {
+                ModelError::Design(e) => ApiError::Invalid(e),
+                other => ApiError::Refused(other),
+            })?;
+        Ok((design_value(&self.model.design()), work))
+    }
+
+    /// Puts the model back to `design` (a design it held before).
+    fn restore(&mut self, design: &Value) {
+        if let Ok(d) = serde_json::from_value::<Design>(design.clone()) {
+            // It was valid a moment ago, so this cannot be refused.
+            if self.model.edit(Edit::ReplaceDesign(d)).is_ok() {
+                self.model.take_changes();
+            }
+        }
+    }
+
+    /// Writes the design file atomically and starts a fresh journal. Returns the
+    /// revision saved.
+    ///
+    /// # Errors
+    ///
+    /// [`ApiError::Storage`] when the file or the journal cannot be written (the
+    /// journal still holds every edit, so nothing is lost).
+    pub fn save(&mut self) -> Result<u64, ApiError> {
+        let text = to_canonical_json(&self.model.design());
+        let print = fingerprint(text.as_bytes());
+        let storage = |what: &Path, e: &dyn std::fmt::Display| {
+            ApiError::Storage(format!("cannot write {}: {e}", what.display()))
+        };
+        self.journal
+            .mark_saved(&print, self.revision)
+            .map_err(|e| storage(self.journal.path(), &e))?;
+        write_atomically(&self.path, text.as_bytes()).map_err(|e| storage(&self.path, &e))?;
+        self.journal
+            .reset(&print, self.revision)
+            .map_err(|e| storage(&self.path, &e))?;
+        Ok(self.revision)
+    }
+
+    /// The full model at the current revision (built once per revision).
+    pub fn snapshot(&mut self) -> Snapshot {
+        if let Some(s) = &self.full {
+            return s.clone();
+        }
+        let scene = self.model.scene();
+        let glb = write_glb(&scene).unwrap_or_else(|e| {
+            eprintln!("vesselcad serve: cannot write the model's GLB: {e}");
+            Vec::new()
+        });
+        let snapshot = Snapshot {
+            revision: self.revision,
+            ids: scene_ids(&scene),
+            glb: Bytes::from(glb),
+        };
+        self.full = Some(snapshot.clone());
+        snapshot
+    }
+
+    /// The current revision.
+    pub fn revision(&self) -> u64 {
+        self.revision
+    }
+
+    /// The current design's canonical JSON text.
+    pub fn design_text(&self) -> String {
+        to_canonical_json(&self.model.design())
+    }
+
+    /// True if a vessel has this tag.
+    pub fn has_vessel(&self, tag: &str) -> bool {
+        self.model.design().vessels.iter().any(|v| v.tag == tag)
+    }
+
+    /// The model, for read-only outputs (e.g. drawings).
+    pub fn model(&self) -> &Model {
+        &self.model
+    }
+
+    /// The design file.
+    pub fn path(&self) -> &Path {
+        &self.path
+    }
+}
+
+/// A JSON value as a JSON Patch document.
+fn parse_patch(value: Value) -> Result<json_patch::Patch, ApiError> {
+    if !value.is_array() {
+        return Err(ApiError::Malformed(
+            "a JSON Patch document (RFC 6902) is an array of operations such as \
+             [{\"op\": \"replace\", \"path\": \"/vessels/0/parts/1/shell/length\", \"value\": 8000}]"
+                .into(),
+        ));
+    }
+    serde_json::from_value(value)
+        .map_err(|e| ApiError::Malformed(format!("not a JSON Patch document (RFC 6902): {e}")))
+}
+
+/// A syntax error without its line and column: those are of the patched text,
+/// which the editor never saw; the JSON path says where the problem is.
+fn without_position(error: DesignError) -> DesignError {
+    match error {
+        DesignError::Syntax { path, message } => {
+            let message = match message.rfind(" at line ") {
+                Some(k) => message[..k].to_string(),
+                None => message,
+            };
+            DesignError::Syntax { path, message }
+        }
+        other => other,
+    }
+}
+
+/// Writes every whole number as an integer, so that a `test` of `7200` matches a
+/// design value `7200.0`: RFC 6902 compares numbers by value, serde_json by
+/// representation. Fractional and very large numbers are left as they are.
+fn canonical_numbers(value: &mut Value) {
+    /// Integers up to 2^53 are exact in f64.
+    const EXACT: f64 = 9_007_199_254_740_992.0;
+    match value {
+        Value::Number(n) => {
+            if let Some(f) = n.as_f64()
+                && !n.is_i64()
+                && !n.is_u64()
+                && f.fract() == 0.0
+                && f.abs() <= EXACT
+            {
+                *value = Value::from(f as i64);
+            }
+        }
+        Value::Array(items) => items.iter_mut().for_each(canonical_numbers),
+        Value::Object(map) => map.values_mut().for_each(canonical_numbers),
+        _ => {}
+    }
+}
+
+/// Every node's `extras` by stable id.
+fn node_extras(scene: &Scene) -> BTreeMap<String, Value> {
+    let mut out = BTreeMap::new();
+    for vessel in &scene.vessels {
+        out.insert(vessel.tag.clone(), vessel.extras.clone());
+        for node in &vessel.nodes {
+            out.insert(node_id(&vessel.tag, &node.id), node.extras.clone());
+        }
+    }
+    out
+}
+
+/// A design as the JSON value patches apply to (its canonical form).
+fn design_value(design: &Design) -> Value {
+    serde_json::to_value(design).unwrap_or(Value::Null)
+}
+
+/// The delta GLB, or an empty scene's GLB if the delta cannot be written (viewers
+/// then see no geometry change; the error is printed).
+fn delta_or_empty(scene: &Scene, changed: &BTreeSet<String>) -> Vec<u8> {
+    write_delta_glb(scene, changed).unwrap_or_else(|e| {
+        eprintln!("vesselcad serve: cannot write a delta GLB: {e}");
+        write_glb(&Scene::default()).unwrap_or_default()
+    })
+}
+
+/// Work counters as JSON.
+fn work_json(w: &WorkCounters) -> Value {
+    json!({
+        "vessels_resolved": w.vessels_resolved,
+        "frames_updated": w.frames_updated,
+        "shapes_rebuilt": w.shapes_rebuilt,
+        "openings_cut": w.openings_cut,
+        "regions_laid_out": w.regions_laid_out,
+        "patches_rebuilt": w.patches_rebuilt,
+        "meshes_rebuilt": w.meshes_rebuilt,
+        "triangles_meshed": w.triangles_meshed,
+        "failures": w.failures,
+    })
+}
