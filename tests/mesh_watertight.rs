@@ -260,15 +260,20 @@ proptest! {
         let v = &mut design.vessels[0];
         v.nozzles.clear();
         v.notes.clear();
-        let (shell_od, shell_length) = v.parts.iter().find_map(|p| match p {
-            PartDesign::Shell(s) => Some((s.od, s.length)),
+        let shell_od = v.parts.iter().find_map(|p| match p {
+            PartDesign::Shell(s) => Some(s.od),
             _ => None,
         }).unwrap();
+        // The course's span from the datum (the left head's tangent line: the
+        // course starts after the head's straight flange).
+        let resolved = vesselcad::design::resolve(&design).unwrap();
+        let (start, end) = resolved[0].parts.iter().find(|p| p.id == "S1").unwrap().span;
+        let v = &mut design.vessels[0];
         let od = (fraction * shell_od).round();
         for p in &mut v.parts {
             if let PartDesign::Boot(b) = p {
                 // Anywhere wholly under the course.
-                b.position = od / 2.0 + 1.0 + at * (shell_length - od - 2.0);
+                b.position = start + od / 2.0 + 1.0 + at * (end - start - od - 2.0);
                 b.od = od;
                 b.length = length;
                 b.head = head;
