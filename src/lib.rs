@@ -25,6 +25,7 @@
 pub mod components;
 pub mod constraints;
 pub mod design;
+pub mod drawing;
 pub mod export;
 pub mod mesh;
 pub mod model;

@@ -69,6 +69,7 @@ fn put_vessel(world: &mut World, design: VesselDesign, order: u32) {
         kind: design.kind,
         placement: design.placement,
         design: design.design,
+        drawing: design.drawing,
     };
     let entity = match existing {
         Some(e) => {
