@@ -5,6 +5,8 @@
 //! listed on stderr); 2 when a file cannot be read or written or the command line
 //! is wrong.
 
+mod drawing_command;
+
 use std::path::PathBuf;
 use std::process::ExitCode;
 use std::time::Instant;
@@ -49,6 +51,8 @@ enum Command {
         /// The design file.
         design: PathBuf,
     },
+    /// Draw one vessel's sheet (views, dimensions, tables) as SVG and optionally DXF.
+    Drawing(drawing_command::DrawingArgs),
     /// Report each vessel's parts, nozzles, lengths, OD, volume and area.
     Info {
         /// The design file.
@@ -71,6 +75,7 @@ fn fail(error: &DesignError) -> ExitCode {
 fn main() -> ExitCode {
     let cli = Cli::parse();
     match cli.command {
+        Command::Drawing(args) => drawing_command::run(args),
         Command::Check { design } => match load(&design) {
             Ok(d) => {
                 println!(

@@ -14,6 +14,7 @@ use crate::components::{
     DesignOrder, EntityViews, NoteAnchor, NoteSpec, NozzleSpec, PartFrame, PartSpan, PartSpec,
     Shape, VesselFrame, VesselSpec, VesselSummary, VesselViews,
 };
+use crate::constraints::PartGeometry;
 use crate::design::{NozzleDesign, PartDesign, VesselDesign, VesselKind};
 use crate::model::Model;
 use crate::parts::Nozzle;
@@ -28,6 +29,8 @@ pub struct PartData {
     pub span: (f64, f64),
     /// Part → vessel frame.
     pub frame: DAffine3,
+    /// Resolved parameters.
+    pub geometry: PartGeometry,
 }
 
 /// A nozzle as the sheet needs it.
@@ -146,6 +149,10 @@ pub fn vessel_data(model: &Model, tag: &str) -> Result<VesselData, DrawingError>
                 design: world.get::<PartSpec>(e)?.0.clone(),
                 span: world.get::<PartSpan>(e).map(|s| (s.0, s.1))?,
                 frame: world.get::<PartFrame>(e)?.0,
+                geometry: match world.get::<Shape>(e)? {
+                    Shape::Part(g) => g.clone(),
+                    Shape::Nozzle(..) => return None,
+                },
             })
         })
         .collect();

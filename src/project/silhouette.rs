@@ -153,15 +153,10 @@ pub fn silhouettes(
     if g.iter().all(|x| x.abs() < 1e-6) || g.iter().all(|&x| x > -ZERO) || g.iter().all(|&x| x < ZERO) {
         return Vec::new();
     }
-    let sign = |x: f64| {
-        if x > ZERO {
-            1
-        } else if x < -ZERO {
-            -1
-        } else {
-            0
-        }
-    };
+    // Values within round-off of zero count as positive, so a silhouette through
+    // a grid node is found on the edge from that node to its negative neighbour,
+    // and round-off noise along an edge-on row makes no crossings.
+    let sign = |x: f64| if x < -ZERO { -1 } else { 1 };
     // Crossing point on each grid edge whose ends have strictly opposite signs.
     let mut points: HashMap<EdgeKey, DVec2> = HashMap::new();
     let mut crossing = |key: EdgeKey| -> Option<DVec2> {
@@ -171,10 +166,14 @@ pub fn silhouettes(
         let (horizontal, i, j) = key;
         let (i2, j2) = if horizontal { (i + 1, j) } else { (i, j + 1) };
         let (ga, gb) = (at(i, j), at(i2, j2));
-        if sign(ga) * sign(gb) >= 0 {
+        if sign(ga) == sign(gb) {
             return None;
         }
-        let p = if horizontal {
+        let p = if ga.abs() < ZERO {
+            DVec2::new(us[i], vs[j])
+        } else if gb.abs() < ZERO {
+            DVec2::new(us[i2], vs[j2])
+        } else if horizontal {
             let v = vs[j];
             let u = root(|u| surface.normal(u, v).dot(d), us[i], us[i2], ga, gb);
             DVec2::new(u, v)
