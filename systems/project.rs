@@ -4,9 +4,10 @@
 //! An entity is *dirty* when one of its meshes changed (a nozzle opening moved
 //! across its host re-meshes the host), its frame or shape changed, or it is new.
 //! Dirty entities are rebuilt in every view. A clean entity is rebuilt in a view
-//! only when its footprint there overlaps the old or new footprint of an entity
-//! that moved, changed shape, appeared or disappeared: only then can its visibility
-//! have changed. A re-meshed host whose shape did not change does not hide more or
+//! only when one of its lines there passes through the old or new footprint (the
+//! box of its meshes in that view) of an entity that moved, changed shape,
+//! appeared or disappeared: only there can an occluder have come or gone, so only
+//! then can its visibility have changed. A re-meshed host whose shape did not change does not hide more or
 //! less than before (its openings are covered by the footprints of the nozzles that
 //! cut them), so it does not spread the rebuild. A change of projection (the vessel
 //! turned in plan), of sampling (its size doubled or halved) or of the tessellation
@@ -21,6 +22,7 @@ use bevy_ecs::entity::Entity;
 use bevy_ecs::hierarchy::{ChildOf, Children};
 use bevy_ecs::query::{Changed, Or, QueryState, With, Without};
 use bevy_ecs::world::World;
+use glam::DVec2;
 use rayon::prelude::*;
 
 use super::{Tessellation, WorkCounters};
@@ -30,7 +32,7 @@ use crate::components::{
     VesselViews,
 };
 use crate::project::{
-    EntityInput, EntityView, Occluder, PatchInput, ViewSettings, build_entity_view, footprint,
+    EntityInput, EntityView, LineKind, Occluder, PatchInput, ViewSettings, build_entity_view, footprint,
     projections,
 };
 
@@ -84,13 +86,38 @@ fn settings_for(summary: &VesselSummary, tolerance: f64) -> ViewSettings {
     ViewSettings::for_vessel(rounded, tolerance)
 }
 
-fn overlaps(a: &Footprint, b: &Footprint) -> bool {
-    match (a, b) {
-        (Some((alo, ahi)), Some((blo, bhi))) => {
-            alo.x <= bhi.x && blo.x <= ahi.x && alo.y <= bhi.y && blo.y <= ahi.y
+/// Whether the polyline passes through the box `[lo, hi]`.
+fn crosses_box(points: &[DVec2], lo: DVec2, hi: DVec2) -> bool {
+    points.windows(2).any(|w| segment_crosses_box(w[0], w[1], lo, hi))
+}
+
+/// Whether the segment `ab` meets the box `[lo, hi]` (Liang–Barsky clipping).
+fn segment_crosses_box(a: DVec2, b: DVec2, lo: DVec2, hi: DVec2) -> bool {
+    let d = b - a;
+    let (mut t0, mut t1) = (0.0f64, 1.0f64);
+    for (p, q) in [
+        (-d.x, a.x - lo.x),
+        (d.x, hi.x - a.x),
+        (-d.y, a.y - lo.y),
+        (d.y, hi.y - a.y),
+    ] {
+        if p == 0.0 {
+            if q < 0.0 {
+                return false;
+            }
+        } else {
+            let r = q / p;
+            if p < 0.0 {
+                t0 = t0.max(r);
+            } else {
+                t1 = t1.min(r);
+            }
+            if t0 > t1 {
+                return false;
+            }
         }
-        _ => false,
     }
+    true
 }
 
 /// Rebuilds the views of dirty entities, and of clean ones whose visibility an
@@ -183,15 +210,23 @@ pub fn project_dirty_views(
         let mut jobs: Vec<(Entity, usize)> = Vec::new();
         let mut ordered: Vec<Entity> = inputs.keys().copied().collect();
         ordered.sort();
+        let grow = 1.5 * settings.sampling.nudge;
         for &e in &ordered {
+            let current = world.get::<EntityViews>(e);
             for (k, regions) in changed.iter().enumerate() {
-                let fresh = world.get::<EntityViews>(e).is_none();
-                let own = new_footprints.get(&e).and_then(|f| f[k]);
-                if whole
-                    || fresh
-                    || dirty_here.contains(&e)
-                    || regions.iter().any(|r| overlaps(r, &Some(own).flatten()))
-                {
+                let touched = || {
+                    current.is_some_and(|v| {
+                        regions.iter().flatten().any(|&(lo, hi)| {
+                            let (lo, hi) = (lo - DVec2::splat(grow), hi + DVec2::splat(grow));
+                            v.0[k]
+                                .lines
+                                .iter()
+                                .filter(|l| l.kind != LineKind::Centre)
+                                .any(|l| crosses_box(&l.points, lo, hi))
+                        })
+                    })
+                };
+                if whole || current.is_none() || dirty_here.contains(&e) || touched() {
                     jobs.push((e, k));
                 }
             }

@@ -112,7 +112,7 @@ pub fn compose(data: &VesselData, options: &SheetOptions) -> Sheet {
     }
     let mut placed = Vec::new();
     dimensions::place(&dims, 0, view_boxes[0], &placement, h, &mut items, &mut placed);
-    notes(data, &placement, h, &mut items);
+    notes(data, &placement, area, h, &mut items);
     north_arrow(data, view_boxes[1], h, &mut items);
     let schedule = tables::schedule(data);
     let (_, revision_at) = tables::draw(
@@ -154,13 +154,13 @@ fn front_bottom(k: usize, dims: &dimensions::Dimensions, h: f64, scale: f64) -> 
 /// Notes in the front elevation: text at the note's position, a leader with an
 /// arrowhead to its target's anchor (both follow the target: they are resolved
 /// from it on every update).
-fn notes(data: &VesselData, placement: &Placement, h: f64, items: &mut Vec<Item>) {
+fn notes(data: &VesselData, placement: &Placement, area: Rect, h: f64, items: &mut Vec<Item>) {
     let front = data.views[0].projection;
     for n in &data.notes {
         let anchor = placement.to_sheet(0, front.project(n.anchor));
         let at = placement.to_sheet(0, front.project(n.position));
         let right = at.x >= anchor.x;
-        let shoulder = at + DVec2::X * if right { -1.0 } else { 1.0 } * 0.0;
+        let shoulder = at;
         if (shoulder - anchor).length() > 1e-6 {
             items.push(Item::Line {
                 layer: Layer::Dimension,
@@ -176,8 +176,18 @@ fn notes(data: &VesselData, placement: &Placement, h: f64, items: &mut Vec<Item>
                 points: vec![anchor, back + side, back - side],
             });
         }
+        // Keep the text on the drawing area: flip it to the other side of its
+        // point, then slide it in, when it would run off.
+        let w = text_width(&n.text, h);
+        let right = if right { at.x + 1.0 + w <= area.max.x } else { at.x - 1.0 - w < area.min.x };
+        let x = if right {
+            (at.x + 1.0).clamp(area.min.x, (area.max.x - w).max(area.min.x))
+        } else {
+            (at.x - 1.0).clamp((area.min.x + w).min(area.max.x), area.max.x)
+        };
+        let y = (at.y - 0.4 * h).clamp(area.min.y, area.max.y - h);
         items.push(Item::Text {
-            at: at + DVec2::new(if right { 1.0 } else { -1.0 }, -0.4 * h),
+            at: DVec2::new(x, y),
             height: h,
             align: if right { Align::Start } else { Align::End },
             rotation: 0.0,

@@ -239,7 +239,10 @@ pub fn draw(
     t.row(&["VESSEL", &data.design.tag], &two);
     t.heading("vesselcad — GENERATED FROM THE DESIGN MODEL");
     t.frame(bottom);
-    let revision_at = DVec2::new(left + (0.19 + 0.31) * (right - left) - 1.2 * h, rev_y + 0.95 * h);
+    let revision_at = DVec2::new(
+        left + 0.19 * (right - left) + 0.8 + text_width(&fields.revision, h) + 2.0 * h,
+        rev_y + 0.95 * h,
+    );
     // Design data.
     let data_bottom = t.top + h;
     t.top = data_bottom;
@@ -284,6 +287,5 @@ pub fn draw(
         t.heading("NOTES");
         t.frame(notes_bottom);
     }
-    let _ = text_width;
     (Rect::new(DVec2::new(left, bottom), DVec2::new(right, t.top)), revision_at)
 }

@@ -85,10 +85,28 @@ fn in_region(region: &Region, uv: DVec2, period: Option<f64>) -> bool {
         Some(_) => &[0.0, 1.0, -1.0],
         None => &[0.0],
     };
+    // Points on a loop (a silhouette ending on a patch side) count as inside.
+    let (lo, hi) = region.bounds();
+    let eps = 1e-9 * (hi - lo).max_element().max(1e-300);
     shifts.iter().any(|s| {
         let p = DVec2::new(uv.x + s * period.unwrap_or(0.0), uv.y);
         region.loops().map(|l| crossings(l, p)).sum::<usize>() % 2 == 1
+            || region
+                .loops()
+                .flat_map(UvLoop::segments)
+                .any(|(a, b)| distance_to_segment(p, a, b) <= eps)
     })
+}
+
+/// Distance from `p` to the segment `ab`.
+fn distance_to_segment(p: DVec2, a: DVec2, b: DVec2) -> f64 {
+    let ab = b - a;
+    let t = if ab.length_squared() > 0.0 {
+        ((p - a).dot(ab) / ab.length_squared()).clamp(0.0, 1.0)
+    } else {
+        0.0
+    };
+    (p - (a + ab * t)).length()
 }
 
 /// The root of `f` between `a` and `b` (opposite signs at the ends), Illinois
