@@ -114,9 +114,11 @@ pub fn run(args: DrawingArgs) -> ExitCode {
         return ExitCode::from(2);
     }
     if let Some(path) = &args.dxf {
-        let written = to_dxf_bytes(&sheet).map_err(|e| e.to_string()).and_then(|bytes| {
-            std::fs::write(path, bytes).map_err(|e| format!("writing {}: {e}", path.display()))
-        });
+        let written = to_dxf_bytes(&sheet)
+            .map_err(|e| e.to_string())
+            .and_then(|bytes| {
+                std::fs::write(path, bytes).map_err(|e| format!("writing {}: {e}", path.display()))
+            });
         if let Err(e) = written {
             eprintln!("error: {e}");
             return ExitCode::from(2);

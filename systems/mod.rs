@@ -21,7 +21,7 @@ pub use counters::WorkCounters;
 pub use export::{ChangeLog, collect_changes};
 pub use geometry::rebuild_dirty_patches;
 pub use openings::{OpeningHosts, cut_openings};
-pub use project::project_dirty_views;
+pub use project::{entity_input, project_dirty_views};
 pub use regions::lay_out_regions;
 pub use tessellate::{Tessellation, remesh_dirty_patches};
 pub use validate::{ModelErrors, PendingResolutions, resolve_dirty_vessels};

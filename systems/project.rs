@@ -27,13 +27,12 @@ use rayon::prelude::*;
 
 use super::{Tessellation, WorkCounters};
 use crate::components::{
-    EntityViews, Footprint, NozzleSpec, PadOf, PadPatch, PartFrame, PartSpec, PatchMesh,
-    PatchOf, PatchRegion, PatchSurface, Patches, Shape, VesselFrame, VesselSpec, VesselSummary,
-    VesselViews,
+    EntityViews, Footprint, NozzleSpec, PadOf, PadPatch, PartFrame, PartSpec, PatchMesh, PatchOf,
+    PatchRegion, PatchSurface, Patches, Shape, VesselFrame, VesselSpec, VesselSummary, VesselViews,
 };
 use crate::project::{
-    EntityInput, EntityView, LineKind, Occluder, PatchInput, ViewSettings, build_entity_view, footprint,
-    projections,
+    EntityInput, EntityView, LineKind, Occluder, PatchInput, ViewSettings, build_entity_view,
+    footprint, projections,
 };
 
 /// A part or nozzle whose frame or shape changed.
@@ -49,8 +48,9 @@ type Unviewed = (
     Or<(With<PartSpec>, With<NozzleSpec>)>,
 );
 
-/// The inputs of one member entity, or `None` when it has no frame yet.
-fn entity_input(world: &World, tag: &str, e: Entity) -> Option<EntityInput> {
+/// The inputs of one member entity of vessel `tag`, or `None` when it has no frame
+/// yet.
+pub fn entity_input(world: &World, tag: &str, e: Entity) -> Option<EntityInput> {
     let frame = world.get::<PartFrame>(e)?.0;
     let id = world
         .get::<PartSpec>(e)
@@ -88,7 +88,9 @@ fn settings_for(summary: &VesselSummary, tolerance: f64) -> ViewSettings {
 
 /// Whether the polyline passes through the box `[lo, hi]`.
 fn crosses_box(points: &[DVec2], lo: DVec2, hi: DVec2) -> bool {
-    points.windows(2).any(|w| segment_crosses_box(w[0], w[1], lo, hi))
+    points
+        .windows(2)
+        .any(|w| segment_crosses_box(w[0], w[1], lo, hi))
 }
 
 /// Whether the segment `ab` meets the box `[lo, hi]` (Liang–Barsky clipping).
@@ -122,7 +124,10 @@ fn segment_crosses_box(a: DVec2, b: DVec2, lo: DVec2, hi: DVec2) -> bool {
 
 /// Rebuilds the views of dirty entities, and of clean ones whose visibility an
 /// edit may have changed.
-#[expect(clippy::too_many_lines, reason = "one pass: collect, decide, build, write")]
+#[expect(
+    clippy::too_many_lines,
+    reason = "one pass: collect, decide, build, write"
+)]
 pub fn project_dirty_views(
     world: &mut World,
     meshed: &mut QueryState<&PatchOf, Changed<PatchMesh>>,
@@ -236,9 +241,9 @@ pub fn project_dirty_views(
             .map(|p| {
                 Occluder::build(
                     p,
-                    inputs.values().flat_map(|i| {
-                        i.patches.iter().map(move |patch| (&*patch.mesh, i.frame))
-                    }),
+                    inputs
+                        .values()
+                        .flat_map(|i| i.patches.iter().map(move |patch| (&*patch.mesh, i.frame))),
                 )
             })
             .collect();

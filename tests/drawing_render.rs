@@ -39,7 +39,8 @@ fn render(sheet: &Sheet, name: &str) -> PathBuf {
     let height = (f64::from(WIDTH) * size.y / size.x).ceil() as u32;
     let png = dir.join(format!("{name}.png"));
     std::fs::remove_file(&png).ok();
-    let profile = std::env::temp_dir().join(format!("vesselcad-chromium-{name}-{}", std::process::id()));
+    let profile =
+        std::env::temp_dir().join(format!("vesselcad-chromium-{name}-{}", std::process::id()));
     let status = Command::new(CHROMIUM)
         .args([
             "--headless",
@@ -80,7 +81,12 @@ fn decode(png: &Path) -> (usize, usize, usize, Vec<u8>) {
 }
 
 /// Share of dark pixels in the sheet rectangle (mm) `[lo, hi]`.
-fn ink(image: &(usize, usize, usize, Vec<u8>), sheet: &Sheet, lo: glam::DVec2, hi: glam::DVec2) -> f64 {
+fn ink(
+    image: &(usize, usize, usize, Vec<u8>),
+    sheet: &Sheet,
+    lo: glam::DVec2,
+    hi: glam::DVec2,
+) -> f64 {
     let (w, h, bpp, data) = image;
     let size = sheet.size.dimensions();
     let px = |x: f64| ((x / size.x) * *w as f64).clamp(0.0, *w as f64 - 1.0) as usize;
@@ -112,7 +118,10 @@ fn every_example_sheet_renders_as_a_drawing_in_chromium() {
         ("small-plant", "V-101", SheetSize::IsoA3),
     ];
     for (name, tag, size) in cases {
-        let path = format!("{}/examples/designs/{name}.json", env!("CARGO_MANIFEST_DIR"));
+        let path = format!(
+            "{}/examples/designs/{name}.json",
+            env!("CARGO_MANIFEST_DIR")
+        );
         let design = vesselcad::design::load(Path::new(&path)).unwrap();
         let model = Model::from_design(&design, TessellationOptions::chord(0.5)).unwrap();
         let s = sheet(&model, tag, &SheetOptions::sized(size)).unwrap();
@@ -120,7 +129,10 @@ fn every_example_sheet_renders_as_a_drawing_in_chromium() {
         let image = decode(&png);
         let paper = size.dimensions();
         let whole = ink(&image, &s, glam::DVec2::ZERO, paper);
-        assert!(whole > 0.002 && whole < 0.5, "{name}: {whole} of the sheet is dark");
+        assert!(
+            whole > 0.002 && whole < 0.5,
+            "{name}: {whole} of the sheet is dark"
+        );
         for (k, b) in s.view_boxes.iter().enumerate() {
             let share = ink(&image, &s, b.min, b.max);
             assert!(share > 0.002, "{name}: view {k} region is blank ({share})");

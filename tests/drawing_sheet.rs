@@ -14,7 +14,10 @@ use vesselcad::model::{Edit, Model};
 use vesselcad::project::ViewKind;
 
 fn example(name: &str) -> Design {
-    let path = format!("{}/examples/designs/{name}.json", env!("CARGO_MANIFEST_DIR"));
+    let path = format!(
+        "{}/examples/designs/{name}.json",
+        env!("CARGO_MANIFEST_DIR")
+    );
     vesselcad::design::load(std::path::Path::new(&path)).expect("example loads")
 }
 
@@ -60,7 +63,10 @@ fn the_nozzle_schedule_lists_exactly_the_models_nozzles() {
         assert_eq!(s.schedule.len(), expected.len() - 1);
         assert!(s.schedule.iter().all(|r| r.cells[0] != gone));
         let svg = to_svg(&s);
-        assert!(!svg.contains(&format!(">{gone}<")), "{gone} still drawn in {name}");
+        assert!(
+            !svg.contains(&format!(">{gone}<")),
+            "{gone} still drawn in {name}"
+        );
     }
 }
 
@@ -169,7 +175,10 @@ fn dimensions_do_not_overlap_each_other_or_the_views() {
             // The views do not overlap each other.
             for i in 0..4 {
                 for j in i + 1..4 {
-                    assert!(!s.view_boxes[i].overlaps(&s.view_boxes[j], 0.0), "{name} {size:?}");
+                    assert!(
+                        !s.view_boxes[i].overlaps(&s.view_boxes[j], 0.0),
+                        "{name} {size:?}"
+                    );
                 }
             }
         }
@@ -187,19 +196,30 @@ fn dimensions_do_not_overlap_each_other_or_the_views() {
 fn svg_is_well_formed_and_dxf_reads_back_with_its_layers() {
     for (name, tag) in EXAMPLES {
         let m = model(name);
-        let options = SheetOptions::sized(SheetSize::AnsiB).with_hidden(ViewKind::Iso, HiddenLines::Omitted);
+        let options =
+            SheetOptions::sized(SheetSize::AnsiB).with_hidden(ViewKind::Iso, HiddenLines::Omitted);
         let s = sheet(&m, tag, &options).unwrap();
         let svg = to_svg(&s);
         let doc = roxmltree::Document::parse(&svg).expect("well-formed XML");
         let root = doc.root_element();
         assert_eq!(root.tag_name().name(), "svg");
         assert_eq!(root.attribute("width"), Some("431.8mm"));
-        for layer in ["OUTLINE", "HIDDEN", "CENTER", "DIMENSIONS", "TEXT", "BORDER"] {
+        for layer in [
+            "OUTLINE",
+            "HIDDEN",
+            "CENTER",
+            "DIMENSIONS",
+            "TEXT",
+            "BORDER",
+        ] {
             let group = doc
                 .descendants()
                 .find(|n| n.attribute("id") == Some(layer))
                 .unwrap_or_else(|| panic!("{name}: no {layer} group"));
-            assert!(group.children().any(|c| c.is_element()), "{name}: {layer} empty");
+            assert!(
+                group.children().any(|c| c.is_element()),
+                "{name}: {layer} empty"
+            );
         }
         let bytes = to_dxf_bytes(&s).unwrap();
         let drawing = dxf::Drawing::load(&mut bytes.as_slice()).expect("DXF reads back");
@@ -210,13 +230,25 @@ fn svg_is_well_formed_and_dxf_reads_back_with_its_layers() {
         }
         let line_types: BTreeSet<String> = drawing.line_types().map(|l| l.name.clone()).collect();
         assert!(line_types.contains("HIDDEN") && line_types.contains("CENTER"));
-        let on = |layer: &str| drawing.entities().filter(|e| e.common.layer == layer).count();
-        assert!(on("OUTLINE") > 50 && on("HIDDEN") > 5 && on("TEXT") > 50, "{name}");
+        let on = |layer: &str| {
+            drawing
+                .entities()
+                .filter(|e| e.common.layer == layer)
+                .count()
+        };
+        assert!(
+            on("OUTLINE") > 50 && on("HIDDEN") > 5 && on("TEXT") > 50,
+            "{name}"
+        );
         let texts = drawing
             .entities()
             .filter(|e| matches!(e.specific, dxf::entities::EntityType::Text(_)))
             .count();
-        let sheet_texts = s.items.iter().filter(|i| matches!(i, Item::Text { .. })).count();
+        let sheet_texts = s
+            .items
+            .iter()
+            .filter(|i| matches!(i, Item::Text { .. }))
+            .count();
         assert_eq!(texts, sheet_texts);
     }
 }
@@ -235,7 +267,11 @@ fn omitted_hidden_lines_leave_that_view_only() {
         s.items
             .iter()
             .filter(|i| match i {
-                Item::Line { layer: Layer::Hidden, points, .. } => s.view_boxes[k].contains(points[0]),
+                Item::Line {
+                    layer: Layer::Hidden,
+                    points,
+                    ..
+                } => s.view_boxes[k].contains(points[0]),
                 _ => false,
             })
             .count()
@@ -251,7 +287,9 @@ fn unknown_vessels_and_unbuilt_models_are_errors() {
     let err = sheet_svg(&m, "NOPE", &SheetOptions::default()).unwrap_err();
     assert!(err.to_string().contains("NOPE"));
     let mut fresh = Model::new(TessellationOptions::chord(0.5)).unwrap();
-    fresh.apply(Edit::ReplaceDesign(example("storage-tank"))).unwrap();
+    fresh
+        .apply(Edit::ReplaceDesign(example("storage-tank")))
+        .unwrap();
     let err = sheet_svg(&fresh, "TK-301", &SheetOptions::default()).unwrap_err();
     assert!(err.to_string().contains("update"), "{err}");
 }
@@ -263,7 +301,13 @@ fn the_drawing_command_writes_svg_and_dxf() {
     let svg = dir.join("drum.svg");
     let dxf = dir.join("drum.dxf");
     let out = std::process::Command::new(env!("CARGO_BIN_EXE_vesselcad"))
-        .args(["drawing", concat!(env!("CARGO_MANIFEST_DIR"), "/examples/designs/horizontal-drum.json")])
+        .args([
+            "drawing",
+            concat!(
+                env!("CARGO_MANIFEST_DIR"),
+                "/examples/designs/horizontal-drum.json"
+            ),
+        ])
         .args(["--vessel", "V-101", "-o"])
         .arg(&svg)
         .arg("--dxf")
@@ -271,13 +315,23 @@ fn the_drawing_command_writes_svg_and_dxf() {
         .args(["--sheet", "a3", "--omit-hidden", "iso"])
         .output()
         .unwrap();
-    assert!(out.status.success(), "{}", String::from_utf8_lossy(&out.stderr));
+    assert!(
+        out.status.success(),
+        "{}",
+        String::from_utf8_lossy(&out.stderr)
+    );
     let text = std::fs::read_to_string(&svg).unwrap();
     assert!(roxmltree::Document::parse(&text).is_ok());
     assert!(text.contains("420mm"));
     assert!(dxf::Drawing::load_file(&dxf).is_ok());
     let out = std::process::Command::new(env!("CARGO_BIN_EXE_vesselcad"))
-        .args(["drawing", concat!(env!("CARGO_MANIFEST_DIR"), "/examples/designs/horizontal-drum.json")])
+        .args([
+            "drawing",
+            concat!(
+                env!("CARGO_MANIFEST_DIR"),
+                "/examples/designs/horizontal-drum.json"
+            ),
+        ])
         .args(["--vessel", "V-999", "-o"])
         .arg(&svg)
         .output()

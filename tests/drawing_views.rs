@@ -10,7 +10,10 @@ use vesselcad::model::{Edit, Model};
 use vesselcad::project::{EntityView, LineKind, View, ViewKind};
 
 fn example(name: &str) -> Design {
-    let path = format!("{}/examples/designs/{name}.json", env!("CARGO_MANIFEST_DIR"));
+    let path = format!(
+        "{}/examples/designs/{name}.json",
+        env!("CARGO_MANIFEST_DIR")
+    );
     vesselcad::design::load(std::path::Path::new(&path)).expect("example loads")
 }
 
@@ -44,7 +47,12 @@ fn entity<'a>(view: &'a View, id: &str) -> &'a EntityView {
 }
 
 fn extent(l: &vesselcad::project::ViewLine) -> f64 {
-    let (lo, hi) = l.points.iter().fold((l.points[0], l.points[0]), |(lo, hi), p| (lo.min(*p), hi.max(*p)));
+    let (lo, hi) = l
+        .points
+        .iter()
+        .fold((l.points[0], l.points[0]), |(lo, hi), p| {
+            (lo.min(*p), hi.max(*p))
+        });
     (hi - lo).length()
 }
 
@@ -83,9 +91,18 @@ fn a_two_to_one_head_shows_an_exact_half_ellipse() {
                 peak = peak.max(h);
             }
         }
-        assert!(on_dome >= 40, "{id}: only {on_dome} outline points on the dome");
-        assert!(min_x < -999.0 && max_x > 999.0, "{id}: outline spans x {min_x}..{max_x}");
-        assert!((peak - 500.0).abs() < 1e-9, "{id}: the outline reaches {peak}, not the pole");
+        assert!(
+            on_dome >= 40,
+            "{id}: only {on_dome} outline points on the dome"
+        );
+        assert!(
+            min_x < -999.0 && max_x > 999.0,
+            "{id}: outline spans x {min_x}..{max_x}"
+        );
+        assert!(
+            (peak - 500.0).abs() < 1e-9,
+            "{id}: the outline reaches {peak}, not the pole"
+        );
     }
 }
 
@@ -97,7 +114,11 @@ fn a_nozzle_behind_the_shell_is_hidden_and_one_in_front_is_visible() {
     let behind = entity(front, "D-1/N1");
     let ahead = entity(front, "D-1/N2");
     assert!(count(behind, LineKind::Hidden) > 5);
-    assert_eq!(count(behind, LineKind::Visible), 0, "N1 is behind the shell");
+    assert_eq!(
+        count(behind, LineKind::Visible),
+        0,
+        "N1 is behind the shell"
+    );
     // N2 is seen face-on: its flange face is in front of everything (visible);
     // its neck, seen end-on behind the flange, is hidden by the flange.
     assert!(count(ahead, LineKind::Visible) > 3);
@@ -107,7 +128,11 @@ fn a_nozzle_behind_the_shell_is_hidden_and_one_in_front_is_visible() {
         .filter(|l| l.kind != LineKind::Centre)
         .max_by(|a, b| extent(a).total_cmp(&extent(b)))
         .unwrap();
-    assert_eq!(widest.kind, LineKind::Visible, "N2's flange outline is in front");
+    assert_eq!(
+        widest.kind,
+        LineKind::Visible,
+        "N2's flange outline is in front"
+    );
     // Both are seen end-on: their axes are crosses.
     assert_eq!(count(behind, LineKind::Centre), 2);
     // The shell: its hole for N2 is visible, the one for N1 hidden, and its back
@@ -117,14 +142,20 @@ fn a_nozzle_behind_the_shell_is_hidden_and_one_in_front_is_visible() {
     // Plan view (from above): both nozzles stick out of the shell, visible there.
     let plan = &views[1];
     for id in ["D-1/N1", "D-1/N2"] {
-        assert!(count(entity(plan, id), LineKind::Visible) > 5, "{id} in plan");
+        assert!(
+            count(entity(plan, id), LineKind::Visible) > 5,
+            "{id} in plan"
+        );
     }
     // In plan the top head hides the bottom head except where their tangent-line
     // circles coincide with the outline (r = 1000).
     let bottom = entity(plan, "D-1/H1");
     for l in bottom.lines.iter().filter(|l| l.kind == LineKind::Visible) {
         for p in &l.points {
-            assert!((p.length() - 1000.0).abs() < 1.0, "H1 visible in plan at {p}");
+            assert!(
+                (p.length() - 1000.0).abs() < 1.0,
+                "H1 visible in plan at {p}"
+            );
         }
     }
     assert!(count(bottom, LineKind::Hidden) > 0);
@@ -137,9 +168,7 @@ fn snapshot(model: &Model, tag: &str) -> Vec<(ViewKind, String, Arc<EntityView>)
         .into_iter()
         .flat_map(|v| {
             let kind = v.projection.kind;
-            v.entities
-                .into_iter()
-                .map(move |e| (kind, e.id.clone(), e))
+            v.entities.into_iter().map(move |e| (kind, e.id.clone(), e))
         })
         .collect()
 }
@@ -187,10 +216,15 @@ fn moving_one_nozzle_rebuilds_its_views_and_its_hosts_not_the_vessels() {
     assert_eq!(counters.views_rebuilt, rebuilt.len() as u64);
     for view in ViewKind::ALL {
         for id in ["C-201/N8", "C-201/S2"] {
-            assert!(rebuilt.contains(&(view, id)), "{id} not rebuilt in {view:?}");
+            assert!(
+                rebuilt.contains(&(view, id)),
+                "{id} not rebuilt in {view:?}"
+            );
         }
     }
-    for id in ["C-201/SK", "C-201/H1", "C-201/S1", "C-201/N4", "C-201/N5", "C-201/N6"] {
+    for id in [
+        "C-201/SK", "C-201/H1", "C-201/S1", "C-201/N4", "C-201/N5", "C-201/N6",
+    ] {
         assert!(
             !rebuilt.iter().any(|(_, r)| *r == id),
             "{id} is far from N8 but was rebuilt"

@@ -50,11 +50,8 @@ pub fn compose(data: &VesselData, options: &SheetOptions) -> Sheet {
     );
     // Layout: margins depend on the scale (dimension packing is in paper mm), so
     // lay out twice.
-    let bounds: [(DVec2, DVec2); 4] = std::array::from_fn(|k| {
-        data.views[k]
-            .bounds()
-            .unwrap_or((DVec2::ZERO, DVec2::ONE))
-    });
+    let bounds: [(DVec2, DVec2); 4] =
+        std::array::from_fn(|k| data.views[k].bounds().unwrap_or((DVec2::ZERO, DVec2::ONE)));
     let dims = dimensions::plan(data);
     let title_room = 2.8 * h + 2.0;
     let margins_at = |scale: f64| -> [Margins; 4] {
@@ -96,14 +93,26 @@ pub fn compose(data: &VesselData, options: &SheetOptions) -> Sheet {
             };
             items.push(Item::Line {
                 layer,
-                points: line.points.iter().map(|&p| placement.to_sheet(k, p)).collect(),
+                points: line
+                    .points
+                    .iter()
+                    .map(|&p| placement.to_sheet(k, p))
+                    .collect(),
                 closed: false,
             });
         }
         let b = view_boxes[k];
-        let title = format!("{} ({} {})", VIEW_TITLES[k], data.design.tag, scale_text(placement.scale));
+        let title = format!(
+            "{} ({} {})",
+            VIEW_TITLES[k],
+            data.design.tag,
+            scale_text(placement.scale)
+        );
         items.push(Item::Text {
-            at: DVec2::new(0.5 * (b.min.x + b.max.x), b.min.y - 2.2 * h - front_bottom(k, &dims, h, placement.scale)),
+            at: DVec2::new(
+                0.5 * (b.min.x + b.max.x),
+                b.min.y - 2.2 * h - front_bottom(k, &dims, h, placement.scale),
+            ),
             height: h,
             align: Align::Middle,
             rotation: 0.0,
@@ -111,7 +120,15 @@ pub fn compose(data: &VesselData, options: &SheetOptions) -> Sheet {
         });
     }
     let mut placed = Vec::new();
-    dimensions::place(&dims, 0, view_boxes[0], &placement, h, &mut items, &mut placed);
+    dimensions::place(
+        &dims,
+        0,
+        view_boxes[0],
+        &placement,
+        h,
+        &mut items,
+        &mut placed,
+    );
     notes(data, &placement, area, h, &mut items);
     north_arrow(data, view_boxes[1], h, &mut items);
     let schedule = tables::schedule(data);
@@ -179,7 +196,11 @@ fn notes(data: &VesselData, placement: &Placement, area: Rect, h: f64, items: &m
         // Keep the text on the drawing area: flip it to the other side of its
         // point, then slide it in, when it would run off.
         let w = text_width(&n.text, h);
-        let right = if right { at.x + 1.0 + w <= area.max.x } else { at.x - 1.0 - w < area.min.x };
+        let right = if right {
+            at.x + 1.0 + w <= area.max.x
+        } else {
+            at.x - 1.0 - w < area.min.x
+        };
         let x = if right {
             (at.x + 1.0).clamp(area.min.x, (area.max.x - w).max(area.min.x))
         } else {

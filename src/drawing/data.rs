@@ -18,7 +18,8 @@ use crate::constraints::PartGeometry;
 use crate::design::{NozzleDesign, PartDesign, VesselDesign, VesselKind};
 use crate::model::Model;
 use crate::parts::Nozzle;
-use crate::project::{View, ViewKind};
+use crate::project::{EntityInput, Projection, View, ViewKind, ViewSettings};
+use crate::systems::entity_input;
 
 /// A part as the sheet needs it.
 #[derive(Clone, Debug)]
@@ -222,4 +223,28 @@ impl VesselData {
     pub fn view(&self, kind: ViewKind) -> &View {
         &self.views[ViewKind::ALL.iter().position(|&k| k == kind).unwrap_or(0)]
     }
+}
+
+/// The Project stage's inputs for vessel `tag` (parts then nozzles in design
+/// order), its projections and sampling: for rebuilding its views outside the
+/// schedule (benchmarks, tools).
+pub fn view_inputs(
+    model: &Model,
+    tag: &str,
+) -> Result<(Vec<EntityInput>, [Projection; 4], ViewSettings), DrawingError> {
+    let world = model.world();
+    let vessel = find_vessel(world, tag).ok_or_else(|| DrawingError::UnknownVessel {
+        tag: tag.to_string(),
+    })?;
+    let state = world
+        .get::<VesselViews>(vessel)
+        .ok_or_else(|| DrawingError::NotBuilt {
+            tag: tag.to_string(),
+        })?;
+    let inputs = ordered::<PartSpec>(world, vessel)
+        .into_iter()
+        .chain(ordered::<NozzleSpec>(world, vessel))
+        .filter_map(|e| entity_input(world, tag, e))
+        .collect();
+    Ok((inputs, state.projections, state.settings))
 }

@@ -34,7 +34,12 @@ pub enum DimSide {
 }
 
 impl DimSide {
-    const ALL: [DimSide; 4] = [DimSide::Left, DimSide::Right, DimSide::Below, DimSide::Above];
+    const ALL: [DimSide; 4] = [
+        DimSide::Left,
+        DimSide::Right,
+        DimSide::Below,
+        DimSide::Above,
+    ];
 
     fn vertical(self) -> bool {
         matches!(self, DimSide::Left | DimSide::Right)
@@ -158,7 +163,9 @@ pub fn plan(data: &VesselData) -> Dimensions {
         .parts
         .iter()
         .filter_map(|part| match &part.geometry {
-            PartGeometry::Saddle(_) => Some((0.5 * (part.span.0 + part.span.1), part.frame.translation.y)),
+            PartGeometry::Saddle(_) => {
+                Some((0.5 * (part.span.0 + part.span.1), part.frame.translation.y))
+            }
             _ => None,
         })
         .collect();
@@ -187,7 +194,11 @@ pub fn plan(data: &VesselData) -> Dimensions {
             let face = foot + axis * projection;
             if in_plane && !along_vessel {
                 dims.linear.push(LinearDim {
-                    side: if elevation < tt / 2.0 { low_side } else { high_side },
+                    side: if elevation < tt / 2.0 {
+                        low_side
+                    } else {
+                        high_side
+                    },
                     a: p(foot),
                     b: p(face),
                     text: format!("{mark} {}", format_mm(projection)),
@@ -261,10 +272,16 @@ fn pack(dims: &Dimensions, h: f64, scale: f64) -> (Vec<usize>, [usize; 4]) {
         let (a, b) = (along(d, d.a) / scale, along(d, d.b) / scale);
         let mid = 0.5 * (a + b);
         let half_text = 0.5 * text_width(&d.text, h) + 1.0;
-        let interval = (a.min(b).min(mid - half_text) - 1.0, a.max(b).max(mid + half_text) + 1.0);
+        let interval = (
+            a.min(b).min(mid - half_text) - 1.0,
+            a.max(b).max(mid + half_text) + 1.0,
+        );
         let t = tracks[s]
             .iter()
-            .position(|used| used.iter().all(|&(lo, hi)| interval.1 < lo || hi < interval.0))
+            .position(|used| {
+                used.iter()
+                    .all(|&(lo, hi)| interval.1 < lo || hi < interval.0)
+            })
             .unwrap_or_else(|| {
                 tracks[s].push(Vec::new());
                 tracks[s].len() - 1
@@ -292,7 +309,11 @@ fn ordinate_depths(dims: &Dimensions, h: f64) -> [f64; 4] {
     let widths = ordinate_widths(dims, h);
     std::array::from_fn(|s| {
         if dims.ordinates.iter().any(|o| o.side == DimSide::ALL[s]) {
-            let w = if DimSide::ALL[s].vertical() { widths[s] } else { widths[s] };
+            let w = if DimSide::ALL[s].vertical() {
+                widths[s]
+            } else {
+                widths[s]
+            };
             first_offset(h) + w + 3.0
         } else {
             0.0
@@ -409,25 +430,37 @@ pub fn place(
                     DVec2::new(label_at, slot - 0.5 * h),
                     Align::End,
                     0.0,
-                    Rect::new(DVec2::new(label_at - w, slot - 0.5 * h), DVec2::new(label_at, slot + 0.5 * h)),
+                    Rect::new(
+                        DVec2::new(label_at - w, slot - 0.5 * h),
+                        DVec2::new(label_at, slot + 0.5 * h),
+                    ),
                 ),
                 DimSide::Right => (
                     DVec2::new(label_at, slot - 0.5 * h),
                     Align::Start,
                     0.0,
-                    Rect::new(DVec2::new(label_at, slot - 0.5 * h), DVec2::new(label_at + w, slot + 0.5 * h)),
+                    Rect::new(
+                        DVec2::new(label_at, slot - 0.5 * h),
+                        DVec2::new(label_at + w, slot + 0.5 * h),
+                    ),
                 ),
                 DimSide::Below => (
                     DVec2::new(slot + 0.5 * h, label_at),
                     Align::End,
                     90.0,
-                    Rect::new(DVec2::new(slot - 0.5 * h, label_at - w), DVec2::new(slot + 0.5 * h, label_at)),
+                    Rect::new(
+                        DVec2::new(slot - 0.5 * h, label_at - w),
+                        DVec2::new(slot + 0.5 * h, label_at),
+                    ),
                 ),
                 DimSide::Above => (
                     DVec2::new(slot + 0.5 * h, label_at),
                     Align::Start,
                     90.0,
-                    Rect::new(DVec2::new(slot - 0.5 * h, label_at), DVec2::new(slot + 0.5 * h, label_at + w)),
+                    Rect::new(
+                        DVec2::new(slot - 0.5 * h, label_at),
+                        DVec2::new(slot + 0.5 * h, label_at + w),
+                    ),
                 ),
             };
             items.push(Item::Text {
@@ -441,7 +474,10 @@ pub fn place(
                 view,
                 text: text.to_string(),
                 text_box,
-                line_box: Rect::new(with_across(side, level, base), with_across(side, level, base)),
+                line_box: Rect::new(
+                    with_across(side, level, base),
+                    with_across(side, level, base),
+                ),
             });
         }
     }
@@ -455,7 +491,10 @@ pub fn place(
         let across = edge(side) + sign * (ord[s] + first_offset(h) + track_spacing(h) * t as f64);
         let (a, b) = (to_sheet(d.a), to_sheet(d.b));
         let along = |p: DVec2| if side.vertical() { p.y } else { p.x };
-        let (pa, pb) = (with_across(side, along(a), across), with_across(side, along(b), across));
+        let (pa, pb) = (
+            with_across(side, along(a), across),
+            with_across(side, along(b), across),
+        );
         for (f, q) in [(a, pa), (b, pb)] {
             items.push(Item::Line {
                 layer: Layer::Dimension,
@@ -479,14 +518,20 @@ pub fn place(
             (
                 DVec2::new(x, mid),
                 90.0,
-                Rect::new(DVec2::new(x - h, mid - 0.5 * w), DVec2::new(x, mid + 0.5 * w)),
+                Rect::new(
+                    DVec2::new(x - h, mid - 0.5 * w),
+                    DVec2::new(x, mid + 0.5 * w),
+                ),
             )
         } else {
             let y = across + 1.0;
             (
                 DVec2::new(mid, y),
                 0.0,
-                Rect::new(DVec2::new(mid - 0.5 * w, y), DVec2::new(mid + 0.5 * w, y + h)),
+                Rect::new(
+                    DVec2::new(mid - 0.5 * w, y),
+                    DVec2::new(mid + 0.5 * w, y + h),
+                ),
             )
         };
         items.push(Item::Text {

@@ -41,8 +41,8 @@ impl Placement {
 
 /// Standard drawing scales 1:n.
 const SCALES: [f64; 24] = [
-    1.0, 2.0, 2.5, 5.0, 10.0, 15.0, 20.0, 25.0, 30.0, 40.0, 50.0, 60.0, 75.0, 100.0, 125.0,
-    150.0, 200.0, 250.0, 300.0, 400.0, 500.0, 750.0, 1000.0, 2000.0,
+    1.0, 2.0, 2.5, 5.0, 10.0, 15.0, 20.0, 25.0, 30.0, 40.0, 50.0, 60.0, 75.0, 100.0, 125.0, 150.0,
+    200.0, 250.0, 300.0, 400.0, 500.0, 750.0, 1000.0, 2000.0,
 ];
 
 /// Gap between view cells, mm.
@@ -72,8 +72,11 @@ pub fn lay_out(bounds: &[(DVec2, DVec2); 4], margins: &[Margins; 4], area: Rect)
             let free = avail - paper.iter().sum::<f64>() - GAP * (paper.len() as f64 - 1.0);
             free.max(1e-3) / model.iter().sum::<f64>()
         };
-        let s = fit(area.size().x, &widths, &col_margins)
-            .min(fit(area.size().y, &heights, &row_margins));
+        let s = fit(area.size().x, &widths, &col_margins).min(fit(
+            area.size().y,
+            &heights,
+            &row_margins,
+        ));
         if best.is_none_or(|(b, _)| s > b) {
             best = Some((s, rows));
         }
@@ -111,7 +114,10 @@ pub fn lay_out(bounds: &[(DVec2, DVec2); 4], margins: &[Margins; 4], area: Rect)
         let cell_bottom = top - row_h[r];
         for (c, &k) in row.iter().enumerate() {
             let m = margins[k];
-            let cell = Rect::new(DVec2::new(left, cell_bottom), DVec2::new(left + col_w[c], top));
+            let cell = Rect::new(
+                DVec2::new(left, cell_bottom),
+                DVec2::new(left + col_w[c], top),
+            );
             // Centre the view's lines in the cell's inner part.
             let inner_min = cell.min + DVec2::new(m.left, m.bottom);
             let inner_max = cell.max - DVec2::new(m.right, m.top);

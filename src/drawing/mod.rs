@@ -24,7 +24,9 @@ mod svg;
 mod tables;
 
 pub use compose::compose;
-pub use data::{NoteData, NozzleData, PartData, VesselData, vessel_data, vessel_views};
+pub use data::{
+    NoteData, NozzleData, PartData, VesselData, vessel_data, vessel_views, view_inputs,
+};
 pub use dimensions::format_mm;
 pub use dxf::{to_dxf, to_dxf_bytes};
 pub use sheet::{
@@ -69,6 +71,10 @@ pub fn sheet_svg(model: &Model, tag: &str, options: &SheetOptions) -> Result<Str
 }
 
 /// The sheet of vessel `tag` as DXF (R2000) bytes.
-pub fn sheet_dxf(model: &Model, tag: &str, options: &SheetOptions) -> Result<Vec<u8>, DrawingError> {
+pub fn sheet_dxf(
+    model: &Model,
+    tag: &str,
+    options: &SheetOptions,
+) -> Result<Vec<u8>, DrawingError> {
     to_dxf_bytes(&sheet(model, tag, options)?)
 }

@@ -53,7 +53,9 @@ pub fn to_svg(sheet: &Sheet) -> String {
                 .set("fill", "#fff"),
         );
     for layer in Layer::ALL {
-        let mut group = Group::new().set("class", layer.name()).set("id", layer.name());
+        let mut group = Group::new()
+            .set("class", layer.name())
+            .set("id", layer.name());
         for item in &sheet.items {
             match item {
                 Item::Line {
@@ -67,7 +69,10 @@ pub fn to_svg(sheet: &Sheet) -> String {
                     }
                     group = group.add(Polyline::new().set("points", points(&ps)));
                 }
-                Item::Fill { layer: l, points: ps } if *l == layer => {
+                Item::Fill {
+                    layer: l,
+                    points: ps,
+                } if *l == layer => {
                     group = group.add(Polygon::new().set("points", points(ps)));
                 }
                 Item::Circle {

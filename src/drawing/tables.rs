@@ -19,7 +19,14 @@ pub const STEEL_DENSITY: f64 = 7.85e-6;
 
 /// Titles of the nozzle schedule's columns.
 pub const SCHEDULE_COLUMNS: [&str; 8] = [
-    "MARK", "SIZE", "RATING", "FACING", "SERVICE", "ORIENT.", "ELEV./POS.", "PROJ.",
+    "MARK",
+    "SIZE",
+    "RATING",
+    "FACING",
+    "SERVICE",
+    "ORIENT.",
+    "ELEV./POS.",
+    "PROJ.",
 ];
 
 /// Relative widths of the schedule's columns.
@@ -87,8 +94,11 @@ impl Table<'_> {
     fn frame(&mut self, bottom: f64) {
         self.items.push(Item::Line {
             layer: Layer::Border,
-            points: Rect::new(DVec2::new(self.left, bottom), DVec2::new(self.right, self.top))
-                .corners(),
+            points: Rect::new(
+                DVec2::new(self.left, bottom),
+                DVec2::new(self.right, self.top),
+            )
+            .corners(),
             closed: true,
         });
     }
@@ -197,7 +207,10 @@ pub fn title_fields(data: &VesselData) -> TitleFields {
         VesselKind::Tank => "STORAGE TANK",
     };
     TitleFields {
-        number: info.number.clone().unwrap_or_else(|| data.design.tag.clone()),
+        number: info
+            .number
+            .clone()
+            .unwrap_or_else(|| data.design.tag.clone()),
         title: info
             .title
             .clone()
@@ -247,13 +260,21 @@ pub fn draw(
     let data_bottom = t.top + h;
     t.top = data_bottom;
     let c = &data.design.design;
-    let opt = |v: Option<f64>, unit: &str| v.map_or("—".to_string(), |v| format!("{} {unit}", format_mm(v)));
+    let opt = |v: Option<f64>, unit: &str| {
+        v.map_or("—".to_string(), |v| format!("{} {unit}", format_mm(v)))
+    };
     let rows_data = [
         ("DESIGN PRESSURE", opt(c.pressure, "kPa(g)")),
         ("DESIGN TEMPERATURE", opt(c.temperature, "°C")),
         ("CORROSION ALLOWANCE", opt(c.corrosion_allowance, "mm")),
-        ("MATERIAL", c.material.clone().unwrap_or_else(|| "—".to_string())),
-        ("VOLUME", volume(data).map_or("—".to_string(), |v| format!("{v:.2} m³"))),
+        (
+            "MATERIAL",
+            c.material.clone().unwrap_or_else(|| "—".to_string()),
+        ),
+        (
+            "VOLUME",
+            volume(data).map_or("—".to_string(), |v| format!("{v:.2} m³")),
+        ),
         (
             "EMPTY WEIGHT (WALLS)",
             empty_weight(data).map_or("n/a (a wall thickness is missing)".to_string(), |w| {
@@ -287,5 +308,8 @@ pub fn draw(
         t.heading("NOTES");
         t.frame(notes_bottom);
     }
-    (Rect::new(DVec2::new(left, bottom), DVec2::new(right, t.top)), revision_at)
+    (
+        Rect::new(DVec2::new(left, bottom), DVec2::new(right, t.top)),
+        revision_at,
+    )
 }

@@ -190,3 +190,45 @@ fn centrelines(entity: &EntityInput, projection: &Projection) -> Vec<ViewLine> {
     }
     out
 }
+
+/// Builds the views of the `selected` entities (indices into `entities`) in all
+/// four `projections`, against occluders made of every entity's meshes: what the
+/// Project stage does for a vessel, without the ECS (benchmarks, tools).
+pub fn build_views(
+    entities: &[EntityInput],
+    projections: &[Projection; 4],
+    settings: &ViewSettings,
+    selected: &[usize],
+) -> Vec<[EntityView; 4]> {
+    use rayon::prelude::*;
+    let occluders: Vec<Occluder> = projections
+        .par_iter()
+        .map(|p| {
+            Occluder::build(
+                p,
+                entities
+                    .iter()
+                    .flat_map(|e| e.patches.iter().map(move |q| (&*q.mesh, e.frame))),
+            )
+        })
+        .collect();
+    let jobs: Vec<(usize, usize)> = selected
+        .iter()
+        .flat_map(|&i| (0..4).map(move |k| (i, k)))
+        .collect();
+    let mut built: Vec<EntityView> = jobs
+        .par_iter()
+        .map(|&(i, k)| build_entity_view(&entities[i], &projections[k], &occluders[k], settings))
+        .collect();
+    let mut out = Vec::with_capacity(selected.len());
+    while built.len() >= 4 {
+        let rest = built.split_off(4);
+        let four: [EntityView; 4] = match built.try_into() {
+            Ok(f) => f,
+            Err(_) => break,
+        };
+        out.push(four);
+        built = rest;
+    }
+    out
+}

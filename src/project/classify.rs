@@ -31,7 +31,11 @@ const BISECTIONS: usize = 12;
 /// Whether the surface point is hidden in the view.
 fn hidden(p: &SurfacePoint, projection: &Projection, occluder: &Occluder, s: &Sampling) -> bool {
     let q = p.point + p.normal * s.nudge;
-    occluder.hides(projection.project(q), projection.depth(q), s.depth_tolerance)
+    occluder.hides(
+        projection.project(q),
+        projection.depth(q),
+        s.depth_tolerance,
+    )
 }
 
 fn lerp(a: &SurfacePoint, b: &SurfacePoint, t: f64) -> SurfacePoint {
@@ -53,8 +57,7 @@ pub fn classify(
         return;
     }
     let mut runs: Vec<(bool, Vec<DVec2>)> = Vec::new();
-    let push = |state: bool, p: DVec2, runs: &mut Vec<(bool, Vec<DVec2>)>| match runs.last_mut()
-    {
+    let push = |state: bool, p: DVec2, runs: &mut Vec<(bool, Vec<DVec2>)>| match runs.last_mut() {
         Some((s, pts)) if *s == state => {
             if pts.last() != Some(&p) {
                 pts.push(p);
@@ -76,7 +79,8 @@ pub fn classify(
                 let (mut a, mut b) = (0.0, 1.0);
                 for _ in 0..BISECTIONS {
                     let m = 0.5 * (a + b);
-                    if hidden(&lerp(&prev, &cur, m), projection, occluder, sampling) == prev_hidden {
+                    if hidden(&lerp(&prev, &cur, m), projection, occluder, sampling) == prev_hidden
+                    {
                         a = m;
                     } else {
                         b = m;

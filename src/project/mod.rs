@@ -17,7 +17,7 @@ mod occlusion;
 mod silhouette;
 mod types;
 
-pub use build::{EntityInput, PatchInput, ViewSettings, build_entity_view, footprint};
+pub use build::{EntityInput, PatchInput, ViewSettings, build_entity_view, build_views, footprint};
 pub use classify::Sampling;
 pub use edges::boundary_polylines;
 pub use frames::{plan_north, projections};

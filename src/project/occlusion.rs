@@ -54,7 +54,9 @@ impl Occluder {
                     view[t[2] as usize],
                 ];
                 // Edge-on triangles cover nothing.
-                let area = (tri[1] - tri[0]).truncate().perp_dot((tri[2] - tri[0]).truncate());
+                let area = (tri[1] - tri[0])
+                    .truncate()
+                    .perp_dot((tri[2] - tri[0]).truncate());
                 if area.abs() > 1e-12 {
                     triangles.push(tri);
                 }
@@ -72,7 +74,9 @@ impl Occluder {
         }
         let extent = (hi - lo).max(DVec2::splat(1e-9));
         let target = (triangles.len() as f64).clamp(1.0, 4.0e6);
-        let cell = (extent.x * extent.y / target).sqrt().max(extent.max_element() / 4096.0);
+        let cell = (extent.x * extent.y / target)
+            .sqrt()
+            .max(extent.max_element() / 4096.0);
         let size = (
             ((extent.x / cell).floor() as usize + 1).max(1),
             ((extent.y / cell).floor() as usize + 1).max(1),

@@ -168,7 +168,10 @@ pub fn silhouettes(
         .map(|(u, v)| surface.normal(u, v).dot(d))
         .collect();
     let at = |i: usize, j: usize| g[i * nv + j];
-    if g.iter().all(|x| x.abs() < 1e-6) || g.iter().all(|&x| x > -ZERO) || g.iter().all(|&x| x < ZERO) {
+    if g.iter().all(|x| x.abs() < 1e-6)
+        || g.iter().all(|&x| x > -ZERO)
+        || g.iter().all(|&x| x < ZERO)
+    {
         return Vec::new();
     }
     // Values within round-off of zero count as positive, so a silhouette through
@@ -239,7 +242,8 @@ pub fn silhouettes(
     // grid row next to it holds the last crossing; the pole itself has `n · d = 0`.
     let collapsed = |v: f64| {
         let c = surface.isocurve_v(v).control_points();
-        c.iter().all(|p| (*p - c[0]).length() <= 1e-9 * (1.0 + p.length()))
+        c.iter()
+            .all(|p| (*p - c[0]).length() <= 1e-9 * (1.0 + p.length()))
     };
     let (pole_low, pole_high) = (collapsed(vs[0]), collapsed(vs[nv - 1]));
     let pole_of = |key: EdgeKey| -> Option<DVec2> {
@@ -274,7 +278,8 @@ pub fn silhouettes(
             }
             current.push(SurfacePoint {
                 point: frame.transform_point3(surface.point(uv.x, uv.y)),
-                normal: (frame.matrix3 * surface.normal(uv.x, uv.y)).normalize_or(current.last().map_or(DVec3::Z, |p| p.normal)),
+                normal: (frame.matrix3 * surface.normal(uv.x, uv.y))
+                    .normalize_or(current.last().map_or(DVec3::Z, |p| p.normal)),
             });
         }
         if current.len() >= 2 {
