@@ -187,7 +187,7 @@ pub fn plan(data: &VesselData) -> Dimensions {
         let origin = n.frame.translation;
         let mark = &n.design.mark;
         let projection = n.design.projection;
-        let in_plane = axis.dot(front.toward_viewer).abs() < 1e-6;
+        let in_plane = true_length(&front, axis);
         let along_vessel = axis.cross(DVec3::Z).length() < 1e-6;
         if let Some(elevation) = n.design.elevation {
             let foot = DVec3::Z * elevation;
@@ -205,21 +205,20 @@ pub fn plan(data: &VesselData) -> Dimensions {
                 });
             }
             let at = p(face);
-            let radial_coord = if vertical { at.x } else { at.y };
-            let side = match (vertical, radial_coord > 1e-6) {
+            // Vertical vessels: on the side the nozzle points to; horizontal ones:
+            // below (the T/T and head-nozzle dimensions are above).
+            let side = match (vertical, at.x > 1e-6) {
                 (true, true) => DimSide::Right,
                 (true, false) => DimSide::Left,
-                (false, true) => DimSide::Above,
-                (false, false) => DimSide::Below,
+                (false, _) => DimSide::Below,
             };
-            let side = if !vertical { DimSide::Below } else { side };
             let label = if vertical { "EL" } else { "POS" };
             dims.ordinates.push(Ordinate {
                 side,
                 at,
                 text: format!("{mark} {label} {}", format_mm(elevation)),
             });
-        } else if along_vessel && in_plane_or_axis(&front, axis) {
+        } else if along_vessel && true_length(&front, axis) {
             // Head nozzle: projection from the head's tangent line to the face.
             let tl = if axis.z > 0.0 { tt } else { 0.0 };
             let start = DVec3::new(origin.x, origin.y, tl);
@@ -243,8 +242,8 @@ pub fn plan(data: &VesselData) -> Dimensions {
     dims
 }
 
-/// Whether an axis along the vessel shows its true length in the view.
-fn in_plane_or_axis(front: &Projection, axis: DVec3) -> bool {
+/// Whether a direction shows its true length in the view.
+fn true_length(front: &Projection, axis: DVec3) -> bool {
     axis.dot(front.toward_viewer).abs() < 1e-6
 }
 
@@ -380,7 +379,7 @@ pub fn place(
         }
     };
     // Ordinates.
-    for (s, &side) in DimSide::ALL.iter().enumerate() {
+    for side in DimSide::ALL {
         let mut list: Vec<(DVec2, &str)> = dims
             .ordinates
             .iter()
@@ -402,7 +401,6 @@ pub fn place(
             points: vec![with_across(side, lo, base), with_across(side, hi, base)],
             closed: false,
         });
-        let _ = s;
         for (p, text) in list {
             let level = along(p);
             let slot = level.max(last + 1.5 * h);
