@@ -137,9 +137,8 @@ pub fn compose(data: &VesselData, options: &SheetOptions) -> Sheet {
         &schedule,
         size,
         placement.scale,
-        column_left,
+        DVec2::new(column_left, inner.min.y),
         inner.max.x,
-        inner.min.y,
         &mut items,
     );
     let revision = tables::title_fields(data).revision;

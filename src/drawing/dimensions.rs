@@ -308,12 +308,7 @@ fn ordinate_depths(dims: &Dimensions, h: f64) -> [f64; 4] {
     let widths = ordinate_widths(dims, h);
     std::array::from_fn(|s| {
         if dims.ordinates.iter().any(|o| o.side == DimSide::ALL[s]) {
-            let w = if DimSide::ALL[s].vertical() {
-                widths[s]
-            } else {
-                widths[s]
-            };
-            first_offset(h) + w + 3.0
+            first_offset(h) + widths[s] + 3.0
         } else {
             0.0
         }

@@ -78,15 +78,17 @@ pub fn to_dxf(sheet: &Sheet) -> Drawing {
                 points,
                 closed,
             } if points.len() >= 2 => {
-                let mut p = LwPolyline::default();
-                p.vertices = points
-                    .iter()
-                    .map(|q| LwPolylineVertex {
-                        x: q.x,
-                        y: q.y,
-                        ..Default::default()
-                    })
-                    .collect();
+                let mut p = LwPolyline {
+                    vertices: points
+                        .iter()
+                        .map(|q| LwPolylineVertex {
+                            x: q.x,
+                            y: q.y,
+                            ..Default::default()
+                        })
+                        .collect(),
+                    ..Default::default()
+                };
                 p.set_is_closed(*closed);
                 drawing.add_entity(entity(*layer, EntityType::LwPolyline(p)));
             }

@@ -34,7 +34,7 @@ pub struct Placement {
 
 impl Placement {
     /// Sheet position of view `k`'s model point `p`.
-    pub fn to_sheet(&self, k: usize, p: DVec2) -> DVec2 {
+    pub fn to_sheet(self, k: usize, p: DVec2) -> DVec2 {
         self.offsets[k] + p / self.scale
     }
 }

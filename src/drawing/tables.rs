@@ -220,18 +220,19 @@ pub fn title_fields(data: &VesselData) -> TitleFields {
     }
 }
 
-/// Draws the tables in the column `[left, right]` from `bottom` up; returns the
-/// rectangle they take and where the revision cell is (for the triangle).
+/// Draws the tables in the column from its lower-left corner `origin` to `right`,
+/// bottom up; returns the rectangle they take and where the revision cell is (for
+/// the triangle).
 pub fn draw(
     data: &VesselData,
     rows: &[ScheduleRow],
     size: SheetSize,
     scale: f64,
-    left: f64,
+    origin: DVec2,
     right: f64,
-    bottom: f64,
     items: &mut Vec<Item>,
 ) -> (Rect, DVec2) {
+    let (left, bottom) = (origin.x, origin.y);
     let h = size.text_height();
     let mut t = Table {
         items,
