@@ -340,3 +340,39 @@ fn the_drawing_command_writes_svg_and_dxf() {
     assert!(String::from_utf8_lossy(&out.stderr).contains("V-999"));
     std::fs::remove_dir_all(&dir).ok();
 }
+
+#[test]
+fn notes_follow_their_targets() {
+    let mut m = model("vertical-column");
+    let note_at = |m: &Model| {
+        let s = sheet(m, "C-201", &SheetOptions::default()).unwrap();
+        s.items
+            .iter()
+            .find_map(|i| match i {
+                Item::Text { text, at, .. } if text == "See detail A" => Some(*at),
+                _ => None,
+            })
+            .expect("note T3 drawn")
+    };
+    let before = note_at(&m);
+    let mut n1 = m.design().vessels[0]
+        .nozzles
+        .iter()
+        .find(|n| n.mark == "N1")
+        .cloned()
+        .unwrap();
+    n1.elevation = Some(9000.0);
+    m.edit(Edit::SetNozzle {
+        vessel: "C-201".into(),
+        nozzle: n1,
+    })
+    .unwrap();
+    let after = note_at(&m);
+    let s = sheet(&m, "C-201", &SheetOptions::default()).unwrap();
+    // 1000 mm lower at the sheet's scale.
+    assert!((before.x - after.x).abs() < 1e-9);
+    assert!(
+        ((before.y - after.y) - 1000.0 / s.scale).abs() < 1e-6,
+        "{before} → {after}"
+    );
+}
