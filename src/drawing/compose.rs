@@ -9,7 +9,8 @@ use super::data::VesselData;
 use super::dimensions::{self, format_mm};
 use super::layout::{Margins, Placement, lay_out};
 use super::sheet::{
-    Align, HiddenLines, Item, Layer, Rect, Sheet, SheetOptions, SheetSize, text_width,
+    Align, HiddenLines, Item, Layer, PlacedDimension, Rect, Sheet, SheetOptions, SheetSize,
+    text_width,
 };
 use super::tables;
 use crate::project::{LineKind, plan_north};
@@ -129,7 +130,7 @@ pub fn compose(data: &VesselData, options: &SheetOptions) -> Sheet {
         &mut items,
         &mut placed,
     );
-    notes(data, &placement, area, h, &mut items);
+    notes(data, &placement, area, &placed, h, &mut items);
     north_arrow(data, view_boxes[1], h, &mut items);
     let schedule = tables::schedule(data);
     let (_, revision_at) = tables::draw(
@@ -169,14 +170,66 @@ fn front_bottom(k: usize, dims: &dimensions::Dimensions, h: f64, scale: f64) -> 
 
 /// Notes in the front elevation: text at the note's position, a leader with an
 /// arrowhead to its target's anchor (both follow the target: they are resolved
-/// from it on every update).
-fn notes(data: &VesselData, placement: &Placement, area: Rect, h: f64, items: &mut Vec<Item>) {
+/// from it on every update). A text that would cover a dimension is moved out
+/// past the dimensions on its side; every text stays on the drawing area.
+fn notes(
+    data: &VesselData,
+    placement: &Placement,
+    area: Rect,
+    dims: &[PlacedDimension],
+    h: f64,
+    items: &mut Vec<Item>,
+) {
     let front = data.views[0].projection;
     for n in &data.notes {
         let anchor = placement.to_sheet(0, front.project(n.anchor));
         let at = placement.to_sheet(0, front.project(n.position));
-        let right = at.x >= anchor.x;
-        let shoulder = at;
+        let w = text_width(&n.text, h);
+        let mut right = at.x >= anchor.x;
+        let mut x = if right { at.x + 1.0 } else { at.x - 1.0 };
+        let y = (at.y - 0.4 * h).clamp(area.min.y, area.max.y - h);
+        let text_box = |x: f64, right: bool| {
+            let x0 = if right { x } else { x - w };
+            Rect::new(DVec2::new(x0, y - 0.3 * h), DVec2::new(x0 + w, y + 1.3 * h))
+        };
+        let blocked = |b: &Rect| {
+            dims.iter()
+                .any(|d| d.text_box.overlaps(b, 0.0) || d.line_box.overlaps(b, 0.0))
+        };
+        if blocked(&text_box(x, right)) {
+            // Past the farthest dimension box in the text's band on its side.
+            let band = |d: &&PlacedDimension| {
+                let r = [d.text_box, d.line_box];
+                r.iter()
+                    .any(|r| r.min.y <= y + 1.3 * h && r.max.y >= y - 0.3 * h)
+            };
+            x = if right {
+                dims.iter()
+                    .filter(band)
+                    .map(|d| d.text_box.max.x.max(d.line_box.max.x))
+                    .fold(x, f64::max)
+                    + 2.0
+            } else {
+                dims.iter()
+                    .filter(band)
+                    .map(|d| d.text_box.min.x.min(d.line_box.min.x))
+                    .fold(x, f64::min)
+                    - 2.0
+            };
+        }
+        // Keep the text on the drawing area: flip it to the other side, then
+        // slide it in, when it would run off.
+        if right && x + w > area.max.x {
+            right = false;
+        } else if !right && x - w < area.min.x {
+            right = true;
+        }
+        x = if right {
+            x.clamp(area.min.x, (area.max.x - w).max(area.min.x))
+        } else {
+            x.clamp((area.min.x + w).min(area.max.x), area.max.x)
+        };
+        let shoulder = DVec2::new(x + if right { -1.0 } else { 1.0 }, y + 0.4 * h);
         if (shoulder - anchor).length() > 1e-6 {
             items.push(Item::Line {
                 layer: Layer::Dimension,
@@ -192,20 +245,6 @@ fn notes(data: &VesselData, placement: &Placement, area: Rect, h: f64, items: &m
                 points: vec![anchor, back + side, back - side],
             });
         }
-        // Keep the text on the drawing area: flip it to the other side of its
-        // point, then slide it in, when it would run off.
-        let w = text_width(&n.text, h);
-        let right = if right {
-            at.x + 1.0 + w <= area.max.x
-        } else {
-            at.x - 1.0 - w < area.min.x
-        };
-        let x = if right {
-            (at.x + 1.0).clamp(area.min.x, (area.max.x - w).max(area.min.x))
-        } else {
-            (at.x - 1.0).clamp((area.min.x + w).min(area.max.x), area.max.x)
-        };
-        let y = (at.y - 0.4 * h).clamp(area.min.y, area.max.y - h);
         items.push(Item::Text {
             at: DVec2::new(x, y),
             height: h,
