@@ -264,3 +264,59 @@ fn turning_a_vessel_in_plan_rebuilds_all_its_views_and_moving_it_none() {
         .unwrap();
     assert_eq!(c.views_rebuilt, 64, "the plan turned: every view changes");
 }
+
+#[test]
+fn a_shell_silhouette_is_its_generators_cut_at_the_openings_on_it() {
+    let model = Model::from_design(&example("horizontal-drum"), options()).unwrap();
+    let views = vessel_views(&model, "V-101").unwrap();
+    let shell = entity(&views[0], "V-101/S1");
+    // Course from z = 50 to 7250 (after H1's straight flange), radius 1200: its
+    // silhouettes in the front elevation are the generators y = ±1200.
+    let generators: Vec<&vesselcad::project::ViewLine> = shell
+        .lines
+        .iter()
+        .filter(|l| {
+            l.kind == LineKind::Visible
+                && l.points.iter().all(|p| (p.y.abs() - 1200.0).abs() < 1e-6)
+        })
+        .collect();
+    let covered = |y: f64| -> Vec<(f64, f64)> {
+        let mut spans: Vec<(f64, f64)> = generators
+            .iter()
+            .filter(|l| (l.points[0].y - y).abs() < 1e-6)
+            .map(|l| {
+                let xs = l.points.iter().map(|p| p.x);
+                (
+                    xs.clone().fold(f64::MAX, f64::min),
+                    xs.fold(f64::MIN, f64::max),
+                )
+            })
+            .collect();
+        spans.sort_by(|a, b| a.0.total_cmp(&b.0));
+        spans
+    };
+    let bottom = covered(-1200.0);
+    let top = covered(1200.0);
+    assert!(
+        !bottom.is_empty() && !top.is_empty(),
+        "{:?}",
+        shell.lines.len()
+    );
+    assert!((bottom[0].0 - 50.0).abs() < 1e-6 && (bottom.last().unwrap().1 - 7250.0).abs() < 1e-6);
+    assert!((top[0].0 - 50.0).abs() < 1e-6 && (top.last().unwrap().1 - 7250.0).abs() < 1e-6);
+    // N1 at x = 800 on the top has a 420 mm pad: the host's opening there is the
+    // pad's outer loop, x = 590..1010 on the top line; the generator stops there.
+    let ends: Vec<f64> = top.iter().flat_map(|(a, b)| [*a, *b]).collect();
+    for x in [590.0, 1010.0] {
+        assert!(
+            ends.iter().any(|e| (e - x).abs() < 0.5),
+            "no end at {x}: {top:?}"
+        );
+    }
+    for (a, b) in &top {
+        assert!(
+            *b <= 590.5 || *a >= 1009.5,
+            "top generator crosses N1's pad: {a}..{b}"
+        );
+    }
+}

@@ -267,26 +267,69 @@ pub fn silhouettes(
                 uvs.push(p);
             }
         }
+        let inside = |uv: DVec2| region.is_none_or(|r| in_region(r, uv, period));
+        let at = |uv: DVec2, last: Option<&SurfacePoint>| SurfacePoint {
+            point: frame.transform_point3(surface.point(uv.x, uv.y)),
+            normal: (frame.matrix3 * surface.normal(uv.x, uv.y))
+                .normalize_or(last.map_or(DVec3::Z, |p| p.normal)),
+        };
         let mut current: Vec<SurfacePoint> = Vec::new();
+        let mut prev: Option<(DVec2, bool)> = None;
         for uv in uvs {
-            if region.is_some_and(|r| !in_region(r, uv, period)) {
-                if current.len() >= 2 {
-                    out.push(std::mem::take(&mut current));
+            let now = inside(uv);
+            if let Some((p, was)) = prev
+                && was != now
+            {
+                // The silhouette leaves or enters the region between p and uv: find
+                // the crossing of the trimming loop and put it back on the
+                // silhouette.
+                let (mut a, mut b) = (p, uv);
+                for _ in 0..40 {
+                    let m = 0.5 * (a + b);
+                    if inside(m) == was {
+                        a = m;
+                    } else {
+                        b = m;
+                    }
                 }
-                current.clear();
-                continue;
+                let edge = snap(surface, d, if was { a } else { b });
+                current.push(at(edge, current.last()));
+                if was {
+                    if current.len() >= 2 {
+                        out.push(std::mem::take(&mut current));
+                    }
+                    current.clear();
+                }
             }
-            current.push(SurfacePoint {
-                point: frame.transform_point3(surface.point(uv.x, uv.y)),
-                normal: (frame.matrix3 * surface.normal(uv.x, uv.y))
-                    .normalize_or(current.last().map_or(DVec3::Z, |p| p.normal)),
-            });
+            if now {
+                current.push(at(uv, current.last()));
+            }
+            prev = Some((uv, now));
         }
         if current.len() >= 2 {
             out.push(current);
         }
     }
     out
+}
+
+/// Moves `uv` along u onto the silhouette `n · d = 0` nearby, when a root is
+/// bracketed within a thousandth of the u-domain; otherwise returns it as is.
+fn snap(surface: &NurbsSurface, d: DVec3, uv: DVec2) -> DVec2 {
+    let ((u0, u1), _) = surface.domain();
+    let h = 1e-3 * (u1 - u0);
+    let g = |u: f64| surface.normal(u, uv.y).dot(d);
+    let (a, b) = ((uv.x - h).max(u0), (uv.x + h).min(u1));
+    let (ga, gb) = (g(a), g(b));
+    if ga.abs() < ZERO {
+        DVec2::new(a, uv.y)
+    } else if gb.abs() < ZERO {
+        DVec2::new(b, uv.y)
+    } else if (ga < 0.0) != (gb < 0.0) {
+        DVec2::new(root(g, a, b, ga, gb), uv.y)
+    } else {
+        uv
+    }
 }
 
 /// Joins segments sharing an end into chains of keys (closed chains repeat their
