@@ -1,6 +1,6 @@
 //! Benchmarks of vesselcad: one criterion entry point, one module per topic.
 //!
-//! Run with `cargo bench --bench vesselcad` (or `-- grid` / `-- mesh` / `-- model` / `-- server` for one
+//! Run with `cargo bench --bench vesselcad` (or `-- grid` / `-- mesh` / `-- model` / `-- server` / `-- project` for one
 //! topic); each topic keeps its measurement short so the whole run takes a few
 //! minutes.
 
@@ -12,7 +12,15 @@ mod grid;
 mod mesh;
 #[path = "vesselcad/model.rs"]
 mod model;
+#[path = "vesselcad/project.rs"]
+mod project;
 #[path = "vesselcad/server.rs"]
 mod server;
 
-criterion_main!(grid::group, mesh::group, model::group, server::group);
+criterion_main!(
+    grid::group,
+    mesh::group,
+    model::group,
+    project::group,
+    server::group
+);

@@ -9,6 +9,7 @@
 mod derived;
 mod params;
 mod relations;
+mod views;
 
 pub use derived::{
     NoteAnchor, Opening, PartFrame, PartSpan, PatchMesh, PatchRegion, PatchSurface, Shape,
@@ -16,3 +17,4 @@ pub use derived::{
 };
 pub use params::{DesignOrder, NoteSpec, NozzleSpec, PartSpec, VesselSpec};
 pub use relations::{AnnotatedBy, Annotates, MountedOn, Mounts, PadOf, PadPatch, PatchOf, Patches};
+pub use views::{EntityViews, Footprint, VesselViews};

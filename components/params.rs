@@ -4,7 +4,7 @@
 use bevy_ecs::component::Component;
 
 use crate::design::{
-    DesignConditions, NoteDesign, NozzleDesign, PartDesign, Placement, VesselKind,
+    DesignConditions, DrawingInfo, NoteDesign, NozzleDesign, PartDesign, Placement, VesselKind,
 };
 
 /// A vessel's own parameters (its parts, nozzles and notes are child entities).
@@ -18,6 +18,8 @@ pub struct VesselSpec {
     pub placement: Placement,
     /// Design conditions.
     pub design: DesignConditions,
+    /// Title-block data of its drawing.
+    pub drawing: DrawingInfo,
 }
 
 /// Position of an entity in its list in the design file (vessels in the plant;

@@ -14,6 +14,10 @@
 //!   surfaces, batched grid evaluation, refinement, transforms, point inversion.
 //! - [`parts`] — functions from vessel-part parameters to their exact patches in the
 //!   part's local frame (axis +Z).
+//! - [`project`] — drawing views of each vessel (exact silhouettes, edges, hidden
+//!   lines), cached per entity per view by the Project stage.
+//! - [`drawing`] — drawing sheets from those views (layout, dimensions, tables),
+//!   written as SVG and DXF: [`drawing::sheet_svg`].
 //!
 //! ## Units and tolerances
 //!
@@ -25,6 +29,7 @@
 pub mod components;
 pub mod constraints;
 pub mod design;
+pub mod drawing;
 pub mod export;
 pub mod mesh;
 pub mod model;

@@ -5,6 +5,8 @@
 //! listed on stderr); 2 when a file cannot be read or written or the command line
 //! is wrong.
 
+mod drawing_command;
+
 use std::path::PathBuf;
 use std::process::ExitCode;
 use std::time::Instant;
@@ -53,6 +55,8 @@ enum Command {
     /// Serve a live redesign session: viewer page, JSON Patch edits, journal,
     /// glTF deltas over WebSocket (see `vesselcad::server`).
     Serve(ServeArgs),
+    /// Draw one vessel's sheet (views, dimensions, tables) as SVG and optionally DXF.
+    Drawing(drawing_command::DrawingArgs),
     /// Report each vessel's parts, nozzles, lengths, OD, volume and area.
     Info {
         /// The design file.
@@ -76,6 +80,7 @@ fn main() -> ExitCode {
     let cli = Cli::parse();
     match cli.command {
         Command::Serve(args) => serve_command(args),
+        Command::Drawing(args) => drawing_command::run(args),
         Command::Check { design } => match load(&design) {
             Ok(d) => {
                 println!(

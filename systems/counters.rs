@@ -22,6 +22,8 @@ pub struct WorkCounters {
     pub meshes_rebuilt: u64,
     /// Triangles in the rebuilt meshes.
     pub triangles_meshed: u64,
+    /// Entity views (one part or nozzle in one view) rebuilt by the Project stage.
+    pub views_rebuilt: u64,
     /// Patches or openings that failed to mesh or cut (details in `ModelErrors`).
     pub failures: u64,
 }

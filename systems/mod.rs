@@ -1,5 +1,5 @@
 //! ECS systems and the schedule: Validate → Constrain → Geometry → Tessellate →
-//! Export, each a `SystemSet` in a chain.
+//! Project → Export, each a `SystemSet` in a chain.
 //!
 //! Every stage reads what changed upstream and writes downstream only when the value
 //! really differs (`set_if_neq`), so untouched entities cost nothing but the
@@ -11,6 +11,7 @@ mod counters;
 mod export;
 mod geometry;
 mod openings;
+mod project;
 mod regions;
 mod tessellate;
 mod validate;
@@ -20,6 +21,7 @@ pub use counters::WorkCounters;
 pub use export::{ChangeLog, collect_changes};
 pub use geometry::rebuild_dirty_patches;
 pub use openings::{OpeningHosts, cut_openings};
+pub use project::{entity_input, project_dirty_views};
 pub use regions::lay_out_regions;
 pub use tessellate::{Tessellation, remesh_dirty_patches};
 pub use validate::{ModelErrors, PendingResolutions, resolve_dirty_vessels};
@@ -37,6 +39,8 @@ pub enum Stage {
     Geometry,
     /// Re-mesh patches whose surface changed.
     Tessellate,
+    /// Rebuild the drawing views of entities that changed or whose visibility did.
+    Project,
     /// Record what changed for exporters and viewers.
     Export,
 }
@@ -50,6 +54,7 @@ pub fn build_schedule() -> Schedule {
             Stage::Constrain,
             Stage::Geometry,
             Stage::Tessellate,
+            Stage::Project,
             Stage::Export,
         )
             .chain(),
@@ -63,6 +68,7 @@ pub fn build_schedule() -> Schedule {
         (lay_out_regions, remesh_dirty_patches)
             .chain()
             .in_set(Stage::Tessellate),
+        project_dirty_views.in_set(Stage::Project),
         collect_changes.in_set(Stage::Export),
     ));
     schedule

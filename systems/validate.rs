@@ -49,6 +49,7 @@ pub(crate) fn read_vessel(
         kind: spec.kind,
         placement: spec.placement,
         design: spec.design.clone(),
+        drawing: spec.drawing.clone(),
         parts: p.into_iter().map(|(s, _)| s.0.clone()).collect(),
         nozzles: n.into_iter().map(|(s, _)| s.0.clone()).collect(),
         notes: t.into_iter().map(|(s, _)| s.0.clone()).collect(),

@@ -279,6 +279,33 @@ fn static_files_cannot_escape_their_folder_and_unknown_routes_are_404() {
 }
 
 #[test]
+fn the_drawing_route_serves_the_current_sheet() {
+    let design = design_copy("horizontal-drum.json", "api-drawing");
+    let server = ServerProcess::start(&design, &[]);
+    let sheet = |server: &ServerProcess| {
+        let r = server.request("GET", "/drawing.svg?vessel=V-101", &[], b"");
+        assert_eq!(r.status, 200, "{}", r.text());
+        assert_eq!(r.header("content-type"), Some("image/svg+xml"));
+        let text = r.text();
+        let doc = roxmltree::Document::parse(&text).expect("the sheet is well-formed XML");
+        assert_eq!(doc.root_element().tag_name().name(), "svg");
+        text
+    };
+    let before = sheet(&server);
+    assert!(
+        before.contains("liquid outlet"),
+        "the schedule lists N2's service"
+    );
+    // An edit through the API shows on the next sheet.
+    let r = server.edit(&json!([
+        { "op": "replace", "path": "/vessels/0/nozzles/1/service", "value": "product draw-off" }
+    ]));
+    assert_eq!(r.status, 200, "{}", r.text());
+    let after = sheet(&server);
+    assert!(after.contains("product draw-off") && !after.contains("liquid outlet"));
+}
+
+#[test]
 fn serve_refuses_a_missing_or_invalid_design_at_start() {
     let run = |path: &std::path::Path| {
         std::process::Command::new(env!("CARGO_BIN_EXE_vesselcad"))

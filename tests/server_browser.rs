@@ -114,9 +114,8 @@ fn an_edit_in_one_page_changes_the_geometry_in_another() {
         .unwrap()
         .iter()
         .filter_map(Value::as_str)
-        // The refused edit answers 422; the drawing route answers 501 until the
-        // drawing module is merged.
-        .filter(|e| !e.contains("status of 422") && !e.contains("status of 501"))
+        // The refused edit answers 422.
+        .filter(|e| !e.contains("status of 422"))
         .collect();
     assert!(
         page_errors.is_empty(),

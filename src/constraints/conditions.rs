@@ -12,7 +12,10 @@
 //! - a wall thickness given for a shell course, head or reducer lies between
 //!   [`MIN_DIMENSION`] and the smallest outside radius of that part;
 //! - the corrosion allowance is finite, ≥ 0 and thinner than every wall thickness
-//!   the design gives.
+//!   the design gives;
+//! - the drawing's title-block texts, when given, are non-empty single lines of at
+//!   most [`MAX_TITLE_TEXT`] characters, the revision at most [`MAX_REVISION`], and
+//!   the date a calendar date `YYYY-MM-DD`.
 
 use super::geometry::PartGeometry;
 use super::{Report, ResolvedPart};
@@ -28,9 +31,85 @@ pub const ABSOLUTE_ZERO: f64 = -273.15;
 /// Largest design temperature accepted, °C.
 pub const MAX_TEMPERATURE: f64 = 1e4;
 
+/// Longest title-block text accepted (drawing number, title), characters.
+pub const MAX_TITLE_TEXT: usize = 80;
+/// Longest revision accepted, characters.
+pub const MAX_REVISION: usize = 8;
+
+/// Whether `date` is a calendar date written `YYYY-MM-DD`.
+fn is_iso_date(date: &str) -> bool {
+    let b = date.as_bytes();
+    if b.len() != 10 || b[4] != b'-' || b[7] != b'-' {
+        return false;
+    }
+    let num = |r: std::ops::Range<usize>| date.get(r).and_then(|t| t.parse::<u32>().ok());
+    let (Some(y), Some(m), Some(d)) = (num(0..4), num(5..7), num(8..10)) else {
+        return false;
+    };
+    if !date
+        .chars()
+        .enumerate()
+        .all(|(i, c)| i == 4 || i == 7 || c.is_ascii_digit())
+    {
+        return false;
+    }
+    let leap = (y % 4 == 0 && y % 100 != 0) || y % 400 == 0;
+    let days = match m {
+        1 | 3 | 5 | 7 | 8 | 10 | 12 => 31,
+        4 | 6 | 9 | 11 => 30,
+        2 if leap => 29,
+        2 => 28,
+        _ => return false,
+    };
+    (1..=days).contains(&d)
+}
+
+/// Checks the title-block data of the vessel's drawing.
+fn check_drawing_info(vessel: &VesselDesign, report: &mut Report) {
+    let info = &vessel.drawing;
+    let texts = [
+        ("number", &info.number, MAX_TITLE_TEXT),
+        ("title", &info.title, MAX_TITLE_TEXT),
+        ("revision", &info.revision, MAX_REVISION),
+    ];
+    for (field, value, max) in texts {
+        let Some(text) = value else { continue };
+        let shown = format!("{text:?}");
+        if text.trim().is_empty() {
+            report.push(
+                format!("drawing.{field}"),
+                None,
+                field,
+                shown.clone(),
+                "must not be empty when given (leave it out instead)",
+            );
+        } else if text.chars().count() > max || text.chars().any(char::is_control) {
+            report.push(
+                format!("drawing.{field}"),
+                None,
+                field,
+                shown.clone(),
+                format!("must be one line of at most {max} characters"),
+            );
+        }
+    }
+    if let Some(date) = &info.date
+        && !is_iso_date(date)
+    {
+        report.push(
+            "drawing.date",
+            None,
+            "date",
+            format!("{date:?}"),
+            "must be a calendar date written YYYY-MM-DD",
+        );
+    }
+}
+
 /// Checks the design conditions and the wall thicknesses of the resolved stack
 /// parts (parts that failed to resolve were reported already).
 pub(crate) fn check(vessel: &VesselDesign, parts: &[Option<ResolvedPart>], report: &mut Report) {
+    check_drawing_info(vessel, report);
     let c = &vessel.design;
     if let Some(p) = c.pressure
         && !(p.is_finite() && (FULL_VACUUM..=MAX_PRESSURE).contains(&p))
@@ -120,5 +199,21 @@ pub(crate) fn check(vessel: &VesselDesign, parts: &[Option<ResolvedPart>], repor
                 format!("must be thinner than every wall: {id} is {least} mm thick"),
             );
         }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::is_iso_date;
+
+    #[test]
+    fn iso_dates() {
+        assert!(is_iso_date("2026-11-23"));
+        assert!(is_iso_date("2024-02-29"));
+        assert!(!is_iso_date("2023-02-29"));
+        assert!(!is_iso_date("2026-13-01"));
+        assert!(!is_iso_date("2026-1-01"));
+        assert!(!is_iso_date("20261-1-01"));
+        assert!(!is_iso_date("+026-11-23"));
     }
 }

@@ -27,7 +27,9 @@ mod nozzles;
 mod stack;
 mod supports;
 
-pub use conditions::{ABSOLUTE_ZERO, FULL_VACUUM, MAX_PRESSURE, MAX_TEMPERATURE};
+pub use conditions::{
+    ABSOLUTE_ZERO, FULL_VACUUM, MAX_PRESSURE, MAX_REVISION, MAX_TEMPERATURE, MAX_TITLE_TEXT,
+};
 pub use frames::{orientation_direction, vessel_frame};
 pub use geometry::PartGeometry;
 

@@ -53,6 +53,9 @@ pub struct VesselDesign {
     /// Design conditions, carried as data.
     #[serde(default)]
     pub design: DesignConditions,
+    /// Title-block data of the vessel's drawing.
+    #[serde(default, skip_serializing_if = "DrawingInfo::is_empty")]
+    pub drawing: DrawingInfo,
     /// Parts: the stack (heads, shell courses, reducers) in order along the axis —
     /// bottom to top for vertical vessels, left to right for horizontal ones — and the
     /// attached parts (skirt, saddles, legs, lugs, boot) anywhere in the list.
@@ -107,6 +110,31 @@ pub struct DesignConditions {
     /// Material specification, e.g. `"SA-516-70"`.
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub material: Option<String>,
+}
+
+/// Title-block data of a vessel's drawing sheet; every field optional.
+#[derive(Clone, Debug, Default, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct DrawingInfo {
+    /// Drawing number, e.g. `"D-201-001"`; default: the vessel's tag.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub number: Option<String>,
+    /// Title; default: the vessel's kind and tag.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub title: Option<String>,
+    /// Revision, e.g. `"A"` or `"2"` (at most 8 characters).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub revision: Option<String>,
+    /// Date of the revision, ISO 8601 `YYYY-MM-DD`.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub date: Option<String>,
+}
+
+impl DrawingInfo {
+    /// True when no field is given.
+    pub fn is_empty(&self) -> bool {
+        *self == DrawingInfo::default()
+    }
 }
 
 /// One part, tagged by its kind: `{"shell": {...}}`, `{"head": {...}}`, ….

@@ -59,6 +59,7 @@ pub(crate) fn vessel(world: &World, entity: Entity) -> Option<VesselDesign> {
         kind: spec.kind,
         placement: spec.placement,
         design: spec.design,
+        drawing: spec.drawing,
         parts: parts(world, entity).into_iter().map(|(_, p)| p.0).collect(),
         nozzles: nozzles(world, entity)
             .into_iter()

@@ -17,7 +17,7 @@ pub(crate) enum StagedVessel {
     /// Create or update the vessel to this design at this order.
     Put {
         /// New design.
-        design: VesselDesign,
+        design: Box<VesselDesign>,
         /// Position in the plant's vessel list.
         order: u32,
     },
@@ -239,7 +239,10 @@ pub(crate) fn stage(world: &World, edit: Edit) -> Result<Staged, ModelError> {
                     continue;
                 }
                 match resolve_vessel(&design, order as usize) {
-                    Ok(_) => out.push(StagedVessel::Put { design, order }),
+                    Ok(_) => out.push(StagedVessel::Put {
+                        design: Box::new(design),
+                        order,
+                    }),
                     Err(mut v) => violations.append(&mut v),
                 }
             }

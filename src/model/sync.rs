@@ -69,6 +69,7 @@ fn put_vessel(world: &mut World, design: VesselDesign, order: u32) {
         kind: design.kind,
         placement: design.placement,
         design: design.design,
+        drawing: design.drawing,
     };
     let entity = match existing {
         Some(e) => {
@@ -143,7 +144,7 @@ fn put_vessel(world: &mut World, design: VesselDesign, order: u32) {
 pub(crate) fn commit(world: &mut World, staged: Staged) {
     for s in staged.0 {
         match s {
-            StagedVessel::Put { design, order } => put_vessel(world, design, order),
+            StagedVessel::Put { design, order } => put_vessel(world, *design, order),
             StagedVessel::Remove { tag } => {
                 if let Some(e) = world.resource_mut::<VesselIndex>().0.remove(&tag) {
                     let children: Vec<String> = read::parts(world, e)

@@ -9,13 +9,15 @@ use glam::{DVec2, DVec3};
 /// Which view of a vessel.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Hash, PartialOrd, Ord)]
 pub enum ViewKind {
-    /// Front elevation.
+    /// Front elevation: vertical vessels seen from the south (east to the right);
+    /// horizontal ones across the axis, the axis left to right.
     Front,
-    /// Plan (looking down plant −Z), north up on the sheet.
+    /// Plan, looking down, the front side at the bottom (third-angle). For a
+    /// vertical vessel north is up on the sheet; the sheet's north arrow shows it.
     Top,
-    /// Side (end) elevation, looking along the front view's right direction.
+    /// Side (end) elevation seen from the front view's right (third-angle).
     Side,
-    /// Isometric.
+    /// Isometric, from front-right-above.
     Iso,
 }
 

@@ -92,9 +92,9 @@ pub enum ApiError {
     /// A query parameter is missing or malformed. 400.
     #[error("bad query: {0}")]
     BadQuery(String),
-    /// The feature is not in this build. 501.
-    #[error("not implemented in this build: {0}")]
-    NotImplemented(String),
+    /// The drawing sheet of a vessel could not be made. 422.
+    #[error("no drawing: {0}")]
+    Drawing(String),
     /// The edit was valid but could not be made durable (journal write failed);
     /// the model was put back as it was. 500.
     #[error("edit not saved, nothing changed: {0}")]
@@ -113,7 +113,7 @@ impl ApiError {
             ApiError::TestFailed(_) => StatusCode::CONFLICT,
             ApiError::Unauthorized => StatusCode::UNAUTHORIZED,
             ApiError::UnknownVessel(_) | ApiError::NotFound(_) => StatusCode::NOT_FOUND,
-            ApiError::NotImplemented(_) => StatusCode::NOT_IMPLEMENTED,
+            ApiError::Drawing(_) => StatusCode::UNPROCESSABLE_ENTITY,
             ApiError::Storage(_) => StatusCode::INTERNAL_SERVER_ERROR,
         }
     }
@@ -131,7 +131,7 @@ impl ApiError {
             ApiError::UnknownVessel(_) => "unknown_vessel",
             ApiError::NotFound(_) => "not_found",
             ApiError::BadQuery(_) => "bad_query",
-            ApiError::NotImplemented(_) => "not_implemented",
+            ApiError::Drawing(_) => "drawing",
             ApiError::Storage(_) => "storage",
         }
     }

@@ -36,6 +36,7 @@ use super::assets::{self, Asset};
 use super::broadcast::{Hub, MAX_VIEWER_MESSAGE, Update, run_viewer};
 use super::error::ApiError;
 use super::session::Session;
+use crate::drawing::{SheetOptions, sheet_svg};
 
 /// Largest request body (an edit), bytes: 1 MiB.
 pub const MAX_BODY: usize = 1 << 20;
@@ -208,13 +209,8 @@ struct DrawingQuery {
     vessel: Option<String>,
 }
 
-/// `GET /drawing.svg?vessel=TAG`.
-///
-/// The drawing sheet itself comes from the drawing module (issue 5), built in
-/// parallel: at merge, replace the `NotImplemented` below by
-/// `vesselcad::drawing::sheet_svg(session.model(), &tag, &SheetOptions::default())`
-/// mapped to `image/svg+xml` (its error to a 422 `ApiError`). The vessel check
-/// before it stays.
+/// `GET /drawing.svg?vessel=TAG`: the vessel's drawing sheet (ANSI D, hidden lines
+/// dashed) from the current model, as SVG.
 async fn drawing_svg(
     State(state): State<AppState>,
     query: Result<Query<DrawingQuery>, axum::extract::rejection::QueryRejection>,
@@ -233,9 +229,20 @@ async fn drawing_svg(
     if !known {
         return Err(ApiError::UnknownVessel(tag));
     }
-    Err(ApiError::NotImplemented(format!(
-        "the drawing sheet of {tag}: drawing sheets come with the drawing module"
-    )))
+    let svg = state
+        .with_session(move |s, _| {
+            sheet_svg(s.model(), &tag, &SheetOptions::default())
+                .map_err(|e| ApiError::Drawing(e.to_string()))
+        })
+        .await?;
+    Ok((
+        [(
+            header::CONTENT_TYPE,
+            HeaderValue::from_static("image/svg+xml"),
+        )],
+        svg,
+    )
+        .into_response())
 }
 
 async fn viewer_socket(State(state): State<AppState>, ws: WebSocketUpgrade) -> Response {

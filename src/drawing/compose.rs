@@ -1,0 +1,310 @@
+//! Composes a vessel's sheet: border, the four views at one scale with their
+//! titles, dimensions on the front elevation, notes with leaders to their targets,
+//! north arrow beside the plan, tables in the right-hand column and the revision
+//! triangle — all as a [`Sheet`] display list in paper mm.
+
+use glam::DVec2;
+
+use super::data::VesselData;
+use super::dimensions::{self, format_mm};
+use super::layout::{Margins, Placement, lay_out};
+use super::sheet::{
+    Align, HiddenLines, Item, Layer, PlacedDimension, Rect, Sheet, SheetOptions, SheetSize,
+    text_width,
+};
+use super::tables;
+use crate::project::{LineKind, plan_north};
+
+/// Titles written under the views.
+const VIEW_TITLES: [&str; 4] = ["ELEVATION", "PLAN", "SIDE ELEVATION", "ISOMETRIC"];
+
+/// Border margin and table column width, mm.
+fn frame_sizes(size: SheetSize) -> (f64, f64) {
+    match size {
+        SheetSize::AnsiB | SheetSize::IsoA3 => (8.0, 130.0),
+        SheetSize::AnsiD | SheetSize::IsoA1 => (12.0, 200.0),
+    }
+}
+
+/// Composes the sheet of one vessel.
+pub fn compose(data: &VesselData, options: &SheetOptions) -> Sheet {
+    let size = options.size;
+    let h = size.text_height();
+    let paper = size.dimensions();
+    let (margin, column) = frame_sizes(size);
+    let mut items = Vec::new();
+    items.push(Item::Line {
+        layer: Layer::Border,
+        points: Rect::new(DVec2::ZERO, paper).corners(),
+        closed: true,
+    });
+    let inner = Rect::new(DVec2::splat(margin), paper - DVec2::splat(margin));
+    items.push(Item::Line {
+        layer: Layer::Border,
+        points: inner.corners(),
+        closed: true,
+    });
+    let column_left = inner.max.x - column;
+    let area = Rect::new(
+        inner.min + DVec2::splat(4.0),
+        DVec2::new(column_left - 6.0, inner.max.y - 4.0),
+    );
+    // Layout: margins depend on the scale (dimension packing is in paper mm), so
+    // lay out twice.
+    let bounds: [(DVec2, DVec2); 4] =
+        std::array::from_fn(|k| data.views[k].bounds().unwrap_or((DVec2::ZERO, DVec2::ONE)));
+    let dims = dimensions::plan(data);
+    let title_room = 2.8 * h + 2.0;
+    let margins_at = |scale: f64| -> [Margins; 4] {
+        let mut m = [Margins {
+            left: 2.0,
+            right: 2.0,
+            bottom: title_room,
+            top: 2.0,
+        }; 4];
+        let d = dimensions::margins(&dims, h, scale);
+        m[0] = Margins {
+            left: d.left.max(2.0),
+            right: d.right.max(2.0),
+            bottom: d.bottom + title_room,
+            top: d.top.max(2.0),
+        };
+        m[1].right += 16.0;
+        m
+    };
+    let first = lay_out(&bounds, &margins_at(1.0), area);
+    let mut placement = lay_out(&bounds, &margins_at(first.scale), area);
+    if placement.scale < first.scale {
+        placement = lay_out(&bounds, &margins_at(placement.scale), area);
+    }
+    let view_boxes: [Rect; 4] = std::array::from_fn(|k| {
+        Rect::new(
+            placement.to_sheet(k, bounds[k].0),
+            placement.to_sheet(k, bounds[k].1),
+        )
+    });
+    // Views.
+    for (k, view) in data.views.iter().enumerate() {
+        for line in view.entities.iter().flat_map(|e| &e.lines) {
+            let layer = match line.kind {
+                LineKind::Visible => Layer::Outline,
+                LineKind::Hidden if options.hidden[k] == HiddenLines::Omitted => continue,
+                LineKind::Hidden => Layer::Hidden,
+                LineKind::Centre => Layer::Centre,
+            };
+            items.push(Item::Line {
+                layer,
+                points: line
+                    .points
+                    .iter()
+                    .map(|&p| placement.to_sheet(k, p))
+                    .collect(),
+                closed: false,
+            });
+        }
+        let b = view_boxes[k];
+        let title = format!(
+            "{} ({} {})",
+            VIEW_TITLES[k],
+            data.design.tag,
+            scale_text(placement.scale)
+        );
+        items.push(Item::Text {
+            at: DVec2::new(
+                0.5 * (b.min.x + b.max.x),
+                b.min.y - 2.2 * h - front_bottom(k, &dims, h, placement.scale),
+            ),
+            height: h,
+            align: Align::Middle,
+            rotation: 0.0,
+            text: title,
+        });
+    }
+    let mut placed = Vec::new();
+    dimensions::place(
+        &dims,
+        0,
+        view_boxes[0],
+        &placement,
+        h,
+        &mut items,
+        &mut placed,
+    );
+    notes(data, &placement, area, &placed, h, &mut items);
+    north_arrow(data, view_boxes[1], h, &mut items);
+    let schedule = tables::schedule(data);
+    let (_, revision_at) = tables::draw(
+        data,
+        &schedule,
+        size,
+        placement.scale,
+        DVec2::new(column_left, inner.min.y),
+        inner.max.x,
+        &mut items,
+    );
+    let revision = tables::title_fields(data).revision;
+    revision_triangle(revision_at, &revision, h, &mut items);
+    Sheet {
+        size,
+        scale: placement.scale,
+        items,
+        view_boxes,
+        dimensions: placed,
+        schedule,
+    }
+}
+
+/// `1:n` for a scale.
+fn scale_text(scale: f64) -> String {
+    format!("1:{}", format_mm(scale))
+}
+
+/// How far below the front view's box its dimensions reach (0 for other views).
+fn front_bottom(k: usize, dims: &dimensions::Dimensions, h: f64, scale: f64) -> f64 {
+    if k == 0 {
+        dimensions::margins(dims, h, scale).bottom
+    } else {
+        0.0
+    }
+}
+
+/// Notes in the front elevation: text at the note's position, a leader with an
+/// arrowhead to its target's anchor (both follow the target: they are resolved
+/// from it on every update). A text that would cover a dimension is moved out
+/// past the dimensions on its side; every text stays on the drawing area.
+fn notes(
+    data: &VesselData,
+    placement: &Placement,
+    area: Rect,
+    dims: &[PlacedDimension],
+    h: f64,
+    items: &mut Vec<Item>,
+) {
+    let front = data.views[0].projection;
+    for n in &data.notes {
+        let anchor = placement.to_sheet(0, front.project(n.anchor));
+        let at = placement.to_sheet(0, front.project(n.position));
+        let w = text_width(&n.text, h);
+        let mut right = at.x >= anchor.x;
+        let mut x = if right { at.x + 1.0 } else { at.x - 1.0 };
+        let y = (at.y - 0.4 * h).clamp(area.min.y, area.max.y - h);
+        let text_box = |x: f64, right: bool| {
+            let x0 = if right { x } else { x - w };
+            Rect::new(DVec2::new(x0, y - 0.3 * h), DVec2::new(x0 + w, y + 1.3 * h))
+        };
+        let blocked = |b: &Rect| {
+            dims.iter()
+                .any(|d| d.text_box.overlaps(b, 0.0) || d.line_box.overlaps(b, 0.0))
+        };
+        if blocked(&text_box(x, right)) {
+            // Past the farthest dimension box in the text's band on its side.
+            let band = |d: &&PlacedDimension| {
+                let r = [d.text_box, d.line_box];
+                r.iter()
+                    .any(|r| r.min.y <= y + 1.3 * h && r.max.y >= y - 0.3 * h)
+            };
+            x = if right {
+                dims.iter()
+                    .filter(band)
+                    .map(|d| d.text_box.max.x.max(d.line_box.max.x))
+                    .fold(x, f64::max)
+                    + 2.0
+            } else {
+                dims.iter()
+                    .filter(band)
+                    .map(|d| d.text_box.min.x.min(d.line_box.min.x))
+                    .fold(x, f64::min)
+                    - 2.0
+            };
+        }
+        // Keep the text on the drawing area: flip it to the other side, then
+        // slide it in, when it would run off.
+        if right && x + w > area.max.x {
+            right = false;
+        } else if !right && x - w < area.min.x {
+            right = true;
+        }
+        x = if right {
+            x.clamp(area.min.x, (area.max.x - w).max(area.min.x))
+        } else {
+            x.clamp((area.min.x + w).min(area.max.x), area.max.x)
+        };
+        let shoulder = DVec2::new(x + if right { -1.0 } else { 1.0 }, y + 0.4 * h);
+        if (shoulder - anchor).length() > 1e-6 {
+            items.push(Item::Line {
+                layer: Layer::Dimension,
+                points: vec![shoulder, anchor],
+                closed: false,
+            });
+            let dir = (anchor - shoulder).normalize();
+            let len = 0.9 * h;
+            let back = anchor - dir * len;
+            let side = dir.perp() * len / 6.0;
+            items.push(Item::Fill {
+                layer: Layer::Dimension,
+                points: vec![anchor, back + side, back - side],
+            });
+        }
+        items.push(Item::Text {
+            at: DVec2::new(x, y),
+            height: h,
+            align: if right { Align::Start } else { Align::End },
+            rotation: 0.0,
+            text: n.text.clone(),
+        });
+    }
+}
+
+/// The north arrow beside the plan view's upper right corner.
+fn north_arrow(data: &VesselData, plan_box: Rect, h: f64, items: &mut Vec<Item>) {
+    let north = plan_north(&data.views[1].projection, &data.frame);
+    let r = 5.0;
+    let c = DVec2::new(plan_box.max.x + 9.0, plan_box.max.y - r - 2.0 * h);
+    items.push(Item::Circle {
+        layer: Layer::Dimension,
+        centre: c,
+        radius: r,
+    });
+    let tip = c + north * r;
+    let tail = c - north * r;
+    let side = north.perp() * r * 0.35;
+    items.push(Item::Fill {
+        layer: Layer::Dimension,
+        points: vec![tip, c + side - north * r * 0.3, c - side - north * r * 0.3],
+    });
+    items.push(Item::Line {
+        layer: Layer::Dimension,
+        points: vec![tail, tip],
+        closed: false,
+    });
+    items.push(Item::Text {
+        at: c + north * (r + 1.0 + 0.5 * h) - DVec2::Y * 0.5 * h,
+        height: h,
+        align: Align::Middle,
+        rotation: 0.0,
+        text: "N".to_string(),
+    });
+}
+
+/// The revision triangle with the revision inside, centred at `at`.
+fn revision_triangle(at: DVec2, revision: &str, h: f64, items: &mut Vec<Item>) {
+    let side = (text_width(revision, h) + 1.6 * h).max(2.2 * h);
+    let height = side * 3f64.sqrt() / 2.0;
+    let base = at.y - height / 3.0;
+    items.push(Item::Line {
+        layer: Layer::Border,
+        points: vec![
+            DVec2::new(at.x - side / 2.0, base),
+            DVec2::new(at.x + side / 2.0, base),
+            DVec2::new(at.x, base + height),
+        ],
+        closed: true,
+    });
+    items.push(Item::Text {
+        at: DVec2::new(at.x, base + 0.25 * h),
+        height: 0.8 * h,
+        align: Align::Middle,
+        rotation: 0.0,
+        text: revision.to_string(),
+    });
+}

@@ -1,0 +1,80 @@
+//! Drawing sheets: a vessel's four views laid out on a standard sheet with border,
+//! title block, design-data block, nozzle schedule, notes with leaders, north
+//! arrow, revision triangle and automatic dimensions; written as SVG and DXF.
+//!
+//! The last consumer in the data flow: it reads the views the Project stage keeps
+//! per entity (`crate::project`) and the resolved figures of the model
+//! ([`vessel_data`]), composes a [`Sheet`] (a display list in paper millimetres)
+//! and hands it to a writer ([`to_svg`], [`to_dxf`]).
+//!
+//! ```no_run
+//! # use vesselcad::{drawing::{sheet_svg, SheetOptions}, model::Model};
+//! # fn f(model: &Model) -> Result<(), vesselcad::drawing::DrawingError> {
+//! let svg: String = sheet_svg(model, "C-201", &SheetOptions::default())?;
+//! # Ok(()) }
+//! ```
+
+mod compose;
+mod data;
+mod dimensions;
+mod dxf;
+mod layout;
+mod sheet;
+mod svg;
+mod tables;
+
+pub use compose::compose;
+pub use data::{
+    NoteData, NozzleData, PartData, VesselData, vessel_data, vessel_views, view_inputs,
+};
+pub use dimensions::format_mm;
+pub use dxf::{to_dxf, to_dxf_bytes};
+pub use sheet::{
+    Align, HiddenLines, Item, Layer, PlacedDimension, Rect, ScheduleRow, Sheet, SheetOptions,
+    SheetSize, text_width,
+};
+pub use svg::to_svg;
+pub use tables::{SCHEDULE_COLUMNS, STEEL_DENSITY, empty_weight};
+
+use thiserror::Error;
+
+use crate::model::Model;
+
+/// Why a sheet could not be drawn.
+#[derive(Debug, Error)]
+pub enum DrawingError {
+    /// No vessel has this tag.
+    #[error("no vessel has the tag {tag:?}")]
+    UnknownVessel {
+        /// The tag given.
+        tag: String,
+    },
+    /// The vessel's views have not been built (the model was not updated).
+    #[error("vessel {tag} has no views yet: update the model first")]
+    NotBuilt {
+        /// The vessel's tag.
+        tag: String,
+    },
+    /// The DXF writer failed.
+    #[error("writing DXF: {0}")]
+    Dxf(String),
+}
+
+/// The sheet of vessel `tag` as of the model's last update.
+pub fn sheet(model: &Model, tag: &str, options: &SheetOptions) -> Result<Sheet, DrawingError> {
+    Ok(compose(&vessel_data(model, tag)?, options))
+}
+
+/// The sheet of vessel `tag` as an SVG document.
+pub fn sheet_svg(model: &Model, tag: &str, options: &SheetOptions) -> Result<String, DrawingError> {
+    Ok(to_svg(&sheet(model, tag, options)?))
+}
+
+/// The sheet of vessel `tag` as DXF (R2000) bytes.
+pub fn sheet_dxf(
+    model: &Model,
+    tag: &str,
+    options: &SheetOptions,
+) -> Result<Vec<u8>, DrawingError> {
+    to_dxf_bytes(&sheet(model, tag, options)?)
+}

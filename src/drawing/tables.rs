@@ -1,0 +1,316 @@
+//! The sheet's tables: title block, design-data block, nozzle schedule and notes
+//! list, stacked bottom-up in the column at the sheet's right edge.
+//!
+//! Their content comes from the design file (drawing number, title, revision,
+//! date, design conditions, nozzles, notes) and from the model (volume, empty
+//! weight of the walls where every wall's thickness is known).
+
+use glam::DVec2;
+
+use super::data::VesselData;
+use super::dimensions::format_mm;
+use super::sheet::{Align, Item, Layer, Rect, ScheduleRow, SheetSize, text_width};
+use crate::constraints::PartGeometry;
+use crate::design::{Design, FORMAT, PartDesign, Units, VesselKind};
+use crate::parts::surface_area;
+
+/// Density of carbon steel used for the empty weight, kg/mm³.
+pub const STEEL_DENSITY: f64 = 7.85e-6;
+
+/// Titles of the nozzle schedule's columns.
+pub const SCHEDULE_COLUMNS: [&str; 8] = [
+    "MARK",
+    "SIZE",
+    "RATING",
+    "FACING",
+    "SERVICE",
+    "ORIENT.",
+    "ELEV./POS.",
+    "PROJ.",
+];
+
+/// Relative widths of the schedule's columns.
+const SCHEDULE_WIDTHS: [f64; 8] = [0.08, 0.08, 0.10, 0.08, 0.26, 0.10, 0.16, 0.14];
+
+/// A table cursor: draws rows upward from `bottom` across `[left, right]`.
+struct Table<'a> {
+    items: &'a mut Vec<Item>,
+    left: f64,
+    right: f64,
+    top: f64,
+    h: f64,
+}
+
+impl Table<'_> {
+    fn row_height(&self) -> f64 {
+        1.9 * self.h
+    }
+
+    /// A row of cells with the given relative widths; `bold` rows are headers.
+    fn row(&mut self, cells: &[&str], widths: &[f64]) {
+        let rh = self.row_height();
+        let bottom = self.top;
+        let top = bottom + rh;
+        let total = self.right - self.left;
+        let mut x = self.left;
+        for (cell, w) in cells.iter().zip(widths) {
+            let cw = w * total;
+            let max_chars = ((cw - 1.5) / (0.62 * self.h)).floor().max(1.0) as usize;
+            let text: String = if cell.chars().count() > max_chars {
+                let mut t: String = cell.chars().take(max_chars.saturating_sub(1)).collect();
+                t.push('…');
+                t
+            } else {
+                (*cell).to_string()
+            };
+            self.items.push(Item::Text {
+                at: DVec2::new(x + 0.8, bottom + 0.45 * self.h),
+                height: self.h,
+                align: Align::Start,
+                rotation: 0.0,
+                text,
+            });
+            x += cw;
+            self.items.push(Item::Line {
+                layer: Layer::Border,
+                points: vec![DVec2::new(x, bottom), DVec2::new(x, top)],
+                closed: false,
+            });
+        }
+        self.items.push(Item::Line {
+            layer: Layer::Border,
+            points: vec![DVec2::new(self.left, top), DVec2::new(self.right, top)],
+            closed: false,
+        });
+        self.top = top;
+    }
+
+    /// A full-width heading row.
+    fn heading(&mut self, text: &str) {
+        self.row(&[text], &[1.0]);
+    }
+
+    /// Closes the table with its outline from `bottom` to the current top.
+    fn frame(&mut self, bottom: f64) {
+        self.items.push(Item::Line {
+            layer: Layer::Border,
+            points: Rect::new(
+                DVec2::new(self.left, bottom),
+                DVec2::new(self.right, self.top),
+            )
+            .corners(),
+            closed: true,
+        });
+    }
+}
+
+/// Volume inside the outside surface of heads and courses, m³ (from the report).
+fn volume(data: &VesselData) -> Option<f64> {
+    let design = Design {
+        format: FORMAT.to_string(),
+        units: Units::Mm,
+        vessels: vec![data.design.clone()],
+    };
+    crate::report::report(&design)
+        .ok()
+        .and_then(|r| r.first().map(|v| v.volume))
+}
+
+/// Empty weight of the walls (heads, courses, reducers, skirt: outside area ×
+/// thickness × steel density), kg; `None` when a wall's thickness is not given.
+pub fn empty_weight(data: &VesselData) -> Option<f64> {
+    let mut kg = 0.0;
+    for part in &data.parts {
+        let thickness = match &part.design {
+            PartDesign::Shell(s) => s.thickness,
+            PartDesign::Head(h) => h.thickness,
+            PartDesign::Reducer(r) => r.thickness,
+            PartDesign::Skirt(s) => s.thickness,
+            _ => continue,
+        };
+        let t = thickness?;
+        let patches = match &part.geometry {
+            PartGeometry::Shell(_)
+            | PartGeometry::Head(_)
+            | PartGeometry::Reducer(_)
+            | PartGeometry::Skirt(_) => part.geometry.patches().ok()?,
+            _ => continue,
+        };
+        kg += surface_area(&patches) * t * STEEL_DENSITY;
+    }
+    Some(kg)
+}
+
+/// The nozzle schedule's rows, in design order.
+pub fn schedule(data: &VesselData) -> Vec<ScheduleRow> {
+    let position = if data.design.kind == VesselKind::Horizontal {
+        "POS"
+    } else {
+        "EL"
+    };
+    data.design
+        .nozzles
+        .iter()
+        .map(|n| {
+            let size = if n.size.fract() == 0.0 {
+                format!("{}\"", n.size)
+            } else {
+                format!("{:.2}\"", n.size)
+            };
+            let facing = match n.facing {
+                crate::design::FacingDesign::RaisedFace => "RF",
+                crate::design::FacingDesign::FlatFace => "FF",
+                crate::design::FacingDesign::RingJoint => "RTJ",
+            };
+            let elevation = match n.elevation {
+                Some(e) => format!("{position} {}", format_mm(e)),
+                None => format!("{} +{}", n.host, format_mm(n.offset.unwrap_or(0.0))),
+            };
+            ScheduleRow {
+                cells: [
+                    n.mark.clone(),
+                    size,
+                    format!("CL {}", n.rating),
+                    facing.to_string(),
+                    if n.service.is_empty() {
+                        "—".to_string()
+                    } else {
+                        n.service.clone()
+                    },
+                    format!("{}°", format_mm(n.orientation)),
+                    elevation,
+                    format_mm(n.projection),
+                ],
+            }
+        })
+        .collect()
+}
+
+/// The title block's fields.
+pub struct TitleFields {
+    /// Drawing number.
+    pub number: String,
+    /// Title.
+    pub title: String,
+    /// Revision.
+    pub revision: String,
+    /// Date.
+    pub date: String,
+}
+
+/// Title-block fields with their defaults filled in.
+pub fn title_fields(data: &VesselData) -> TitleFields {
+    let info = &data.design.drawing;
+    let kind = match data.design.kind {
+        VesselKind::Horizontal => "HORIZONTAL VESSEL",
+        VesselKind::Vertical => "VERTICAL VESSEL",
+        VesselKind::Tank => "STORAGE TANK",
+    };
+    TitleFields {
+        number: info
+            .number
+            .clone()
+            .unwrap_or_else(|| data.design.tag.clone()),
+        title: info
+            .title
+            .clone()
+            .unwrap_or_else(|| format!("{kind} {}", data.design.tag)),
+        revision: info.revision.clone().unwrap_or_else(|| "0".to_string()),
+        date: info.date.clone().unwrap_or_else(|| "—".to_string()),
+    }
+}
+
+/// Draws the tables in the column from its lower-left corner `origin` to `right`,
+/// bottom up; returns the rectangle they take and where the revision cell is (for
+/// the triangle).
+pub fn draw(
+    data: &VesselData,
+    rows: &[ScheduleRow],
+    size: SheetSize,
+    scale: f64,
+    origin: DVec2,
+    right: f64,
+    items: &mut Vec<Item>,
+) -> (Rect, DVec2) {
+    let (left, bottom) = (origin.x, origin.y);
+    let h = size.text_height();
+    let mut t = Table {
+        items,
+        left,
+        right,
+        top: bottom,
+        h,
+    };
+    let fields = title_fields(data);
+    let two = [0.38, 0.62];
+    let four = [0.19, 0.31, 0.19, 0.31];
+    let scale_text = format!("1:{}", format_mm(scale));
+    t.row(&["SHEET", size.name(), "SCALE", &scale_text], &four);
+    let rev_y = t.top;
+    t.row(&["REV.", &fields.revision, "DATE", &fields.date], &four);
+    t.row(&["DWG. NO.", &fields.number], &two);
+    t.row(&["TITLE", &fields.title], &two);
+    t.row(&["VESSEL", &data.design.tag], &two);
+    t.heading("vesselcad — GENERATED FROM THE DESIGN MODEL");
+    t.frame(bottom);
+    let revision_at = DVec2::new(
+        left + 0.19 * (right - left) + 0.8 + text_width(&fields.revision, h) + 2.0 * h,
+        rev_y + 0.95 * h,
+    );
+    // Design data.
+    let data_bottom = t.top + h;
+    t.top = data_bottom;
+    let c = &data.design.design;
+    let opt = |v: Option<f64>, unit: &str| {
+        v.map_or("—".to_string(), |v| format!("{} {unit}", format_mm(v)))
+    };
+    let rows_data = [
+        ("DESIGN PRESSURE", opt(c.pressure, "kPa(g)")),
+        ("DESIGN TEMPERATURE", opt(c.temperature, "°C")),
+        ("CORROSION ALLOWANCE", opt(c.corrosion_allowance, "mm")),
+        (
+            "MATERIAL",
+            c.material.clone().unwrap_or_else(|| "—".to_string()),
+        ),
+        (
+            "VOLUME",
+            volume(data).map_or("—".to_string(), |v| format!("{v:.2} m³")),
+        ),
+        (
+            "EMPTY WEIGHT (WALLS)",
+            empty_weight(data).map_or("n/a (a wall thickness is missing)".to_string(), |w| {
+                format!("{} kg", format_mm(w.round()))
+            }),
+        ),
+    ];
+    for (name, value) in rows_data.iter().rev() {
+        t.row(&[name, value], &[0.45, 0.55]);
+    }
+    t.heading("DESIGN DATA");
+    t.frame(data_bottom);
+    // Nozzle schedule.
+    let schedule_bottom = t.top + h;
+    t.top = schedule_bottom;
+    for row in rows.iter().rev() {
+        let cells: Vec<&str> = row.cells.iter().map(String::as_str).collect();
+        t.row(&cells, &SCHEDULE_WIDTHS);
+    }
+    t.row(&SCHEDULE_COLUMNS, &SCHEDULE_WIDTHS);
+    t.heading("NOZZLE SCHEDULE");
+    t.frame(schedule_bottom);
+    // Notes.
+    if !data.notes.is_empty() {
+        let notes_bottom = t.top + h;
+        t.top = notes_bottom;
+        for (i, n) in data.notes.iter().enumerate().rev() {
+            let text = format!("{}. {}", i + 1, n.text);
+            t.row(&[&text], &[1.0]);
+        }
+        t.heading("NOTES");
+        t.frame(notes_bottom);
+    }
+    (
+        Rect::new(DVec2::new(left, bottom), DVec2::new(right, t.top)),
+        revision_at,
+    )
+}

@@ -1,0 +1,137 @@
+//! `vesselcad drawing`: build a design and write one vessel's drawing sheet as SVG
+//! (and optionally DXF).
+
+use std::path::PathBuf;
+use std::process::ExitCode;
+use std::time::Instant;
+
+use clap::{Args, ValueEnum};
+use vesselcad::design::{DesignError, load};
+use vesselcad::drawing::{HiddenLines, SheetOptions, SheetSize, sheet, to_dxf_bytes, to_svg};
+use vesselcad::mesh::TessellationOptions;
+use vesselcad::model::{Model, ModelError};
+use vesselcad::project::ViewKind;
+
+/// Sheet sizes on the command line.
+#[derive(Clone, Copy, Debug, ValueEnum)]
+pub enum SheetArg {
+    /// ANSI B, 17 × 11 in.
+    AnsiB,
+    /// ANSI D, 34 × 22 in.
+    AnsiD,
+    /// ISO A3.
+    A3,
+    /// ISO A1.
+    A1,
+}
+
+/// Views on the command line.
+#[derive(Clone, Copy, Debug, ValueEnum)]
+pub enum ViewArg {
+    /// Front elevation.
+    Front,
+    /// Plan.
+    Top,
+    /// Side elevation.
+    Side,
+    /// Isometric.
+    Iso,
+}
+
+/// Arguments of `vesselcad drawing`.
+#[derive(Args)]
+pub struct DrawingArgs {
+    /// The design file (JSON, vesselcad/1).
+    design: PathBuf,
+    /// Tag of the vessel to draw.
+    #[arg(long)]
+    vessel: String,
+    /// Output SVG file.
+    #[arg(short, long)]
+    output: PathBuf,
+    /// Also write the sheet as DXF (R2000) to this file.
+    #[arg(long)]
+    dxf: Option<PathBuf>,
+    /// Sheet size.
+    #[arg(long, value_enum, default_value = "ansi-d")]
+    sheet: SheetArg,
+    /// Leave hidden lines out of this view (repeatable).
+    #[arg(long = "omit-hidden", value_enum)]
+    omit_hidden: Vec<ViewArg>,
+    /// Chordal tolerance of the meshes the views are classified against, mm.
+    #[arg(long, default_value_t = TessellationOptions::DEFAULT.tolerance, allow_negative_numbers = true)]
+    tolerance: f64,
+}
+
+fn fail_design(e: &DesignError) -> ExitCode {
+    eprintln!("error: {e}");
+    match e {
+        DesignError::Io { .. } => ExitCode::from(2),
+        _ => ExitCode::from(1),
+    }
+}
+
+/// Runs the command.
+pub fn run(args: DrawingArgs) -> ExitCode {
+    let start = Instant::now();
+    let design = match load(&args.design) {
+        Ok(d) => d,
+        Err(e) => return fail_design(&e),
+    };
+    let model = match Model::from_design(&design, TessellationOptions::chord(args.tolerance)) {
+        Ok(m) => m,
+        Err(ModelError::Design(e)) => return fail_design(&e),
+        Err(e) => {
+            eprintln!("error: {e}");
+            return ExitCode::from(2);
+        }
+    };
+    let size = match args.sheet {
+        SheetArg::AnsiB => SheetSize::AnsiB,
+        SheetArg::AnsiD => SheetSize::AnsiD,
+        SheetArg::A3 => SheetSize::IsoA3,
+        SheetArg::A1 => SheetSize::IsoA1,
+    };
+    let mut options = SheetOptions::sized(size);
+    for v in args.omit_hidden {
+        let view = match v {
+            ViewArg::Front => ViewKind::Front,
+            ViewArg::Top => ViewKind::Top,
+            ViewArg::Side => ViewKind::Side,
+            ViewArg::Iso => ViewKind::Iso,
+        };
+        options = options.with_hidden(view, HiddenLines::Omitted);
+    }
+    let sheet = match sheet(&model, &args.vessel, &options) {
+        Ok(s) => s,
+        Err(e) => {
+            eprintln!("error: {e}");
+            return ExitCode::from(1);
+        }
+    };
+    if let Err(e) = std::fs::write(&args.output, to_svg(&sheet)) {
+        eprintln!("error: writing {}: {e}", args.output.display());
+        return ExitCode::from(2);
+    }
+    if let Some(path) = &args.dxf {
+        let written = to_dxf_bytes(&sheet)
+            .map_err(|e| e.to_string())
+            .and_then(|bytes| {
+                std::fs::write(path, bytes).map_err(|e| format!("writing {}: {e}", path.display()))
+            });
+        if let Err(e) = written {
+            eprintln!("error: {e}");
+            return ExitCode::from(2);
+        }
+    }
+    println!(
+        "{}: {} sheet at 1:{}, {} nozzles scheduled, {} dimensions, {:.0} ms",
+        args.output.display(),
+        size.name(),
+        sheet.scale,
+        sheet.schedule.len(),
+        sheet.dimensions.len(),
+        start.elapsed().as_secs_f64() * 1e3
+    );
+    ExitCode::SUCCESS
+}

@@ -1,0 +1,168 @@
+//! The occluder of one view: every triangle of a vessel's meshes projected onto the
+//! view plane, with its depth, binned in a uniform 2D grid.
+//!
+//! Rays of an orthographic view are parallel, so "is this point hidden?" is a 2D
+//! lookup: the grid cell under the point lists the triangles whose projection may
+//! cover it; the point is hidden when one of them covers it and lies nearer the
+//! viewer, by more than the depth tolerance, at that spot (barycentric depth). The
+//! grid is rebuilt when any mesh of the vessel changes (binning is linear in the
+//! triangle count); the expensive part, classifying lines, stays per entity.
+
+use glam::{DAffine3, DVec2, DVec3};
+
+use super::Projection;
+use crate::mesh::Mesh;
+
+/// Projected triangles of a vessel in one view, binned in a grid.
+#[derive(Clone, Debug, Default)]
+pub struct Occluder {
+    /// Triangles as `(x, y, depth)` per corner, view coordinates.
+    triangles: Vec<[DVec3; 3]>,
+    /// Lower-left corner of the grid.
+    origin: DVec2,
+    /// Cell side, mm.
+    cell: f64,
+    /// Cells across and up.
+    size: (usize, usize),
+    /// CSR: triangle indices of cell `c` are `items[starts[c]..starts[c + 1]]`.
+    starts: Vec<u32>,
+    items: Vec<u32>,
+}
+
+impl Occluder {
+    /// Bins the triangles of `meshes` (each with its part → vessel frame) as seen
+    /// through `projection`.
+    pub fn build<'a>(
+        projection: &Projection,
+        meshes: impl Iterator<Item = (&'a Mesh, DAffine3)>,
+    ) -> Occluder {
+        let mut triangles = Vec::new();
+        for (mesh, frame) in meshes {
+            let view: Vec<DVec3> = mesh
+                .positions
+                .iter()
+                .map(|&p| {
+                    let q = frame.transform_point3(p);
+                    let xy = projection.project(q);
+                    DVec3::new(xy.x, xy.y, projection.depth(q))
+                })
+                .collect();
+            for t in mesh.indices.chunks_exact(3) {
+                let tri = [
+                    view[t[0] as usize],
+                    view[t[1] as usize],
+                    view[t[2] as usize],
+                ];
+                // Edge-on triangles cover nothing.
+                let area = (tri[1] - tri[0])
+                    .truncate()
+                    .perp_dot((tri[2] - tri[0]).truncate());
+                if area.abs() > 1e-12 {
+                    triangles.push(tri);
+                }
+            }
+        }
+        if triangles.is_empty() {
+            return Occluder::default();
+        }
+        let (mut lo, mut hi) = (DVec2::splat(f64::MAX), DVec2::splat(f64::MIN));
+        for t in &triangles {
+            for p in t {
+                lo = lo.min(p.truncate());
+                hi = hi.max(p.truncate());
+            }
+        }
+        let extent = (hi - lo).max(DVec2::splat(1e-9));
+        let target = (triangles.len() as f64).clamp(1.0, 4.0e6);
+        let cell = (extent.x * extent.y / target)
+            .sqrt()
+            .max(extent.max_element() / 4096.0);
+        let size = (
+            ((extent.x / cell).floor() as usize + 1).max(1),
+            ((extent.y / cell).floor() as usize + 1).max(1),
+        );
+        let mut occluder = Occluder {
+            triangles,
+            origin: lo,
+            cell,
+            size,
+            starts: Vec::new(),
+            items: Vec::new(),
+        };
+        let mut counts = vec![0u32; size.0 * size.1 + 1];
+        for t in &occluder.triangles {
+            occluder.for_cells(t, |c| counts[c] += 1);
+        }
+        let mut starts = Vec::with_capacity(counts.len());
+        let mut total = 0u32;
+        for c in &counts {
+            starts.push(total);
+            total += c;
+        }
+        let mut fill = starts.clone();
+        let mut items = vec![0u32; total as usize];
+        for (i, t) in occluder.triangles.iter().enumerate() {
+            occluder.for_cells(t, |c| {
+                items[fill[c] as usize] = i as u32;
+                fill[c] += 1;
+            });
+        }
+        occluder.starts = starts;
+        occluder.items = items;
+        occluder
+    }
+
+    /// Cell coordinates of a view point, clamped to the grid.
+    fn cell_of(&self, p: DVec2) -> (usize, usize) {
+        let q = (p - self.origin) / self.cell;
+        (
+            (q.x.max(0.0) as usize).min(self.size.0 - 1),
+            (q.y.max(0.0) as usize).min(self.size.1 - 1),
+        )
+    }
+
+    /// Calls `f` with every cell index the triangle's bounds touch.
+    fn for_cells(&self, t: &[DVec3; 3], mut f: impl FnMut(usize)) {
+        let lo = t[0].truncate().min(t[1].truncate()).min(t[2].truncate());
+        let hi = t[0].truncate().max(t[1].truncate()).max(t[2].truncate());
+        let (i0, j0) = self.cell_of(lo);
+        let (i1, j1) = self.cell_of(hi);
+        for j in j0..=j1 {
+            for i in i0..=i1 {
+                f(j * self.size.0 + i);
+            }
+        }
+    }
+
+    /// Whether the view point `p` at `depth` is hidden: some triangle covers `p`
+    /// and is nearer the viewer there by more than `tolerance`.
+    pub fn hides(&self, p: DVec2, depth: f64, tolerance: f64) -> bool {
+        if self.triangles.is_empty() {
+            return false;
+        }
+        let q = (p - self.origin) / self.cell;
+        if q.x < 0.0 || q.y < 0.0 || q.x >= self.size.0 as f64 || q.y >= self.size.1 as f64 {
+            return false;
+        }
+        let c = (q.y as usize) * self.size.0 + q.x as usize;
+        let range = self.starts[c] as usize..self.starts[c + 1] as usize;
+        self.items[range].iter().any(|&i| {
+            let [a, b, c] = self.triangles[i as usize];
+            let (a2, b2, c2) = (a.truncate(), b.truncate(), c.truncate());
+            let area = (b2 - a2).perp_dot(c2 - a2);
+            let wa = (b2 - p).perp_dot(c2 - p) / area;
+            let wb = (c2 - p).perp_dot(a2 - p) / area;
+            let wc = 1.0 - wa - wb;
+            const INSIDE: f64 = -1e-12;
+            wa >= INSIDE
+                && wb >= INSIDE
+                && wc >= INSIDE
+                && wa * a.z + wb * b.z + wc * c.z > depth + tolerance
+        })
+    }
+
+    /// Number of triangles binned.
+    pub fn triangle_count(&self) -> usize {
+        self.triangles.len()
+    }
+}

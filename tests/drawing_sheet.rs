@@ -1,0 +1,378 @@
+//! Drawing sheets: the nozzle schedule lists exactly the model's nozzles, the
+//! title block comes from the design file, dimensions do not overlap each other or
+//! the views, the SVG is well-formed XML and the DXF reads back with its layers.
+
+use std::collections::BTreeSet;
+
+use vesselcad::design::{Design, DesignError, parse};
+use vesselcad::drawing::{
+    HiddenLines, Item, Layer, Sheet, SheetOptions, SheetSize, sheet, sheet_svg, to_dxf_bytes,
+    to_svg,
+};
+use vesselcad::mesh::TessellationOptions;
+use vesselcad::model::{Edit, Model};
+use vesselcad::project::ViewKind;
+
+fn example(name: &str) -> Design {
+    let path = format!(
+        "{}/examples/designs/{name}.json",
+        env!("CARGO_MANIFEST_DIR")
+    );
+    vesselcad::design::load(std::path::Path::new(&path)).expect("example loads")
+}
+
+fn model(name: &str) -> Model {
+    Model::from_design(&example(name), TessellationOptions::chord(0.5)).unwrap()
+}
+
+const EXAMPLES: [(&str, &str); 3] = [
+    ("vertical-column", "C-201"),
+    ("horizontal-drum", "V-101"),
+    ("storage-tank", "TK-301"),
+];
+
+#[test]
+fn the_nozzle_schedule_lists_exactly_the_models_nozzles() {
+    for (name, tag) in EXAMPLES {
+        let mut m = model(name);
+        let s = sheet(&m, tag, &SheetOptions::default()).unwrap();
+        let marks: Vec<&str> = s.schedule.iter().map(|r| r.cells[0].as_str()).collect();
+        let design = m.design();
+        let expected: Vec<&str> = design.vessels[0]
+            .nozzles
+            .iter()
+            .map(|n| n.mark.as_str())
+            .collect();
+        assert_eq!(marks, expected, "{name}");
+        for (row, n) in s.schedule.iter().zip(&design.vessels[0].nozzles) {
+            assert_eq!(row.cells[7], vesselcad::drawing::format_mm(n.projection));
+            assert_eq!(row.cells[2], format!("CL {}", n.rating));
+        }
+        // Remove one nozzle (one no note points at): the schedule follows.
+        let gone = expected
+            .iter()
+            .find(|m| !design.vessels[0].notes.iter().any(|n| n.target == **m))
+            .unwrap()
+            .to_string();
+        m.edit(Edit::RemoveNozzle {
+            vessel: tag.into(),
+            mark: gone.clone(),
+        })
+        .unwrap();
+        let s = sheet(&m, tag, &SheetOptions::default()).unwrap();
+        assert_eq!(s.schedule.len(), expected.len() - 1);
+        assert!(s.schedule.iter().all(|r| r.cells[0] != gone));
+        let svg = to_svg(&s);
+        assert!(
+            !svg.contains(&format!(">{gone}<")),
+            "{gone} still drawn in {name}"
+        );
+    }
+}
+
+fn text_of(sheet: &Sheet) -> BTreeSet<String> {
+    sheet
+        .items
+        .iter()
+        .filter_map(|i| match i {
+            Item::Text { text, .. } => Some(text.clone()),
+            _ => None,
+        })
+        .collect()
+}
+
+#[test]
+fn the_title_block_and_design_data_come_from_the_design_file() {
+    let mut design = example("vertical-column");
+    let v = &mut design.vessels[0];
+    v.drawing.number = Some("D-201-001".into());
+    v.drawing.title = Some("CRUDE STABILISER".into());
+    v.drawing.revision = Some("B".into());
+    v.drawing.date = Some("2026-11-23".into());
+    // Loads and saves canonically with the new fields.
+    let text = vesselcad::design::to_canonical_json(&design);
+    assert_eq!(parse(&text).unwrap(), design);
+    let m = Model::from_design(&design, TessellationOptions::chord(0.5)).unwrap();
+    let s = sheet(&m, "C-201", &SheetOptions::default()).unwrap();
+    let texts = text_of(&s);
+    for t in [
+        "D-201-001",
+        "CRUDE STABILISER",
+        "B",
+        "2026-11-23",
+        "350 kPa(g)",
+        "180 °C",
+        "3 mm",
+        "SA-516-70",
+        "ANSI D",
+    ] {
+        assert!(texts.contains(t), "{t:?} missing from the sheet");
+    }
+    assert!(texts.iter().any(|t| t.ends_with(" m³")), "volume");
+    assert!(texts.iter().any(|t| t.ends_with(" kg")), "empty weight");
+    // The revision triangle: a closed three-point border line.
+    assert!(s.items.iter().any(|i| matches!(i,
+        Item::Line { layer: Layer::Border, points, closed: true } if points.len() == 3)));
+}
+
+#[test]
+fn bad_title_block_data_is_refused_with_its_field_named() {
+    for (field, value, rule) in [
+        ("date", "\"2026-02-30\"", "calendar date"),
+        ("revision", "\"ABCDEFGHIJ\"", "at most 8"),
+        ("number", "\"  \"", "must not be empty"),
+    ] {
+        let text = format!(
+            r#"{{"format": "vesselcad/1", "vessels": [{{"tag": "V-1", "kind": "vertical",
+            "drawing": {{"{field}": {value}}},
+            "parts": [{{"shell": {{"id": "S1", "od": 1000, "length": 2000}}}}]}}]}}"#
+        );
+        let err = parse(&text).unwrap_err();
+        let DesignError::Invalid(violations) = &err else {
+            panic!("{field}: {err}");
+        };
+        assert_eq!(violations.len(), 1, "{field}: {err}");
+        assert_eq!(violations[0].path, format!("vessels[0].drawing.{field}"));
+        assert!(violations[0].rule.contains(rule), "{field}: {err}");
+    }
+    // An unknown field is refused too.
+    let text = r#"{"format": "vesselcad/1", "vessels": [{"tag": "V-1", "kind": "vertical",
+        "drawing": {"sheet": "A1"},
+        "parts": [{"shell": {"id": "S1", "od": 1000, "length": 2000}}]}]}"#;
+    assert!(parse(text).is_err());
+}
+
+#[test]
+fn dimensions_do_not_overlap_each_other_or_the_views() {
+    for (name, tag) in EXAMPLES {
+        let m = model(name);
+        for size in SheetSize::ALL {
+            let s = sheet(&m, tag, &SheetOptions::sized(size)).unwrap();
+            assert!(s.dimensions.len() >= 5, "{name} {size:?}");
+            let paper = size.dimensions();
+            for (i, a) in s.dimensions.iter().enumerate() {
+                for b in &s.dimensions[i + 1..] {
+                    assert!(
+                        !a.text_box.overlaps(&b.text_box, 0.01),
+                        "{name} {size:?}: {:?} overlaps {:?}",
+                        a.text,
+                        b.text
+                    );
+                }
+                for (k, view) in s.view_boxes.iter().enumerate() {
+                    for r in [&a.text_box, &a.line_box] {
+                        assert!(
+                            !r.overlaps(view, 0.01),
+                            "{name} {size:?}: {:?} overlaps the {:?} view",
+                            a.text,
+                            ViewKind::ALL[k]
+                        );
+                    }
+                }
+                assert!(a.text_box.min.x >= 0.0 && a.text_box.max.x <= paper.x);
+                assert!(a.text_box.min.y >= 0.0 && a.text_box.max.y <= paper.y);
+            }
+            // The views do not overlap each other.
+            for i in 0..4 {
+                for j in i + 1..4 {
+                    assert!(
+                        !s.view_boxes[i].overlaps(&s.view_boxes[j], 0.0),
+                        "{name} {size:?}"
+                    );
+                }
+            }
+        }
+    }
+    // The overall dimension is the tangent-to-tangent length.
+    let m = model("horizontal-drum");
+    let s = sheet(&m, "V-101", &SheetOptions::default()).unwrap();
+    assert!(s.dimensions.iter().any(|d| d.text == "T/T 7300"));
+    assert!(s.dimensions.iter().any(|d| d.text == "OD 2400 (S1)"));
+    assert!(s.dimensions.iter().any(|d| d.text.starts_with("SADDLES ")));
+    assert!(s.dimensions.iter().any(|d| d.text == "N1 POS 800"));
+}
+
+#[test]
+fn svg_is_well_formed_and_dxf_reads_back_with_its_layers() {
+    for (name, tag) in EXAMPLES {
+        let m = model(name);
+        let options =
+            SheetOptions::sized(SheetSize::AnsiB).with_hidden(ViewKind::Iso, HiddenLines::Omitted);
+        let s = sheet(&m, tag, &options).unwrap();
+        let svg = to_svg(&s);
+        let doc = roxmltree::Document::parse(&svg).expect("well-formed XML");
+        let root = doc.root_element();
+        assert_eq!(root.tag_name().name(), "svg");
+        assert_eq!(root.attribute("width"), Some("431.8mm"));
+        for layer in [
+            "OUTLINE",
+            "HIDDEN",
+            "CENTER",
+            "DIMENSIONS",
+            "TEXT",
+            "BORDER",
+        ] {
+            let group = doc
+                .descendants()
+                .find(|n| n.attribute("id") == Some(layer))
+                .unwrap_or_else(|| panic!("{name}: no {layer} group"));
+            assert!(
+                group.children().any(|c| c.is_element()),
+                "{name}: {layer} empty"
+            );
+        }
+        let bytes = to_dxf_bytes(&s).unwrap();
+        let drawing = dxf::Drawing::load(&mut bytes.as_slice()).expect("DXF reads back");
+        assert_eq!(drawing.header.version, dxf::enums::AcadVersion::R2000);
+        let layers: BTreeSet<String> = drawing.layers().map(|l| l.name.clone()).collect();
+        for layer in ["OUTLINE", "HIDDEN", "CENTER", "DIMENSIONS", "TEXT"] {
+            assert!(layers.contains(layer), "{name}: DXF layer {layer} missing");
+        }
+        let line_types: BTreeSet<String> = drawing.line_types().map(|l| l.name.clone()).collect();
+        assert!(line_types.contains("HIDDEN") && line_types.contains("CENTER"));
+        let on = |layer: &str| {
+            drawing
+                .entities()
+                .filter(|e| e.common.layer == layer)
+                .count()
+        };
+        assert!(
+            on("OUTLINE") > 50 && on("HIDDEN") > 5 && on("TEXT") > 50,
+            "{name}"
+        );
+        let texts = drawing
+            .entities()
+            .filter(|e| matches!(e.specific, dxf::entities::EntityType::Text(_)))
+            .count();
+        let sheet_texts = s
+            .items
+            .iter()
+            .filter(|i| matches!(i, Item::Text { .. }))
+            .count();
+        assert_eq!(texts, sheet_texts);
+    }
+}
+
+#[test]
+fn omitted_hidden_lines_leave_that_view_only() {
+    let m = model("vertical-column");
+    let all = sheet(&m, "C-201", &SheetOptions::default()).unwrap();
+    let some = sheet(
+        &m,
+        "C-201",
+        &SheetOptions::default().with_hidden(ViewKind::Front, HiddenLines::Omitted),
+    )
+    .unwrap();
+    let hidden_in = |s: &Sheet, k: usize| {
+        s.items
+            .iter()
+            .filter(|i| match i {
+                Item::Line {
+                    layer: Layer::Hidden,
+                    points,
+                    ..
+                } => s.view_boxes[k].contains(points[0]),
+                _ => false,
+            })
+            .count()
+    };
+    assert!(hidden_in(&all, 0) > 0);
+    assert_eq!(hidden_in(&some, 0), 0);
+    assert_eq!(hidden_in(&some, 2), hidden_in(&all, 2));
+}
+
+#[test]
+fn unknown_vessels_and_unbuilt_models_are_errors() {
+    let m = model("storage-tank");
+    let err = sheet_svg(&m, "NOPE", &SheetOptions::default()).unwrap_err();
+    assert!(err.to_string().contains("NOPE"));
+    let mut fresh = Model::new(TessellationOptions::chord(0.5)).unwrap();
+    fresh
+        .apply(Edit::ReplaceDesign(example("storage-tank")))
+        .unwrap();
+    let err = sheet_svg(&fresh, "TK-301", &SheetOptions::default()).unwrap_err();
+    assert!(err.to_string().contains("update"), "{err}");
+}
+
+#[test]
+fn the_drawing_command_writes_svg_and_dxf() {
+    let dir = std::env::temp_dir().join(format!("vesselcad-drawing-{}", std::process::id()));
+    std::fs::create_dir_all(&dir).unwrap();
+    let svg = dir.join("drum.svg");
+    let dxf = dir.join("drum.dxf");
+    let out = std::process::Command::new(env!("CARGO_BIN_EXE_vesselcad"))
+        .args([
+            "drawing",
+            concat!(
+                env!("CARGO_MANIFEST_DIR"),
+                "/examples/designs/horizontal-drum.json"
+            ),
+        ])
+        .args(["--vessel", "V-101", "-o"])
+        .arg(&svg)
+        .arg("--dxf")
+        .arg(&dxf)
+        .args(["--sheet", "a3", "--omit-hidden", "iso"])
+        .output()
+        .unwrap();
+    assert!(
+        out.status.success(),
+        "{}",
+        String::from_utf8_lossy(&out.stderr)
+    );
+    let text = std::fs::read_to_string(&svg).unwrap();
+    assert!(roxmltree::Document::parse(&text).is_ok());
+    assert!(text.contains("420mm"));
+    assert!(dxf::Drawing::load_file(&dxf).is_ok());
+    let out = std::process::Command::new(env!("CARGO_BIN_EXE_vesselcad"))
+        .args([
+            "drawing",
+            concat!(
+                env!("CARGO_MANIFEST_DIR"),
+                "/examples/designs/horizontal-drum.json"
+            ),
+        ])
+        .args(["--vessel", "V-999", "-o"])
+        .arg(&svg)
+        .output()
+        .unwrap();
+    assert_eq!(out.status.code(), Some(1));
+    assert!(String::from_utf8_lossy(&out.stderr).contains("V-999"));
+    std::fs::remove_dir_all(&dir).ok();
+}
+
+#[test]
+fn notes_follow_their_targets() {
+    let mut m = model("vertical-column");
+    let note_at = |m: &Model| {
+        let s = sheet(m, "C-201", &SheetOptions::default()).unwrap();
+        s.items
+            .iter()
+            .find_map(|i| match i {
+                Item::Text { text, at, .. } if text == "See detail A" => Some(*at),
+                _ => None,
+            })
+            .expect("note T3 drawn")
+    };
+    let before = note_at(&m);
+    let mut n1 = m.design().vessels[0]
+        .nozzles
+        .iter()
+        .find(|n| n.mark == "N1")
+        .cloned()
+        .unwrap();
+    n1.elevation = Some(9000.0);
+    m.edit(Edit::SetNozzle {
+        vessel: "C-201".into(),
+        nozzle: n1,
+    })
+    .unwrap();
+    let after = note_at(&m);
+    let s = sheet(&m, "C-201", &SheetOptions::default()).unwrap();
+    // 1000 mm lower at the sheet's scale.
+    assert!((before.x - after.x).abs() < 1e-9);
+    assert!(
+        ((before.y - after.y) - 1000.0 / s.scale).abs() < 1e-6,
+        "{before} → {after}"
+    );
+}
