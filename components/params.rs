@@ -4,7 +4,7 @@
 use bevy_ecs::component::Component;
 
 use crate::design::{
-    DesignConditions, NoteDesign, NozzleDesign, PartDesign, Placement, VesselKind,
+    DesignConditions, NoteDesign, OperatingDesign, NozzleDesign, PartDesign, Placement, VesselKind,
 };
 
 /// A vessel's own parameters (its parts, nozzles and notes are child entities).
@@ -19,6 +19,11 @@ pub struct VesselSpec {
     /// Design conditions.
     pub design: DesignConditions,
 }
+
+/// A vessel's operating state (liquid level and density), its own component so
+/// that a level change re-resolves nothing: only the operating figures follow.
+#[derive(Component, Clone, Copy, Debug, Default, PartialEq)]
+pub struct OperatingSpec(pub Option<OperatingDesign>);
 
 /// Position of an entity in its list in the design file (vessels in the plant;
 /// parts, nozzles and notes in their vessel), for stable, deterministic order.

@@ -29,7 +29,9 @@ pub mod export;
 pub mod mesh;
 pub mod model;
 pub mod nurbs;
+pub mod operating;
 pub mod parts;
+pub mod plant;
 pub mod project;
 pub mod report;
 #[path = "../systems/mod.rs"]
