@@ -22,6 +22,9 @@ pub struct WorkCounters {
     pub meshes_rebuilt: u64,
     /// Triangles in the rebuilt meshes.
     pub triangles_meshed: u64,
+    /// Vessels whose operating figures (liquid, weight, centre of gravity) were
+    /// recomputed.
+    pub operating_updated: u64,
     /// Patches or openings that failed to mesh or cut (details in `ModelErrors`).
     pub failures: u64,
 }

@@ -11,6 +11,7 @@ mod counters;
 mod export;
 mod geometry;
 mod openings;
+mod operating;
 mod regions;
 mod tessellate;
 mod validate;
@@ -20,6 +21,7 @@ pub use counters::WorkCounters;
 pub use export::{ChangeLog, collect_changes};
 pub use geometry::rebuild_dirty_patches;
 pub use openings::{OpeningHosts, cut_openings};
+pub use operating::update_operating_states;
 pub use regions::lay_out_regions;
 pub use tessellate::{Tessellation, remesh_dirty_patches};
 pub use validate::{ModelErrors, PendingResolutions, resolve_dirty_vessels};
@@ -55,7 +57,9 @@ pub fn build_schedule() -> Schedule {
             .chain(),
     );
     schedule.add_systems((
-        resolve_dirty_vessels.in_set(Stage::Validate),
+        (resolve_dirty_vessels, update_operating_states)
+            .chain()
+            .in_set(Stage::Validate),
         apply_resolutions.in_set(Stage::Constrain),
         (rebuild_dirty_patches, cut_openings)
             .chain()

@@ -201,6 +201,11 @@ impl Work<'_> {
                 }
                 self.put(v, o);
             }
+            Edit::SetOperating { vessel, operating } => {
+                let (mut v, o) = self.vessel(&vessel)?;
+                v.operating = operating;
+                self.put(v, o);
+            }
             Edit::Batch(edits) => {
                 for e in edits {
                     self.apply(e)?;

@@ -85,7 +85,7 @@ pub fn stack_of<'a>(design: &'a VesselDesign, resolved: &'a ResolvedVessel) -> V
 }
 
 /// The wall thickness a part design gives, if any.
-pub(crate) fn thickness(part: &PartDesign) -> Option<f64> {
+pub fn thickness(part: &PartDesign) -> Option<f64> {
     match part {
         PartDesign::Shell(s) => s.thickness,
         PartDesign::Head(h) => h.thickness,
@@ -198,3 +198,8 @@ fn check_density(what: &'static str, value: f64) -> Result<(), OperatingError> {
         })
     }
 }
+
+/// Why a vessel has no [`OperatingState`] (a wall too thick for its shape, an
+/// eccentric reducer in a horizontal vessel): kept on the vessel entity.
+#[derive(Component, Clone, Debug, PartialEq)]
+pub struct OperatingProblem(pub OperatingError);

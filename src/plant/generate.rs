@@ -230,10 +230,10 @@ fn drum(rng: &mut SplitMix64, index: usize) -> VesselDesign {
         rotation: *rng.pick(&[0.0, 90.0]),
     };
     // Side and top orientations; the bottom only without a boot.
-    let orientations: &[f64] = if boot {
-        &[0.0, 90.0, 270.0, 45.0, 315.0]
+    let orientations: &[(f64, f64)] = if boot {
+        &[(90.0, 270.0), (45.0, 315.0)]
     } else {
-        &[0.0, 90.0, 270.0, 180.0, 45.0, 315.0]
+        &[(90.0, 270.0), (0.0, 180.0), (45.0, 315.0)]
     };
     let courses = [Course {
         id: "S1",
@@ -309,7 +309,7 @@ fn column(rng: &mut SplitMix64, index: usize) -> VesselDesign {
         position: [0.0, 0.0, skirt],
         rotation: rng.stepped(0.0, 345.0, 15.0),
     };
-    let orientations = [0.0, 45.0, 90.0, 135.0, 180.0, 225.0, 270.0, 315.0];
+    let orientations = [(0.0, 180.0), (45.0, 225.0), (90.0, 270.0), (135.0, 315.0)];
     nozzles(rng, &mut v, &courses, &orientations, t);
     head_manway(rng, &mut v, "H2", top, od);
     v.operating = Some(OperatingDesign {
@@ -356,7 +356,7 @@ fn tank(rng: &mut SplitMix64) -> VesselDesign {
         roof_part,
     ];
     let mut v = blank(VesselKind::Tank, parts);
-    let orientations = [0.0, 30.0, 60.0, 90.0, 120.0, 150.0, 180.0, 210.0, 240.0, 270.0];
+    let orientations = [(0.0, 180.0), (30.0, 210.0), (60.0, 240.0), (120.0, 300.0)];
     let courses = [Course {
         id: "S1",
         start: 0.0,
@@ -401,16 +401,20 @@ fn nozzles(
     rng: &mut SplitMix64,
     v: &mut VesselDesign,
     courses: &[Course],
-    orientations: &[f64],
+    orientations: &[(f64, f64)],
     t: f64,
 ) {
     let wanted = rng.int(4, 20) as usize;
     let manways = rng.int(1, 2) as usize;
+    // Axial slots 800 mm apart, each with two orientations far enough apart
+    // round the shell that their openings cannot meet.
     let mut slots = Vec::new();
     for c in courses {
         let mut z = c.start + 500.0;
         while z + 500.0 <= c.end {
-            slots.push((c, z));
+            let (a, b) = *rng.pick(orientations);
+            slots.push((c, z, a));
+            slots.push((c, z, b));
             z += 800.0;
         }
     }
@@ -422,7 +426,7 @@ fn nozzles(
     let count = wanted.min(slots.len());
     let services = ["inlet", "outlet", "vent", "drain", "level", "pressure", "temperature", "relief"];
     let (mut n_mark, mut m_mark) = (0, 0);
-    for (k, &(course, z)) in slots.iter().take(count).enumerate() {
+    for (k, &(course, z, orientation)) in slots.iter().take(count).enumerate() {
         let manway = k < manways && course.od >= 1200.0;
         let size = if manway {
             *rng.pick(&[20.0, 24.0])
@@ -457,7 +461,7 @@ fn nozzles(
             },
             schedule: "STD".into(),
             host: course.id.into(),
-            orientation: *rng.pick(orientations),
+            orientation,
             elevation: Some(z),
             offset: None,
             projection: (course.od / 2.0 + rng.stepped(400.0, 800.0, 50.0)).round(),
