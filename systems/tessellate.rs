@@ -47,7 +47,16 @@ pub fn remesh_dirty_patches(
     }
     let meshes: Vec<_> = work
         .par_iter()
-        .map(|(e, p, r)| (*e, mesh_patch_region(p, r, &options)))
+        .map(|(e, p, r)| {
+            // Kept for the model's lifetime: drop the growth slack of the vectors.
+            let result = mesh_patch_region(p, r, &options).map(|(mut mesh, stats)| {
+                mesh.positions.shrink_to_fit();
+                mesh.normals.shrink_to_fit();
+                mesh.indices.shrink_to_fit();
+                (mesh, stats)
+            });
+            (*e, result)
+        })
         .collect();
     let mut triangles = 0u64;
     let mut failures = 0u64;

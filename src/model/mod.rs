@@ -144,6 +144,24 @@ impl Model {
         self.world.resource::<ModelErrors>()
     }
 
+    /// Bytes held by the patch meshes (positions, normals and indices, by
+    /// capacity): the bulk of a built model's memory.
+    pub fn mesh_bytes(&self) -> usize {
+        let Some(mut meshes) = self.world.try_query::<&crate::components::PatchMesh>() else {
+            return 0;
+        };
+        meshes
+            .iter(&self.world)
+            .map(|m| {
+                let m = &m.0;
+                std::mem::size_of::<crate::mesh::Mesh>()
+                    + (m.positions.capacity() + m.normals.capacity())
+                        * std::mem::size_of::<glam::DVec3>()
+                    + m.indices.capacity() * std::mem::size_of::<u32>()
+            })
+            .sum()
+    }
+
     /// The ECS world, for queries.
     pub fn world(&self) -> &World {
         &self.world

@@ -242,7 +242,6 @@ fn drum(rng: &mut SplitMix64, index: usize) -> VesselDesign {
         od,
     }];
     nozzles(rng, &mut v, &courses, orientations, t);
-    head_manway(rng, &mut v, "H1", left, od);
     v.operating = Some(OperatingDesign {
         liquid_level: (rng.range(0.1, 0.8) * (od - 2.0 * t)).round(),
         liquid_density: Some(rng.stepped(600.0, 1100.0, 50.0)),
