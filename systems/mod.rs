@@ -8,6 +8,7 @@
 
 mod constrain;
 mod counters;
+mod dirty;
 mod export;
 mod geometry;
 mod openings;
@@ -18,6 +19,7 @@ mod validate;
 
 pub use constrain::apply_resolutions;
 pub use counters::WorkCounters;
+pub use dirty::DirtyPatches;
 pub use export::{ChangeLog, collect_changes};
 pub use geometry::rebuild_dirty_patches;
 pub use openings::{OpeningHosts, cut_openings};

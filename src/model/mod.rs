@@ -26,7 +26,7 @@ use crate::design::{Design, DesignError};
 use crate::export::Scene;
 use crate::mesh::{OptionsError, TessellationOptions};
 use crate::systems::{
-    ChangeLog, ModelErrors, OpeningHosts, PendingResolutions, Tessellation, WorkCounters,
+    ChangeLog, DirtyPatches, ModelErrors, OpeningHosts, PendingResolutions, Tessellation, WorkCounters,
     build_schedule,
 };
 
@@ -79,6 +79,7 @@ impl Model {
         world.init_resource::<ChangeLog>();
         world.init_resource::<VesselIndex>();
         world.init_resource::<OpeningHosts>();
+        world.init_resource::<DirtyPatches>();
         Ok(Self {
             world,
             schedule: build_schedule(),
@@ -105,6 +106,9 @@ impl Model {
     pub fn update(&mut self) -> WorkCounters {
         *self.world.resource_mut::<WorkCounters>() = WorkCounters::default();
         self.schedule.run(&mut self.world);
+        // Start the next run's removal messages afresh (the Tessellate stage reads
+        // them to find openings that disappeared).
+        self.world.clear_trackers();
         *self.world.resource::<WorkCounters>()
     }
 
