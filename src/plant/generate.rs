@@ -279,7 +279,8 @@ fn column(rng: &mut SplitMix64, index: usize) -> VesselDesign {
                 thickness: Some(t),
             }));
             z += length;
-            od -= rng.stepped(300.0, 500.0, 100.0);
+            // Narrower above, but wide enough for a manway (≥ 1200 mm).
+            od = (od - rng.stepped(300.0, 500.0, 100.0)).max(1200.0);
         }
         let length = rng.stepped(5000.0, 12000.0, 500.0);
         let id: &'static str = ["S1", "S2", "S3"][k];
