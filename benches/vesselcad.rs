@@ -1,6 +1,6 @@
 //! Benchmarks of vesselcad: one criterion entry point, one module per topic.
 //!
-//! Run with `cargo bench --bench vesselcad` (or `-- grid` / `-- mesh` / `-- model` for one
+//! Run with `cargo bench --bench vesselcad` (or `-- grid` / `-- mesh` / `-- model`, `-- plant` for one
 //! topic); each topic keeps its measurement short so the whole run takes a few
 //! minutes.
 
@@ -12,5 +12,7 @@ mod grid;
 mod mesh;
 #[path = "vesselcad/model.rs"]
 mod model;
+#[path = "vesselcad/plant.rs"]
+mod plant;
 
-criterion_main!(grid::group, mesh::group, model::group);
+criterion_main!(grid::group, mesh::group, model::group, plant::group);

@@ -4,7 +4,7 @@
 use bevy_ecs::component::Component;
 
 use crate::design::{
-    DesignConditions, NoteDesign, OperatingDesign, NozzleDesign, PartDesign, Placement, VesselKind,
+    DesignConditions, NoteDesign, NozzleDesign, OperatingDesign, PartDesign, Placement, VesselKind,
 };
 
 /// A vessel's own parameters (its parts, nozzles and notes are child entities).

@@ -19,7 +19,10 @@ fn main() {
     let start = Instant::now();
     let mut model =
         Model::from_design(&design, TessellationOptions::chord(tolerance)).expect("valid");
-    println!("{vessels} vessels built in {:.1} s", start.elapsed().as_secs_f64());
+    println!(
+        "{vessels} vessels built in {:.1} s",
+        start.elapsed().as_secs_f64()
+    );
     let time = |model: &mut Model, edit: Option<Edit>| {
         let start = Instant::now();
         let counters = match edit {

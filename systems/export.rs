@@ -12,9 +12,7 @@ use bevy_ecs::system::{Query, ResMut};
 
 use super::DirtyPatches;
 
-use crate::components::{
-    NozzleSpec, PadOf, PartFrame, PartSpec, PatchOf, VesselFrame, VesselSpec,
-};
+use crate::components::{NozzleSpec, PadOf, PartFrame, PartSpec, PatchOf, VesselFrame, VesselSpec};
 
 /// Stable ids changed and removed since the log was last drained.
 #[derive(Resource, Default, Debug, Clone, PartialEq, Eq)]

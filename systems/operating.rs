@@ -17,8 +17,7 @@ use super::{PendingResolutions, WorkCounters};
 use crate::components::{OperatingSpec, PartFrame, PartSpec, Shape, VesselFrame, VesselSpec};
 use crate::constraints::PartGeometry;
 use crate::operating::{
-    OperatingProblem, OperatingState, metal_density, operating_state, profile::StackPart,
-    thickness,
+    OperatingProblem, OperatingState, metal_density, operating_state, profile::StackPart, thickness,
 };
 
 /// What one vessel's figures are computed from.

@@ -36,8 +36,12 @@ pub fn remesh_dirty_patches(
         } else {
             // Surface or region written in this run (see `DirtyPatches`).
             let lists = world.resource::<DirtyPatches>();
-            let mut dirty: Vec<Entity> =
-                lists.surfaces.iter().chain(&lists.regions).copied().collect();
+            let mut dirty: Vec<Entity> = lists
+                .surfaces
+                .iter()
+                .chain(&lists.regions)
+                .copied()
+                .collect();
             dirty.sort_unstable();
             dirty.dedup();
             dirty

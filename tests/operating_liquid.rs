@@ -5,7 +5,7 @@
 
 use std::f64::consts::PI;
 
-use vesselcad::design::{Design, OperatingDesign, VesselDesign, parse, resolve, save, load};
+use vesselcad::design::{Design, OperatingDesign, VesselDesign, load, parse, resolve, save};
 use vesselcad::mesh::TessellationOptions;
 use vesselcad::model::{Edit, Model};
 use vesselcad::operating::liquid::circular_segment;
@@ -73,7 +73,8 @@ fn vertical_two_to_one_head_partial_volume() {
         let expected = if level <= b {
             PI * a * a / (b * b) * (b * level * level - level.powi(3) / 3.0)
         } else {
-            2.0 / 3.0 * PI * a * a * b + PI * a * a * (level - b).min(L)
+            2.0 / 3.0 * PI * a * a * b
+                + PI * a * a * (level - b).min(L)
                 + if level > b + L {
                     let h = level - b - L;
                     PI * a * a / (b * b) * (b * b * h - h.powi(3) / 3.0)
@@ -208,7 +209,11 @@ fn horizontal_volumes_are_symmetric_about_the_axis_for_every_head_kind() {
     for (json, _) in heads() {
         let full = state(&vessel("horizontal", &json, &json, 0.0)).interior_volume;
         let half = state(&vessel("horizontal", &json, &json, RI)).liquid_volume;
-        assert!(close(half, full / 2.0, 1e-11), "{json}: half {half} vs {}", full / 2.0);
+        assert!(
+            close(half, full / 2.0, 1e-11),
+            "{json}: half {half} vs {}",
+            full / 2.0
+        );
         for level in [1.0, 77.0, 420.0, 989.0] {
             let low = state(&vessel("horizontal", &json, &json, level)).liquid_volume;
             let high = state(&vessel("horizontal", &json, &json, 2.0 * RI - level)).liquid_volume;
@@ -229,7 +234,11 @@ fn operating_mass_and_centre_of_gravity() {
     let tube = PI * (ro * ro - RI * RI) * L;
     let plates = 2.0 * PI * (ro - T / 2.0).powi(2) * T;
     let metal = (tube + plates) * M3 * 7850.0;
-    assert!(close(empty.metal_mass, metal, 1e-10), "{} vs {metal}", empty.metal_mass);
+    assert!(
+        close(empty.metal_mass, metal, 1e-10),
+        "{} vs {metal}",
+        empty.metal_mass
+    );
     assert_eq!(empty.operating_mass, empty.metal_mass);
     // Centre of gravity: mid-length on the axis, in the plant frame (datum at the
     // origin, axis along plant north for rotation 0).
@@ -244,18 +253,28 @@ fn operating_mass_and_centre_of_gravity() {
     let empty_cog = empty.centre_of_gravity;
     // Liquid pulls the centre of gravity down, not along the axis.
     assert!(cog.z < empty_cog.z - 10.0, "{cog} vs {empty_cog}");
-    assert!((cog - empty_cog).truncate().length() < 1e-6, "{cog} vs {empty_cog}");
+    assert!(
+        (cog - empty_cog).truncate().length() < 1e-6,
+        "{cog} vs {empty_cog}"
+    );
     // The half-full liquid's centroid sits 4R/(3π) below the axis.
     let liquid_drop = 4.0 * RI / (3.0 * PI);
     let expected = half.liquid_mass * liquid_drop / half.operating_mass;
-    assert!(close(empty_cog.z - cog.z, expected, 1e-9), "{} vs {expected}", empty_cog.z - cog.z);
+    assert!(
+        close(empty_cog.z - cog.z, expected, 1e-9),
+        "{} vs {expected}",
+        empty_cog.z - cog.z
+    );
 }
 
 #[test]
 fn operating_data_is_optional_round_trips_and_is_checked() {
     // Old files (no operating data) still load; new fields round-trip.
-    let old = load(concat!(env!("CARGO_MANIFEST_DIR"), "/examples/designs/small-plant.json"))
-        .unwrap();
+    let old = load(concat!(
+        env!("CARGO_MANIFEST_DIR"),
+        "/examples/designs/small-plant.json"
+    ))
+    .unwrap();
     assert!(old.vessels.iter().all(|v| v.operating.is_none()));
     let mut d = vessel("vertical", TWO_TO_ONE, TWO_TO_ONE, 1000.0);
     d.vessels[0].operating.as_mut().unwrap().liquid_density = Some(850.0);
@@ -269,7 +288,10 @@ fn operating_data_is_optional_round_trips_and_is_checked() {
     let mut high = d.clone();
     high.vessels[0].operating.as_mut().unwrap().liquid_level = 1e6;
     let e = resolve(&high).unwrap_err().to_string();
-    assert!(e.contains("operating.liquid_level") && e.contains("interior"), "{e}");
+    assert!(
+        e.contains("operating.liquid_level") && e.contains("interior"),
+        "{e}"
+    );
     let mut dense = d.clone();
     dense.vessels[0].operating.as_mut().unwrap().liquid_density = Some(-1.0);
     let e = resolve(&dense).unwrap_err().to_string();
@@ -286,7 +308,9 @@ fn model_recomputes_only_the_vessel_whose_level_changed() {
     let mut model = Model::from_design(&plant, TessellationOptions::chord(5.0)).unwrap();
     let entity = |model: &Model, tag: &str| {
         let world = model.world();
-        let mut q = world.try_query::<(bevy_ecs::entity::Entity, &vesselcad::components::VesselSpec)>().unwrap();
+        let mut q = world
+            .try_query::<(bevy_ecs::entity::Entity, &vesselcad::components::VesselSpec)>()
+            .unwrap();
         q.iter(world).find(|(_, s)| s.tag == tag).unwrap().0
     };
     let e = entity(&model, "V-1");

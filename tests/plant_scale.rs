@@ -42,8 +42,17 @@ fn generated_plants_are_valid_varied_and_deterministic() {
         && v.parts.iter().filter(|p| p.kind() == "shell").count() >= 2
         && v.parts.iter().any(|p| p.kind() == "reducer")));
     for v in &a.vessels {
-        assert!((4..=20).contains(&v.nozzles.len()), "{}: {}", v.tag, v.nozzles.len());
-        assert!(v.nozzles.iter().any(|n| n.mark.starts_with('M')), "{}: manway", v.tag);
+        assert!(
+            (4..=20).contains(&v.nozzles.len()),
+            "{}: {}",
+            v.tag,
+            v.nozzles.len()
+        );
+        assert!(
+            v.nozzles.iter().any(|n| n.mark.starts_with('M')),
+            "{}: manway",
+            v.tag
+        );
         assert!(!v.notes.is_empty());
         assert!(v.operating.is_some());
     }
@@ -62,7 +71,10 @@ fn generated_plants_are_valid_varied_and_deterministic() {
 fn generated_plant_builds_without_failures_and_chunked_build_matches() {
     let design = generate_plant(12, 3).unwrap();
     let mut calls = Vec::new();
-    let chunked = build_plant(&design, options(), &mut |done, total| calls.push((done, total))).unwrap();
+    let chunked = build_plant(&design, options(), &mut |done, total| {
+        calls.push((done, total))
+    })
+    .unwrap();
     assert!(chunked.errors().0.is_empty(), "{:?}", chunked.errors().0);
     assert_eq!(calls.last(), Some(&(12, 12)));
     let whole = Model::from_design(&design, options()).unwrap();
@@ -138,29 +150,75 @@ fn plant_commands_run_end_to_end() {
     std::fs::create_dir_all(&dir).unwrap();
     let plant = dir.join("plant.json");
     let plant = plant.to_str().unwrap();
-    let o = vesselcad(&["plant", "generate", "--vessels", "3", "--seed", "4", "-o", plant]);
+    let o = vesselcad(&[
+        "plant",
+        "generate",
+        "--vessels",
+        "3",
+        "--seed",
+        "4",
+        "-o",
+        plant,
+    ]);
     assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
     assert!(vesselcad(&["check", plant]).status.success());
     let o = vesselcad(&["info", plant, "--memory", "--tolerance", "5"]);
     let out = String::from_utf8_lossy(&o.stdout);
-    assert!(o.status.success() && out.contains("memory per vessel") && out.contains("operating mass"), "{out}");
+    assert!(
+        o.status.success() && out.contains("memory per vessel") && out.contains("operating mass"),
+        "{out}"
+    );
     let o = vesselcad(&[
-        "simulate", plant, "--ticks", "2", "--edits-per-tick", "2", "--seed", "9", "--levels",
-        "--tolerance", "5",
+        "simulate",
+        plant,
+        "--ticks",
+        "2",
+        "--edits-per-tick",
+        "2",
+        "--seed",
+        "9",
+        "--levels",
+        "--tolerance",
+        "5",
     ]);
     let out = String::from_utf8_lossy(&o.stdout);
     assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
-    assert!(out.contains("p50") && out.contains("p99") && out.contains("operating mass"), "{out}");
+    assert!(
+        out.contains("p50") && out.contains("p99") && out.contains("operating mass"),
+        "{out}"
+    );
     let glb = dir.join("plant.glb");
-    let o = vesselcad(&["build", plant, "-o", glb.to_str().unwrap(), "--tolerance", "5"]);
+    let o = vesselcad(&[
+        "build",
+        plant,
+        "-o",
+        glb.to_str().unwrap(),
+        "--tolerance",
+        "5",
+    ]);
     assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
     assert!(o.stderr.is_empty(), "no progress bar off a terminal");
     let o = vesselcad(&[
-        "bench", "--vessels", "2", "--edits", "3", "--ticks", "1", "--tolerance", "5",
+        "bench",
+        "--vessels",
+        "2",
+        "--edits",
+        "3",
+        "--ticks",
+        "1",
+        "--tolerance",
+        "5",
     ]);
     let out = String::from_utf8_lossy(&o.stdout);
     assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
-    for figure in ["vessels/s", "speed-up", "p99", "tick of 100 edits", "memory per vessel", "MB/s"] {
+    for figure in [
+        "vessels/s",
+        "speed-up",
+        "p99",
+        "tick of 100 edits",
+        "memory per vessel",
+        "MB/s",
+    ] {
         assert!(out.contains(figure), "{figure} missing:\n{out}");
     }
     std::fs::remove_dir_all(&dir).ok();

@@ -86,7 +86,10 @@ pub fn run(args: SimulateArgs) -> ExitCode {
             sim.total_operating_mass() / 1e3,
         );
         if c.failures > 0 {
-            eprintln!("warning: tick {tick}: {} patches or openings failed", c.failures);
+            eprintln!(
+                "warning: tick {tick}: {} patches or openings failed",
+                c.failures
+            );
         }
     }
     let p50 = quantile(&mut latencies, 0.5);

@@ -10,7 +10,9 @@ use glam::DAffine3;
 
 use super::{Report, ResolvedPart};
 use crate::design::VesselDesign;
-use crate::operating::{OperatingError, metal_density, operating_state, profile::StackPart, thickness};
+use crate::operating::{
+    OperatingError, metal_density, operating_state, profile::StackPart, thickness,
+};
 
 /// Checks the operating data of `vessel` against its resolved stack.
 pub(crate) fn check(

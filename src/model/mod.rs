@@ -26,8 +26,8 @@ use crate::design::{Design, DesignError};
 use crate::export::Scene;
 use crate::mesh::{OptionsError, TessellationOptions};
 use crate::systems::{
-    ChangeLog, DirtyPatches, ModelErrors, OpeningHosts, PendingResolutions, Tessellation, WorkCounters,
-    build_schedule,
+    ChangeLog, DirtyPatches, ModelErrors, OpeningHosts, PendingResolutions, Tessellation,
+    WorkCounters, build_schedule,
 };
 
 /// Why an edit or model construction was refused. The model is unchanged.

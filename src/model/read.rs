@@ -7,8 +7,8 @@ use bevy_ecs::world::World;
 
 use super::VesselIndex;
 use crate::components::{
-    DesignOrder, MountedOn, OperatingSpec, NoteSpec, NozzleSpec, PadPatch, PartFrame, PartSpan, PartSpec,
-    PatchMesh, PatchSurface, Patches, Shape, VesselFrame, VesselSpec, VesselSummary,
+    DesignOrder, MountedOn, NoteSpec, NozzleSpec, OperatingSpec, PadPatch, PartFrame, PartSpan,
+    PartSpec, PatchMesh, PatchSurface, Patches, Shape, VesselFrame, VesselSpec, VesselSummary,
 };
 use crate::constraints::{ResolvedNozzle, ResolvedPart, ResolvedVessel};
 use crate::design::{Design, FORMAT, Units, VesselDesign};

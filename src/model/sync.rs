@@ -9,7 +9,7 @@ use bevy_ecs::world::World;
 
 use super::staging::{Staged, StagedVessel};
 use super::{VesselIndex, read};
-use crate::components::{DesignOrder, NoteSpec, OperatingSpec, NozzleSpec, PartSpec, VesselSpec};
+use crate::components::{DesignOrder, NoteSpec, NozzleSpec, OperatingSpec, PartSpec, VesselSpec};
 use crate::design::VesselDesign;
 use crate::systems::ChangeLog;
 

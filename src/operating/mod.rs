@@ -18,8 +18,8 @@ mod state;
 pub mod weight;
 
 pub use state::{
-    CARBON_STEEL_DENSITY, MAX_DENSITY, OperatingProblem, OperatingState, STAINLESS_DENSITY, metal_density, operating_state,
-    stack_of, state_of_design, thickness,
+    CARBON_STEEL_DENSITY, MAX_DENSITY, OperatingProblem, OperatingState, STAINLESS_DENSITY,
+    metal_density, operating_state, stack_of, state_of_design, thickness,
 };
 
 use thiserror::Error;

@@ -259,8 +259,14 @@ pub fn stack_profile(
                 });
             }
             PartGeometry::Head(h) => {
-                head_pieces(h.outside_diameter / 2.0, h.straight_flange, h.kind, d, &mut local)
-                    .map_err(|(what, size)| thick(what, size))?;
+                head_pieces(
+                    h.outside_diameter / 2.0,
+                    h.straight_flange,
+                    h.kind,
+                    d,
+                    &mut local,
+                )
+                .map_err(|(what, size)| thick(what, size))?;
             }
             _ => continue,
         }

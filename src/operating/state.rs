@@ -133,7 +133,11 @@ pub fn operating_state(
     let middle = stack_profile(stack, Surface::Middle, horizontal)?;
     let (z_min, z_max) = inside.axial_extent();
     let r_max = inside.max_radius();
-    let height = if horizontal { 2.0 * r_max } else { z_max - z_min };
+    let height = if horizontal {
+        2.0 * r_max
+    } else {
+        z_max - z_min
+    };
     let below = |level: f64| -> Moments {
         if horizontal {
             liquid::horizontal(&inside, level - r_max)
@@ -153,11 +157,7 @@ pub fn operating_state(
     if !(level.is_finite() && (0.0..=height * (1.0 + 1e-12)).contains(&level)) {
         return Err(OperatingError::Level { level, height });
     }
-    let liquid = if level >= height {
-        full
-    } else {
-        below(level)
-    };
+    let liquid = if level >= height { full } else { below(level) };
     let metal = walls(&middle);
     let liquid_mass = liquid.volume * MM3_TO_M3 * density;
     let metal_mass = metal.volume * MM3_TO_M3 * metal_density;

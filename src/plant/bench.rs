@@ -148,14 +148,28 @@ pub fn run_bench(
     let t2 = start.elapsed();
     let speedup = t1.as_secs_f64() / t2.as_secs_f64();
     rows.push(row(
-        &format!("full build, {} vessels at {} mm, 1 thread", config.vessels, config.tolerance),
-        format!("{:.0} vessels/s ({:.1} s)", n / t1.as_secs_f64(), t1.as_secs_f64()),
+        &format!(
+            "full build, {} vessels at {} mm, 1 thread",
+            config.vessels, config.tolerance
+        ),
+        format!(
+            "{:.0} vessels/s ({:.1} s)",
+            n / t1.as_secs_f64(),
+            t1.as_secs_f64()
+        ),
         "",
         None,
     ));
     rows.push(row(
-        &format!("full build, {} vessels at {} mm, 2 threads", config.vessels, config.tolerance),
-        format!("{:.0} vessels/s ({:.1} s)", n / t2.as_secs_f64(), t2.as_secs_f64()),
+        &format!(
+            "full build, {} vessels at {} mm, 2 threads",
+            config.vessels, config.tolerance
+        ),
+        format!(
+            "{:.0} vessels/s ({:.1} s)",
+            n / t2.as_secs_f64(),
+            t2.as_secs_f64()
+        ),
         "",
         None,
     ));
@@ -197,7 +211,10 @@ pub fn run_bench(
         Some(ratio >= 1000.0),
     ));
 
-    progress(&format!("{} ticks of {} edits", config.ticks, config.tick_edits));
+    progress(&format!(
+        "{} ticks of {} edits",
+        config.ticks, config.tick_edits
+    ));
     let mut ticks = Vec::with_capacity(config.ticks);
     two.install(|| {
         for _ in 0..config.ticks {
@@ -217,7 +234,10 @@ pub fn run_bench(
     if let Some(bytes) = heap_model {
         let per = bytes as f64 / n / 1024.0;
         rows.push(row(
-            &format!("memory per vessel (whole model at {} mm, heap)", config.tolerance),
+            &format!(
+                "memory per vessel (whole model at {} mm, heap)",
+                config.tolerance
+            ),
             format!("{per:.0} KB"),
             "≤ 500 KB",
             Some(per <= 500.0),
@@ -258,8 +278,16 @@ pub fn run_bench(
 
 /// The rows as a text table: figure, target, ✓/✗.
 pub fn format_table(rows: &[BenchRow]) -> String {
-    let w0 = rows.iter().map(|r| r.name.chars().count()).max().unwrap_or(0);
-    let w1 = rows.iter().map(|r| r.value.chars().count()).max().unwrap_or(0);
+    let w0 = rows
+        .iter()
+        .map(|r| r.name.chars().count())
+        .max()
+        .unwrap_or(0);
+    let w1 = rows
+        .iter()
+        .map(|r| r.value.chars().count())
+        .max()
+        .unwrap_or(0);
     let mut out = String::new();
     for r in rows {
         let mark = match r.met {

@@ -17,10 +17,9 @@
 use super::rng::SplitMix64;
 use crate::constraints::resolve_vessel;
 use crate::design::{
-    Design, DesignConditions, FORMAT, FacingDesign, FlangeDesign, HeadDesign, HeadShape,
-    NoteDesign, NozzleDesign, OperatingDesign, PadDesign, PartDesign, Placement,
+    BootDesign, Design, DesignConditions, FORMAT, FacingDesign, FlangeDesign, HeadDesign,
+    HeadShape, NoteDesign, NozzleDesign, OperatingDesign, PadDesign, PartDesign, Placement,
     ReducerDesign, SaddleDesign, ShellDesign, SkirtDesign, Units, VesselDesign, VesselKind,
-    BootDesign,
 };
 
 /// Side of the square plot cell each vessel stands in, mm.
@@ -122,7 +121,14 @@ fn vessel(rng: &mut SplitMix64, index: usize, cell: (f64, f64)) -> VesselDesign 
         pressure: Some(rng.stepped(100.0, 3000.0, 50.0)),
         temperature: Some(rng.stepped(20.0, 350.0, 5.0)),
         corrosion_allowance: Some(if stainless { 0.0 } else { 3.0 }),
-        material: Some(if stainless { "SA-240-316L" } else { "SA-516-70" }.to_string()),
+        material: Some(
+            if stainless {
+                "SA-240-316L"
+            } else {
+                "SA-516-70"
+            }
+            .to_string(),
+        ),
         metal_density: None,
     };
     notes(rng, &mut v);
@@ -324,7 +330,11 @@ fn tank(rng: &mut SplitMix64) -> VesselDesign {
     let od = rng.stepped(4000.0, 14000.0, 500.0);
     let height = rng.stepped(5000.0, 15000.0, 500.0);
     let t = wall(od).min(16.0);
-    let roof = *rng.pick(&[HeadShape::Conical, HeadShape::Torispherical, HeadShape::Flat]);
+    let roof = *rng.pick(&[
+        HeadShape::Conical,
+        HeadShape::Torispherical,
+        HeadShape::Flat,
+    ]);
     let mut roof_part = head(rng, "ROOF", roof, od, t);
     if let PartDesign::Head(h) = &mut roof_part {
         h.straight_flange = 0.0;
@@ -424,7 +434,16 @@ fn nozzles(
         slots.swap(i, j);
     }
     let count = wanted.min(slots.len());
-    let services = ["inlet", "outlet", "vent", "drain", "level", "pressure", "temperature", "relief"];
+    let services = [
+        "inlet",
+        "outlet",
+        "vent",
+        "drain",
+        "level",
+        "pressure",
+        "temperature",
+        "relief",
+    ];
     let (mut n_mark, mut m_mark) = (0, 0);
     for (k, &(course, z, orientation)) in slots.iter().take(count).enumerate() {
         let manway = k < manways && course.od >= 1200.0;
@@ -452,7 +471,11 @@ fn nozzles(
                 rng.pick(&services).to_string()
             },
             size,
-            rating: if manway { 150 } else { *rng.pick(&[150, 300, 600]) },
+            rating: if manway {
+                150
+            } else {
+                *rng.pick(&[150, 300, 600])
+            },
             facing: FacingDesign::RaisedFace,
             flange: if manway {
                 FlangeDesign::Blind
@@ -509,7 +532,11 @@ fn notes(rng: &mut SplitMix64, v: &mut VesselDesign) {
         v.notes.push(NoteDesign {
             id: "T2".into(),
             text: "Shell course rolled from one plate".into(),
-            target: v.parts.iter().find(|p| p.kind() == "shell").map_or(tag.clone(), |p| p.id().to_string()),
+            target: v
+                .parts
+                .iter()
+                .find(|p| p.kind() == "shell")
+                .map_or(tag.clone(), |p| p.id().to_string()),
             offset: [0.0, 1200.0, 0.0],
         });
     }
