@@ -64,7 +64,7 @@ pub fn run(args: SimulateArgs) -> ExitCode {
         0
     };
     println!(
-        "tick  latency ms  edits refused levels  resolved shapes patches meshes triangles operating  operating mass t"
+        "tick  latency ms (update)  edits refused levels  resolved shapes patches meshes triangles operating  operating mass t"
     );
     let mut latencies = Vec::with_capacity(args.ticks);
     for tick in 1..=args.ticks {
@@ -72,8 +72,9 @@ pub fn run(args: SimulateArgs) -> ExitCode {
         latencies.push(r.latency);
         let c = r.counters;
         println!(
-            "{tick:>4}  {:>10.3}  {:>5} {:>7} {:>6}  {:>8} {:>6} {:>7} {:>6} {:>9} {:>9}  {:>16.3}",
+            "{tick:>4}  {:>10.3} ({:>7.3})  {:>5} {:>7} {:>6}  {:>8} {:>6} {:>7} {:>6} {:>9} {:>9}  {:>16.3}",
             r.latency.as_secs_f64() * 1e3,
+            r.update.as_secs_f64() * 1e3,
             r.edits,
             r.refused,
             r.levels,

@@ -21,6 +21,9 @@ use super::gltf_document::{document_with, is_empty};
 use super::scene::Scene;
 use crate::mesh::Mesh;
 
+/// Appends one view's bytes of one mesh.
+type ViewWriter = dyn Fn(&Mesh, &mut Vec<u8>);
+
 /// Writes the scene as GLB to `out`, streaming the mesh data; returns the bytes
 /// written. The bytes equal [`super::write_glb`]'s.
 ///
@@ -71,7 +74,7 @@ pub fn stream_glb(scene: &Scene, out: impl Write, name: &Path) -> Result<u64, Ex
         };
         let mut chunk: Vec<u8> = Vec::with_capacity(1 << 16);
         // The first pass checked every normal: none is zero or non-finite here.
-        let views: [&dyn Fn(&Mesh, &mut Vec<u8>); 3] = [
+        let views: [&ViewWriter; 3] = [
             &|m, chunk| {
                 for &p in &m.positions {
                     for c in metres(p).to_array() {

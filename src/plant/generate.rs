@@ -459,7 +459,7 @@ fn nozzles(
             n_mark += 1;
             format!("N{n_mark}")
         };
-        let pad = (size >= 6.0 && size <= 10.0 && rng.chance(0.5)).then(|| PadDesign {
+        let pad = ((6.0..=10.0).contains(&size) && rng.chance(0.5)).then(|| PadDesign {
             od: (size * 25.4 * 1.9).round(),
             thickness: t,
         });

@@ -29,6 +29,8 @@ const MAX_TRIES: usize = 16;
 pub struct TickReport {
     /// Wall time of the tick: drawing and checking the edits, and the update.
     pub latency: Duration,
+    /// Of which the update (the rest is drawing and checking the edits).
+    pub update: Duration,
     /// Edits applied.
     pub edits: usize,
     /// Drawn edits the rules refused (redrawn).
@@ -92,7 +94,9 @@ impl Simulation {
         for _ in 0..levels {
             report.levels += usize::from(self.change_level());
         }
+        let update = Instant::now();
         report.counters = self.model.update();
+        report.update = update.elapsed();
         report.latency = start.elapsed();
         report
     }
