@@ -91,6 +91,12 @@ pub fn run(args: SimulateArgs) -> ExitCode {
                 "warning: tick {tick}: {} patches or openings failed",
                 c.failures
             );
+            let errors = &sim.model().errors().0;
+            for (entity, violations) in errors.iter().rev().take(c.failures as usize) {
+                for v in violations {
+                    eprintln!("  {entity}: {}", v.rule);
+                }
+            }
         }
     }
     let p50 = quantile(&mut latencies, 0.5);

@@ -317,7 +317,6 @@ fn column(rng: &mut SplitMix64, index: usize) -> VesselDesign {
     };
     let orientations = [(0.0, 180.0), (45.0, 225.0), (90.0, 270.0), (135.0, 315.0)];
     nozzles(rng, &mut v, &courses, &orientations, t);
-    head_manway(rng, &mut v, "H2", top, od);
     v.operating = Some(OperatingDesign {
         liquid_level: (rng.range(0.02, 0.3) * z).round(),
         liquid_density: Some(rng.stepped(600.0, 1100.0, 50.0)),
@@ -491,32 +490,6 @@ fn nozzles(
             pad,
         });
     }
-}
-
-/// On a dished head, a nozzle on the centreline (half the time).
-fn head_manway(rng: &mut SplitMix64, v: &mut VesselDesign, host: &str, shape: HeadShape, od: f64) {
-    let dished = matches!(
-        shape,
-        HeadShape::Ellipsoidal | HeadShape::Torispherical | HeadShape::Hemispherical
-    );
-    if !dished || v.nozzles.len() >= 20 || !rng.chance(0.5) {
-        return;
-    }
-    v.nozzles.push(NozzleDesign {
-        mark: "NH".into(),
-        service: "head connection".into(),
-        size: *rng.pick(&[2.0, 4.0, 6.0]),
-        rating: 150,
-        facing: FacingDesign::RaisedFace,
-        flange: FlangeDesign::WeldNeck,
-        schedule: "STD".into(),
-        host: host.into(),
-        orientation: 0.0,
-        elevation: None,
-        offset: None,
-        projection: (od / 2.0 + 500.0).round(),
-        pad: None,
-    });
 }
 
 /// One to three notes on the vessel, a part and a nozzle.

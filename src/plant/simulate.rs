@@ -189,11 +189,16 @@ pub fn draw_edit(rng: &mut SplitMix64, vessel: &VesselDesign) -> Option<(Edit, V
             v,
         ))
     } else if roll < 0.85 {
-        // A nozzle move.
-        if v.nozzles.is_empty() {
+        // A shell nozzle's move (a head nozzle on the pole is left alone: turning
+        // it there moves its opening across the head's seam, which the opening
+        // cutter does not support).
+        let shell: Vec<usize> = (0..v.nozzles.len())
+            .filter(|&i| v.nozzles[i].elevation.is_some())
+            .collect();
+        if shell.is_empty() {
             return None;
         }
-        let i = rng.int(0, v.nozzles.len() as u64 - 1) as usize;
+        let i = *rng.pick(&shell);
         let n = &mut v.nozzles[i];
         match (rng.int(0, 2), n.elevation) {
             (0, Some(z)) => n.elevation = Some(z + rng.pick(&[-100.0, 100.0])),
@@ -209,10 +214,15 @@ pub fn draw_edit(rng: &mut SplitMix64, vessel: &VesselDesign) -> Option<(Edit, V
             v,
         ))
     } else {
-        // A head swap.
+        // A head swap, on a head no nozzle is mounted on (a nozzle's opening may
+        // not fit every head shape, e.g. across a conical head's apex).
         let heads: Vec<usize> = (0..v.parts.len())
             .filter(|&i| matches!(v.parts[i], PartDesign::Head(_)))
+            .filter(|&i| !v.nozzles.iter().any(|n| n.host == v.parts[i].id()))
             .collect();
+        if heads.is_empty() {
+            return None;
+        }
         let i = *rng.pick(&heads);
         let PartDesign::Head(h) = &mut v.parts[i] else {
             return None;
