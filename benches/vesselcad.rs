@@ -1,6 +1,6 @@
 //! Benchmarks of vesselcad: one criterion entry point, one module per topic.
 //!
-//! Run with `cargo bench --bench vesselcad` (or `-- grid` / `-- mesh` / `-- model` / `-- server` / `-- project` for one
+//! Run with `cargo bench --bench vesselcad` (or `-- grid` / `-- mesh` / `-- model` / `-- plant` / `-- project` / `-- server` for one
 //! topic); each topic keeps its measurement short so the whole run takes a few
 //! minutes.
 
@@ -12,6 +12,8 @@ mod grid;
 mod mesh;
 #[path = "vesselcad/model.rs"]
 mod model;
+#[path = "vesselcad/plant.rs"]
+mod plant;
 #[path = "vesselcad/project.rs"]
 mod project;
 #[path = "vesselcad/server.rs"]
@@ -21,6 +23,7 @@ criterion_main!(
     grid::group,
     mesh::group,
     model::group,
+    plant::group,
     project::group,
     server::group
 );

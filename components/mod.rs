@@ -15,6 +15,6 @@ pub use derived::{
     NoteAnchor, Opening, PartFrame, PartSpan, PatchMesh, PatchRegion, PatchSurface, Shape,
     VesselFrame, VesselSummary,
 };
-pub use params::{DesignOrder, NoteSpec, NozzleSpec, PartSpec, VesselSpec};
+pub use params::{DesignOrder, NoteSpec, NozzleSpec, OperatingSpec, PartSpec, VesselSpec};
 pub use relations::{AnnotatedBy, Annotates, MountedOn, Mounts, PadOf, PadPatch, PatchOf, Patches};
 pub use views::{EntityViews, Footprint, VesselViews};

@@ -4,7 +4,8 @@
 use bevy_ecs::component::Component;
 
 use crate::design::{
-    DesignConditions, DrawingInfo, NoteDesign, NozzleDesign, PartDesign, Placement, VesselKind,
+    DesignConditions, DrawingInfo, NoteDesign, NozzleDesign, OperatingDesign, PartDesign,
+    Placement, VesselKind,
 };
 
 /// A vessel's own parameters (its parts, nozzles and notes are child entities).
@@ -21,6 +22,11 @@ pub struct VesselSpec {
     /// Title-block data of its drawing.
     pub drawing: DrawingInfo,
 }
+
+/// A vessel's operating state (liquid level and density), its own component so
+/// that a level change re-resolves nothing: only the operating figures follow.
+#[derive(Component, Clone, Copy, Debug, Default, PartialEq)]
+pub struct OperatingSpec(pub Option<OperatingDesign>);
 
 /// Position of an entity in its list in the design file (vessels in the plant;
 /// parts, nozzles and notes in their vessel), for stable, deterministic order.

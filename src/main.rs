@@ -13,11 +13,13 @@ use std::time::Instant;
 
 use clap::{Parser, Subcommand};
 use vesselcad::design::{DesignError, load};
-use vesselcad::export::write_glb_to;
+use vesselcad::export::stream_glb_to;
 use vesselcad::mesh::TessellationOptions;
-use vesselcad::model::{Model, ModelError};
+use vesselcad::model::ModelError;
 use vesselcad::report::report;
 use vesselcad::server::cli::{ServeArgs, serve_command};
+
+mod cli;
 
 #[derive(Parser)]
 #[command(
@@ -64,7 +66,20 @@ enum Command {
         /// Print JSON instead of text.
         #[arg(long)]
         json: bool,
+        /// Also build the model and report its counts and measured memory per
+        /// vessel.
+        #[arg(long)]
+        memory: bool,
+        /// Chordal tolerance of the meshes for `--memory`, mm.
+        #[arg(long, default_value_t = 1.0, allow_negative_numbers = true)]
+        tolerance: f64,
     },
+    /// Plant tools: `plant generate --vessels N --seed S -o plant.json`.
+    Plant(cli::plant::PlantArgs),
+    /// Simulate ticks of random edits and level changes on a plant.
+    Simulate(cli::simulate::SimulateArgs),
+    /// Measure the plant-scale figures on this machine, beside their targets.
+    Bench(cli::bench::BenchArgs),
 }
 
 /// Prints a design error and returns the exit code for it.
@@ -92,7 +107,15 @@ fn main() -> ExitCode {
             }
             Err(e) => fail(&e),
         },
-        Command::Info { design, json } => {
+        Command::Plant(args) => cli::plant::run(args),
+        Command::Simulate(args) => cli::simulate::run(args),
+        Command::Bench(args) => cli::bench::run(args),
+        Command::Info {
+            design,
+            json,
+            memory,
+            tolerance,
+        } => {
             let d = match load(&design) {
                 Ok(d) => d,
                 Err(e) => return fail(&e),
@@ -136,7 +159,11 @@ fn main() -> ExitCode {
                         "  surface area:     {:.3} m² (outside of heads and courses)",
                         v.surface_area
                     );
+                    cli::build::print_operating(v);
                 }
+            }
+            if memory {
+                return cli::build::print_memory(&d, &design, tolerance);
             }
             ExitCode::SUCCESS
         }
@@ -151,7 +178,7 @@ fn main() -> ExitCode {
                 Ok(d) => d,
                 Err(e) => return fail(&e),
             };
-            let model = match Model::from_design(
+            let model = match cli::build::build_with_progress(
                 &d,
                 TessellationOptions::chord(tolerance).with_max_stretch(max_stretch),
             ) {
@@ -178,11 +205,13 @@ fn main() -> ExitCode {
                 .flat_map(|n| &n.patches)
                 .map(|p| p.mesh.triangle_count())
                 .sum();
-            if let Err(e) = write_glb_to(&scene, &output) {
-                eprintln!("error: {e}");
-                return ExitCode::from(2);
-            }
-            let bytes = std::fs::metadata(&output).map(|m| m.len()).unwrap_or(0);
+            let bytes = match stream_glb_to(&scene, &output) {
+                Ok(bytes) => bytes,
+                Err(e) => {
+                    eprintln!("error: {e}");
+                    return ExitCode::from(2);
+                }
+            };
             println!(
                 "{}: {} vessel(s), {} triangles at {} mm, {} bytes, {:.0} ms",
                 output.display(),

@@ -6,6 +6,7 @@ use serde::Serialize;
 
 use crate::constraints::{PartGeometry, ResolvedVessel};
 use crate::design::{Design, DesignError, resolve};
+use crate::operating::state_of_design;
 use crate::parts::{PartError, enclosed_volume, surface_area};
 
 /// One part in a report.
@@ -40,6 +41,29 @@ pub struct VesselReport {
     pub volume: f64,
     /// Outside surface area of the heads and courses, m².
     pub surface_area: f64,
+    /// Operating figures (see [`crate::operating`]); `None` with the reason in
+    /// `operating_problem` when they cannot be computed.
+    pub operating: Option<OperatingReport>,
+    /// Why there are no operating figures.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub operating_problem: Option<String>,
+}
+
+/// The operating figures of a vessel in a report.
+#[derive(Clone, Debug, Serialize, PartialEq)]
+pub struct OperatingReport {
+    /// Inside volume, m³.
+    pub interior_volume: f64,
+    /// Liquid level above the lowest inside point, mm.
+    pub liquid_level: f64,
+    /// Liquid volume, m³.
+    pub liquid_volume: f64,
+    /// Metal of courses, reducers and heads, kg.
+    pub metal_mass: f64,
+    /// Metal + liquid, kg.
+    pub operating_mass: f64,
+    /// Centre of gravity, plant frame, mm.
+    pub centre_of_gravity: [f64; 3],
 }
 
 /// Volume (mm³) and area (mm²) of the pressure envelope of a resolved vessel.
@@ -84,6 +108,20 @@ pub fn report(design: &Design) -> Result<Vec<VesselReport>, DesignError> {
                 rule: e.to_string(),
             }])
         })?;
+        let (operating, operating_problem) = match state_of_design(d, v) {
+            Ok(s) => (
+                Some(OperatingReport {
+                    interior_volume: s.interior_volume,
+                    liquid_level: s.liquid_level,
+                    liquid_volume: s.liquid_volume,
+                    metal_mass: s.metal_mass,
+                    operating_mass: s.operating_mass,
+                    centre_of_gravity: s.centre_of_gravity.to_array(),
+                }),
+                None,
+            ),
+            Err(e) => (None, Some(e.to_string())),
+        };
         out.push(VesselReport {
             tag: v.tag.clone(),
             kind: format!("{:?}", v.kind).to_lowercase(),
@@ -102,6 +140,8 @@ pub fn report(design: &Design) -> Result<Vec<VesselReport>, DesignError> {
             outside_diameter: v.max_diameter,
             volume: volume * 1e-9,
             surface_area: area * 1e-6,
+            operating,
+            operating_problem,
         });
     }
     Ok(out)

@@ -24,6 +24,9 @@ pub struct WorkCounters {
     pub triangles_meshed: u64,
     /// Entity views (one part or nozzle in one view) rebuilt by the Project stage.
     pub views_rebuilt: u64,
+    /// Vessels whose operating figures (liquid, weight, centre of gravity) were
+    /// recomputed.
+    pub operating_updated: u64,
     /// Patches or openings that failed to mesh or cut (details in `ModelErrors`).
     pub failures: u64,
 }

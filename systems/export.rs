@@ -4,14 +4,15 @@
 
 use std::collections::BTreeSet;
 
+use bevy_ecs::entity::Entity;
 use bevy_ecs::hierarchy::ChildOf;
 use bevy_ecs::query::{Changed, Or};
 use bevy_ecs::resource::Resource;
 use bevy_ecs::system::{Query, ResMut};
 
-use crate::components::{
-    NozzleSpec, PadOf, PartFrame, PartSpec, PatchMesh, PatchOf, VesselFrame, VesselSpec,
-};
+use super::DirtyPatches;
+
+use crate::components::{NozzleSpec, PadOf, PartFrame, PartSpec, PatchOf, VesselFrame, VesselSpec};
 
 /// Stable ids changed and removed since the log was last drained.
 #[derive(Resource, Default, Debug, Clone, PartialEq, Eq)]
@@ -31,11 +32,11 @@ type MovedFilter = Or<(Changed<PartFrame>, Changed<crate::components::Shape>)>;
 pub fn collect_changes(
     vessels: Query<&VesselSpec, Changed<VesselFrame>>,
     moved: Query<Owner, MovedFilter>,
-    meshed: Query<&PatchOf, Changed<PatchMesh>>,
-    pads: Query<&PadOf, Changed<PatchMesh>>,
+    patches: Query<(Option<&PatchOf>, Option<&PadOf>)>,
     owners: Query<Owner>,
     tags: Query<&VesselSpec>,
     mut log: ResMut<ChangeLog>,
+    mut dirty: ResMut<DirtyPatches>,
 ) {
     for v in &vessels {
         log.changed.insert(v.tag.clone());
@@ -53,7 +54,13 @@ pub fn collect_changes(
             log.changed.insert(id);
         }
     }
-    let owner_ids = meshed.iter().map(|p| p.0).chain(pads.iter().map(|p| p.0));
+    let owner_ids: Vec<Entity> = dirty
+        .meshes
+        .iter()
+        .filter_map(|&e| patches.get(e).ok())
+        .filter_map(|(patch, pad)| patch.map(|p| p.0).or(pad.map(|p| p.0)))
+        .collect();
+    dirty.clear();
     for owner in owner_ids {
         if let Ok((c, p, n)) = owners.get(owner)
             && let Some(id) = id_of(c, p, n)

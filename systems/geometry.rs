@@ -13,6 +13,7 @@ use bevy_ecs::query::{Changed, QueryState};
 use bevy_ecs::world::World;
 use rayon::prelude::*;
 
+use super::DirtyPatches;
 use super::{ModelErrors, WorkCounters};
 use crate::components::{PatchOf, PatchSurface, Patches, Shape};
 use crate::parts::{PartError, Patch};
@@ -70,11 +71,15 @@ pub fn rebuild_dirty_patches(
                     {
                         current.0 = Arc::new(patch);
                         rebuilt += 1;
+                        world.resource_mut::<DirtyPatches>().surfaces.push(pe);
                     }
                 }
                 None => {
-                    world.spawn((PatchOf(entity), PatchSurface(Arc::new(patch))));
+                    let pe = world
+                        .spawn((PatchOf(entity), PatchSurface(Arc::new(patch))))
+                        .id();
                     rebuilt += 1;
+                    world.resource_mut::<DirtyPatches>().surfaces.push(pe);
                 }
             }
         }

@@ -8,9 +8,11 @@
 
 mod constrain;
 mod counters;
+mod dirty;
 mod export;
 mod geometry;
 mod openings;
+mod operating;
 mod project;
 mod regions;
 mod tessellate;
@@ -18,9 +20,11 @@ mod validate;
 
 pub use constrain::apply_resolutions;
 pub use counters::WorkCounters;
+pub use dirty::DirtyPatches;
 pub use export::{ChangeLog, collect_changes};
 pub use geometry::rebuild_dirty_patches;
 pub use openings::{OpeningHosts, cut_openings};
+pub use operating::update_operating_states;
 pub use project::{entity_input, project_dirty_views};
 pub use regions::lay_out_regions;
 pub use tessellate::{Tessellation, remesh_dirty_patches};
@@ -60,7 +64,9 @@ pub fn build_schedule() -> Schedule {
             .chain(),
     );
     schedule.add_systems((
-        resolve_dirty_vessels.in_set(Stage::Validate),
+        (resolve_dirty_vessels, update_operating_states)
+            .chain()
+            .in_set(Stage::Validate),
         apply_resolutions.in_set(Stage::Constrain),
         (rebuild_dirty_patches, cut_openings)
             .chain()

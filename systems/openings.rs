@@ -16,6 +16,7 @@ use bevy_ecs::world::World;
 use glam::DAffine3;
 use rayon::prelude::*;
 
+use super::DirtyPatches;
 use super::{ModelErrors, Tessellation, WorkCounters};
 use crate::components::{
     MountedOn, Mounts, NozzleSpec, Opening, PadOf, PadPatch, PartFrame, PartSpec, PatchSurface,
@@ -98,10 +99,12 @@ fn set_pad(world: &mut World, nozzle: Entity, pad: Option<Patch>) {
                 && *s.0 != p
             {
                 s.0 = Arc::new(p);
+                world.resource_mut::<DirtyPatches>().surfaces.push(e);
             }
         }
         (None, Some(p)) => {
-            world.spawn((PadOf(nozzle), PatchSurface(Arc::new(p))));
+            let e = world.spawn((PadOf(nozzle), PatchSurface(Arc::new(p)))).id();
+            world.resource_mut::<DirtyPatches>().surfaces.push(e);
         }
         (Some(e), None) => {
             world.despawn(e);

@@ -12,6 +12,7 @@ use bevy_ecs::query::{Changed, QueryState, With};
 use bevy_ecs::world::World;
 use rayon::prelude::*;
 
+use super::DirtyPatches;
 use super::{ModelErrors, OpeningHosts, Tessellation, WorkCounters};
 use crate::components::{Mounts, Opening, PadOf, PadPatch, PatchOf, PatchRegion, PatchSurface};
 use crate::design::RuleViolation;
@@ -88,7 +89,6 @@ fn trims(world: &World, patch: Entity) -> Option<Trim> {
 /// Lays out the region of every patch that needs it.
 pub fn lay_out_regions(
     world: &mut World,
-    surfaces: &mut QueryState<Entity, Changed<PatchSurface>>,
     openings: &mut QueryState<(Entity, &Opening), Changed<Opening>>,
     all: &mut QueryState<Entity, With<PatchSurface>>,
 ) {
@@ -96,7 +96,12 @@ pub fn lay_out_regions(
     let mut dirty: BTreeSet<Entity> = if world.is_resource_changed::<Tessellation>() {
         all.iter(world).collect()
     } else {
-        surfaces.iter(world).collect()
+        world
+            .resource::<DirtyPatches>()
+            .surfaces
+            .iter()
+            .copied()
+            .collect()
     };
     let changed: Vec<(Entity, Vec<Entity>, Entity)> = openings
         .iter(world)
@@ -115,14 +120,16 @@ pub fn lay_out_regions(
             dirty.extend(previous);
         }
     }
-    // Openings that disappeared (nozzle removed, or its opening failed).
-    hosts.retain(|&nozzle, host| {
-        let alive = world.get::<Opening>(nozzle).is_some();
-        if !alive {
-            dirty.extend(host.iter().copied());
+    // Openings that disappeared (nozzle removed, or its opening failed): the
+    // world's removal messages since the model's last update, not a scan of all.
+    let removed: Vec<Entity> = world.removed::<Opening>().collect();
+    for nozzle in removed {
+        if world.get::<Opening>(nozzle).is_none()
+            && let Some(host) = hosts.remove(&nozzle)
+        {
+            dirty.extend(host);
         }
-        alive
-    });
+    }
     world.resource_mut::<OpeningHosts>().0 = hosts;
     let jobs: Vec<Job> = dirty
         .into_iter()
@@ -181,6 +188,9 @@ pub fn lay_out_regions(
                         true
                     }
                 };
+                if changed {
+                    world.resource_mut::<DirtyPatches>().regions.push(patch);
+                }
                 laid += u64::from(changed);
             }
             Err(e) => {

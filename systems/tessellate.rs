@@ -5,11 +5,12 @@
 use std::sync::Arc;
 
 use bevy_ecs::entity::Entity;
-use bevy_ecs::query::{Changed, Or, QueryState};
+use bevy_ecs::query::QueryState;
 use bevy_ecs::resource::Resource;
 use bevy_ecs::world::World;
 use rayon::prelude::*;
 
+use super::DirtyPatches;
 use super::{ModelErrors, WorkCounters};
 use crate::components::{PatchMesh, PatchRegion, PatchSurface};
 use crate::design::RuleViolation;
@@ -21,13 +22,9 @@ use crate::parts::Patch;
 #[derive(Resource, Clone, Copy, Debug, PartialEq)]
 pub struct Tessellation(pub TessellationOptions);
 
-/// A patch whose surface or region changed.
-pub type DirtyPatch = Or<(Changed<PatchSurface>, Changed<PatchRegion>)>;
-
 /// Meshes every patch whose surface or region changed.
 pub fn remesh_dirty_patches(
     world: &mut World,
-    dirty: &mut QueryState<(Entity, &PatchSurface, &PatchRegion), DirtyPatch>,
     all: &mut QueryState<(Entity, &PatchSurface, &PatchRegion)>,
 ) {
     let options = world.resource::<Tessellation>().0;
@@ -37,9 +34,22 @@ pub fn remesh_dirty_patches(
                 .map(|(e, s, r)| (e, s.0.clone(), r.0.clone()))
                 .collect()
         } else {
+            // Surface or region written in this run (see `DirtyPatches`).
+            let lists = world.resource::<DirtyPatches>();
+            let mut dirty: Vec<Entity> = lists
+                .surfaces
+                .iter()
+                .chain(&lists.regions)
+                .copied()
+                .collect();
+            dirty.sort_unstable();
+            dirty.dedup();
             dirty
-                .iter(world)
-                .map(|(e, s, r)| (e, s.0.clone(), r.0.clone()))
+                .into_iter()
+                .filter_map(|e| {
+                    let (s, r) = all.get(world, e).ok().map(|(_, s, r)| (s, r))?;
+                    Some((e, s.0.clone(), r.0.clone()))
+                })
                 .collect()
         };
     if work.is_empty() {
@@ -47,7 +57,16 @@ pub fn remesh_dirty_patches(
     }
     let meshes: Vec<_> = work
         .par_iter()
-        .map(|(e, p, r)| (*e, mesh_patch_region(p, r, &options)))
+        .map(|(e, p, r)| {
+            // Kept for the model's lifetime: drop the growth slack of the vectors.
+            let result = mesh_patch_region(p, r, &options).map(|(mut mesh, stats)| {
+                mesh.positions.shrink_to_fit();
+                mesh.normals.shrink_to_fit();
+                mesh.indices.shrink_to_fit();
+                (mesh, stats)
+            });
+            (*e, result)
+        })
         .collect();
     let mut triangles = 0u64;
     let mut failures = 0u64;
@@ -56,6 +75,7 @@ pub fn remesh_dirty_patches(
             Ok((mesh, _stats)) => {
                 triangles += mesh.triangle_count() as u64;
                 world.entity_mut(e).insert(PatchMesh(Arc::new(mesh)));
+                world.resource_mut::<DirtyPatches>().meshes.push(e);
             }
             Err(err) => {
                 failures += 1;

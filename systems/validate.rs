@@ -53,6 +53,7 @@ pub(crate) fn read_vessel(
         parts: p.into_iter().map(|(s, _)| s.0.clone()).collect(),
         nozzles: n.into_iter().map(|(s, _)| s.0.clone()).collect(),
         notes: t.into_iter().map(|(s, _)| s.0.clone()).collect(),
+        operating: None,
     }
 }
 

@@ -24,6 +24,7 @@ mod frames;
 mod geometry;
 mod notes;
 mod nozzles;
+mod operating;
 mod stack;
 mod supports;
 
@@ -233,6 +234,7 @@ pub fn resolve_vessel(
         &mut report,
     );
     conditions::check(vessel, &parts, &mut report);
+    operating::check(vessel, frame, &parts, &mut report);
     let nozzles = nozzles::place(vessel, &parts, &stack.courses, &mut report);
     let notes = notes::place(vessel, &parts, &nozzles, &mut report);
     if !report.violations.is_empty() {

@@ -66,7 +66,26 @@ pub struct VesselDesign {
     /// Notes attached to the vessel or to one of its parts or nozzles.
     #[serde(default)]
     pub notes: Vec<NoteDesign>,
+    /// Operating state: liquid level and density. Absent: empty.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub operating: Option<OperatingDesign>,
 }
+
+/// A vessel's operating state: how full it is and of what.
+#[derive(Clone, Copy, Debug, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct OperatingDesign {
+    /// Height of the liquid surface above the lowest point of the vessel's interior,
+    /// mm (0 = empty; at most the interior's height). The boot of a horizontal drum
+    /// is not counted in the interior.
+    pub liquid_level: f64,
+    /// Liquid density, kg/m³; default [`WATER_DENSITY`].
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub liquid_density: Option<f64>,
+}
+
+/// Density of water, the default liquid, kg/m³.
+pub const WATER_DENSITY: f64 = 1000.0;
 
 /// What kind of vessel this is; decides the local frame's orientation in the plant.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Hash, Serialize, Deserialize)]
@@ -110,6 +129,11 @@ pub struct DesignConditions {
     /// Material specification, e.g. `"SA-516-70"`.
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub material: Option<String>,
+    /// Density of the vessel's metal, kg/m³. Default: from the material
+    /// specification (stainless grades 8000, otherwise carbon steel 7850); see
+    /// `operating::metal_density`.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub metal_density: Option<f64>,
 }
 
 /// Title-block data of a vessel's drawing sheet; every field optional.

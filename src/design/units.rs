@@ -25,6 +25,9 @@ pub fn to_millimetres(design: &mut Design) {
     for vessel in &mut design.vessels {
         vessel.placement.position.iter_mut().for_each(scale);
         scale_opt(&mut vessel.design.corrosion_allowance);
+        if let Some(op) = &mut vessel.operating {
+            scale(&mut op.liquid_level);
+        }
         for part in &mut vessel.parts {
             match part {
                 PartDesign::Shell(p) => {

@@ -11,8 +11,8 @@ use glam::{DAffine3, DVec3};
 
 use super::DrawingError;
 use crate::components::{
-    DesignOrder, EntityViews, NoteAnchor, NoteSpec, NozzleSpec, PartFrame, PartSpan, PartSpec,
-    Shape, VesselFrame, VesselSpec, VesselSummary, VesselViews,
+    DesignOrder, EntityViews, NoteAnchor, NoteSpec, NozzleSpec, OperatingSpec, PartFrame, PartSpan,
+    PartSpec, Shape, VesselFrame, VesselSpec, VesselSummary, VesselViews,
 };
 use crate::constraints::PartGeometry;
 use crate::design::{NozzleDesign, PartDesign, VesselDesign, VesselKind};
@@ -189,6 +189,7 @@ pub fn vessel_data(model: &Model, tag: &str) -> Result<VesselData, DrawingError>
         placement: spec.placement,
         design: spec.design.clone(),
         drawing: spec.drawing.clone(),
+        operating: world.get::<OperatingSpec>(vessel).and_then(|o| o.0),
         parts: part_entities
             .iter()
             .filter_map(|&e| Some(world.get::<PartSpec>(e)?.0.clone()))

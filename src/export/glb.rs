@@ -15,17 +15,17 @@ use super::gltf_document::document;
 use super::scene::Scene;
 
 /// `glTF`, the GLB magic.
-const MAGIC: u32 = 0x4654_6C67;
+pub(super) const MAGIC: u32 = 0x4654_6C67;
 /// The container version.
-const VERSION: u32 = 2;
+pub(super) const VERSION: u32 = 2;
 /// Chunk type of the JSON chunk, `JSON`.
-const CHUNK_JSON: u32 = 0x4E4F_534A;
+pub(super) const CHUNK_JSON: u32 = 0x4E4F_534A;
 /// Chunk type of the binary chunk, `BIN\0`.
-const CHUNK_BIN: u32 = 0x004E_4942;
+pub(super) const CHUNK_BIN: u32 = 0x004E_4942;
 /// Bytes of the file header.
-const HEADER_LEN: usize = 12;
+pub(super) const HEADER_LEN: usize = 12;
 /// Bytes of a chunk header.
-const CHUNK_HEADER_LEN: usize = 8;
+pub(super) const CHUNK_HEADER_LEN: usize = 8;
 
 /// The scene as GLB bytes: Y-up, metres, one buffer, deterministic.
 ///
@@ -85,14 +85,14 @@ pub fn write_glb_to(scene: &Scene, path: &Path) -> Result<(), ExportError> {
 
 /// `path` with `.tmp` appended to its file name, in the same directory (so the
 /// rename stays on one file system).
-fn temporary_path(path: &Path) -> PathBuf {
+pub(super) fn temporary_path(path: &Path) -> PathBuf {
     let mut name = path.file_name().unwrap_or_default().to_os_string();
     name.push(".tmp");
     path.with_file_name(name)
 }
 
 /// `len` rounded up to a multiple of 4.
-fn padded(len: usize) -> usize {
+pub(super) fn padded(len: usize) -> usize {
     len.div_ceil(4) * 4
 }
 

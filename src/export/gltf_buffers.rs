@@ -45,6 +45,22 @@ pub(super) struct MeshBuffers {
     positions: Vec<u8>,
     normals: Vec<u8>,
     indices: Vec<u8>,
+    /// Bytes of each view so far (kept whether or not the bytes are).
+    lengths: [usize; 3],
+    /// Lay out only: count the bytes without keeping them, for the streaming
+    /// writer ([`super::glb_stream`]), which writes them straight from the meshes.
+    layout_only: bool,
+}
+
+impl MeshBuffers {
+    /// Buffers that only lay the views out: [`finish`](Self::finish) returns no
+    /// bytes, but the document is the same.
+    pub fn layout_only() -> Self {
+        Self {
+            layout_only: true,
+            ..Self::default()
+        }
+    }
 }
 
 impl MeshBuffers {
@@ -70,9 +86,11 @@ impl MeshBuffers {
             vertex,
         };
         let count = mesh.positions.len();
-        let position_offset = self.positions.len();
-        let normal_offset = self.normals.len();
-        let index_offset = self.indices.len();
+        let [position_offset, normal_offset, index_offset] = self.lengths;
+        self.lengths[0] += 12 * count;
+        self.lengths[1] += 12 * count;
+        self.lengths[2] += 4 * mesh.indices.len();
+        let keep = !self.layout_only;
         let mut lo = Vec3::splat(f32::INFINITY);
         let mut hi = Vec3::splat(f32::NEG_INFINITY);
         for (vertex, (&p, &n)) in mesh.positions.iter().zip(&mesh.normals).enumerate() {
@@ -83,11 +101,15 @@ impl MeshBuffers {
             }
             lo = lo.min(p);
             hi = hi.max(p);
-            extend_vec3(&mut self.positions, p);
-            extend_vec3(&mut self.normals, n);
+            if keep {
+                extend_vec3(&mut self.positions, p);
+                extend_vec3(&mut self.normals, n);
+            }
         }
-        for &i in &mesh.indices {
-            self.indices.extend_from_slice(&i.to_le_bytes());
+        if keep {
+            for &i in &mesh.indices {
+                self.indices.extend_from_slice(&i.to_le_bytes());
+            }
         }
         let positions = root.push(json::Accessor {
             min: Some(vec3_value(lo)),
@@ -129,7 +151,7 @@ impl MeshBuffers {
     ///
     /// [`ExportError::TooLarge`] when the buffer passes the GLB's 4 GiB limit.
     pub fn finish(self, root: &mut json::Root) -> Result<Vec<u8>, ExportError> {
-        let total = self.positions.len() + self.normals.len() + self.indices.len();
+        let total: usize = self.lengths.iter().sum();
         if total == 0 {
             return Ok(Vec::new());
         }
@@ -145,23 +167,25 @@ impl MeshBuffers {
             extensions: None,
             extras: None,
         });
-        let mut bin = Vec::with_capacity(total);
+        let mut bin = Vec::with_capacity(if self.layout_only { 0 } else { total });
         let views = [
             (self.positions, Some(Stride(12)), Target::ArrayBuffer),
             (self.normals, Some(Stride(12)), Target::ArrayBuffer),
             (self.indices, None, Target::ElementArrayBuffer),
         ];
-        for (bytes, stride, target) in views {
+        let mut offset = 0;
+        for ((bytes, stride, target), length) in views.into_iter().zip(self.lengths) {
             root.push(json::buffer::View {
                 buffer,
-                byte_length: USize64::from(bytes.len()),
-                byte_offset: Some(USize64::from(bin.len())),
+                byte_length: USize64::from(length),
+                byte_offset: Some(USize64::from(offset)),
                 byte_stride: stride,
                 name: None,
                 target: Some(Checked::Valid(target)),
                 extensions: None,
                 extras: None,
             });
+            offset += length;
             bin.extend_from_slice(&bytes);
         }
         Ok(bin)
@@ -195,13 +219,13 @@ fn check_topology(mesh: &Mesh, entity: &str, patch: &str) -> Result<(), ExportEr
 }
 
 /// A position in mm as `f32` metres.
-fn metres(p: DVec3) -> Vec3 {
+pub(super) fn metres(p: DVec3) -> Vec3 {
     (p * MM_TO_M).as_vec3()
 }
 
 /// A normal as a unit `f32` vector, renormalized after the conversion; `None` when
 /// it is not finite or (nearly) zero.
-fn unit_normal(n: DVec3) -> Option<Vec3> {
+pub(super) fn unit_normal(n: DVec3) -> Option<Vec3> {
     n.as_vec3().try_normalize()
 }
 

@@ -50,6 +50,15 @@ const UNIT_SCALE_EPSILON: f64 = 1e-9;
 /// that cannot be written, [`ExportError::TooLarge`] past 4 GiB of buffer,
 /// [`ExportError::Json`] if an `extras` value cannot be serialized.
 pub(super) fn document(scene: &Scene) -> Result<(json::Root, Vec<u8>), ExportError> {
+    document_with(scene, MeshBuffers::default())
+}
+
+/// The document of `scene` with its mesh data laid out through `buffers` (which
+/// may keep the bytes or only count them).
+pub(super) fn document_with(
+    scene: &Scene,
+    mut buffers: MeshBuffers,
+) -> Result<(json::Root, Vec<u8>), ExportError> {
     let mut root = json::Root {
         asset: json::Asset {
             generator: Some(format!("vesselcad {}", env!("CARGO_PKG_VERSION"))),
@@ -58,7 +67,6 @@ pub(super) fn document(scene: &Scene) -> Result<(json::Root, Vec<u8>), ExportErr
         ..Default::default()
     };
     let materials = push_materials(&mut root, scene);
-    let mut buffers = MeshBuffers::default();
     let plant = root.push(json::Node {
         name: Some(PLANT_NODE.to_string()),
         rotation: Some(UnitQuaternion(PLANT_ROTATION)),
@@ -166,7 +174,7 @@ fn push_node(
 }
 
 /// True for a mesh with no triangle (nothing to draw).
-fn is_empty(mesh: &crate::mesh::Mesh) -> bool {
+pub(super) fn is_empty(mesh: &crate::mesh::Mesh) -> bool {
     mesh.positions.is_empty() || mesh.indices.is_empty()
 }
 

@@ -8,7 +8,8 @@
 //!   in parallel): the non-incremental reference and benchmark baseline. Node
 //!   metadata comes from [`vessel_extras`], [`part_extras`] and [`nozzle_extras`].
 //! - [`write_glb`] / [`write_glb_to`] write a scene as binary glTF 2.0 (Y-up,
-//!   metres, deterministic bytes).
+//!   metres, deterministic bytes); [`stream_glb`] / [`stream_glb_to`] write the
+//!   same bytes straight from the meshes, without a second copy of them.
 //! - [`write_delta_glb`] writes only the changed parts of a scene, keyed by their
 //!   stable ids, for live viewers.
 
@@ -17,6 +18,7 @@ mod direct;
 mod error;
 mod extras;
 mod glb;
+mod glb_stream;
 mod gltf_buffers;
 mod gltf_document;
 mod gltf_materials;
@@ -27,5 +29,6 @@ pub use direct::{build_scene, patch_name};
 pub use error::ExportError;
 pub use extras::{nozzle_extras, part_extras, vessel_extras};
 pub use glb::{write_glb, write_glb_to};
+pub use glb_stream::{stream_glb, stream_glb_to};
 pub use gltf_document::{PLANT_NODE, PLANT_ROTATION};
 pub use scene::{Scene, SceneNode, SceneNodeKind, ScenePatch, SceneVessel};

@@ -1,7 +1,9 @@
 //! Edits: the changes a user (file, API call, live session) can make to a model.
 //! Each is checked as one transaction; a [`Edit::Batch`] is all or nothing.
 
-use crate::design::{Design, NoteDesign, NozzleDesign, PartDesign, Placement, VesselDesign};
+use crate::design::{
+    Design, NoteDesign, NozzleDesign, OperatingDesign, PartDesign, Placement, VesselDesign,
+};
 
 /// One change to the model.
 #[derive(Clone, Debug, PartialEq)]
@@ -73,6 +75,14 @@ pub enum Edit {
         vessel: String,
         /// Its id.
         id: String,
+    },
+    /// Set a vessel's operating state (liquid level and density; `None`: empty).
+    /// Only its operating figures are recomputed.
+    SetOperating {
+        /// Vessel tag.
+        vessel: String,
+        /// The new operating state.
+        operating: Option<OperatingDesign>,
     },
     /// Several edits applied together: all or none.
     Batch(Vec<Edit>),

@@ -26,8 +26,8 @@ use crate::design::{Design, DesignError};
 use crate::export::Scene;
 use crate::mesh::{OptionsError, TessellationOptions};
 use crate::systems::{
-    ChangeLog, ModelErrors, OpeningHosts, PendingResolutions, Tessellation, WorkCounters,
-    build_schedule,
+    ChangeLog, DirtyPatches, ModelErrors, OpeningHosts, PendingResolutions, Tessellation,
+    WorkCounters, build_schedule,
 };
 
 /// Why an edit or model construction was refused. The model is unchanged.
@@ -79,6 +79,7 @@ impl Model {
         world.init_resource::<ChangeLog>();
         world.init_resource::<VesselIndex>();
         world.init_resource::<OpeningHosts>();
+        world.init_resource::<DirtyPatches>();
         Ok(Self {
             world,
             schedule: build_schedule(),
@@ -105,6 +106,9 @@ impl Model {
     pub fn update(&mut self) -> WorkCounters {
         *self.world.resource_mut::<WorkCounters>() = WorkCounters::default();
         self.schedule.run(&mut self.world);
+        // Start the next run's removal messages afresh (the Tessellate stage reads
+        // them to find openings that disappeared).
+        self.world.clear_trackers();
         *self.world.resource::<WorkCounters>()
     }
 
@@ -142,6 +146,24 @@ impl Model {
     /// Violations found in the world by the last updates (normally none).
     pub fn errors(&self) -> &ModelErrors {
         self.world.resource::<ModelErrors>()
+    }
+
+    /// Bytes held by the patch meshes (positions, normals and indices, by
+    /// capacity): the bulk of a built model's memory.
+    pub fn mesh_bytes(&self) -> usize {
+        let Some(mut meshes) = self.world.try_query::<&crate::components::PatchMesh>() else {
+            return 0;
+        };
+        meshes
+            .iter(&self.world)
+            .map(|m| {
+                let m = &m.0;
+                std::mem::size_of::<crate::mesh::Mesh>()
+                    + (m.positions.capacity() + m.normals.capacity())
+                        * std::mem::size_of::<glam::DVec3>()
+                    + m.indices.capacity() * std::mem::size_of::<u32>()
+            })
+            .sum()
     }
 
     /// The ECS world, for queries.

@@ -7,8 +7,8 @@ use bevy_ecs::world::World;
 
 use super::VesselIndex;
 use crate::components::{
-    DesignOrder, MountedOn, NoteSpec, NozzleSpec, PadPatch, PartFrame, PartSpan, PartSpec,
-    PatchMesh, PatchSurface, Patches, Shape, VesselFrame, VesselSpec, VesselSummary,
+    DesignOrder, MountedOn, NoteSpec, NozzleSpec, OperatingSpec, PadPatch, PartFrame, PartSpan,
+    PartSpec, PatchMesh, PatchSurface, Patches, Shape, VesselFrame, VesselSpec, VesselSummary,
 };
 use crate::constraints::{ResolvedNozzle, ResolvedPart, ResolvedVessel};
 use crate::design::{Design, FORMAT, Units, VesselDesign};
@@ -66,6 +66,7 @@ pub(crate) fn vessel(world: &World, entity: Entity) -> Option<VesselDesign> {
             .map(|(_, n)| n.0)
             .collect(),
         notes: notes(world, entity).into_iter().map(|(_, n)| n.0).collect(),
+        operating: world.get::<OperatingSpec>(entity).and_then(|o| o.0),
     })
 }
 

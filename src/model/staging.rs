@@ -13,6 +13,10 @@ use crate::design::{DesignError, FORMAT, RuleViolation, VesselDesign, units};
 
 /// One vessel to write or remove.
 #[derive(Debug)]
+#[expect(
+    clippy::large_enum_variant,
+    reason = "a handful per edit, moved once; boxing would only add an allocation"
+)]
 pub(crate) enum StagedVessel {
     /// Create or update the vessel to this design at this order.
     Put {
@@ -199,6 +203,11 @@ impl Work<'_> {
                         id,
                     });
                 }
+                self.put(v, o);
+            }
+            Edit::SetOperating { vessel, operating } => {
+                let (mut v, o) = self.vessel(&vessel)?;
+                v.operating = operating;
                 self.put(v, o);
             }
             Edit::Batch(edits) => {

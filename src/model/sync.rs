@@ -9,7 +9,7 @@ use bevy_ecs::world::World;
 
 use super::staging::{Staged, StagedVessel};
 use super::{VesselIndex, read};
-use crate::components::{DesignOrder, NoteSpec, NozzleSpec, PartSpec, VesselSpec};
+use crate::components::{DesignOrder, NoteSpec, NozzleSpec, OperatingSpec, PartSpec, VesselSpec};
 use crate::design::VesselDesign;
 use crate::systems::ChangeLog;
 
@@ -71,14 +71,16 @@ fn put_vessel(world: &mut World, design: VesselDesign, order: u32) {
         design: design.design,
         drawing: design.drawing,
     };
+    let operating = OperatingSpec(design.operating);
     let entity = match existing {
         Some(e) => {
             put(world, e, spec);
             put(world, e, DesignOrder(order));
+            put(world, e, operating);
             e
         }
         None => {
-            let e = world.spawn((spec, DesignOrder(order))).id();
+            let e = world.spawn((spec, DesignOrder(order), operating)).id();
             world
                 .resource_mut::<VesselIndex>()
                 .0

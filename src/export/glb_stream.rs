@@ -1,0 +1,141 @@
+//! The streaming GLB writer: the same bytes as [`super::write_glb`], written
+//! straight from the scene's meshes to the output without assembling the binary
+//! buffer in memory — a plant's meshes are never held twice.
+//!
+//! Last stage of the data flow for large plants. Two passes over the scene: the
+//! first lays the document out ([`super::gltf_document`] with buffers that only
+//! count bytes, checking every mesh on the way); the second writes the header,
+//! the JSON chunk and the `BIN` chunk's three views — all positions, all normals,
+//! all indices, in scene order — converting each mesh's `f64` mm to `f32` m as it
+//! goes through a buffered writer.
+
+use std::io::{BufWriter, Write};
+use std::path::Path;
+
+use super::error::ExportError;
+use super::glb::{
+    CHUNK_BIN, CHUNK_HEADER_LEN, CHUNK_JSON, HEADER_LEN, MAGIC, VERSION, padded, temporary_path,
+};
+use super::gltf_buffers::{MeshBuffers, metres, unit_normal};
+use super::gltf_document::{document_with, is_empty};
+use super::scene::Scene;
+use crate::mesh::Mesh;
+
+/// Appends one view's bytes of one mesh.
+type ViewWriter = dyn Fn(&Mesh, &mut Vec<u8>);
+
+/// Writes the scene as GLB to `out`, streaming the mesh data; returns the bytes
+/// written. The bytes equal [`super::write_glb`]'s.
+///
+/// # Errors
+///
+/// As [`super::write_glb`], and [`ExportError::Io`] (naming `name`) when `out`
+/// fails.
+pub fn stream_glb(scene: &Scene, out: impl Write, name: &Path) -> Result<u64, ExportError> {
+    let (root, _) = document_with(scene, MeshBuffers::layout_only())?;
+    let bin_len: usize = root.buffers.first().map_or(0, |b| b.byte_length.0 as usize);
+    let json = serde_json::to_vec(&root)?;
+    let json_padded = padded(json.len());
+    let bin_padded = padded(bin_len);
+    let mut total = HEADER_LEN + CHUNK_HEADER_LEN + json_padded;
+    if bin_len > 0 {
+        total += CHUNK_HEADER_LEN + bin_padded;
+    }
+    let total_u32 = u32::try_from(total).map_err(|_| ExportError::TooLarge {
+        bytes: total as u64,
+    })?;
+    let io = |source| ExportError::Io {
+        path: name.to_path_buf(),
+        source,
+    };
+    let mut w = BufWriter::with_capacity(1 << 20, out);
+    let mut write = |bytes: &[u8]| w.write_all(bytes);
+    (|| -> std::io::Result<()> {
+        for word in [MAGIC, VERSION, total_u32] {
+            write(&word.to_le_bytes())?;
+        }
+        write(&(json_padded as u32).to_le_bytes())?;
+        write(&CHUNK_JSON.to_le_bytes())?;
+        write(&json)?;
+        write(&vec![b' '; json_padded - json.len()])?;
+        if bin_len == 0 {
+            return Ok(());
+        }
+        write(&(bin_padded as u32).to_le_bytes())?;
+        write(&CHUNK_BIN.to_le_bytes())?;
+        let meshes = || {
+            scene
+                .vessels
+                .iter()
+                .flat_map(|v| &v.nodes)
+                .flat_map(|n| &n.patches)
+                .map(|p| &*p.mesh)
+                .filter(|m| !is_empty(m))
+        };
+        let mut chunk: Vec<u8> = Vec::with_capacity(1 << 16);
+        // The first pass checked every normal: none is zero or non-finite here.
+        let views: [&ViewWriter; 3] = [
+            &|m, chunk| {
+                for &p in &m.positions {
+                    for c in metres(p).to_array() {
+                        chunk.extend_from_slice(&c.to_le_bytes());
+                    }
+                }
+            },
+            &|m, chunk| {
+                for &n in &m.normals {
+                    for c in unit_normal(n).unwrap_or_default().to_array() {
+                        chunk.extend_from_slice(&c.to_le_bytes());
+                    }
+                }
+            },
+            &|m, chunk| {
+                for &i in &m.indices {
+                    chunk.extend_from_slice(&i.to_le_bytes());
+                }
+            },
+        ];
+        for view in views {
+            for mesh in meshes() {
+                chunk.clear();
+                view(mesh, &mut chunk);
+                write(&chunk)?;
+            }
+        }
+        write(&vec![0; bin_padded - bin_len])?;
+        Ok(())
+    })()
+    .map_err(io)?;
+    w.flush().map_err(io)?;
+    Ok(total as u64)
+}
+
+/// Streams the scene's GLB to `path` atomically (a temporary file beside it,
+/// renamed over `path`); returns the bytes written.
+///
+/// # Errors
+///
+/// As [`stream_glb`].
+pub fn stream_glb_to(scene: &Scene, path: &Path) -> Result<u64, ExportError> {
+    let tmp = temporary_path(path);
+    let io = |path: &Path| {
+        let path = path.to_path_buf();
+        move |source| ExportError::Io { path, source }
+    };
+    let file = std::fs::File::create(&tmp).map_err(io(&tmp))?;
+    let written = stream_glb(scene, &file, &tmp).and_then(|n| {
+        file.sync_all().map_err(io(&tmp))?;
+        Ok(n)
+    });
+    match written {
+        Ok(n) => {
+            std::fs::rename(&tmp, path).map_err(io(path))?;
+            Ok(n)
+        }
+        Err(e) => {
+            // Best effort: the temporary file is useless now.
+            let _ = std::fs::remove_file(&tmp);
+            Err(e)
+        }
+    }
+}

@@ -1,0 +1,311 @@
+//! `vesselcad bench`: the plant-scale figures measured in one run on this machine,
+//! each beside its target.
+//!
+//! Generates a plant, builds it fully with a one-thread and a two-thread rayon pool
+//! (the speed-up is the ratio of the two, measured back to back), then on the
+//! two-thread model measures one-parameter edits (apply + incremental update of
+//! model and meshes), ticks of 100 edits, memory per vessel and GLB export
+//! throughput. Heap figures come from the caller (the binary's counting
+//! allocator), so the library needs no global allocator.
+
+use std::path::Path;
+use std::time::{Duration, Instant};
+
+use rayon::ThreadPoolBuilder;
+
+use super::generate::{GenerateError, generate_plant};
+use super::simulate::{Simulation, quantile};
+use crate::design::Design;
+use crate::export::{ExportError, stream_glb_to};
+use crate::mesh::TessellationOptions;
+use crate::model::{Model, ModelError};
+
+/// What to measure.
+#[derive(Clone, Debug)]
+pub struct BenchConfig {
+    /// Vessels in the plant (the figure is 10 000).
+    pub vessels: usize,
+    /// Plant seed.
+    pub seed: u64,
+    /// Chordal tolerance, mm (the figure is at 1 mm).
+    pub tolerance: f64,
+    /// One-parameter edits measured.
+    pub edits: usize,
+    /// Ticks of [`BenchConfig::tick_edits`] edits measured.
+    pub ticks: usize,
+    /// Edits per tick.
+    pub tick_edits: usize,
+}
+
+impl Default for BenchConfig {
+    fn default() -> Self {
+        Self {
+            vessels: 10_000,
+            seed: 1,
+            tolerance: 1.0,
+            edits: 200,
+            ticks: 20,
+            tick_edits: 100,
+        }
+    }
+}
+
+/// Why the bench could not run.
+#[derive(Debug, thiserror::Error)]
+pub enum BenchError {
+    /// The plant could not be generated.
+    #[error(transparent)]
+    Generate(#[from] GenerateError),
+    /// The model refused the plant.
+    #[error(transparent)]
+    Model(#[from] ModelError),
+    /// The GLB could not be written.
+    #[error(transparent)]
+    Export(#[from] ExportError),
+    /// A rayon pool could not be built.
+    #[error("cannot build a rayon pool of {threads} thread(s): {message}")]
+    Pool {
+        /// Threads asked for.
+        threads: usize,
+        /// rayon's message.
+        message: String,
+    },
+}
+
+/// One figure of the table.
+#[derive(Clone, Debug, PartialEq)]
+pub struct BenchRow {
+    /// What was measured.
+    pub name: String,
+    /// The figure, formatted with its unit.
+    pub value: String,
+    /// The target, or empty.
+    pub target: String,
+    /// Whether the target is met; `None` without a target.
+    pub met: Option<bool>,
+}
+
+fn row(name: &str, value: String, target: &str, met: Option<bool>) -> BenchRow {
+    BenchRow {
+        name: name.to_string(),
+        value,
+        target: target.to_string(),
+        met,
+    }
+}
+
+fn ms(d: Duration) -> f64 {
+    d.as_secs_f64() * 1e3
+}
+
+/// Runs the bench. `heap` returns the bytes currently allocated (or `None` when
+/// not counted); `progress` hears what is being measured; `scratch` is a directory
+/// for the GLB.
+///
+/// # Errors
+///
+/// [`BenchError`] when generating, building or exporting fails.
+pub fn run_bench(
+    config: &BenchConfig,
+    heap: &dyn Fn() -> Option<usize>,
+    progress: &mut dyn FnMut(&str),
+    scratch: &Path,
+) -> Result<Vec<BenchRow>, BenchError> {
+    let pool = |threads: usize| {
+        ThreadPoolBuilder::new()
+            .num_threads(threads)
+            .build()
+            .map_err(|e| BenchError::Pool {
+                threads,
+                message: e.to_string(),
+            })
+    };
+    let (one, two) = (pool(1)?, pool(2)?);
+    let options = TessellationOptions::chord(config.tolerance);
+    progress(&format!("generating a plant of {} vessels", config.vessels));
+    let design: Design = generate_plant(config.vessels, config.seed)?;
+    let n = config.vessels as f64;
+    let mut rows = Vec::new();
+
+    progress("full build, 1 thread");
+    let heap_before = heap();
+    let start = Instant::now();
+    let model = one.install(|| Model::from_design(&design, options))?;
+    let t1 = start.elapsed();
+    let heap_model = heap().zip(heap_before).map(|(a, b)| a.saturating_sub(b));
+    let triangles = model
+        .scene()
+        .vessels
+        .iter()
+        .flat_map(|v| &v.nodes)
+        .flat_map(|n| &n.patches)
+        .map(|p| p.mesh.triangle_count())
+        .sum::<usize>();
+    drop(model);
+    progress("full build, 2 threads");
+    let start = Instant::now();
+    let model = two.install(|| Model::from_design(&design, options))?;
+    let t2 = start.elapsed();
+    let speedup = t1.as_secs_f64() / t2.as_secs_f64();
+    rows.push(row(
+        &format!(
+            "full build, {} vessels at {} mm, 1 thread",
+            config.vessels, config.tolerance
+        ),
+        format!(
+            "{:.0} vessels/s ({:.1} s)",
+            n / t1.as_secs_f64(),
+            t1.as_secs_f64()
+        ),
+        "",
+        None,
+    ));
+    rows.push(row(
+        &format!(
+            "full build, {} vessels at {} mm, 2 threads",
+            config.vessels, config.tolerance
+        ),
+        format!(
+            "{:.0} vessels/s ({:.1} s)",
+            n / t2.as_secs_f64(),
+            t2.as_secs_f64()
+        ),
+        "",
+        None,
+    ));
+    rows.push(row(
+        "speed-up, 2 threads over 1",
+        format!("{speedup:.2}×"),
+        "≥ 1.8×",
+        Some(speedup >= 1.8),
+    ));
+
+    let mut sim = Simulation::new(model, &design, config.seed ^ 0x5EED);
+    progress(&format!("{} one-parameter edits", config.edits));
+    let mut samples = Vec::with_capacity(config.edits);
+    two.install(|| {
+        for _ in 0..config.edits {
+            let report = sim.tick(1, 0);
+            samples.push(report.latency);
+        }
+    });
+    let p50 = quantile(&mut samples, 0.5);
+    let p99 = quantile(&mut samples, 0.99);
+    rows.push(row(
+        "one-parameter edit, model + meshes: p50",
+        format!("{:.3} ms", ms(p50)),
+        "",
+        None,
+    ));
+    rows.push(row(
+        "one-parameter edit, model + meshes: p99",
+        format!("{:.3} ms", ms(p99)),
+        "≤ 2 ms",
+        Some(ms(p99) <= 2.0),
+    ));
+    let ratio = t2.as_secs_f64() / p50.as_secs_f64();
+    rows.push(row(
+        "full build (2 threads) / edit (p50)",
+        format!("{ratio:.0}"),
+        "≥ 1000",
+        Some(ratio >= 1000.0),
+    ));
+
+    progress(&format!(
+        "{} ticks of {} edits",
+        config.ticks, config.tick_edits
+    ));
+    let mut ticks = Vec::with_capacity(config.ticks);
+    two.install(|| {
+        for _ in 0..config.ticks {
+            ticks.push(sim.tick(config.tick_edits, 0).latency);
+        }
+    });
+    let tick50 = quantile(&mut ticks, 0.5);
+    let tick_max = quantile(&mut ticks, 1.0);
+    rows.push(row(
+        &format!("tick of {} edits: p50 (max)", config.tick_edits),
+        format!("{:.2} ms ({:.2} ms)", ms(tick50), ms(tick_max)),
+        "≤ 20 ms",
+        Some(ms(tick50) <= 20.0),
+    ));
+
+    let mesh_bytes: usize = sim.model().mesh_bytes();
+    if let Some(bytes) = heap_model {
+        let per = bytes as f64 / n / 1024.0;
+        rows.push(row(
+            &format!(
+                "memory per vessel (whole model at {} mm, heap)",
+                config.tolerance
+            ),
+            format!("{per:.0} KB"),
+            "≤ 500 KB",
+            Some(per <= 500.0),
+        ));
+    }
+    rows.push(row(
+        "  of which meshes",
+        format!(
+            "{:.0} KB ({:.0} triangles/vessel)",
+            mesh_bytes as f64 / n / 1024.0,
+            triangles as f64 / n
+        ),
+        "",
+        None,
+    ));
+
+    progress("GLB export");
+    let path = scratch.join(format!("vesselcad-bench-{}.glb", std::process::id()));
+    let start = Instant::now();
+    let scene = sim.model().scene();
+    let bytes = stream_glb_to(&scene, &path)?;
+    let t = start.elapsed();
+    drop(scene);
+    let _ = std::fs::remove_file(&path);
+    rows.push(row(
+        "GLB export (streamed to a file)",
+        format!(
+            "{:.0} MB/s ({:.0} MB in {:.2} s)",
+            bytes as f64 / 1e6 / t.as_secs_f64(),
+            bytes as f64 / 1e6,
+            t.as_secs_f64()
+        ),
+        "",
+        None,
+    ));
+    Ok(rows)
+}
+
+/// The rows as a text table: figure, target, ✓/✗.
+pub fn format_table(rows: &[BenchRow]) -> String {
+    let w0 = rows
+        .iter()
+        .map(|r| r.name.chars().count())
+        .max()
+        .unwrap_or(0);
+    let w1 = rows
+        .iter()
+        .map(|r| r.value.chars().count())
+        .max()
+        .unwrap_or(0);
+    let mut out = String::new();
+    for r in rows {
+        let mark = match r.met {
+            Some(true) => "met",
+            Some(false) => "NOT met",
+            None => "",
+        };
+        let pad0 = w0 - r.name.chars().count();
+        let pad1 = w1 - r.value.chars().count();
+        out.push_str(&format!(
+            "{}{}  {}{}  {:<8} {}\n",
+            r.name,
+            " ".repeat(pad0),
+            r.value,
+            " ".repeat(pad1),
+            r.target,
+            mark
+        ));
+    }
+    out
+}

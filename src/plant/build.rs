@@ -1,0 +1,47 @@
+//! Building a large plant in chunks, reporting progress between them.
+//!
+//! The same model as [`Model::from_design`] (vessels in design order, the same
+//! entities and meshes): the vessels are added a chunk at a time, each chunk one
+//! checked edit followed by one update, whose stages run in parallel over the
+//! chunk's patches. Chunks of about 1 % keep the per-update overhead negligible and
+//! let a caller draw a progress bar.
+
+use super::super::design::{Design, units};
+use crate::mesh::TessellationOptions;
+use crate::model::{Edit, Model, ModelError};
+
+/// Builds `design` into a model, calling `progress(done, total)` after each chunk
+/// of vessels.
+///
+/// # Errors
+///
+/// As [`Model::from_design`]: the first invalid chunk's violations (nothing is
+/// built past it).
+pub fn build_plant(
+    design: &Design,
+    options: TessellationOptions,
+    progress: &mut dyn FnMut(usize, usize),
+) -> Result<Model, ModelError> {
+    let mut design = design.clone();
+    units::to_millimetres(&mut design);
+    design.units = crate::design::Units::Mm;
+    let total = design.vessels.len();
+    let chunk = (total / 100).clamp(32, 200);
+    let mut model = Model::new(options)?;
+    // An empty design first: checks the format tag like `from_design` does.
+    model.apply(Edit::ReplaceDesign(Design {
+        vessels: Vec::new(),
+        ..design.clone()
+    }))?;
+    let mut done = 0;
+    progress(0, total);
+    for vessels in design.vessels.chunks(chunk) {
+        model.apply(Edit::Batch(
+            vessels.iter().cloned().map(Edit::SetVessel).collect(),
+        ))?;
+        model.update();
+        done += vessels.len();
+        progress(done, total);
+    }
+    Ok(model)
+}

@@ -1,0 +1,225 @@
+//! Plant scale: the generator gives valid, deterministic, varied plants; the
+//! streaming GLB writer gives the same bytes as the in-memory one; a simulation is
+//! deterministic and leaves the incremental model equal to a full build; the
+//! plant commands run end to end.
+
+use std::collections::BTreeSet;
+use std::process::Command;
+
+use vesselcad::design::{HeadShape, PartDesign, VesselKind, load, to_canonical_json, validate};
+use vesselcad::export::{build_scene, stream_glb, write_glb};
+use vesselcad::mesh::TessellationOptions;
+use vesselcad::model::Model;
+use vesselcad::plant::{PLOT_PITCH, Simulation, build_plant, generate_plant};
+
+fn options() -> TessellationOptions {
+    TessellationOptions::chord(5.0)
+}
+
+#[test]
+fn generated_plants_are_valid_varied_and_deterministic() {
+    let a = generate_plant(60, 7).unwrap();
+    let b = generate_plant(60, 7).unwrap();
+    assert_eq!(to_canonical_json(&a), to_canonical_json(&b));
+    assert_ne!(
+        to_canonical_json(&a),
+        to_canonical_json(&generate_plant(60, 8).unwrap())
+    );
+    validate(&a).unwrap();
+    let kinds: BTreeSet<String> = a.vessels.iter().map(|v| format!("{:?}", v.kind)).collect();
+    assert_eq!(kinds.len(), 3, "{kinds:?}");
+    let shapes: BTreeSet<String> = a
+        .vessels
+        .iter()
+        .flat_map(|v| &v.parts)
+        .filter_map(|p| match p {
+            PartDesign::Head(h) => Some(format!("{:?}", h.shape)),
+            _ => None,
+        })
+        .collect();
+    assert_eq!(shapes.len(), 6, "every head kind: {shapes:?}");
+    assert!(a.vessels.iter().any(|v| v.kind == VesselKind::Vertical
+        && v.parts.iter().filter(|p| p.kind() == "shell").count() >= 2
+        && v.parts.iter().any(|p| p.kind() == "reducer")));
+    for v in &a.vessels {
+        assert!(
+            (4..=20).contains(&v.nozzles.len()),
+            "{}: {}",
+            v.tag,
+            v.nozzles.len()
+        );
+        assert!(
+            v.nozzles.iter().any(|n| n.mark.starts_with('M')),
+            "{}: manway",
+            v.tag
+        );
+        assert!(!v.notes.is_empty());
+        assert!(v.operating.is_some());
+    }
+    // Footprints apart: datums at least one plot pitch apart.
+    for (i, v) in a.vessels.iter().enumerate() {
+        for w in &a.vessels[i + 1..] {
+            let [x, y, _] = v.placement.position;
+            let [p, q, _] = w.placement.position;
+            assert!((x - p).abs() >= PLOT_PITCH - 1e-9 || (y - q).abs() >= PLOT_PITCH - 1e-9);
+        }
+    }
+    let _ = HeadShape::Flat;
+}
+
+#[test]
+fn generated_plant_builds_without_failures_and_chunked_build_matches() {
+    let design = generate_plant(12, 3).unwrap();
+    let mut calls = Vec::new();
+    let chunked = build_plant(&design, options(), &mut |done, total| {
+        calls.push((done, total))
+    })
+    .unwrap();
+    assert!(chunked.errors().0.is_empty(), "{:?}", chunked.errors().0);
+    assert_eq!(calls.last(), Some(&(12, 12)));
+    let whole = Model::from_design(&design, options()).unwrap();
+    let a = write_glb(&chunked.scene()).unwrap();
+    assert_eq!(a, write_glb(&whole.scene()).unwrap());
+    // The streaming writer's bytes are the in-memory writer's.
+    let mut streamed = Vec::new();
+    let n = stream_glb(&whole.scene(), &mut streamed, std::path::Path::new("mem")).unwrap();
+    assert_eq!(n as usize, streamed.len());
+    assert!(streamed == a, "streamed GLB differs from write_glb");
+}
+
+#[test]
+fn streaming_writer_matches_on_the_example_plant() {
+    let design = load(concat!(
+        env!("CARGO_MANIFEST_DIR"),
+        "/examples/designs/small-plant.json"
+    ))
+    .unwrap();
+    let scene = build_scene(&design, &options()).unwrap();
+    let mut streamed = Vec::new();
+    stream_glb(&scene, &mut streamed, std::path::Path::new("mem")).unwrap();
+    assert!(streamed == write_glb(&scene).unwrap());
+}
+
+#[test]
+fn simulation_is_deterministic_and_incremental_equals_full_build() {
+    let design = generate_plant(8, 11).unwrap();
+    let run = || {
+        let model = Model::from_design(&design, options()).unwrap();
+        let mut sim = Simulation::new(model, &design, 5);
+        let mut masses = Vec::new();
+        for _ in 0..4 {
+            let r = sim.tick(5, 3);
+            assert_eq!(r.edits, 5, "{r:?}");
+            masses.push(sim.total_operating_mass());
+        }
+        (sim, masses)
+    };
+    let (a, masses_a) = run();
+    let (b, masses_b) = run();
+    assert_eq!(masses_a, masses_b);
+    assert_eq!(a.model().design(), b.model().design());
+    assert_ne!(a.model().design(), design, "the ticks changed the plant");
+    // After the ticks the incremental model is what a full build of its design gives.
+    let full = write_glb(&build_scene(&a.model().design(), &options()).unwrap()).unwrap();
+    assert!(write_glb(&a.model().scene()).unwrap() == full);
+    // Its operating mass is the sum of the vessels' figures from scratch.
+    let fresh = Model::from_design(&a.model().design(), options()).unwrap();
+    let fresh_sim = Simulation::new(fresh, &a.model().design(), 0);
+    let (x, y) = (a.total_operating_mass(), fresh_sim.total_operating_mass());
+    assert!((x - y).abs() <= 1e-9 * y, "{x} vs {y}");
+}
+
+#[test]
+fn an_update_with_nothing_to_do_does_no_work() {
+    let design = generate_plant(5, 2).unwrap();
+    let mut model = Model::from_design(&design, options()).unwrap();
+    let c = model.update();
+    assert_eq!(c, Default::default());
+}
+
+fn vesselcad(args: &[&str]) -> std::process::Output {
+    Command::new(env!("CARGO_BIN_EXE_vesselcad"))
+        .args(args)
+        .output()
+        .expect("runs")
+}
+
+#[test]
+fn plant_commands_run_end_to_end() {
+    let dir = std::env::temp_dir().join(format!("vesselcad-plant-{}", std::process::id()));
+    std::fs::create_dir_all(&dir).unwrap();
+    let plant = dir.join("plant.json");
+    let plant = plant.to_str().unwrap();
+    let o = vesselcad(&[
+        "plant",
+        "generate",
+        "--vessels",
+        "3",
+        "--seed",
+        "4",
+        "-o",
+        plant,
+    ]);
+    assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
+    assert!(vesselcad(&["check", plant]).status.success());
+    let o = vesselcad(&["info", plant, "--memory", "--tolerance", "5"]);
+    let out = String::from_utf8_lossy(&o.stdout);
+    assert!(
+        o.status.success() && out.contains("memory per vessel") && out.contains("operating mass"),
+        "{out}"
+    );
+    let o = vesselcad(&[
+        "simulate",
+        plant,
+        "--ticks",
+        "2",
+        "--edits-per-tick",
+        "2",
+        "--seed",
+        "9",
+        "--levels",
+        "--tolerance",
+        "5",
+    ]);
+    let out = String::from_utf8_lossy(&o.stdout);
+    assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
+    assert!(
+        out.contains("p50") && out.contains("p99") && out.contains("operating mass"),
+        "{out}"
+    );
+    let glb = dir.join("plant.glb");
+    let o = vesselcad(&[
+        "build",
+        plant,
+        "-o",
+        glb.to_str().unwrap(),
+        "--tolerance",
+        "5",
+    ]);
+    assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
+    assert!(o.stderr.is_empty(), "no progress bar off a terminal");
+    let o = vesselcad(&[
+        "bench",
+        "--vessels",
+        "2",
+        "--edits",
+        "3",
+        "--ticks",
+        "1",
+        "--tolerance",
+        "5",
+    ]);
+    let out = String::from_utf8_lossy(&o.stdout);
+    assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
+    for figure in [
+        "vessels/s",
+        "speed-up",
+        "p99",
+        "tick of 100 edits",
+        "memory per vessel",
+        "MB/s",
+    ] {
+        assert!(out.contains(figure), "{figure} missing:\n{out}");
+    }
+    std::fs::remove_dir_all(&dir).ok();
+}
