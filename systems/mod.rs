@@ -25,7 +25,7 @@ pub use export::{ChangeLog, collect_changes};
 pub use geometry::rebuild_dirty_patches;
 pub use openings::{OpeningHosts, cut_openings};
 pub use operating::update_operating_states;
-pub use project::{entity_input, project_dirty_views};
+pub use project::{Views, entity_input, project_dirty_views, views_kept};
 pub use regions::lay_out_regions;
 pub use tessellate::{Tessellation, remesh_dirty_patches};
 pub use validate::{ModelErrors, PendingResolutions, resolve_dirty_vessels};
@@ -74,7 +74,9 @@ pub fn build_schedule() -> Schedule {
         (lay_out_regions, remesh_dirty_patches)
             .chain()
             .in_set(Stage::Tessellate),
-        project_dirty_views.in_set(Stage::Project),
+        project_dirty_views
+            .run_if(views_kept)
+            .in_set(Stage::Project),
         collect_changes.in_set(Stage::Export),
     ));
     schedule

@@ -320,3 +320,36 @@ fn a_shell_silhouette_is_its_generators_cut_at_the_openings_on_it() {
         );
     }
 }
+
+/// A model that does not keep views (a plant build, a simulation) builds none and
+/// says so when asked for a drawing; turning views on builds them on the next
+/// update, the same as a model that kept them from the start.
+#[test]
+fn views_can_be_left_off_and_turned_on_later() {
+    use vesselcad::drawing::{DrawingError, SheetOptions, sheet_svg};
+    use vesselcad::model::Views;
+    let design = example("vertical-column");
+    let mut model = Model::new(options()).unwrap();
+    model.set_views(Views::Off);
+    model.apply(Edit::ReplaceDesign(design.clone())).unwrap();
+    let counters = model.update();
+    assert!(counters.meshes_rebuilt > 0);
+    assert_eq!(counters.views_rebuilt, 0);
+    let tag = design.vessels[0].tag.clone();
+    assert!(matches!(
+        sheet_svg(&model, &tag, &SheetOptions::default()),
+        Err(DrawingError::NotBuilt { .. })
+    ));
+    model.set_views(Views::Kept);
+    let counters = model.update();
+    assert!(counters.views_rebuilt > 0);
+    assert_eq!(
+        counters.meshes_rebuilt, 0,
+        "turning views on re-meshes nothing"
+    );
+    let kept = Model::from_design(&design, options()).unwrap();
+    assert_eq!(
+        sheet_svg(&model, &tag, &SheetOptions::default()).unwrap(),
+        sheet_svg(&kept, &tag, &SheetOptions::default()).unwrap()
+    );
+}

@@ -25,6 +25,7 @@ use thiserror::Error;
 use crate::design::{Design, DesignError};
 use crate::export::Scene;
 use crate::mesh::{OptionsError, TessellationOptions};
+pub use crate::systems::Views;
 use crate::systems::{
     ChangeLog, DirtyPatches, ModelErrors, OpeningHosts, PendingResolutions, Tessellation,
     WorkCounters, build_schedule,
@@ -80,18 +81,34 @@ impl Model {
         world.init_resource::<VesselIndex>();
         world.init_resource::<OpeningHosts>();
         world.init_resource::<DirtyPatches>();
+        world.init_resource::<Views>();
         Ok(Self {
             world,
             schedule: build_schedule(),
         })
     }
 
-    /// A model holding `design` (checked first), fully built.
+    /// A model holding `design` (checked first), fully built, views included.
     pub fn from_design(design: &Design, options: TessellationOptions) -> Result<Self, ModelError> {
+        Self::from_design_with(design, options, Views::Kept)
+    }
+
+    /// [`from_design`](Self::from_design), keeping drawing views or not.
+    pub fn from_design_with(
+        design: &Design,
+        options: TessellationOptions,
+        views: Views,
+    ) -> Result<Self, ModelError> {
         let mut model = Self::new(options)?;
+        model.set_views(views);
         model.apply(Edit::ReplaceDesign(design.clone()))?;
         model.update();
         Ok(model)
+    }
+
+    /// Whether the Project stage keeps drawing views from the next update on.
+    pub fn set_views(&mut self, views: Views) {
+        *self.world.resource_mut::<Views>() = views;
     }
 
     /// Checks `edit` against every rule and, if it passes, writes it into the

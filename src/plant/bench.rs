@@ -18,7 +18,7 @@ use super::simulate::{Simulation, quantile};
 use crate::design::Design;
 use crate::export::{ExportError, stream_glb_to};
 use crate::mesh::TessellationOptions;
-use crate::model::{Model, ModelError};
+use crate::model::{Model, ModelError, Views};
 
 /// What to measure.
 #[derive(Clone, Debug)]
@@ -130,7 +130,7 @@ pub fn run_bench(
     progress("full build, 1 thread");
     let heap_before = heap();
     let start = Instant::now();
-    let model = one.install(|| Model::from_design(&design, options))?;
+    let model = one.install(|| Model::from_design_with(&design, options, Views::Off))?;
     let t1 = start.elapsed();
     let heap_model = heap().zip(heap_before).map(|(a, b)| a.saturating_sub(b));
     let triangles = model
@@ -144,7 +144,7 @@ pub fn run_bench(
     drop(model);
     progress("full build, 2 threads");
     let start = Instant::now();
-    let model = two.install(|| Model::from_design(&design, options))?;
+    let model = two.install(|| Model::from_design_with(&design, options, Views::Off))?;
     let t2 = start.elapsed();
     let speedup = t1.as_secs_f64() / t2.as_secs_f64();
     rows.push(row(

@@ -8,7 +8,7 @@
 
 use super::super::design::{Design, units};
 use crate::mesh::TessellationOptions;
-use crate::model::{Edit, Model, ModelError};
+use crate::model::{Edit, Model, ModelError, Views};
 
 /// Builds `design` into a model, calling `progress(done, total)` after each chunk
 /// of vessels.
@@ -28,6 +28,8 @@ pub fn build_plant(
     let total = design.vessels.len();
     let chunk = (total / 100).clamp(32, 200);
     let mut model = Model::new(options)?;
+    // A plant build draws nothing: drawing views are built when asked for.
+    model.set_views(Views::Off);
     // An empty design first: checks the format tag like `from_design` does.
     model.apply(Edit::ReplaceDesign(Design {
         vessels: Vec::new(),
