@@ -13,10 +13,6 @@ use crate::design::{DesignError, FORMAT, RuleViolation, VesselDesign, units};
 
 /// One vessel to write or remove.
 #[derive(Debug)]
-#[expect(
-    clippy::large_enum_variant,
-    reason = "a handful per edit, moved once; boxing would only add an allocation"
-)]
 pub(crate) enum StagedVessel {
     /// Create or update the vessel to this design at this order.
     Put {
