@@ -66,7 +66,7 @@ use vesselcad::components::{PatchRegion, PatchSurface};
 use vesselcad::design::{Design, parse};
 use vesselcad::mesh::cdt::{Region, mesh_region_on, mesh_region_with_uvs};
 use vesselcad::mesh::{Mesh, TessellationOptions, patch_region};
-use vesselcad::model::Model;
+use vesselcad::model::{Model, Views};
 use vesselcad::nurbs::NurbsSurface;
 use vesselcad::parts::heads::{Head, HeadKind};
 use vesselcad::parts::{Analytic, Patch};
@@ -722,9 +722,11 @@ fn prepare() -> Vec<Prepared> {
     }
     let design = shell_design();
     let ms = best_ms(2, || {
-        black_box(Model::from_design(&design, options).expect("valid"));
+        black_box(Model::from_design_with(&design, options, Views::Off).expect("valid"));
     });
-    println!("full model build of the shell design at {TOLERANCE} mm: {ms:.1} ms");
+    println!(
+        "full model build of the shell design at {TOLERANCE} mm (no drawing views): {ms:.1} ms"
+    );
     println!();
     out
 }
@@ -788,7 +790,7 @@ fn bench(c: &mut Criterion) {
     let design = shell_design();
     group.throughput(Throughput::Elements(1));
     group.bench_function("shell 2400x6000 + 6 nozzles full model build", |b| {
-        b.iter(|| black_box(Model::from_design(&design, options).expect("valid")))
+        b.iter(|| black_box(Model::from_design_with(&design, options, Views::Off).expect("valid")))
     });
     group.finish();
 }
