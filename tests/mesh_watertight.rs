@@ -195,6 +195,23 @@ fn every_example_is_watertight() {
     }
 }
 
+/// A manway round the pole of the drum's head whose intersection loop starts a
+/// hair past the host's seam angle (projections 900 and 1100 of M1 did, at the
+/// default tolerance) is cut like any other, and the envelope stays closed.
+#[test]
+fn a_pole_opening_whose_loop_starts_on_the_seam_is_cut() {
+    for projection in [900.0, 1000.0, 1100.0] {
+        let mut design = example("horizontal-drum");
+        let manway = design.vessels[0]
+            .nozzles
+            .iter_mut()
+            .find(|n| n.mark == "M1")
+            .unwrap();
+        manway.projection = projection;
+        check_design_with(&design, TessellationOptions::DEFAULT);
+    }
+}
+
 /// A stretch limit samples the seams of closed patches more finely (inside the
 /// patch only): the envelopes stay closed.
 #[test]

@@ -202,11 +202,14 @@ fn add_seam_sample(
             b += turns * period;
             nb += neck_period;
         }
+        // Already on the seam: the nearest seam angle, not the next one above (a
+        // sample a hair past u0 would otherwise be measured against u0 + period).
+        let nearest = u0 + ((a - u0) / period).round() * period;
+        if (a - nearest).abs() <= 1e-12 * period {
+            return Ok(());
+        }
         let lo = a.min(b);
         let target = u0 + ((lo - u0) / period).ceil() * period;
-        if (a - target).abs() <= 1e-12 * period {
-            return Ok(()); // already on the seam
-        }
         if !(target > lo && target < a.max(b)) {
             continue;
         }
