@@ -12,7 +12,7 @@ use proptest::prelude::*;
 use vesselcad::design::{Design, HeadShape, NozzleDesign, PadDesign, PartDesign, load};
 use vesselcad::export::{Scene, SceneNodeKind};
 use vesselcad::mesh::TessellationOptions;
-use vesselcad::model::Model;
+use vesselcad::model::{Edit, Model};
 
 fn example(name: &str) -> Design {
     load(format!(
@@ -406,4 +406,14 @@ fn a_pad_across_a_head_seam_is_refused_clearly() {
         v.rule.contains("\"knuckle\", \"crown\"") && v.rule.contains("reinforcing pad"),
         "{v}"
     );
+    // The errors are the last update's: cutting the opening again reports it once,
+    // and once the pad is gone nothing is left.
+    let mut model = model;
+    let mut edited = design.clone();
+    edited.vessels[0].nozzles.last_mut().unwrap().projection += 50.0;
+    model.edit(Edit::ReplaceDesign(edited.clone())).unwrap();
+    assert_eq!(model.errors().0.len(), 1, "{:?}", model.errors());
+    edited.vessels[0].nozzles.last_mut().unwrap().pad = None;
+    model.edit(Edit::ReplaceDesign(edited)).unwrap();
+    assert!(model.errors().0.is_empty(), "{:?}", model.errors());
 }

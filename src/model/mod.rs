@@ -122,6 +122,8 @@ impl Model {
     /// Runs the schedule once and returns the work it did.
     pub fn update(&mut self) -> WorkCounters {
         *self.world.resource_mut::<WorkCounters>() = WorkCounters::default();
+        // Errors describe the last run only, like the counters.
+        self.world.resource_mut::<ModelErrors>().0.clear();
         self.schedule.run(&mut self.world);
         // Start the next run's removal messages afresh (the Tessellate stage reads
         // them to find openings that disappeared).

@@ -87,7 +87,7 @@ pub fn generate_plant(vessels: usize, seed: u64) -> Result<Design, GenerateError
 }
 
 /// Every head shape, in the order the generator cycles through them.
-const SHAPES: [HeadShape; 6] = [
+pub(super) const SHAPES: [HeadShape; 6] = [
     HeadShape::Ellipsoidal,
     HeadShape::Torispherical,
     HeadShape::Hemispherical,

@@ -16,7 +16,7 @@ use bevy_ecs::entity::Entity;
 
 use super::rng::SplitMix64;
 use crate::components::VesselSpec;
-use crate::design::{Design, HeadShape, OperatingDesign, PartDesign, VesselDesign};
+use crate::design::{Design, OperatingDesign, PartDesign, VesselDesign};
 use crate::model::{Edit, Model};
 use crate::operating::OperatingState;
 use crate::systems::WorkCounters;
@@ -227,14 +227,7 @@ pub fn draw_edit(rng: &mut SplitMix64, vessel: &VesselDesign) -> Option<(Edit, V
         let PartDesign::Head(h) = &mut v.parts[i] else {
             return None;
         };
-        let shape = *rng.pick(&[
-            HeadShape::Ellipsoidal,
-            HeadShape::Torispherical,
-            HeadShape::Hemispherical,
-            HeadShape::Toriconical,
-            HeadShape::Conical,
-            HeadShape::Flat,
-        ]);
+        let shape = *rng.pick(&super::generate::SHAPES);
         if shape == h.shape {
             return None;
         }
