@@ -5,7 +5,7 @@
 use super::output::{RegionMesh, finish};
 use super::patch::{PatchInfo, wants_transpose};
 use super::trimesh::TriMesh;
-use super::{CdtError, MeshStats, Region, initial, metric::Sizing, refine, rings, screen, seed};
+use super::{CdtError, MeshStats, Region, initial, metric::Sizing, refine, rings, seed};
 use crate::mesh::{Mesh, TessellationOptions};
 use crate::nurbs::NurbsSurface;
 use crate::parts::{Analytic, Patch};
@@ -107,15 +107,16 @@ fn mesh_oriented(
     .with_analytic(analytic);
     let mut stats = MeshStats::default();
     let budget = VERTEX_BUDGET.saturating_sub(region.vertex_count());
-    if let Some(mut rings) = rings::triangulate(&info, region, budget)?
+    if let Some(mut rings) = rings::triangulate(&info, region, options, budget)?
         && rings
             .seam
             .iter()
             .all(|&(t, i)| refine::edge_within(&info, &rings.mesh, t, i, options))
     {
         rings::fix_seam(&mut rings.mesh, &rings.seam);
-        let within = screen::screen(&info, &rings.mesh, &rings.strips, options);
-        let assessment = refine::assess_all(&info, &rings.mesh, options, within.as_deref());
+        stats.refinement_insertions += rings.insertions;
+        let assessment =
+            refine::assess_all(&info, &rings.mesh, options, rings.within.as_deref());
         if assessment.all_good() {
             return finish(&info, &rings.mesh, stats);
         }

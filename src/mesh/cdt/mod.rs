@@ -19,6 +19,7 @@
 mod error;
 mod flip;
 mod initial;
+mod mend;
 mod measure;
 mod mesher;
 mod metric;

@@ -12,11 +12,13 @@
 //! the rows' ends (the seam belongs to this patch alone, so no neighbour has to
 //! agree with them); the v sides keep the loop's vertices exactly.
 //!
-//! The result goes through the same checks as the general path (every triangle's
-//! deviation, angle and edge limits, seam edges included): when all pass it is the
-//! mesh; otherwise the caller refines it like any other. No spade, no flood fill and
-//! no hashing in the common case: this is where whole heads and courses get their
-//! speed.
+//! Every strip is screened with the same probes as the general path (every
+//! triangle's deviation, angle and edge limits, seam edges included); `mend` fans
+//! the failing triangles' quads around their centres and bisects what still
+//! fails. When all pass it is the mesh; otherwise the caller refines what is left
+//! like any other mesh. No spade, no flood fill, no neighbour links and no second
+//! derivatives beyond the vertices' own in the common case: this is where whole
+//! heads and courses get their speed.
 
 use std::ops::Range;
 
@@ -25,8 +27,10 @@ use rayon::prelude::*;
 
 use super::patch::{PatchInfo, Vertex};
 use super::region::Region;
+use super::screen::Screen;
 use super::trimesh::{NONE, TriMesh};
-use super::{CdtError, seed};
+use super::{CdtError, mend, seed};
+use crate::mesh::TessellationOptions;
 
 /// Relative tolerance (to the region's extent) of "on a side of the rectangle".
 const ON_SIDE: f64 = 1e-12;
@@ -45,15 +49,41 @@ pub(super) struct Rings {
     /// The seam edges, as `(triangle, edge)`: left unfixed so that the checks probe
     /// them; the caller fixes them (with [`fix_seam`]) before output or refinement.
     pub seam: Vec<(u32, usize)>,
-    /// Each strip's range of triangles.
-    pub strips: Vec<Range<u32>>,
+    /// For every triangle, whether the screen found it within the limits (`false`:
+    /// measure it in full); `None` when the patch has no screen.
+    pub within: Option<Vec<bool>>,
+    /// Vertices added by mending (counted as refinement insertions).
+    pub insertions: usize,
+}
+
+/// What a chain of the structured mesh is: a row of vertices at constant v running
+/// seam to seam, or a pole — one pole vertex under the middle of each segment of
+/// the neighbouring row (they weld into one on output).
+#[derive(Clone, Copy, Debug)]
+enum Kind {
+    Row,
+    Pole,
+}
+
+/// One chain: its vertices `first..first + len` of the mesh's vertices.
+#[derive(Clone, Copy, Debug)]
+struct Chain {
+    v: f64,
+    kind: Kind,
+    first: u32,
+    len: usize,
 }
 
 /// The structured mesh of `region` when it is a whole patch closed in u; `None`
 /// for any other region.
+///
+/// The chains (bottom side, the lattice's rows, top side) are zipped into strips
+/// and every strip is screened; `mend` re-triangulates around the triangles that
+/// fail. What still fails is left to the caller's refinement.
 pub(super) fn triangulate(
     info: &PatchInfo,
     region: &Region,
+    options: &TessellationOptions,
     budget: usize,
 ) -> Result<Option<Rings>, CdtError> {
     let Some((bottom, top)) = sides(info, region) else {
@@ -64,65 +94,155 @@ pub(super) fn triangulate(
     if rows.is_empty() && matches!((&bottom, &top), (Side::Pole, Side::Pole)) {
         return Ok(None);
     }
-    // Chains bottom to top: (v, u values) or a pole at v.
-    let mut chains: Vec<(f64, Option<Vec<f64>>)> = Vec::with_capacity(rows.len() + 2);
-    chains.push((lo.y, ring(bottom)));
-    chains.extend(rows.into_iter().map(|(v, u)| (v, Some(u))));
-    chains.push((hi.y, ring(top)));
-    let uvs: Vec<Vec<DVec2>> = chains
+    let mut lists: Vec<(f64, Option<Vec<f64>>)> = Vec::with_capacity(rows.len() + 2);
+    lists.push((lo.y, ring(bottom)));
+    lists.extend(rows.into_iter().map(|(v, u)| (v, Some(u))));
+    lists.push((hi.y, ring(top)));
+    let mut mesh = TriMesh::default();
+    let mut chains = Vec::with_capacity(lists.len());
+    let rows: Vec<(f64, &[f64])> = lists
         .iter()
-        .map(|(v, u)| {
-            u.as_ref()
-                .map(|u| u.iter().map(|&u| DVec2::new(u, *v)).collect())
-                .unwrap_or_default()
-        })
+        .filter_map(|(v, u)| u.as_deref().map(|u| (*v, u)))
         .collect();
-    let mut verts: Vec<Vertex> = Vec::new();
-    let mut first: Vec<u32> = Vec::with_capacity(uvs.len());
-    let evaluated: Vec<Vec<Vertex>> = uvs
-        .par_iter()
-        .map(|row| row.iter().map(|&uv| info.vertex(uv)).collect())
-        .collect::<Result<_, _>>()?;
-    for row in evaluated {
-        first.push(verts.len() as u32);
-        verts.extend(row);
+    let mut evaluated = evaluate(info, &rows)?.into_iter();
+    for (v, u) in &lists {
+        let row = match u {
+            Some(_) => evaluated.next().unwrap_or_default(),
+            None => Vec::new(),
+        };
+        let first = mesh.verts.len() as u32;
+        let len = row.len();
+        mesh.verts.extend(row);
+        chains.push(Chain {
+            v: *v,
+            kind: if u.is_some() { Kind::Row } else { Kind::Pole },
+            first,
+            len,
+        });
     }
-    let mut mesh = TriMesh {
-        verts,
-        ..TriMesh::default()
-    };
-    let mut seam = Vec::new();
-    let mut strips = Vec::with_capacity(chains.len());
-    let last_chain = chains.len() - 1;
-    for k in 0..last_chain {
-        let start = mesh.tris.len() as u32;
-        let (a, b) = (&uvs[k], &uvs[k + 1]);
-        match (a.is_empty(), b.is_empty()) {
-            (false, false) => zip(
-                &mut mesh,
-                (first[k], a.len()),
-                (first[k + 1], b.len()),
-                &mut seam,
-            ),
-            (true, false) => fan(info, &mut mesh, (first[k + 1], b.len()), chains[k].0, true)?,
-            (false, true) => fan(info, &mut mesh, (first[k], a.len()), chains[k + 1].0, false)?,
-            (true, true) => return Ok(None),
+    // A pole's vertices, under the middle of each segment of its neighbour row
+    // (which stays its neighbour: only strips between two rows are split).
+    for k in 0..chains.len() {
+        if !matches!(chains[k].kind, Kind::Pole) {
+            continue;
         }
-        // The given v sides are loop segments.
-        let side_row = if k == 0 {
-            Some((first[0], a.len(), true))
+        let next = if k == 0 { 1 } else { k - 1 };
+        let Some(&row) = chains.get(next).filter(|c| matches!(c.kind, Kind::Row)) else {
+            return Ok(None);
+        };
+        let first = mesh.verts.len() as u32;
+        let us: Vec<f64> = (0..row.len.saturating_sub(1))
+            .map(|i| {
+                let (x, y) = (row.first as usize + i, row.first as usize + i + 1);
+                0.5 * (mesh.verts[x].uv.x + mesh.verts[y].uv.x)
+            })
+            .collect();
+        let pole = evaluate(info, &[(chains[k].v, &us)])?;
+        mesh.verts.extend(pole.into_iter().flatten());
+        chains[k].first = first;
+        chains[k].len = us.len();
+    }
+    if mesh.verts.len() > budget {
+        return Err(CdtError::BudgetExceeded { limit: budget });
+    }
+    let Some(strips) = build(&mut mesh, &chains) else {
+        return Ok(None);
+    };
+    let Some(screen) = Screen::new(info, options) else {
+        let seam = seam_edges(&mesh, lo.x, hi.x);
+        return Ok(Some(Rings {
+            mesh,
+            seam,
+            within: None,
+            insertions: 0,
+        }));
+    };
+    let flags: Vec<Vec<bool>> = strips
+        .par_iter()
+        .map(|range| screen.strip(&mesh, range.clone()))
+        .collect();
+    let zipped: Vec<bool> = (0..strips.len())
+        .map(|k| matches!((chains[k].kind, chains[k + 1].kind), (Kind::Row, Kind::Row)))
+        .collect();
+    let (mut within, mended) = mend::mend(info, &screen, &mut mesh, &strips, &zipped, flags)?;
+    let bisected = mend::bisect(info, &screen, &mut mesh, &mut within)?;
+    let seam = seam_edges(&mesh, lo.x, hi.x);
+    Ok(Some(Rings {
+        mesh,
+        seam,
+        within: Some(within),
+        insertions: mended + bisected,
+    }))
+}
+
+/// The seam edges of a structured mesh: every edge between two row ends on one
+/// side of the seam (`lo` or `hi`), as `(triangle, edge)`.
+fn seam_edges(mesh: &TriMesh, lo: f64, hi: f64) -> Vec<(u32, usize)> {
+    let end = |k: u32| {
+        let v = &mesh.verts[k as usize];
+        if v.pole {
+            None
+        } else if v.uv.x == lo {
+            Some(false)
+        } else if v.uv.x == hi {
+            Some(true)
         } else {
             None
-        };
-        let top_row = (k + 1 == last_chain).then(|| (first[k + 1], b.len(), false));
-        for (start, len, bottom) in side_row.into_iter().chain(top_row) {
-            if len > 0 {
-                fix_ring(&mut mesh, start, len, bottom);
+        }
+    };
+    let mut out = Vec::new();
+    for (t, tri) in mesh.tris.iter().enumerate() {
+        for i in 0..3 {
+            if let (Some(x), Some(y)) = (end(tri[i]), end(tri[(i + 1) % 3]))
+                && x == y
+            {
+                out.push((t as u32, i));
             }
         }
-        strips.push(start..mesh.tris.len() as u32);
     }
-    Ok(Some(Rings { mesh, seam, strips }))
+    out
+}
+
+/// The vertices of rows `(v, u values)`, evaluated in parallel.
+fn evaluate(info: &PatchInfo, rows: &[(f64, &[f64])]) -> Result<Vec<Vec<Vertex>>, CdtError> {
+    rows.par_iter()
+        .map(|(v, us)| us.iter().map(|&u| info.vertex(DVec2::new(u, *v))).collect())
+        .collect()
+}
+
+/// Zips every pair of consecutive chains into `mesh` (replacing its triangles);
+/// returns each strip's range of triangles, or `None` when two poles meet.
+fn build(
+    mesh: &mut TriMesh,
+    chains: &[Chain],
+) -> Option<Vec<Range<u32>>> {
+    mesh.tris.clear();
+    mesh.adj.clear();
+    mesh.fixed.clear();
+    mesh.touched.clear();
+    let mut strips = Vec::with_capacity(chains.len());
+    let last = chains.len() - 1;
+    for k in 0..last {
+        let start = mesh.tris.len() as u32;
+        let (a, b) = (chains[k], chains[k + 1]);
+        match (a.kind, b.kind) {
+            (Kind::Row, Kind::Row) => zip(mesh, (a.first, a.len), (b.first, b.len)),
+            (Kind::Pole, Kind::Row) => fan(mesh, (b.first, b.len), a.first, true),
+            (Kind::Row, Kind::Pole) => fan(mesh, (a.first, a.len), b.first, false),
+            // Two poles and no row between them: not a structured patch.
+            (Kind::Pole, Kind::Pole) => return None,
+        }
+        let range = start..mesh.tris.len() as u32;
+        // The given v sides are loop segments.
+        if k == 0 && matches!(a.kind, Kind::Row) {
+            fix_ring(mesh, range.clone(), (a.first, a.len), true);
+        }
+        if k + 1 == last && matches!(b.kind, Kind::Row) {
+            fix_ring(mesh, range.clone(), (b.first, b.len), false);
+        }
+        strips.push(range);
+    }
+    Some(strips)
 }
 
 /// Marks the seam edges fixed (loop segments of the region).
@@ -186,12 +306,11 @@ fn push(mesh: &mut TriMesh, tri: [u32; 3]) -> u32 {
 }
 
 /// Zips the chain `a` (lower v) with the chain `b` (upper v), each `(first vertex,
-/// count)` running seam to seam; records the two seam edges.
-fn zip(mesh: &mut TriMesh, a: (u32, usize), b: (u32, usize), seam: &mut Vec<(u32, usize)>) {
+/// count)` running seam to seam, choosing at each step the shorter diagonal.
+fn zip(mesh: &mut TriMesh, a: (u32, usize), b: (u32, usize)) {
     let (mut i, mut j) = (0usize, 0usize);
     let (na, nb) = (a.1 - 1, b.1 - 1);
     let at = |mesh: &TriMesh, k: u32| mesh.verts[k as usize].point;
-    let mut first = true;
     while i < na || j < nb {
         let (ai, bj) = (a.0 + i as u32, b.0 + j as u32);
         let advance_a = if i == na {
@@ -204,63 +323,43 @@ fn zip(mesh: &mut TriMesh, a: (u32, usize), b: (u32, usize), seam: &mut Vec<(u32
             let db = (at(mesh, ai) - at(mesh, bj + 1)).length_squared();
             da <= db
         };
-        let t = if advance_a {
+        if advance_a {
             i += 1;
-            push(mesh, [ai, ai + 1, bj])
+            push(mesh, [ai, ai + 1, bj]);
         } else {
             j += 1;
-            push(mesh, [ai, bj + 1, bj])
-        };
-        if first {
-            // Edge 2 (last vertex → first) of the first triangle is b[0]–a[0].
-            seam.push((t, 2));
-            first = false;
-        }
-        if i == na && j == nb {
-            // The right seam a[na]–b[nb]: edge 1 of [a, a+1, b], edge 0 of
-            // [a, b+1, b].
-            seam.push((t, if advance_a { 1 } else { 0 }));
+            push(mesh, [ai, bj + 1, bj]);
         }
     }
 }
 
-/// A fan from the chain `row` to the pole at `v`: one pole vertex under the
-/// middle of each row segment (they weld into one on output). `below` when the
-/// pole is under the row (lower v).
-fn fan(
-    info: &PatchInfo,
-    mesh: &mut TriMesh,
-    row: (u32, usize),
-    v: f64,
-    below: bool,
-) -> Result<(), CdtError> {
+/// A fan from the chain `row` to its pole vertices `pole..` (one under the middle
+/// of each row segment). `below` when the pole is under the row (lower v).
+fn fan(mesh: &mut TriMesh, row: (u32, usize), pole: u32, below: bool) {
     for k in 0..row.1 as u32 - 1 {
-        let (x, y) = (row.0 + k, row.0 + k + 1);
-        let u = 0.5 * (mesh.verts[x as usize].uv.x + mesh.verts[y as usize].uv.x);
-        let p = mesh.push_vertex(info.vertex(DVec2::new(u, v))?);
+        let (x, y, p) = (row.0 + k, row.0 + k + 1, pole + k);
         if below {
             push(mesh, [p, y, x]);
         } else {
             push(mesh, [x, y, p]);
         }
     }
-    Ok(())
 }
 
 /// Marks the loop segments of a ring: the edges between consecutive ring vertices
-/// `start..start + len` in the triangles of the strip above (`bottom`) or below it.
-fn fix_ring(mesh: &mut TriMesh, start: u32, len: usize, bottom: bool) {
-    let end = start + len as u32;
+/// `ring` in the triangles `range` of the strip above (`bottom`) or below it.
+fn fix_ring(mesh: &mut TriMesh, range: Range<u32>, ring: (u32, usize), bottom: bool) {
+    let (start, end) = (ring.0, ring.0 + ring.1 as u32);
     let in_ring = |k: u32| (start..end).contains(&k);
-    for t in 0..mesh.tris.len() {
-        let tri = mesh.tris[t];
+    for t in range {
+        let tri = mesh.tris[t as usize];
         for i in 0..3 {
             let (x, y) = (tri[i], tri[(i + 1) % 3]);
             // Ring segments run with increasing index along the bottom ring's
             // triangles and decreasing along the top ring's.
             let segment = if bottom { y == x + 1 } else { x == y + 1 };
             if in_ring(x) && in_ring(y) && segment {
-                mesh.fixed[t][i] = true;
+                mesh.fixed[t as usize][i] = true;
             }
         }
     }

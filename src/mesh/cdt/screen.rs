@@ -17,7 +17,6 @@
 use std::ops::Range;
 
 use glam::{DVec2, DVec3};
-use rayon::prelude::*;
 
 use super::flip::effective_uv;
 use super::patch::PatchInfo;
@@ -27,7 +26,7 @@ use crate::mesh::TessellationOptions;
 use crate::nurbs::NurbsSurface;
 use crate::parts::Analytic;
 
-/// One probe: the triangle it belongs to, the 3D point on the triangle and the
+/// One probe: the slot of the triangle it belongs to (in the list screened), the 3D point on the triangle and the
 /// parameters (u wrapped) where the surface is evaluated.
 struct Probe {
     triangle: u32,
@@ -35,34 +34,59 @@ struct Probe {
     uv: DVec2,
 }
 
-/// For every triangle of `mesh` (whose triangles come strip by strip, `strips`
-/// giving each strip's range), whether it is certainly within the tolerance.
-/// `false` means "measure it in full": outside the tolerance, an edge turning more
-/// than the angle limit or longer than the length limit (which the full measure may
-/// still allow next to a loop that does as much), collapsed, at a pole, or turned
-/// against the surface. `None` when the patch has no analytic surface: then every
-/// triangle is measured in full.
-pub(super) fn screen(
-    info: &PatchInfo,
-    mesh: &TriMesh,
-    strips: &[Range<u32>],
-    options: &TessellationOptions,
-) -> Option<Vec<bool>> {
-    let analytic = info.analytic.as_ref()?;
-    let limits = Limits {
-        tolerance: options.tolerance,
-        min_cos: options
-            .angle_tolerance
-            .map_or(-1.0, |a| a.to_radians().cos()),
-        max_edge: options.max_edge_length.unwrap_or(f64::INFINITY),
-    };
-    // Rows of constant v are isocurves of the transposed surface.
-    let transposed = info.surface.transposed();
-    let per_strip: Vec<Vec<bool>> = strips
-        .par_iter()
-        .map(|strip| screen_strip(info, &transposed, analytic, mesh, strip.clone(), &limits))
-        .collect();
-    Some(per_strip.into_iter().flatten().collect())
+/// The screen of one patch: the surface's rows as isocurves, the analytic surface
+/// and the limits.
+pub(super) struct Screen<'a> {
+    info: &'a PatchInfo<'a>,
+    /// The surface with u and v exchanged: its isocurves at fixed "u" are the rows
+    /// of constant v.
+    transposed: NurbsSurface,
+    analytic: Analytic,
+    limits: Limits,
+}
+
+impl<'a> Screen<'a> {
+    /// The screen of `info`'s patch against `options`; `None` when the patch has
+    /// no analytic surface: then every triangle is measured in full.
+    pub fn new(info: &'a PatchInfo<'a>, options: &TessellationOptions) -> Option<Self> {
+        let analytic = info.analytic?;
+        Some(Self {
+            info,
+            transposed: info.surface.transposed(),
+            analytic,
+            limits: Limits {
+                tolerance: options.tolerance,
+                min_cos: options
+                    .angle_tolerance
+                    .map_or(-1.0, |a| a.to_radians().cos()),
+                max_edge: options.max_edge_length.unwrap_or(f64::INFINITY),
+            },
+        })
+    }
+
+    /// For every triangle of `range` in `mesh` (the triangles of one strip between
+    /// two rows), whether it is certainly within the tolerance. `false` means
+    /// "measure it in full": outside the tolerance, an edge turning more than the
+    /// angle limit or longer than the length limit (which the full measure may
+    /// still allow next to a loop that does as much), collapsed, at a pole, or
+    /// turned against the surface.
+    pub fn strip(&self, mesh: &TriMesh, range: Range<u32>) -> Vec<bool> {
+        let triangles: Vec<u32> = range.collect();
+        self.triangles(mesh, &triangles)
+    }
+
+    /// [`strip`](Self::strip) of any triangles of `mesh`, in the order given (best
+    /// when they share few v values).
+    pub fn triangles(&self, mesh: &TriMesh, triangles: &[u32]) -> Vec<bool> {
+        screen_triangles(
+            self.info,
+            &self.transposed,
+            &self.analytic,
+            mesh,
+            triangles,
+            &self.limits,
+        )
+    }
 }
 
 /// The limits a triangle is screened against.
@@ -75,18 +99,17 @@ struct Limits {
     max_edge: f64,
 }
 
-/// [`screen`] of the triangles `range`.
-fn screen_strip(
+/// The screen of `triangles`.
+fn screen_triangles(
     info: &PatchInfo,
     transposed: &NurbsSurface,
     analytic: &Analytic,
     mesh: &TriMesh,
-    range: Range<u32>,
+    triangles: &[u32],
     limits: &Limits,
 ) -> Vec<bool> {
     let tolerance = limits.tolerance;
-    let first = range.start;
-    let count = (range.end - range.start) as usize;
+    let count = triangles.len();
     // The plane of each triangle, or None when the full measure must decide.
     let mut planes: Vec<Option<(DVec3, DVec3)>> = Vec::with_capacity(count);
     let mut within = vec![true; count];
@@ -99,7 +122,7 @@ fn screen_strip(
             None => groups.push((bits, vec![probe])),
         }
     };
-    for t in range {
+    for (slot, &t) in triangles.iter().enumerate() {
         let tri = mesh.tris[t as usize];
         let v = tri.map(|k| &mesh.verts[k as usize]);
         let p = v.map(|x| x.point);
@@ -112,7 +135,7 @@ fn screen_strip(
         let turned = v.iter().any(|x| x.pole || x.normal.dot(normal) <= 0.0);
         let area = normal.length();
         if area.is_nan() || area <= 0.0 || turned {
-            within[(t - first) as usize] = false;
+            within[slot] = false;
             planes.push(None);
             continue;
         }
@@ -120,7 +143,7 @@ fn screen_strip(
         let eff = tri.map(|k| effective_uv(mesh, k, &tri));
         let centroid = (eff[0] + eff[1] + eff[2]) / 3.0;
         add(Probe {
-            triangle: t,
+            triangle: slot as u32,
             point: (p[0] + p[1] + p[2]) / 3.0,
             uv: centroid,
         });
@@ -132,10 +155,10 @@ fn screen_strip(
             if x.normal.dot(y.normal) < limits.min_cos
                 || (x.point - y.point).length() > limits.max_edge
             {
-                within[(t - first) as usize] = false;
+                within[slot] = false;
             }
             add(Probe {
-                triangle: t,
+                triangle: slot as u32,
                 point: 0.5 * (x.point + y.point),
                 uv: edge_probe_uv(x, y),
             });
@@ -144,7 +167,7 @@ fn screen_strip(
     for (bits, probes) in &groups {
         let row = transposed.isocurve_u(f64::from_bits(*bits));
         for q in probes {
-            let k = (q.triangle - first) as usize;
+            let k = q.triangle as usize;
             let Some((origin, unit)) = planes[k] else {
                 continue;
             };
