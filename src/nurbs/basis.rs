@@ -15,9 +15,21 @@ pub const MAX_ORDER: usize = MAX_DEGREE + 1;
 /// (A2.2). Only the first `p + 1` entries of the result are meaningful.
 #[inline]
 pub fn basis_functions(knots: &[f64], span: usize, u: f64, p: usize) -> [f64; MAX_ORDER] {
-    let mut n = [0.0; MAX_ORDER];
-    let mut left = [0.0; MAX_ORDER];
-    let mut right = [0.0; MAX_ORDER];
+    basis_functions_in::<MAX_ORDER>(knots, span, u, p)
+}
+
+/// [`basis_functions`] in arrays of `N > p` entries: the same values, with less
+/// stack to clear for a low degree (the hot loops of row evaluation use `N = 4`).
+#[inline]
+pub fn basis_functions_in<const N: usize>(
+    knots: &[f64],
+    span: usize,
+    u: f64,
+    p: usize,
+) -> [f64; N] {
+    let mut n = [0.0; N];
+    let mut left = [0.0; N];
+    let mut right = [0.0; N];
     n[0] = 1.0;
     for j in 1..=p {
         left[j] = u - knots[span + 1 - j];
@@ -42,10 +54,21 @@ pub fn basis_derivatives<const D: usize>(
     u: f64,
     p: usize,
 ) -> [[f64; MAX_ORDER]; D] {
-    let mut ders = [[0.0; MAX_ORDER]; D];
-    let mut ndu = [[0.0; MAX_ORDER]; MAX_ORDER];
-    let mut left = [0.0; MAX_ORDER];
-    let mut right = [0.0; MAX_ORDER];
+    basis_derivatives_in::<D, MAX_ORDER>(knots, span, u, p)
+}
+
+/// [`basis_derivatives`] in arrays of `N > p` entries: the same values, with less
+/// stack to clear for a low degree.
+pub fn basis_derivatives_in<const D: usize, const N: usize>(
+    knots: &[f64],
+    span: usize,
+    u: f64,
+    p: usize,
+) -> [[f64; N]; D] {
+    let mut ders = [[0.0; N]; D];
+    let mut ndu = [[0.0; N]; N];
+    let mut left = [0.0; N];
+    let mut right = [0.0; N];
     ndu[0][0] = 1.0;
     for j in 1..=p {
         left[j] = u - knots[span + 1 - j];
@@ -67,7 +90,7 @@ pub fn basis_derivatives<const D: usize>(
         ders[0][j] = ndu[j][p];
     }
     let order = D - 1; // highest derivative requested
-    let mut a = [[0.0; MAX_ORDER]; 2];
+    let mut a = [[0.0; N]; 2];
     for r in 0..=p {
         let (mut s1, mut s2) = (0usize, 1usize);
         a[0][0] = 1.0;

@@ -24,6 +24,7 @@ mod inversion;
 mod join;
 mod knots;
 mod refine;
+mod row;
 mod surface;
 mod transform;
 
@@ -38,6 +39,7 @@ pub use intersect::{
 };
 pub use inversion::{CurveProjection, SurfaceProjection};
 pub use knots::KnotVector;
+pub use row::SurfaceRow;
 pub use surface::{NurbsSurface, Side, SurfaceDerivatives};
 pub use transform::{MIN_PROJECTION_COSINE, ParallelProjection};
 

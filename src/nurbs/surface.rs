@@ -7,7 +7,11 @@
 
 use glam::{DVec3, DVec4};
 
-use super::basis::{MAX_ORDER, basis_derivatives, basis_functions};
+use super::basis::{MAX_ORDER, basis_derivatives_in, basis_functions, basis_functions_in};
+
+/// Basis arrays for degrees up to 3 (every vessel surface): the same values with
+/// less stack to clear and copy than [`MAX_ORDER`].
+pub(super) const LOW_ORDER: usize = 4;
 use super::curve::{check_homogeneous, euclidean};
 use super::{KnotVector, NurbsCurve, NurbsError};
 
@@ -134,13 +138,24 @@ impl NurbsSurface {
     /// Homogeneous point Sʷ(u, v); parameters are clamped to the domain.
     #[inline]
     pub fn homogeneous_point(&self, u: f64, v: f64) -> DVec4 {
+        if self.u_degree() < LOW_ORDER && self.v_degree() < LOW_ORDER {
+            self.homogeneous_point_in::<LOW_ORDER>(u, v)
+        } else {
+            self.homogeneous_point_in::<MAX_ORDER>(u, v)
+        }
+    }
+
+    /// [`homogeneous_point`](Self::homogeneous_point) with basis arrays of `N`
+    /// entries (`N` above both degrees).
+    #[inline]
+    fn homogeneous_point_in<const N: usize>(&self, u: f64, v: f64) -> DVec4 {
         let (p, q) = (self.u_degree(), self.v_degree());
         let u = self.u_knots.clamp(u);
         let v = self.v_knots.clamp(v);
         let su = self.u_knots.find_span(u);
         let sv = self.v_knots.find_span(v);
-        let nu = basis_functions(self.u_knots.as_slice(), su, u, p);
-        let nv = basis_functions(self.v_knots.as_slice(), sv, v, q);
+        let nu = basis_functions_in::<N>(self.u_knots.as_slice(), su, u, p);
+        let nv = basis_functions_in::<N>(self.v_knots.as_slice(), sv, v, q);
         let stride = self.v_count();
         let mut s = DVec4::ZERO;
         for (k, &bu) in nu.iter().enumerate().take(p + 1) {
@@ -162,16 +177,26 @@ impl NurbsSurface {
 
     /// Homogeneous partial derivatives `[A, A_u, A_v, A_uu, A_uv, A_vv]`.
     pub fn homogeneous_derivatives(&self, u: f64, v: f64) -> [DVec4; 6] {
+        if self.u_degree() < LOW_ORDER && self.v_degree() < LOW_ORDER {
+            self.homogeneous_derivatives_in::<LOW_ORDER>(u, v)
+        } else {
+            self.homogeneous_derivatives_in::<MAX_ORDER>(u, v)
+        }
+    }
+
+    /// [`homogeneous_derivatives`](Self::homogeneous_derivatives) with basis
+    /// arrays of `N` entries (`N` above both degrees).
+    fn homogeneous_derivatives_in<const N: usize>(&self, u: f64, v: f64) -> [DVec4; 6] {
         let (p, q) = (self.u_degree(), self.v_degree());
         let u = self.u_knots.clamp(u);
         let v = self.v_knots.clamp(v);
         let su = self.u_knots.find_span(u);
         let sv = self.v_knots.find_span(v);
-        let du = basis_derivatives::<3>(self.u_knots.as_slice(), su, u, p);
-        let dv = basis_derivatives::<3>(self.v_knots.as_slice(), sv, v, q);
+        let du = basis_derivatives_in::<3, N>(self.u_knots.as_slice(), su, u, p);
+        let dv = basis_derivatives_in::<3, N>(self.v_knots.as_slice(), sv, v, q);
         let stride = self.v_count();
         // temp[d][k]: row k contracted with the d-th v-derivative basis.
-        let mut temp = [[DVec4::ZERO; MAX_ORDER]; 3];
+        let mut temp = [[DVec4::ZERO; N]; 3];
         for (k, row_point) in (0..=p).map(|k| (k, (su - p + k) * stride + sv - q)) {
             let row = &self.points[row_point..=row_point + q];
             for (l, &pt) in row.iter().enumerate() {

@@ -140,10 +140,12 @@ fn pair_up(mesh: &TriMesh, range: Range<u32>, flags: &[bool]) -> Vec<(u32, u32)>
         let next = (i + 1 < n && !used[i + 1]).then_some(i + 1);
         let previous = (i > 0 && !used[i - 1]).then(|| i - 1);
         let failed = |j: Option<usize>| j.filter(|&j| !flags[j]);
-        let partner = failed(next).or(failed(previous)).or(match (previous, next) {
-            (Some(p), Some(q)) => Some(if shared(i, p) >= shared(i, q) { p } else { q }),
-            (p, q) => p.or(q),
-        });
+        let partner = failed(next)
+            .or(failed(previous))
+            .or(match (previous, next) {
+                (Some(p), Some(q)) => Some(if shared(i, p) >= shared(i, q) { p } else { q }),
+                (p, q) => p.or(q),
+            });
         if let Some(j) = partner.filter(|&j| shared(i, j) > 0.0) {
             used[i] = true;
             used[j] = true;
@@ -168,7 +170,12 @@ fn quad(mesh: &TriMesh, s: u32, t: u32) -> Option<Quad> {
     // Boundary counter-clockwise: q → r → p (in `a`), p → x → q (in `b`).
     let (fa, fb) = (mesh.fixed[s as usize], mesh.fixed[t as usize]);
     let corners = [q, r, p, x];
-    let fixed = [fa[(i + 1) % 3], fa[(i + 2) % 3], fb[(j + 1) % 3], fb[(j + 2) % 3]];
+    let fixed = [
+        fa[(i + 1) % 3],
+        fa[(i + 2) % 3],
+        fb[(j + 1) % 3],
+        fb[(j + 2) % 3],
+    ];
     let centre = corners
         .iter()
         .map(|&k| mesh.verts[k as usize].uv)

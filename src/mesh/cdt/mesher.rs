@@ -2,6 +2,8 @@
 //! seeding, spade's constrained triangulation and chordal refinement to the welded
 //! output.
 
+use rayon::prelude::*;
+
 use super::output::{RegionMesh, finish};
 use super::patch::{PatchInfo, wants_transpose};
 use super::trimesh::TriMesh;
@@ -115,13 +117,16 @@ fn mesh_oriented(
     {
         rings::fix_seam(&mut rings.mesh, &rings.seam);
         stats.refinement_insertions += rings.insertions;
-        let assessment =
-            refine::assess_all(&info, &rings.mesh, options, rings.within.as_deref());
+        let assessment = refine::assess_all(&info, &rings.mesh, options, rings.within.as_deref());
         if assessment.all_good() {
             return finish(&info, &rings.mesh, stats);
         }
-        // Give the rings neighbour links and refine what is left.
-        let mesh = rings.mesh;
+        // Give the rings metrics and neighbour links and refine what is left.
+        let mut mesh = rings.mesh;
+        mesh.verts
+            .par_iter_mut()
+            .filter(|v| v.metric.uu.is_nan())
+            .for_each(|v| info.fill_metric(v));
         let fixed: rustc_hash::FxHashSet<(u32, u32)> = (0..mesh.tris.len() as u32)
             .flat_map(|t| (0..3).map(move |i| (t, i)))
             .filter(|&(t, i)| mesh.fixed[t as usize][i])

@@ -34,6 +34,14 @@ pub(super) struct Metric {
 }
 
 impl Metric {
+    /// A metric not computed yet (NaN entries): the structured path's vertices
+    /// carry it until refinement, the only reader, fills theirs in.
+    pub const UNSET: Metric = Metric {
+        uu: f64::NAN,
+        uv: f64::NAN,
+        vv: f64::NAN,
+    };
+
     /// Squared length of a parameter step.
     pub fn length_sq(&self, d: DVec2) -> f64 {
         self.uu * d.x * d.x + 2.0 * self.uv * d.x * d.y + self.vv * d.y * d.y

@@ -19,8 +19,8 @@
 mod error;
 mod flip;
 mod initial;
-mod mend;
 mod measure;
+mod mend;
 mod mesher;
 mod metric;
 mod output;

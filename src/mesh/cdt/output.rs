@@ -69,15 +69,17 @@ impl RegionMesh {
     }
 }
 
-/// Smallest interior angle of a triangle, radians: the angle opposite its
-/// shortest side.
-fn min_angle(p: [DVec3; 3]) -> f64 {
+/// Smallest interior angle of a triangle, as `(|a × b|, a · b)` of its two edges
+/// at the vertex opposite its shortest side: the angle is their `atan2`, at most
+/// 60°, so the pairs compare by `sin·cos'` against `sin'·cos` with no
+/// trigonometry per triangle.
+fn min_angle(p: [DVec3; 3]) -> (f64, f64) {
     let opposite = |i: usize| (p[(i + 2) % 3] - p[(i + 1) % 3]).length_squared();
     let i = (0..3)
         .min_by(|&a, &b| opposite(a).total_cmp(&opposite(b)))
         .unwrap_or(0);
     let (a, b) = (p[(i + 1) % 3] - p[i], p[(i + 2) % 3] - p[i]);
-    a.cross(b).length().atan2(a.dot(b))
+    (a.cross(b).length(), a.dot(b))
 }
 
 /// Welds `mesh` into the output.
@@ -148,7 +150,8 @@ pub(super) fn finish(
             }
         };
     }
-    let mut smallest = f64::INFINITY;
+    // The smallest angle so far as (sine-like, cosine-like); (1, 0) is 90°.
+    let mut smallest = (1.0, 0.0);
     for (t, tri) in mesh.tris.iter().enumerate() {
         let welded = tri.map(|k| index[k as usize]);
         if welded[0] == welded[1] || welded[1] == welded[2] || welded[2] == welded[0] {
@@ -167,14 +170,17 @@ pub(super) fn finish(
         if area.is_nan() || area <= FLAT * longest || turned {
             return Err(CdtError::InvalidTriangle { triangle: t });
         }
-        smallest = smallest.min(min_angle(p));
+        let (sin, cos) = min_angle(p);
+        if sin * smallest.1 < smallest.0 * cos {
+            smallest = (sin, cos);
+        }
         out.mesh.indices.extend_from_slice(&welded);
     }
     stats.triangles = out.mesh.triangle_count();
-    stats.min_angle_deg = if smallest.is_finite() {
-        smallest.to_degrees()
-    } else {
+    stats.min_angle_deg = if out.mesh.indices.is_empty() {
         0.0
+    } else {
+        smallest.0.atan2(smallest.1).to_degrees()
     };
     out.stats = stats;
     Ok(out)

@@ -8,7 +8,7 @@ use glam::{DVec2, DVec3};
 
 use super::CdtError;
 use super::metric::{Metric, Sizing};
-use crate::nurbs::NurbsSurface;
+use crate::nurbs::{NurbsSurface, SurfaceDerivatives};
 use crate::parts::Analytic;
 
 /// Relative distance below which control points count as coincident (a collapsed
@@ -43,7 +43,13 @@ pub(super) fn wants_transpose(surface: &NurbsSurface) -> bool {
 fn wrap(surface: &NurbsSurface, closed: bool, u: f64) -> f64 {
     let (u0, u1) = surface.u_knots().domain();
     if closed {
-        u0 + (u - u0).rem_euclid(u1 - u0)
+        let (offset, period) = (u - u0, u1 - u0);
+        // The remainder of an offset already in [0, period) is the offset itself.
+        if (0.0..period).contains(&offset) {
+            u0 + offset
+        } else {
+            u0 + offset.rem_euclid(period)
+        }
     } else {
         u
     }
@@ -256,8 +262,57 @@ impl<'a> PatchInfo<'a> {
     /// The mesh vertex at `uv`: exact point and normal (the limit at a pole) and
     /// the metric.
     pub fn vertex(&self, uv: DVec2) -> Result<Vertex, CdtError> {
-        let u = self.wrap_u(uv.x);
-        let d = self.surface.derivatives(u, uv.y);
+        let d = self.surface.derivatives(self.wrap_u(uv.x), uv.y);
+        let mut vertex = self.vertex_from(uv, &d)?;
+        vertex.metric = self.metric_from(uv, &d, vertex.normal);
+        Ok(vertex)
+    }
+
+    /// The vertices of the row of constant `v` at the parameters `us`, evaluated
+    /// along the row (see [`SurfaceRow`](crate::nurbs::SurfaceRow)), with their
+    /// metrics [unset](Metric::UNSET): only refinement reads them, after
+    /// [`fill_metric`](Self::fill_metric).
+    pub fn row_vertices(&self, v: f64, us: &[f64]) -> Result<Vec<Vertex>, CdtError> {
+        let row = self.surface.row(v);
+        us.iter()
+            .map(|&u| {
+                let (point, du, dv) = row.first_derivatives(self.wrap_u(u));
+                let d = SurfaceDerivatives {
+                    point,
+                    du,
+                    dv,
+                    duu: DVec3::NAN,
+                    duv: DVec3::NAN,
+                    dvv: DVec3::NAN,
+                };
+                self.vertex_from(DVec2::new(u, v), &d)
+            })
+            .collect()
+    }
+
+    /// A vertex whose metric is unset, with the metric at its (u, v).
+    pub fn fill_metric(&self, vertex: &mut Vertex) {
+        let d = self
+            .surface
+            .derivatives(self.wrap_u(vertex.uv.x), vertex.uv.y);
+        vertex.metric = self.metric_from(vertex.uv, &d, vertex.normal);
+    }
+
+    /// The metric at `uv` from the derivatives there and the vertex normal; at a
+    /// pole or an irregular point, just inside it.
+    fn metric_from(&self, uv: DVec2, d: &SurfaceDerivatives, normal: DVec3) -> Metric {
+        let cross = d.du.cross(d.dv);
+        let scale = d.du.length_squared().max(d.dv.length_squared());
+        let regular = cross.length_squared() > 1e-20 * scale * scale;
+        match regular.then(|| self.sizing.metric(d, normal)).flatten() {
+            Some(m) => m,
+            None => self.metric_at(uv),
+        }
+    }
+
+    /// The vertex at `uv` from the derivatives there: exact point and normal (the
+    /// limit at a pole); the metric [unset](Metric::UNSET).
+    fn vertex_from(&self, uv: DVec2, d: &SurfaceDerivatives) -> Result<Vertex, CdtError> {
         let cross = d.du.cross(d.dv);
         let scale = d.du.length_squared().max(d.dv.length_squared());
         let regular = cross.length_squared() > 1e-20 * scale * scale;
@@ -265,11 +320,7 @@ impl<'a> PatchInfo<'a> {
         let normal = match (pole, regular) {
             (Some(n), _) => n,
             (None, true) => cross.normalize(),
-            (None, false) => self.surface.normal(u, uv.y),
-        };
-        let metric = match regular.then(|| self.sizing.metric(&d, normal)).flatten() {
-            Some(m) => m,
-            None => self.metric_at(uv),
+            (None, false) => self.surface.normal(self.wrap_u(uv.x), uv.y),
         };
         if !(d.point.is_finite() && normal.is_finite() && normal != DVec3::ZERO) {
             return Err(CdtError::NonFiniteSurface { u: uv.x, v: uv.y });
@@ -278,7 +329,7 @@ impl<'a> PatchInfo<'a> {
             uv,
             point: d.point,
             normal,
-            metric,
+            metric: Metric::UNSET,
             pole: pole.is_some(),
         })
     }

@@ -22,7 +22,6 @@
 
 use std::ops::Range;
 
-use glam::DVec2;
 use rayon::prelude::*;
 
 use super::patch::{PatchInfo, Vertex};
@@ -178,24 +177,22 @@ pub(super) fn triangulate(
 /// The seam edges of a structured mesh: every edge between two row ends on one
 /// side of the seam (`lo` or `hi`), as `(triangle, edge)`.
 fn seam_edges(mesh: &TriMesh, lo: f64, hi: f64) -> Vec<(u32, usize)> {
-    let end = |k: u32| {
-        let v = &mesh.verts[k as usize];
-        if v.pole {
-            None
-        } else if v.uv.x == lo {
-            Some(false)
-        } else if v.uv.x == hi {
-            Some(true)
-        } else {
-            None
-        }
-    };
+    // 1 on the `lo` copy of the seam, 2 on the `hi` copy, 0 elsewhere.
+    let side: Vec<u8> = mesh
+        .verts
+        .iter()
+        .map(|v| match v.uv.x {
+            _ if v.pole => 0,
+            x if x == lo => 1,
+            x if x == hi => 2,
+            _ => 0,
+        })
+        .collect();
     let mut out = Vec::new();
     for (t, tri) in mesh.tris.iter().enumerate() {
+        let s = tri.map(|k| side[k as usize]);
         for i in 0..3 {
-            if let (Some(x), Some(y)) = (end(tri[i]), end(tri[(i + 1) % 3]))
-                && x == y
-            {
+            if s[i] != 0 && s[i] == s[(i + 1) % 3] {
                 out.push((t as u32, i));
             }
         }
@@ -206,20 +203,23 @@ fn seam_edges(mesh: &TriMesh, lo: f64, hi: f64) -> Vec<(u32, usize)> {
 /// The vertices of rows `(v, u values)`, evaluated in parallel.
 fn evaluate(info: &PatchInfo, rows: &[(f64, &[f64])]) -> Result<Vec<Vec<Vertex>>, CdtError> {
     rows.par_iter()
-        .map(|(v, us)| us.iter().map(|&u| info.vertex(DVec2::new(u, *v))).collect())
+        .map(|(v, us)| info.row_vertices(*v, us))
         .collect()
 }
 
 /// Zips every pair of consecutive chains into `mesh` (replacing its triangles);
 /// returns each strip's range of triangles, or `None` when two poles meet.
-fn build(
-    mesh: &mut TriMesh,
-    chains: &[Chain],
-) -> Option<Vec<Range<u32>>> {
+fn build(mesh: &mut TriMesh, chains: &[Chain]) -> Option<Vec<Range<u32>>> {
     mesh.tris.clear();
     mesh.adj.clear();
     mesh.fixed.clear();
     mesh.touched.clear();
+    // Each strip has as many triangles as its chains have vertices, less two.
+    let estimate = 2 * chains.iter().map(|c| c.len).sum::<usize>() + 16;
+    mesh.tris.reserve(estimate);
+    mesh.adj.reserve(estimate);
+    mesh.fixed.reserve(estimate);
+    mesh.touched.reserve(estimate);
     let mut strips = Vec::with_capacity(chains.len());
     let last = chains.len() - 1;
     for k in 0..last {

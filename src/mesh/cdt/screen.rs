@@ -10,9 +10,11 @@
 //! time. In a structured mesh (`rings`) the probes of one strip between two rows
 //! share a handful of v values — the rows' own for edges along them, the middle
 //! for the diagonals, the thirds for the centroids — so here each strip's probes
-//! are grouped by their exact v and evaluated with one grid call per group
-//! (the isocurve at that v once, then one curve point per probe). Sits between `rings` (which builds the mesh) and `refine` (which takes over
-//! the triangles found outside the limits).
+//! are grouped by their exact v and evaluated along one
+//! [`SurfaceRow`](crate::nurbs::SurfaceRow) per group (the v half of the work once,
+//! then a short contraction per probe). Sits between `rings` (which builds the
+//! mesh) and `mend` (which re-triangulates around the triangles found outside the
+//! limits, and screens its new triangles here again).
 
 use std::ops::Range;
 
@@ -21,26 +23,28 @@ use glam::{DVec2, DVec3};
 use super::flip::effective_uv;
 use super::patch::PatchInfo;
 use super::refine::edge_probe_uv;
+use rustc_hash::FxHashMap;
+
 use super::trimesh::TriMesh;
 use crate::mesh::TessellationOptions;
-use crate::nurbs::NurbsSurface;
 use crate::parts::Analytic;
 
-/// One probe: the slot of the triangle it belongs to (in the list screened), the 3D point on the triangle and the
-/// parameters (u wrapped) where the surface is evaluated.
+/// One probe: the slot of the triangle it belongs to (in the list screened), the
+/// 3D point on the triangle and the parameters where the surface is evaluated.
 struct Probe {
     triangle: u32,
+    /// The slot of the other triangle sharing the probed edge, when it was
+    /// screened right after (`u32::MAX` for none).
+    other: u32,
+    /// Index of its v in [`Groups`].
+    group: u32,
     point: DVec3,
     uv: DVec2,
 }
 
-/// The screen of one patch: the surface's rows as isocurves, the analytic surface
-/// and the limits.
+/// The screen of one patch: the patch, its analytic surface and the limits.
 pub(super) struct Screen<'a> {
     info: &'a PatchInfo<'a>,
-    /// The surface with u and v exchanged: its isocurves at fixed "u" are the rows
-    /// of constant v.
-    transposed: NurbsSurface,
     analytic: Analytic,
     limits: Limits,
 }
@@ -52,7 +56,6 @@ impl<'a> Screen<'a> {
         let analytic = info.analytic?;
         Some(Self {
             info,
-            transposed: info.surface.transposed(),
             analytic,
             limits: Limits {
                 tolerance: options.tolerance,
@@ -78,14 +81,44 @@ impl<'a> Screen<'a> {
     /// [`strip`](Self::strip) of any triangles of `mesh`, in the order given (best
     /// when they share few v values).
     pub fn triangles(&self, mesh: &TriMesh, triangles: &[u32]) -> Vec<bool> {
-        screen_triangles(
-            self.info,
-            &self.transposed,
-            &self.analytic,
-            mesh,
-            triangles,
-            &self.limits,
-        )
+        screen_triangles(self.info, &self.analytic, mesh, triangles, &self.limits)
+    }
+}
+
+/// The distinct v values of a screen's probes, by their exact bits: a few per
+/// strip of a structured mesh (searched in order), many after mending (then
+/// hashed).
+#[derive(Default)]
+struct Groups {
+    values: Vec<f64>,
+    hashed: FxHashMap<u64, u32>,
+}
+
+impl Groups {
+    /// Groups searched in order before the hash map takes over.
+    const LINEAR: usize = 16;
+
+    /// The index of the group of `v`, added if new.
+    fn index(&mut self, v: f64) -> u32 {
+        let bits = v.to_bits();
+        if self.values.len() <= Self::LINEAR {
+            if let Some(g) = self.values.iter().position(|x| x.to_bits() == bits) {
+                return g as u32;
+            }
+            if self.values.len() == Self::LINEAR {
+                self.hashed = (0..self.values.len() as u32)
+                    .map(|g| (self.values[g as usize].to_bits(), g))
+                    .collect();
+            }
+        } else if let Some(&g) = self.hashed.get(&bits) {
+            return g;
+        }
+        let g = self.values.len() as u32;
+        self.values.push(v);
+        if self.values.len() > Self::LINEAR {
+            self.hashed.insert(bits, g);
+        }
+        g
     }
 }
 
@@ -102,7 +135,6 @@ struct Limits {
 /// The screen of `triangles`.
 fn screen_triangles(
     info: &PatchInfo,
-    transposed: &NurbsSurface,
     analytic: &Analytic,
     mesh: &TriMesh,
     triangles: &[u32],
@@ -113,16 +145,18 @@ fn screen_triangles(
     // The plane of each triangle, or None when the full measure must decide.
     let mut planes: Vec<Option<(DVec3, DVec3)>> = Vec::with_capacity(count);
     let mut within = vec![true; count];
-    // Probes grouped by the exact bits of their v.
-    let mut groups: Vec<(u64, Vec<Probe>)> = Vec::new();
-    let mut add = |probe: Probe| {
-        let bits = probe.uv.y.to_bits();
-        match groups.iter_mut().find(|(b, _)| *b == bits) {
-            Some((_, list)) => list.push(probe),
-            None => groups.push((bits, vec![probe])),
-        }
+    let mut probes: Vec<Probe> = Vec::with_capacity(4 * count);
+    let mut groups = Groups::default();
+    let add = |probes: &mut Vec<Probe>, probe: Probe, groups: &mut Groups| {
+        let group = groups.index(probe.uv.y);
+        probes.push(Probe { group, ..probe });
+        (probes.len() - 1) as u32
     };
+    // The edge probes of the triangle screened just before, by directed edge: a
+    // strip's consecutive triangles share a diagonal, probed once for both.
+    let mut previous: [(u32, u32, u32); 3] = [(u32::MAX, u32::MAX, u32::MAX); 3];
     for (slot, &t) in triangles.iter().enumerate() {
+        let last = std::mem::replace(&mut previous, [(u32::MAX, u32::MAX, u32::MAX); 3]);
         let tri = mesh.tris[t as usize];
         let v = tri.map(|k| &mesh.verts[k as usize]);
         let p = v.map(|x| x.point);
@@ -142,11 +176,17 @@ fn screen_triangles(
         planes.push(Some((p[0], normal / area)));
         let eff = tri.map(|k| effective_uv(mesh, k, &tri));
         let centroid = (eff[0] + eff[1] + eff[2]) / 3.0;
-        add(Probe {
-            triangle: slot as u32,
-            point: (p[0] + p[1] + p[2]) / 3.0,
-            uv: centroid,
-        });
+        add(
+            &mut probes,
+            Probe {
+                triangle: slot as u32,
+                other: u32::MAX,
+                group: 0,
+                point: (p[0] + p[1] + p[2]) / 3.0,
+                uv: centroid,
+            },
+            &mut groups,
+        );
         for i in 0..3 {
             if mesh.fixed[t as usize][i] {
                 continue;
@@ -157,25 +197,54 @@ fn screen_triangles(
             {
                 within[slot] = false;
             }
-            add(Probe {
-                triangle: slot as u32,
-                point: 0.5 * (x.point + y.point),
-                uv: edge_probe_uv(x, y),
-            });
+            let (a, b) = (tri[i], tri[(i + 1) % 3]);
+            if let Some(&(_, _, k)) = last.iter().find(|e| e.0 == b && e.1 == a) {
+                probes[k as usize].other = slot as u32;
+                continue;
+            }
+            let k = add(
+                &mut probes,
+                Probe {
+                    triangle: slot as u32,
+                    other: u32::MAX,
+                    group: 0,
+                    point: 0.5 * (x.point + y.point),
+                    uv: edge_probe_uv(x, y),
+                },
+                &mut groups,
+            );
+            previous[i] = (a, b, k);
         }
     }
-    for (bits, probes) in &groups {
-        let row = transposed.isocurve_u(f64::from_bits(*bits));
-        for q in probes {
-            let k = q.triangle as usize;
-            let Some((origin, unit)) = planes[k] else {
-                continue;
-            };
+    // Counting sort by group, then one row evaluator per group.
+    let mut starts = vec![0usize; groups.values.len() + 1];
+    for q in &probes {
+        starts[q.group as usize + 1] += 1;
+    }
+    for g in 0..groups.values.len() {
+        starts[g + 1] += starts[g];
+    }
+    let mut order = vec![0u32; probes.len()];
+    let mut next = starts.clone();
+    for (k, q) in probes.iter().enumerate() {
+        order[next[q.group as usize]] = k as u32;
+        next[q.group as usize] += 1;
+    }
+    for (g, &v) in groups.values.iter().enumerate() {
+        let row = info.surface.row(v);
+        for &k in &order[starts[g]..starts[g + 1]] {
+            let q = &probes[k as usize];
             let s = row.point(info.wrap_u(q.uv.x));
-            let deviation = analytic.distance(q.point).max((s - origin).dot(unit).abs());
-            // NaN counts as outside.
-            if deviation.is_nan() || deviation > tolerance {
-                within[k] = false;
+            let distance = analytic.distance(q.point);
+            for slot in [q.triangle, q.other] {
+                let Some(&Some((origin, unit))) = planes.get(slot as usize) else {
+                    continue;
+                };
+                let deviation = distance.max((s - origin).dot(unit).abs());
+                // NaN counts as outside.
+                if deviation.is_nan() || deviation > tolerance {
+                    within[slot as usize] = false;
+                }
             }
         }
     }
