@@ -92,8 +92,9 @@ impl SurfaceRow<'_> {
         let su = self.span(u);
         let du = basis_derivatives_in::<2, N>(knots.as_slice(), su, u, p);
         let (mut a, mut au, mut av) = (DVec4::ZERO, DVec4::ZERO, DVec4::ZERO);
-        for k in 0..=p {
-            let (x, xv) = (self.rows[0][su - p + k], self.rows[1][su - p + k]);
+        let span = su - p..=su;
+        let terms = self.rows[0][span.clone()].iter().zip(&self.rows[1][span]);
+        for (k, (&x, &xv)) in terms.enumerate() {
             a += x * du[0][k];
             au += x * du[1][k];
             av += xv * du[0][k];
@@ -150,14 +151,45 @@ impl SurfaceRow<'_> {
         let du = basis_derivatives_in::<3, N>(knots.as_slice(), su, u, p);
         let mut out = [DVec4::ZERO; 6];
         for k in 0..=p {
-            let [a, av, avv] = [0, 1, 2].map(|d| self.rows[d][su - p + k]);
-            out[0] += a * du[0][k];
-            out[1] += a * du[1][k];
-            out[2] += av * du[0][k];
-            out[3] += a * du[2][k];
-            out[4] += av * du[1][k];
-            out[5] += avv * du[0][k];
+            let [a, av, avv] = self.rows.each_ref().map(|row| row[su - p + k]);
+            let [n, nu, nuu] = du.map(|d| d[k]);
+            out[0] += a * n;
+            out[1] += a * nu;
+            out[2] += av * n;
+            out[3] += a * nuu;
+            out[4] += av * nu;
+            out[5] += avv * n;
         }
         rational_surface_derivatives(out)
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use crate::parts::heads::{Head, HeadKind};
+
+    #[test]
+    fn a_row_evaluates_as_the_surface_does() {
+        let od = 2400.0;
+        let patches = Head::new(od, HeadKind::asme_fd(od))
+            .patches()
+            .expect("the head is valid");
+        for patch in &patches {
+            let surface = &patch.surface;
+            let ((u0, u1), (v0, v1)) = surface.domain();
+            for j in 0..=7 {
+                let v = v0 + (v1 - v0) * j as f64 / 7.0;
+                let row = surface.row(v);
+                // Increasing u, then back to the start: the span hint must not stick.
+                for i in (0..=40).chain([3, 0, 40, 17]) {
+                    let u = u0 + (u1 - u0) * i as f64 / 40.0;
+                    let d = surface.derivatives(u, v);
+                    assert_eq!(row.derivatives(u), d, "{} at ({u}, {v})", patch.name);
+                    assert_eq!(row.first_derivatives(u), (d.point, d.du, d.dv));
+                    let p = row.point(u);
+                    assert!((p - surface.point(u, v)).length() <= 1e-9 * od);
+                }
+            }
+        }
     }
 }
