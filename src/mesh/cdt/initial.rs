@@ -48,6 +48,27 @@ fn chart(metric: &Metric, uv: DVec2) -> Result<Point2<f64>, spade::InsertionErro
     Ok(Point2::new(p.x, p.y))
 }
 
+/// Size of the seeds' offsets in the chart, in units of the target size.
+const JITTER: f64 = 1e-7;
+
+/// A seed's chart position moved by a deterministic offset of about [`JITTER`]:
+/// the seed lattice is exactly regular, so four of its points are often
+/// co-circular and spade's exact in-circle predicate leaves its fast filter for the
+/// adaptive path on almost every test (half of a course's meshing time). The
+/// offsets (a low-discrepancy sequence in the seed's index) break those ties
+/// without moving any vertex: the seed keeps its (u, v), only the tie-break of
+/// the triangulation changes, and refinement's flips settle the connectivity in
+/// the true metric anyway.
+fn jitter(position: Point2<f64>, k: usize) -> Point2<f64> {
+    const PHI: f64 = 0.618_033_988_749_894_9;
+    const PLASTIC: f64 = 0.754_877_666_246_692_8;
+    let share = |a: f64| (k as f64 * a).fract() - 0.5;
+    Point2::new(
+        position.x + JITTER * share(PHI),
+        position.y + JITTER * share(PLASTIC),
+    )
+}
+
 /// Samples per direction of the region's bounds for the chart's metric.
 const CHART_SAMPLES: usize = 3;
 
@@ -102,6 +123,7 @@ pub(super) fn triangulate(
             info.check_loop_point(uv).map_err(bad)?;
             let position =
                 chart(&metric, uv).map_err(|_| bad("a coordinate is outside spade's range"))?;
+            let position = jitter(position, uvs.len());
             chart_vertices.push(ChartVertex {
                 position,
                 id: uvs.len() as u32,
@@ -110,9 +132,10 @@ pub(super) fn triangulate(
         }
     }
     let loop_vertices = uvs.len();
-    for &uv in seeds {
+    for (k, &uv) in seeds.iter().enumerate() {
         match chart(&metric, uv) {
             Ok(position) => {
+                let position = jitter(position, loop_vertices + k);
                 chart_vertices.push(ChartVertex {
                     position,
                     id: uvs.len() as u32,

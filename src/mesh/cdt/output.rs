@@ -3,7 +3,7 @@
 //!
 //! Vertices that map to one 3D point (within 10⁻¹² of the patch size) become one
 //! vertex: all vertices on a collapsed side (a pole, an apex) and the two copies of
-//! a point on the seam of a patch closed in u. Triangles that lose a vertex to the
+//! a point on the seam of a patch closed in u (the only vertices looked up). Triangles that lose a vertex to the
 //! weld are dropped and counted; any other triangle must have positive area and a
 //! normal agreeing with the exact normals at its vertices, or the mesh is withheld
 //! with an error.
@@ -94,17 +94,25 @@ pub(super) fn finish(
         (c.x as i64, c.y as i64, c.z as i64)
     };
     let mut grid: HashMap<(i64, i64, i64), Vec<u32>> = HashMap::default();
-    // Only vertices on the loops (where poles and seam copies lie) can share a 3D
-    // point with another vertex; interior vertices are strictly inside the region.
+    // Only vertices on a collapsed side (a pole) or on the seam of a region that
+    // spans a whole period of a surface closed in u (its two sides at u = lo and
+    // lo + period, the same points) can share a 3D point with another vertex: any
+    // other two points of the region are distinct points of the surface.
+    let ((u0, u1), _) = info.surface.domain();
+    let period = u1 - u0;
+    let lo = mesh
+        .verts
+        .iter()
+        .map(|v| v.uv.x)
+        .fold(f64::INFINITY, f64::min);
+    let on_seam = |uv: DVec2| {
+        let r = (uv.x - lo).rem_euclid(period);
+        info.closed_u && r.min(period - r) <= 1e-9 * period
+    };
     let mut used = vec![false; mesh.verts.len()];
-    let mut on_loop = vec![false; mesh.verts.len()];
-    for (tri, fixed) in mesh.tris.iter().zip(&mesh.fixed) {
-        for i in 0..3 {
-            used[tri[i] as usize] = true;
-            if fixed[i] {
-                on_loop[tri[i] as usize] = true;
-                on_loop[tri[(i + 1) % 3] as usize] = true;
-            }
+    for tri in &mesh.tris {
+        for &k in tri {
+            used[k as usize] = true;
         }
     }
     let mut out = RegionMesh::default();
@@ -113,7 +121,7 @@ pub(super) fn finish(
         if !used[k] {
             continue;
         }
-        if !(on_loop[k] || v.pole) {
+        if !(v.pole || on_seam(v.uv)) {
             index[k] = out.mesh.positions.len() as u32;
             out.mesh.positions.push(v.point);
             out.mesh.normals.push(v.normal);
