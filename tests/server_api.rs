@@ -330,4 +330,17 @@ fn serve_refuses_a_missing_or_invalid_design_at_start() {
     );
     // Nothing was written beside the refused design.
     assert!(!design.with_file_name("design.json.journal").exists());
+    // A viewer timeout that is not a positive number of seconds is refused.
+    for bad in ["0", "-3", "NaN", "soon"] {
+        let out = std::process::Command::new(env!("CARGO_BIN_EXE_vesselcad"))
+            .args(["serve", design.to_str().unwrap(), "--port", "0"])
+            .args(["--viewer-timeout", bad])
+            .output()
+            .unwrap();
+        assert_eq!(out.status.code(), Some(2), "--viewer-timeout {bad}");
+        assert!(
+            String::from_utf8_lossy(&out.stderr).contains("--viewer-timeout"),
+            "--viewer-timeout {bad}"
+        );
+    }
 }

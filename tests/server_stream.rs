@@ -211,7 +211,9 @@ fn a_delta_replaces_exactly_the_changed_nodes() {
 #[test]
 fn many_viewers_get_every_revision_and_a_stalled_one_blocks_nobody() {
     let design = design_copy("horizontal-drum.json", "stream-many");
-    let server = ServerProcess::start(&design, &[]);
+    // The stalled viewer must outlast the whole editing phase (resynced, not
+    // dropped), however slow the machine: a long socket timeout.
+    let server = ServerProcess::start(&design, &["--viewer-timeout", "600"]);
     runtime().block_on(async {
         // A viewer that never reads, with a tiny receive window.
         let socket = tokio::net::TcpSocket::new_v4().unwrap();

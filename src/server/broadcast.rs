@@ -38,7 +38,8 @@ use super::session::{Accepted, Snapshot};
 pub const VIEWER_QUEUE: usize = 64;
 
 /// How long a viewer's socket may take to accept one message before the viewer
-/// is dropped.
+/// is dropped, unless the server is told otherwise
+/// ([`ServeOptions::viewer_timeout`](super::ServeOptions::viewer_timeout)).
 pub const VIEWER_SEND_TIMEOUT: Duration = Duration::from_secs(10);
 
 /// Largest message a viewer may send, bytes.
@@ -105,13 +106,15 @@ enum Ended {
     Gone,
 }
 
-/// Serves one viewer until it goes, the server shuts down, or it stops reading.
-/// `snapshot` gives the current full model (it locks the session).
+/// Serves one viewer until it goes, the server shuts down, or it stops reading
+/// (its socket accepts nothing for `timeout`). `snapshot` gives the current full
+/// model (it locks the session).
 pub async fn run_viewer<F, Fut>(
     socket: WebSocket,
     mut queue: broadcast::Receiver<Arc<Update>>,
     snapshot: F,
     mut shutdown: watch::Receiver<bool>,
+    timeout: Duration,
 ) where
     F: Fn() -> Fut,
     Fut: std::future::Future<Output = Option<Snapshot>>,
@@ -121,7 +124,10 @@ pub async fn run_viewer<F, Fut>(
         return;
     };
     let mut at = first.revision;
-    if send_full(&mut sink, "hello", &first, None).await.is_err() {
+    if send_full(&mut sink, "hello", &first, None, timeout)
+        .await
+        .is_err()
+    {
         return;
     }
     loop {
@@ -131,7 +137,7 @@ pub async fn run_viewer<F, Fut>(
                     Ok(update) if update.revision <= at => Ok(()),
                     Ok(update) => {
                         at = update.revision;
-                        send_pair(&mut sink, update.header.clone(), &update.glb).await
+                        send_pair(&mut sink, update.header.clone(), &update.glb, timeout).await
                     }
                     Err(broadcast::error::RecvError::Lagged(missed)) => {
                         let Some(full) = snapshot().await else { break };
@@ -139,7 +145,7 @@ pub async fn run_viewer<F, Fut>(
                         let reason = format!(
                             "fell behind by {missed} updates (queue of {VIEWER_QUEUE})"
                         );
-                        send_full(&mut sink, "resync", &full, Some(reason)).await
+                        send_full(&mut sink, "resync", &full, Some(reason), timeout).await
                     }
                     Err(broadcast::error::RecvError::Closed) => break,
                 };
@@ -165,6 +171,7 @@ async fn send_full<S>(
     kind: &str,
     snapshot: &Snapshot,
     reason: Option<String>,
+    timeout: Duration,
 ) -> Result<(), Ended>
 where
     S: SinkExt<Message> + Unpin,
@@ -173,16 +180,21 @@ where
     if let Some(reason) = reason {
         header["reason"] = json!(reason);
     }
-    send_pair(sink, header.to_string(), &snapshot.glb).await
+    send_pair(sink, header.to_string(), &snapshot.glb, timeout).await
 }
 
-/// Sends a JSON header then its GLB, each within [`VIEWER_SEND_TIMEOUT`].
-async fn send_pair<S>(sink: &mut S, header: String, glb: &Bytes) -> Result<(), Ended>
+/// Sends a JSON header then its GLB, each within `timeout`.
+async fn send_pair<S>(
+    sink: &mut S,
+    header: String,
+    glb: &Bytes,
+    timeout: Duration,
+) -> Result<(), Ended>
 where
     S: SinkExt<Message> + Unpin,
 {
     for message in [Message::Text(header.into()), Message::Binary(glb.clone())] {
-        match tokio::time::timeout(VIEWER_SEND_TIMEOUT, sink.send(message)).await {
+        match tokio::time::timeout(timeout, sink.send(message)).await {
             Ok(Ok(())) => {}
             _ => return Err(Ended::Gone),
         }

@@ -4,10 +4,11 @@
 use std::net::IpAddr;
 use std::path::PathBuf;
 use std::process::ExitCode;
+use std::time::Duration;
 
 use clap::Args;
 
-use super::{ServeError, ServeOptions, run};
+use super::{ServeError, ServeOptions, VIEWER_SEND_TIMEOUT, run};
 use crate::design::DesignError;
 use crate::mesh::TessellationOptions;
 use crate::model::ModelError;
@@ -31,6 +32,22 @@ pub struct ServeArgs {
     /// Chordal tolerance of the meshes, mm.
     #[arg(long, default_value_t = TessellationOptions::DEFAULT.tolerance, allow_negative_numbers = true)]
     pub tolerance: f64,
+    /// Seconds a viewer's socket may accept nothing before the viewer is
+    /// dropped (a viewer that only falls behind is resynced, not dropped).
+    #[arg(long, default_value_t = VIEWER_SEND_TIMEOUT.as_secs_f64(), value_parser = parse_timeout, allow_negative_numbers = true)]
+    pub viewer_timeout: f64,
+}
+
+/// A positive, finite number of seconds (at most a day).
+fn parse_timeout(text: &str) -> Result<f64, String> {
+    let seconds: f64 = text
+        .parse()
+        .map_err(|_| format!("`{text}` is not a number of seconds"))?;
+    if seconds.is_finite() && seconds > 0.0 && seconds <= 86_400.0 {
+        Ok(seconds)
+    } else {
+        Err("must be more than 0 and at most 86400 seconds".to_string())
+    }
 }
 
 /// Runs `vesselcad serve`; exit 1 for an invalid design or a journal that cannot
@@ -48,6 +65,7 @@ pub fn serve_command(args: ServeArgs) -> ExitCode {
         port: args.port,
         token: args.token,
         tessellation: TessellationOptions::chord(args.tolerance),
+        viewer_timeout: Duration::from_secs_f64(args.viewer_timeout),
     };
     match run(options) {
         Ok(()) => ExitCode::SUCCESS,

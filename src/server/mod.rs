@@ -25,6 +25,7 @@ pub mod session;
 use std::net::{IpAddr, Ipv4Addr, SocketAddr};
 use std::path::PathBuf;
 use std::sync::{Arc, Mutex};
+use std::time::Duration;
 
 pub use broadcast::{MAX_VIEWER_MESSAGE, VIEWER_QUEUE, VIEWER_SEND_TIMEOUT};
 pub use error::{ApiError, ServeError};
@@ -50,6 +51,9 @@ pub struct ServeOptions {
     pub token: Option<String>,
     /// Meshing options of the model.
     pub tessellation: TessellationOptions,
+    /// How long a viewer's socket may take to accept one message before the
+    /// viewer is dropped ([`VIEWER_SEND_TIMEOUT`] by default).
+    pub viewer_timeout: Duration,
 }
 
 impl ServeOptions {
@@ -61,6 +65,7 @@ impl ServeOptions {
             port: 8080,
             token: None,
             tessellation: TessellationOptions::DEFAULT,
+            viewer_timeout: VIEWER_SEND_TIMEOUT,
         }
     }
 }
@@ -107,6 +112,7 @@ pub async fn start(options: ServeOptions) -> Result<Server, ServeError> {
         hub: Hub::default(),
         token: options.token,
         shutdown: watching.clone(),
+        viewer_timeout: options.viewer_timeout,
     };
     let app = router(state);
     let mut stop = watching;

@@ -19,6 +19,7 @@
 //! viewers get them in revision order.
 
 use std::sync::{Arc, Mutex, MutexGuard};
+use std::time::Duration;
 
 use axum::Router;
 use axum::body::Bytes;
@@ -52,6 +53,8 @@ pub struct AppState {
     pub token: Option<String>,
     /// Turns true when the server shuts down (viewers close).
     pub shutdown: watch::Receiver<bool>,
+    /// How long a viewer's socket may accept nothing before it is dropped.
+    pub viewer_timeout: Duration,
 }
 
 impl AppState {
@@ -254,7 +257,8 @@ async fn viewer_socket(State(state): State<AppState>, ws: WebSocketUpgrade) -> R
                 let state = state.clone();
                 async move { Some(state.with_session(|s, _| s.snapshot()).await) }
             };
-            run_viewer::<_, _>(socket, queue, snapshot, shutdown).await;
+            let timeout = state.viewer_timeout;
+            run_viewer::<_, _>(socket, queue, snapshot, shutdown, timeout).await;
         })
 }
 
