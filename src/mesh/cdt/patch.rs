@@ -290,6 +290,25 @@ impl<'a> PatchInfo<'a> {
             .collect()
     }
 
+    /// The metrics at `us` along the row of constant `v` ([`metric_at`](Self::metric_at)
+    /// of each, evaluated along the row).
+    pub fn row_metrics(&self, v: f64, us: &[f64]) -> Vec<Metric> {
+        let row = self.surface.row(v);
+        us.iter()
+            .map(|&u| {
+                let d = row.derivatives(self.wrap_u(u));
+                let n = d.du.cross(d.dv).normalize_or_zero();
+                match (n != DVec3::ZERO)
+                    .then(|| self.sizing.metric(&d, n))
+                    .flatten()
+                {
+                    Some(m) => m,
+                    None => self.metric_at(DVec2::new(u, v)),
+                }
+            })
+            .collect()
+    }
+
     /// A vertex whose metric is unset, with the metric at its (u, v).
     pub fn fill_metric(&self, vertex: &mut Vertex) {
         let d = self

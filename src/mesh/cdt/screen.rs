@@ -20,7 +20,6 @@ use std::ops::Range;
 
 use glam::{DVec2, DVec3};
 
-use super::flip::effective_uv;
 use super::patch::PatchInfo;
 use super::refine::edge_probe_uv;
 use rustc_hash::FxHashMap;
@@ -160,7 +159,8 @@ fn screen_triangles(
         let tri = mesh.tris[t as usize];
         let v = tri.map(|k| &mesh.verts[k as usize]);
         let p = v.map(|x| x.point);
-        if (0..3).any(|i| (p[i] - p[(i + 1) % 3]).length() <= info.weld_tolerance) {
+        let weld = info.weld_tolerance * info.weld_tolerance;
+        if (0..3).any(|i| (p[i] - p[(i + 1) % 3]).length_squared() <= weld) {
             // Collapsed: dropped on output, never refined.
             planes.push(None);
             continue;
@@ -174,8 +174,9 @@ fn screen_triangles(
             continue;
         }
         planes.push(Some((p[0], normal / area)));
-        let eff = tri.map(|k| effective_uv(mesh, k, &tri));
-        let centroid = (eff[0] + eff[1] + eff[2]) / 3.0;
+        // No pole vertex here (those triangles were turned away above): the
+        // parameters are the vertices' own.
+        let centroid = (v[0].uv + v[1].uv + v[2].uv) / 3.0;
         add(
             &mut probes,
             Probe {
@@ -193,7 +194,7 @@ fn screen_triangles(
             }
             let (x, y) = (v[i], v[(i + 1) % 3]);
             if x.normal.dot(y.normal) < limits.min_cos
-                || (x.point - y.point).length() > limits.max_edge
+                || (x.point - y.point).length_squared() > limits.max_edge * limits.max_edge
             {
                 within[slot] = false;
             }

@@ -113,14 +113,7 @@ fn plan(info: &PatchInfo, region: &Region, budget: usize) -> Result<Plan, CdtErr
     let mut rows: Vec<f64> = Vec::new();
     let mut estimate = 0.0;
     for vs in &v_spans {
-        let metrics: Vec<Vec<Metric>> = vs
-            .par_iter()
-            .map(|&v| {
-                us.iter()
-                    .map(|&u| info.metric_at(DVec2::new(u, v)))
-                    .collect()
-            })
-            .collect();
+        let metrics: Vec<Vec<Metric>> = vs.par_iter().map(|&v| info.row_metrics(v, &us)).collect();
         let density: Vec<f64> = metrics
             .iter()
             .map(|row| row.iter().map(Metric::across_v).fold(0.0, f64::max) / ROW_HEIGHT)
@@ -263,10 +256,7 @@ struct RowProfile {
 
 impl RowProfile {
     fn new(info: &PatchInfo, us: &[f64], v: f64) -> Self {
-        let metrics: Vec<Metric> = us
-            .iter()
-            .map(|&u| info.metric_at(DVec2::new(u, v)))
-            .collect();
+        let metrics = info.row_metrics(v, us);
         let density: Vec<f64> = metrics.iter().map(Metric::along_u).collect();
         let cumulative = cumulative(us, &density);
         Self {
