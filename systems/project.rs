@@ -69,7 +69,7 @@ pub fn entity_input(world: &World, tag: &str, e: Entity) -> Option<EntityInput> 
             Some(PatchInput {
                 patch: world.get::<PatchSurface>(p)?.0.clone(),
                 region: world.get::<PatchRegion>(p).map(|r| r.0.clone()),
-                mesh: world.get::<PatchMesh>(p)?.0.clone(),
+                mesh: Arc::new(world.get::<PatchMesh>(p)?.0.unpack()),
             })
         })
         .collect();

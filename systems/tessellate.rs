@@ -14,8 +14,8 @@ use super::DirtyPatches;
 use super::{ModelErrors, WorkCounters};
 use crate::components::{PatchMesh, PatchRegion, PatchSurface};
 use crate::design::RuleViolation;
-use crate::mesh::TessellationOptions;
 use crate::mesh::cdt::{Region, mesh_patch_region};
+use crate::mesh::{PackedMesh, TessellationOptions};
 use crate::parts::Patch;
 
 /// The tessellation options every patch is meshed with.
@@ -58,13 +58,10 @@ pub fn remesh_dirty_patches(
     let meshes: Vec<_> = work
         .par_iter()
         .map(|(e, p, r)| {
-            // Kept for the model's lifetime: drop the growth slack of the vectors.
-            let result = mesh_patch_region(p, r, &options).map(|(mut mesh, stats)| {
-                mesh.positions.shrink_to_fit();
-                mesh.normals.shrink_to_fit();
-                mesh.indices.shrink_to_fit();
-                (mesh, stats)
-            });
+            // Kept for the model's lifetime: packed (exact positions, 4-byte
+            // normals, narrow indices, no growth slack).
+            let result = mesh_patch_region(p, r, &options)
+                .map(|(mesh, stats)| (PackedMesh::pack(&mesh), stats));
             (*e, result)
         })
         .collect();

@@ -8,11 +8,13 @@
 //! returns the [`WorkCounters`] of that run.
 
 mod edit;
+mod memory;
 mod read;
 mod staging;
 mod sync;
 
 pub use edit::Edit;
+pub use memory::MemoryBreakdown;
 
 use std::collections::HashMap;
 
@@ -167,22 +169,16 @@ impl Model {
         self.world.resource::<ModelErrors>()
     }
 
-    /// Bytes held by the patch meshes (positions, normals and indices, by
-    /// capacity): the bulk of a built model's memory.
+    /// Bytes held by the patch meshes (positions, normals and indices): the
+    /// bulk of a built model's memory.
     pub fn mesh_bytes(&self) -> usize {
-        let Some(mut meshes) = self.world.try_query::<&crate::components::PatchMesh>() else {
-            return 0;
-        };
-        meshes
-            .iter(&self.world)
-            .map(|m| {
-                let m = &m.0;
-                std::mem::size_of::<crate::mesh::Mesh>()
-                    + (m.positions.capacity() + m.normals.capacity())
-                        * std::mem::size_of::<glam::DVec3>()
-                    + m.indices.capacity() * std::mem::size_of::<u32>()
-            })
-            .sum()
+        self.memory().meshes
+    }
+
+    /// Heap bytes of the derived data by kind (meshes, surfaces, regions,
+    /// openings).
+    pub fn memory(&self) -> MemoryBreakdown {
+        memory::breakdown(&self.world)
     }
 
     /// The ECS world, for queries.

@@ -133,14 +133,6 @@ pub fn run_bench(
     let model = one.install(|| Model::from_design_with(&design, options, Views::Off))?;
     let t1 = start.elapsed();
     let heap_model = heap().zip(heap_before).map(|(a, b)| a.saturating_sub(b));
-    let triangles = model
-        .scene()
-        .vessels
-        .iter()
-        .flat_map(|v| &v.nodes)
-        .flat_map(|n| &n.patches)
-        .map(|p| p.mesh.triangle_count())
-        .sum::<usize>();
     drop(model);
     progress("full build, 2 threads");
     let start = Instant::now();
@@ -230,7 +222,7 @@ pub fn run_bench(
         Some(ms(tick50) <= 20.0),
     ));
 
-    let mesh_bytes: usize = sim.model().mesh_bytes();
+    let memory = sim.model().memory();
     if let Some(bytes) = heap_model {
         let per = bytes as f64 / n / 1024.0;
         rows.push(row(
@@ -243,12 +235,26 @@ pub fn run_bench(
             Some(per <= 500.0),
         ));
     }
+    let kb = |bytes: usize| format!("{:.0} KB", bytes as f64 / n / 1024.0);
     rows.push(row(
         "  of which meshes",
         format!(
-            "{:.0} KB ({:.0} triangles/vessel)",
-            mesh_bytes as f64 / n / 1024.0,
-            triangles as f64 / n
+            "{} ({:.0} triangles, {:.0} vertices/vessel)",
+            kb(memory.meshes),
+            memory.triangles as f64 / n,
+            memory.vertices as f64 / n
+        ),
+        "",
+        None,
+    ));
+    rows.push(row(
+        "  of which surfaces, regions, openings",
+        format!(
+            "{}, {}, {} ({:.0} patches/vessel)",
+            kb(memory.surfaces),
+            kb(memory.regions),
+            kb(memory.openings),
+            memory.patches as f64 / n
         ),
         "",
         None,
