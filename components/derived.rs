@@ -84,5 +84,16 @@ pub struct Opening {
 
 /// The (u, v) region a patch is meshed within: its sides sampled from the edge
 /// curves, with openings as holes or a trimmed bottom.
+///
+/// Change detection compares the fingerprint; the loops themselves are only
+/// needed afterwards by the drawing views (silhouettes are cut by them), so they
+/// are kept only while the model keeps views (see `Views`): a plant build does
+/// not hold a second copy of every mesh boundary.
 #[derive(Component, Clone, Debug, PartialEq)]
-pub struct PatchRegion(pub Arc<Region>);
+pub struct PatchRegion {
+    /// 128-bit fingerprint of the loops' exact coordinates
+    /// ([`Region::fingerprint`]).
+    pub fingerprint: u128,
+    /// The region, while views are kept.
+    pub region: Option<Arc<Region>>,
+}

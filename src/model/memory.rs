@@ -63,9 +63,10 @@ pub(crate) fn breakdown(world: &World) -> MemoryBreakdown {
     }
     if let Some(mut q) = world.try_query::<&PatchRegion>() {
         for r in q.iter(world) {
+            out.regions += size_of::<PatchRegion>();
+            let Some(r) = &r.region else { continue };
             out.regions += size_of::<crate::mesh::cdt::Region>()
-                + r.0
-                    .loops()
+                + r.loops()
                     .map(|l| {
                         size_of::<crate::mesh::cdt::UvLoop>() + l.uv.capacity() * size_of::<DVec2>()
                     })

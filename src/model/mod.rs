@@ -18,6 +18,7 @@ pub use memory::MemoryBreakdown;
 
 use std::collections::HashMap;
 
+use bevy_ecs::change_detection::DetectChangesMut;
 use bevy_ecs::entity::Entity;
 use bevy_ecs::resource::Resource;
 use bevy_ecs::schedule::Schedule;
@@ -110,7 +111,8 @@ impl Model {
 
     /// Whether the Project stage keeps drawing views from the next update on.
     pub fn set_views(&mut self, views: Views) {
-        *self.world.resource_mut::<Views>() = views;
+        // Only a real change counts: turning views on lays every region out again.
+        self.world.resource_mut::<Views>().set_if_neq(views);
     }
 
     /// Checks `edit` against every rule and, if it passes, writes it into the
