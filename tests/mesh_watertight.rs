@@ -82,8 +82,7 @@ fn check_vessel(scene: &Scene, tag: &str, bores: &[(DAffine3, f64, f64)]) {
             let ids: Vec<usize> = patch
                 .mesh
                 .positions()
-                .iter()
-                .map(|&p| {
+                .map(|p| {
                     let q = node.frame.transform_point3(p);
                     let id = welder.id(q);
                     if id == positions.len() {

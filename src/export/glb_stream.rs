@@ -76,7 +76,7 @@ pub fn stream_glb(scene: &Scene, out: impl Write, name: &Path) -> Result<u64, Ex
         // The first pass checked every normal: none is zero or non-finite here.
         let views: [&ViewWriter; 3] = [
             &|m, chunk| {
-                for &p in m.positions() {
+                for p in m.positions() {
                     for c in metres(p).to_array() {
                         chunk.extend_from_slice(&c.to_le_bytes());
                     }

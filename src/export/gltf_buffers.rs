@@ -93,7 +93,7 @@ impl MeshBuffers {
         let keep = !self.layout_only;
         let mut lo = Vec3::splat(f32::INFINITY);
         let mut hi = Vec3::splat(f32::NEG_INFINITY);
-        for (vertex, &p) in mesh.positions().iter().enumerate() {
+        for (vertex, p) in mesh.positions().enumerate() {
             let n = mesh.normal(vertex);
             let p = metres(p);
             let n = unit_normal(n).ok_or_else(|| vertex_error(vertex))?;
