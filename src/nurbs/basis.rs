@@ -33,6 +33,9 @@ pub fn basis_functions(knots: &[f64], span: usize, u: f64, p: usize) -> [f64; MA
     n
 }
 
+/// Order of the small-array evaluation path: degrees up to 3.
+pub const SMALL_ORDER: usize = 4;
+
 /// Values and derivatives up to order `d` of the non-zero basis functions at `u`
 /// (A2.3): `result[k][j]` is the k-th derivative of `N_{span−p+j, p}(u)`.
 /// Derivatives above the degree are zero.
@@ -42,10 +45,34 @@ pub fn basis_derivatives<const D: usize>(
     u: f64,
     p: usize,
 ) -> [[f64; MAX_ORDER]; D] {
-    let mut ders = [[0.0; MAX_ORDER]; D];
-    let mut ndu = [[0.0; MAX_ORDER]; MAX_ORDER];
-    let mut left = [0.0; MAX_ORDER];
-    let mut right = [0.0; MAX_ORDER];
+    if p < SMALL_ORDER {
+        let small = basis_derivatives_in::<D, SMALL_ORDER>(knots, span, u, p);
+        let mut out = [[0.0; MAX_ORDER]; D];
+        for (o, s) in out.iter_mut().zip(&small) {
+            o[..SMALL_ORDER].copy_from_slice(s);
+        }
+        return out;
+    }
+    basis_derivatives_in::<D, MAX_ORDER>(knots, span, u, p)
+}
+
+/// Values and derivatives up to order `d` of the non-zero basis functions at `u`
+/// (A2.3): `result[k][j]` is the k-th derivative of `N_{span−p+j, p}(u)`.
+/// Derivatives above the degree are zero. Works in arrays of `N > p` entries: the
+/// kernel's quadratics and cubics use `N = 4` ([`SMALL_ORDER`]), which keeps the
+/// scratch arrays (zeroed on every call) a tenth of the general size.
+#[inline]
+pub fn basis_derivatives_in<const D: usize, const N: usize>(
+    knots: &[f64],
+    span: usize,
+    u: f64,
+    p: usize,
+) -> [[f64; N]; D] {
+    debug_assert!(p < N, "degree {p} needs arrays of more than {N}");
+    let mut ders = [[0.0; N]; D];
+    let mut ndu = [[0.0; N]; N];
+    let mut left = [0.0; N];
+    let mut right = [0.0; N];
     ndu[0][0] = 1.0;
     for j in 1..=p {
         left[j] = u - knots[span + 1 - j];
@@ -67,7 +94,7 @@ pub fn basis_derivatives<const D: usize>(
         ders[0][j] = ndu[j][p];
     }
     let order = D - 1; // highest derivative requested
-    let mut a = [[0.0; MAX_ORDER]; 2];
+    let mut a = [[0.0; N]; 2];
     for r in 0..=p {
         let (mut s1, mut s2) = (0usize, 1usize);
         a[0][0] = 1.0;

@@ -27,7 +27,7 @@ mod refine;
 mod surface;
 mod transform;
 
-pub use basis::{MAX_ORDER, basis_derivatives, basis_functions};
+pub use basis::{MAX_ORDER, SMALL_ORDER, basis_derivatives, basis_derivatives_in, basis_functions};
 pub use bbox::Aabb;
 pub use compatible::make_compatible;
 pub use curve::{CurveDerivatives, NurbsCurve, euclidean, homogeneous};

@@ -7,7 +7,7 @@
 
 use glam::{DVec3, DVec4};
 
-use super::basis::{MAX_ORDER, basis_derivatives, basis_functions};
+use super::basis::{MAX_ORDER, SMALL_ORDER, basis_derivatives_in, basis_functions};
 use super::curve::{check_homogeneous, euclidean};
 use super::{KnotVector, NurbsCurve, NurbsError};
 
@@ -162,16 +162,29 @@ impl NurbsSurface {
 
     /// Homogeneous partial derivatives `[A, A_u, A_v, A_uu, A_uv, A_vv]`.
     pub fn homogeneous_derivatives(&self, u: f64, v: f64) -> [DVec4; 6] {
+        // The meshing and intersection hot path: vessel surfaces are quadratic
+        // (or at most cubic), so their scratch arrays stay small.
+        if self.u_degree() < SMALL_ORDER && self.v_degree() < SMALL_ORDER {
+            self.homogeneous_derivatives_in::<SMALL_ORDER>(u, v)
+        } else {
+            self.homogeneous_derivatives_in::<MAX_ORDER>(u, v)
+        }
+    }
+
+    /// [`homogeneous_derivatives`](Self::homogeneous_derivatives) with scratch
+    /// arrays of `N` (more than either degree).
+    #[inline]
+    fn homogeneous_derivatives_in<const N: usize>(&self, u: f64, v: f64) -> [DVec4; 6] {
         let (p, q) = (self.u_degree(), self.v_degree());
         let u = self.u_knots.clamp(u);
         let v = self.v_knots.clamp(v);
         let su = self.u_knots.find_span(u);
         let sv = self.v_knots.find_span(v);
-        let du = basis_derivatives::<3>(self.u_knots.as_slice(), su, u, p);
-        let dv = basis_derivatives::<3>(self.v_knots.as_slice(), sv, v, q);
+        let du = basis_derivatives_in::<3, N>(self.u_knots.as_slice(), su, u, p);
+        let dv = basis_derivatives_in::<3, N>(self.v_knots.as_slice(), sv, v, q);
         let stride = self.v_count();
         // temp[d][k]: row k contracted with the d-th v-derivative basis.
-        let mut temp = [[DVec4::ZERO; MAX_ORDER]; 3];
+        let mut temp = [[DVec4::ZERO; N]; 3];
         for (k, row_point) in (0..=p).map(|k| (k, (su - p + k) * stride + sv - q)) {
             let row = &self.points[row_point..=row_point + q];
             for (l, &pt) in row.iter().enumerate() {
