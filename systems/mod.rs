@@ -6,6 +6,7 @@
 //! change-detection scan. The heavy stages (Geometry, Tessellate) collect their
 //! dirty entities and process them in parallel with rayon.
 
+mod clock;
 mod constrain;
 mod counters;
 mod dirty;
@@ -18,6 +19,7 @@ mod regions;
 mod tessellate;
 mod validate;
 
+pub use clock::{STAGES, StageTimes, stamp_stage};
 pub use constrain::apply_resolutions;
 pub use counters::WorkCounters;
 pub use dirty::DirtyPatches;
@@ -78,6 +80,23 @@ pub fn build_schedule() -> Schedule {
             .run_if(views_kept)
             .in_set(Stage::Project),
         collect_changes.in_set(Stage::Export),
+    ));
+    schedule.add_systems((
+        stamp_stage::<0>.before(Stage::Validate),
+        stamp_stage::<1>
+            .after(Stage::Validate)
+            .before(Stage::Constrain),
+        stamp_stage::<2>
+            .after(Stage::Constrain)
+            .before(Stage::Geometry),
+        stamp_stage::<3>
+            .after(Stage::Geometry)
+            .before(Stage::Tessellate),
+        stamp_stage::<4>
+            .after(Stage::Tessellate)
+            .before(Stage::Project),
+        stamp_stage::<5>.after(Stage::Project).before(Stage::Export),
+        stamp_stage::<6>.after(Stage::Export),
     ));
     schedule
 }

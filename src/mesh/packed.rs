@@ -3,16 +3,18 @@
 //! the `f32` buffers of a glTF file.
 //!
 //! A plant of 10 000 vessels holds about a hundred million mesh vertices, so the
-//! layout matters. Boundary vertices (on an edge used by one triangle: the
-//! patch's sides, opening loops) stay exact `f64` mm, since neighbouring patches
-//! share them bit for bit; interior vertices are stored as 32-bit fixed-point
-//! offsets from the patch's centre in a power-of-two step, within
-//! 2⁻³² of the patch's extent of the exact point (about 2e-6 mm for a 10 m
-//! patch, far below any tolerance). Boundary vertices come first, so vertex
-//! order differs from the mesher's. Normals are octahedral-encoded in two signed 16-bit numbers (4 bytes instead
-//! of 24; the decoded unit normal is within 1e-4 rad of the exact one, far below
-//! what a viewer or a drawing can show); indices are `u16` when the patch has at
-//! most 65 536 vertices, else `u32`. Packing is deterministic, so the
+//! layout matters. Positions are fixed-point offsets from the patch's centre in
+//! a power-of-two unit. Boundary vertices (on an edge used by one triangle: the
+//! patch's sides, opening loops — shared with a neighbour, welded at 1e-6 mm)
+//! get 40 bits per coordinate, within 2⁻⁴⁰ of the patch's extent of the exact
+//! point (5e-9 mm for a 5 m course); interior vertices get 32 bits, within 2⁻³²
+//! of the extent (1e-6 mm), far below any meshing tolerance. Boundary vertices
+//! come first, so vertex order differs from the mesher's. Normals are
+//! octahedral-encoded in two signed 16-bit numbers (4 bytes instead of 24; the
+//! decoded unit normal is within 1e-4 rad of the exact one, far below what a
+//! viewer or a drawing can show); indices are `u16` when the patch has at most
+//! 65 536 vertices, else `u32`. 15 bytes per boundary and 12 per interior vertex
+//! instead of 48, 6 per triangle instead of 12. Packing is deterministic, so the
 //! incremental model and a direct full build export the same bytes.
 
 use glam::{DVec2, DVec3, IVec3};
@@ -79,22 +81,31 @@ enum Indices {
     U32(Box<[u32]>),
 }
 
-/// Interior vertex positions: 32-bit offsets from `origin` in steps of `step`
-/// (a power of two, so decoding is exact up to the final addition).
+/// Vertex positions as fixed-point offsets from `origin` in units of `fine` (a
+/// power of two, so decoding is exact up to the final addition): the first
+/// `lo.len()` (boundary) vertices as 40-bit integers `hi · 256 + lo`, the others
+/// (interior) as 32-bit integers `hi` in units of `256 · fine`.
 #[derive(Clone, Debug, Default, PartialEq)]
 struct FixedPoints {
     origin: DVec3,
-    step: f64,
-    offsets: Box<[IVec3]>,
+    fine: f64,
+    hi: Box<[IVec3]>,
+    lo: Box<[[u8; 3]]>,
 }
 
 impl FixedPoints {
-    /// Largest offset used, in steps (keeps the rounding inside `i32`).
-    const RANGE: f64 = (1u64 << 31) as f64 - 2.0;
+    /// Largest offset used, in units of `fine` (keeps `hi` and the interior's
+    /// rounding inside `i32`).
+    const RANGE: f64 = ((1u64 << 39) - (1 << 10)) as f64;
 
-    fn encode(points: &[DVec3]) -> Self {
+    /// Encodes `points`, the first `boundary` of them to 40 bits; `None` when a
+    /// point is not finite.
+    fn encode(points: &[DVec3], boundary: usize) -> Option<Self> {
+        if points.iter().any(|p| !p.is_finite()) {
+            return None;
+        }
         let Some(&first) = points.first() else {
-            return Self::default();
+            return Some(Self::default());
         };
         let (lo, hi) = points
             .iter()
@@ -104,29 +115,50 @@ impl FixedPoints {
             .iter()
             .map(|&p| (p - origin).abs().max_element())
             .fold(0.0f64, f64::max);
-        // Smallest power of two with reach / step within range.
-        let step = if reach > 0.0 && reach.is_finite() {
+        // Smallest power of two with reach / fine within range.
+        let fine = if reach > 0.0 {
             2f64.powi((reach / Self::RANGE).log2().ceil() as i32)
         } else {
             1.0
         };
-        let offsets = points
-            .iter()
-            .map(|&p| {
-                let q = ((p - origin) / step).round();
-                IVec3::new(q.x as i32, q.y as i32, q.z as i32)
-            })
-            .collect();
-        Self {
-            origin,
-            step,
-            offsets,
+        let coarse = 256.0 * fine;
+        let mut his = Vec::with_capacity(points.len());
+        let mut los = Vec::with_capacity(boundary);
+        for (k, &p) in points.iter().enumerate() {
+            if k < boundary {
+                let q = ((p - origin) / fine).round();
+                let q = [q.x as i64, q.y as i64, q.z as i64];
+                his.push(IVec3::from_array(q.map(|c| (c >> 8) as i32)));
+                los.push(q.map(|c| (c & 0xFF) as u8));
+            } else {
+                let q = ((p - origin) / coarse).round();
+                his.push(IVec3::new(q.x as i32, q.y as i32, q.z as i32));
+            }
         }
+        Some(Self {
+            origin,
+            fine,
+            hi: his.into_boxed_slice(),
+            lo: los.into_boxed_slice(),
+        })
     }
 
     fn decode(&self, k: usize) -> DVec3 {
-        self.origin + self.offsets[k].as_dvec3() * self.step
+        let hi = self.hi[k].as_dvec3() * 256.0;
+        let units = match self.lo.get(k) {
+            Some(lo) => hi + DVec3::from_array(lo.map(f64::from)),
+            None => hi,
+        };
+        self.origin + units * self.fine
     }
+}
+
+/// Vertex positions: fixed point, or as given when one is not finite (kept for
+/// the exporters' checks to name).
+#[derive(Clone, Debug, PartialEq)]
+enum Positions {
+    Fixed(FixedPoints),
+    AsGiven(Box<[DVec3]>),
 }
 
 /// A finished patch mesh in compact form (see the module docs): exact boundary
@@ -134,10 +166,10 @@ impl FixedPoints {
 /// indices.
 #[derive(Clone, Debug, PartialEq)]
 pub struct PackedMesh {
-    /// Vertices `0..exact.len()`: the boundary, exact.
-    exact: Box<[DVec3]>,
-    /// The interior vertices after them.
-    interior: FixedPoints,
+    /// The boundary vertices first, then the interior ones.
+    positions: Positions,
+    /// Number of boundary vertices.
+    boundary: usize,
     normals: Box<[OctNormal]>,
     indices: Indices,
 }
@@ -166,8 +198,8 @@ impl PackedMesh {
             // Never produced by the mesher: kept as it is (all exact, u32), for
             // the exporters' checks to name.
             return Self {
-                exact: mesh.positions.clone().into_boxed_slice(),
-                interior: FixedPoints::default(),
+                positions: Positions::AsGiven(mesh.positions.clone().into_boxed_slice()),
+                boundary: count,
                 normals: mesh.normals.iter().map(|&n| OctNormal::encode(n)).collect(),
                 indices: Indices::U32(mesh.indices.clone().into_boxed_slice()),
             };
@@ -207,16 +239,14 @@ impl PackedMesh {
         } else {
             Indices::U32(remapped.collect())
         };
-        let inner: Vec<DVec3> = order[boundary..]
-            .iter()
-            .map(|&i| mesh.positions[i])
-            .collect();
+        let points: Vec<DVec3> = order.iter().map(|&i| mesh.positions[i]).collect();
+        let positions = match FixedPoints::encode(&points, boundary) {
+            Some(fixed) => Positions::Fixed(fixed),
+            None => Positions::AsGiven(points.into_boxed_slice()),
+        };
         Self {
-            exact: order[..boundary]
-                .iter()
-                .map(|&i| mesh.positions[i])
-                .collect(),
-            interior: FixedPoints::encode(&inner),
+            positions,
+            boundary,
             normals: order
                 .iter()
                 .map(|&i| OctNormal::encode(mesh.normals[i]))
@@ -236,12 +266,15 @@ impl PackedMesh {
 
     /// Number of vertices.
     pub fn vertex_count(&self) -> usize {
-        self.exact.len() + self.interior.offsets.len()
+        match &self.positions {
+            Positions::Fixed(f) => f.hi.len(),
+            Positions::AsGiven(p) => p.len(),
+        }
     }
 
-    /// Number of boundary vertices (stored exactly; they come first).
+    /// Number of boundary vertices (stored to 40 bits; they come first).
     pub fn boundary_count(&self) -> usize {
-        self.exact.len()
+        self.boundary
     }
 
     /// Number of triangles.
@@ -259,9 +292,9 @@ impl PackedMesh {
 
     /// The position of vertex `i`, mm, in the patch's part-local frame.
     pub fn position(&self, i: usize) -> DVec3 {
-        match self.exact.get(i) {
-            Some(&p) => p,
-            None => self.interior.decode(i - self.exact.len()),
+        match &self.positions {
+            Positions::Fixed(f) => f.decode(i),
+            Positions::AsGiven(p) => p[i],
         }
     }
 
@@ -316,8 +349,12 @@ impl PackedMesh {
     /// Heap bytes held, with the struct itself.
     pub fn heap_bytes(&self) -> usize {
         std::mem::size_of::<Self>()
-            + std::mem::size_of_val(&*self.exact)
-            + std::mem::size_of_val(&*self.interior.offsets)
+            + match &self.positions {
+                Positions::Fixed(f) => {
+                    std::mem::size_of_val(&*f.hi) + std::mem::size_of_val(&*f.lo)
+                }
+                Positions::AsGiven(p) => std::mem::size_of_val(&**p),
+            }
             + std::mem::size_of_val(&*self.normals)
             + match &self.indices {
                 Indices::U16(i) => std::mem::size_of_val(&**i),
@@ -364,7 +401,7 @@ mod tests {
     }
 
     #[test]
-    fn packing_keeps_positions_and_indices_exactly() {
+    fn packing_keeps_indices_and_positions_to_40_bits() {
         let mesh = Mesh {
             positions: vec![
                 DVec3::new(0.1, 0.2, 0.3),
@@ -379,18 +416,25 @@ mod tests {
             indices: vec![0, 1, 2],
         };
         let packed = PackedMesh::pack(&mesh);
-        assert_eq!(packed.positions().collect::<Vec<_>>(), mesh.positions);
+        // All three on the boundary: within 2^-40 of the extent (1e4 mm).
+        for (a, b) in packed.positions().zip(&mesh.positions) {
+            assert!(
+                (a - *b).abs().max_element() <= 1e4 * 2f64.powi(-40),
+                "{a} {b}"
+            );
+        }
         assert_eq!(packed.indices().collect::<Vec<_>>(), mesh.indices);
         assert_eq!(packed.triangles().collect::<Vec<_>>(), [[0, 1, 2]]);
         let back = packed.unpack();
         for (a, b) in back.normals.iter().zip(&mesh.normals) {
             assert!(a.angle_between(*b) < 1e-4);
         }
-        assert_eq!(packed.bounds(), mesh.bounds());
+        let ((a0, a1), (b0, b1)) = (packed.bounds().unwrap(), mesh.bounds().unwrap());
+        assert!((a0 - b0).abs().max_element() <= 1e-8 && (a1 - b1).abs().max_element() <= 1e-8);
     }
 
     #[test]
-    fn boundary_vertices_stay_exact_and_interior_ones_within_2e_32_of_the_extent() {
+    fn boundary_vertices_within_2e_40_and_interior_ones_within_2e_32_of_the_extent() {
         // A fan round an interior vertex on a 10 m patch; the rim is the boundary.
         let rim = 12;
         let centre = DVec3::new(1234.567_890_123, -9876.543_21, 0.1);
@@ -435,9 +479,9 @@ mod tests {
         let extent = 10_000.0;
         for (b, a) in before.iter().zip(&after) {
             for k in 0..3 {
-                // The rim is the boundary: exact; the two hub vertices are not.
+                // The rim is the boundary; the two hub vertices are not.
                 if (b[k] - centre).truncate().length() > 4999.0 {
-                    assert_eq!(a[k], b[k]);
+                    assert!((a[k] - b[k]).abs().max_element() <= extent * 2f64.powi(-40));
                 } else {
                     assert!((a[k] - b[k]).abs().max_element() <= extent * 2f64.powi(-32));
                 }
@@ -456,6 +500,10 @@ mod tests {
         };
         let packed = PackedMesh::pack(&mesh);
         assert_eq!(packed.index(2), (count - 1) as u32);
-        assert!(packed.heap_bytes() > count * 28);
+        assert!(packed.heap_bytes() > count * 19);
+        // A non-finite position is kept as it is, for the exporters to report.
+        let mut bad = mesh.clone();
+        bad.positions[1].y = f64::NAN;
+        assert!(PackedMesh::pack(&bad).position(1).y.is_nan());
     }
 }

@@ -30,8 +30,8 @@ use crate::export::Scene;
 use crate::mesh::{OptionsError, TessellationOptions};
 pub use crate::systems::Views;
 use crate::systems::{
-    ChangeLog, DirtyPatches, ModelErrors, OpeningHosts, PendingResolutions, Tessellation,
-    WorkCounters, build_schedule,
+    ChangeLog, DirtyPatches, ModelErrors, OpeningHosts, PendingResolutions, StageTimes,
+    Tessellation, WorkCounters, build_schedule,
 };
 
 /// Why an edit or model construction was refused. The model is unchanged.
@@ -85,6 +85,7 @@ impl Model {
         world.init_resource::<OpeningHosts>();
         world.init_resource::<DirtyPatches>();
         world.init_resource::<Views>();
+        world.init_resource::<StageTimes>();
         Ok(Self {
             world,
             schedule: build_schedule(),
@@ -175,6 +176,12 @@ impl Model {
     /// bulk of a built model's memory.
     pub fn mesh_bytes(&self) -> usize {
         self.memory().meshes
+    }
+
+    /// How long each stage (Validate, Constrain, Geometry, Tessellate, Project,
+    /// Export) took in the last update.
+    pub fn stage_times(&self) -> [std::time::Duration; crate::systems::STAGES] {
+        self.world.resource::<StageTimes>().durations()
     }
 
     /// Heap bytes of the derived data by kind (meshes, surfaces, regions,

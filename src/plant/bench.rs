@@ -19,6 +19,7 @@ use crate::design::Design;
 use crate::export::{ExportError, stream_glb_to};
 use crate::mesh::TessellationOptions;
 use crate::model::{Model, ModelError, Views};
+use crate::systems::STAGES;
 
 /// What to measure.
 #[derive(Clone, Debug)]
@@ -175,12 +176,22 @@ pub fn run_bench(
     let mut sim = Simulation::new(model, &design, config.seed ^ 0x5EED);
     progress(&format!("{} one-parameter edits", config.edits));
     let mut samples = Vec::with_capacity(config.edits);
+    // Where an edit's time goes: drawing + checking + writing the edit, then
+    // the update's stages (summed over the edits).
+    let mut apply = Duration::ZERO;
+    let mut stages = [Duration::ZERO; STAGES];
     two.install(|| {
         for _ in 0..config.edits {
             let report = sim.tick(1, 0);
             samples.push(report.latency);
+            apply += report.latency.saturating_sub(report.update);
+            for (total, stage) in stages.iter_mut().zip(report.stages) {
+                *total += stage;
+            }
         }
     });
+    let edits = config.edits.max(1) as f64;
+    let mean = |d: Duration| ms(d) / edits;
     let p50 = quantile(&mut samples, 0.5);
     let p99 = quantile(&mut samples, 0.99);
     rows.push(row(
@@ -194,6 +205,42 @@ pub fn run_bench(
         format!("{:.3} ms", ms(p99)),
         "≤ 2 ms",
         Some(ms(p99) <= 2.0),
+    ));
+    rows.push(row(
+        "  edit, mean: draw+check+write | Validate | Constrain",
+        format!(
+            "{:.3} | {:.3} | {:.3} ms",
+            mean(apply),
+            mean(stages[0]),
+            mean(stages[1])
+        ),
+        "",
+        None,
+    ));
+    rows.push(row(
+        "  edit, mean: Geometry | Tessellate | Project | Export",
+        format!(
+            "{:.3} | {:.3} | {:.3} | {:.3} ms",
+            mean(stages[2]),
+            mean(stages[3]),
+            mean(stages[4]),
+            mean(stages[5])
+        ),
+        "",
+        None,
+    ));
+    let mut idle: Vec<Duration> = (0..20)
+        .map(|_| {
+            let start = Instant::now();
+            sim.model_mut().update();
+            start.elapsed()
+        })
+        .collect();
+    rows.push(row(
+        "  update with nothing to do (p50)",
+        format!("{:.3} ms", ms(quantile(&mut idle, 0.5))),
+        "",
+        None,
     ));
     let ratio = t2.as_secs_f64() / p50.as_secs_f64();
     rows.push(row(
