@@ -38,7 +38,7 @@ pub use intersect::{
 };
 pub use inversion::{CurveProjection, SurfaceProjection};
 pub use knots::KnotVector;
-pub use surface::{NurbsSurface, Side, SurfaceDerivatives};
+pub use surface::{FirstDerivatives, NurbsSurface, Side, SurfaceDerivatives};
 pub use transform::{MIN_PROJECTION_COSINE, ParallelProjection};
 
 /// Highest degree the kernel evaluates (fixed-size stack buffers are sized from it).
