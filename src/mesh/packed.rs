@@ -437,7 +437,7 @@ mod tests {
     fn boundary_vertices_within_2e_40_and_interior_ones_within_2e_32_of_the_extent() {
         // A fan round an interior vertex on a 10 m patch; the rim is the boundary.
         let rim = 12;
-        let centre = DVec3::new(1234.567_890_123, -9876.543_21, 0.1);
+        let centre = DVec3::new(1_234.567_890_123, -9_876.543_21, 0.1);
         let mut positions: Vec<DVec3> = (0..rim)
             .map(|k| {
                 let a = std::f64::consts::TAU * k as f64 / rim as f64;

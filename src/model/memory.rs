@@ -10,7 +10,7 @@ use std::collections::HashSet;
 use std::mem::size_of;
 
 use bevy_ecs::world::World;
-use glam::{DVec2, DVec3, DVec4};
+use glam::{DVec2, DVec3};
 
 use crate::components::{Opening, PatchMesh, PatchRegion, PatchSurface};
 use crate::mesh::HostTrim;
@@ -57,7 +57,7 @@ pub(crate) fn breakdown(world: &World) -> MemoryBreakdown {
             let surface = &s.0.surface;
             out.patches += 1;
             out.surfaces += size_of::<crate::parts::Patch>()
-                + surface.homogeneous_points().len() * size_of::<DVec4>()
+                + std::mem::size_of_val(surface.homogeneous_points())
                 + (surface.u_knots().len() + surface.v_knots().len()) * size_of::<f64>();
         }
     }
