@@ -96,9 +96,8 @@ pub fn cut_opening(
         let (neck_loop, pad_loop) = rayon::join(
             || loop_on(&neck, &patch.surface, tolerance),
             || {
-                pad.as_ref().map(|p| {
-                    loop_on(p, &patch.surface, tolerance).map_err(|e| format!("pad: {e}"))
-                })
+                pad.as_ref()
+                    .map(|p| loop_on(p, &patch.surface, tolerance).map_err(|e| format!("pad: {e}")))
             },
         );
         let result = neck_loop.and_then(|neck_loop| {

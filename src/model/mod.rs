@@ -30,8 +30,8 @@ use crate::export::Scene;
 use crate::mesh::{OptionsError, TessellationOptions};
 pub use crate::systems::Views;
 use crate::systems::{
-    ChangeLog, DirtyPatches, ModelErrors, OpeningHosts, PendingResolutions, StageTimes,
-    Tessellation, WorkCounters, build_schedule,
+    ChangeLog, DirtyPatches, EditedVessels, ModelErrors, OpeningHosts, PendingResolutions,
+    StageTimes, Tessellation, WorkCounters, build_schedule,
 };
 
 /// Why an edit or model construction was refused. The model is unchanged.
@@ -86,6 +86,7 @@ impl Model {
         world.init_resource::<DirtyPatches>();
         world.init_resource::<Views>();
         world.init_resource::<StageTimes>();
+        world.init_resource::<EditedVessels>();
         Ok(Self {
             world,
             schedule: build_schedule(),
