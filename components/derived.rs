@@ -10,7 +10,7 @@ use bevy_ecs::entity::Entity;
 
 use crate::constraints::PartGeometry;
 use crate::mesh::cdt::Region;
-use crate::mesh::{HostTrim, Mesh};
+use crate::mesh::{HostTrim, PackedMesh};
 use crate::nurbs::intersect::IntersectionLoop;
 use crate::parts::{Nozzle, Patch};
 
@@ -61,9 +61,10 @@ pub struct NoteAnchor {
 #[derive(Component, Clone, Debug, PartialEq)]
 pub struct PatchSurface(pub Arc<Patch>);
 
-/// The triangle mesh of a patch, in its part's local frame.
+/// The triangle mesh of a patch, in its part's local frame, packed (exact
+/// positions, octahedral normals, narrow indices).
 #[derive(Component, Clone, Debug, PartialEq)]
-pub struct PatchMesh(pub Arc<Mesh>);
+pub struct PatchMesh(pub Arc<PackedMesh>);
 
 /// A nozzle's (or a boot's) opening: where its neck (the boot's shell) meets its
 /// host, computed once and used to trim both (the host patch gets a hole, the neck
@@ -83,5 +84,16 @@ pub struct Opening {
 
 /// The (u, v) region a patch is meshed within: its sides sampled from the edge
 /// curves, with openings as holes or a trimmed bottom.
+///
+/// Change detection compares the fingerprint; the loops themselves are only
+/// needed afterwards by the drawing views (silhouettes are cut by them), so they
+/// are kept only while the model keeps views (see `Views`): a plant build does
+/// not hold a second copy of every mesh boundary.
 #[derive(Component, Clone, Debug, PartialEq)]
-pub struct PatchRegion(pub Arc<Region>);
+pub struct PatchRegion {
+    /// 128-bit fingerprint of the loops' exact coordinates
+    /// ([`Region::fingerprint`]).
+    pub fingerprint: u128,
+    /// The region, while views are kept.
+    pub region: Option<Arc<Region>>,
+}

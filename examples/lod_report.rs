@@ -37,7 +37,7 @@ const SLIVER_PATCHES: usize = 4;
 struct Meshed {
     label: String,
     surface: NurbsSurface,
-    mesh: std::sync::Arc<Mesh>,
+    mesh: Mesh,
 }
 
 /// The meshed patches of the model.
@@ -71,7 +71,7 @@ fn meshed(model: &Model) -> Vec<Meshed> {
             Meshed {
                 label,
                 surface: surface.0.surface.clone(),
-                mesh: mesh.0.clone(),
+                mesh: mesh.0.unpack(),
             }
         })
         .collect();

@@ -14,6 +14,10 @@ pub struct WorkCounters {
     pub shapes_rebuilt: u64,
     /// Nozzle openings (neck–host intersections) recomputed.
     pub openings_cut: u64,
+    /// Openings whose host or nozzle moved or changed but whose inputs (patches,
+    /// relative placement, pad, tolerance) came out bit for bit the same, so
+    /// they were not cut again.
+    pub openings_unchanged: u64,
     /// Patch regions laid out again.
     pub regions_laid_out: u64,
     /// Patches rebuilt.

@@ -10,8 +10,12 @@
 //! the next stage reads the list instead of scanning; `collect_changes` clears
 //! it at the end of the run.
 
+use std::sync::Arc;
+
 use bevy_ecs::entity::Entity;
 use bevy_ecs::resource::Resource;
+
+use crate::mesh::cdt::Region;
 
 /// Patches written in the current run of the schedule.
 #[derive(Resource, Default, Debug)]
@@ -22,6 +26,10 @@ pub struct DirtyPatches {
     pub regions: Vec<Entity>,
     /// Patches whose `PatchMesh` was inserted or replaced.
     pub meshes: Vec<Entity>,
+    /// Every region laid out in this run, changed or not: what the Tessellate
+    /// stage meshes within (`PatchRegion` keeps only a fingerprint unless views
+    /// are kept).
+    pub laid_out: Vec<(Entity, Arc<Region>)>,
 }
 
 impl DirtyPatches {
@@ -30,5 +38,6 @@ impl DirtyPatches {
         self.surfaces.clear();
         self.regions.clear();
         self.meshes.clear();
+        self.laid_out.clear();
     }
 }

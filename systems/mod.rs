@@ -6,6 +6,7 @@
 //! change-detection scan. The heavy stages (Geometry, Tessellate) collect their
 //! dirty entities and process them in parallel with rayon.
 
+mod clock;
 mod constrain;
 mod counters;
 mod dirty;
@@ -18,17 +19,18 @@ mod regions;
 mod tessellate;
 mod validate;
 
+pub use clock::{STAGES, StageTimes, stamp_stage};
 pub use constrain::apply_resolutions;
 pub use counters::WorkCounters;
 pub use dirty::DirtyPatches;
 pub use export::{ChangeLog, collect_changes};
 pub use geometry::rebuild_dirty_patches;
-pub use openings::{OpeningHosts, cut_openings};
+pub use openings::{OpeningHosts, OpeningInput, cut_openings};
 pub use operating::update_operating_states;
 pub use project::{Views, entity_input, project_dirty_views, views_kept};
 pub use regions::lay_out_regions;
 pub use tessellate::{Tessellation, remesh_dirty_patches};
-pub use validate::{ModelErrors, PendingResolutions, resolve_dirty_vessels};
+pub use validate::{EditedVessels, ModelErrors, PendingResolutions, resolve_dirty_vessels};
 
 use bevy_ecs::schedule::{IntoScheduleConfigs, Schedule, SystemSet};
 
@@ -78,6 +80,23 @@ pub fn build_schedule() -> Schedule {
             .run_if(views_kept)
             .in_set(Stage::Project),
         collect_changes.in_set(Stage::Export),
+    ));
+    schedule.add_systems((
+        stamp_stage::<0>.before(Stage::Validate),
+        stamp_stage::<1>
+            .after(Stage::Validate)
+            .before(Stage::Constrain),
+        stamp_stage::<2>
+            .after(Stage::Constrain)
+            .before(Stage::Geometry),
+        stamp_stage::<3>
+            .after(Stage::Geometry)
+            .before(Stage::Tessellate),
+        stamp_stage::<4>
+            .after(Stage::Tessellate)
+            .before(Stage::Project),
+        stamp_stage::<5>.after(Stage::Project).before(Stage::Export),
+        stamp_stage::<6>.after(Stage::Export),
     ));
     schedule
 }

@@ -8,6 +8,7 @@
 use std::collections::{BTreeSet, HashMap};
 use std::sync::Arc;
 
+use bevy_ecs::component::Component;
 use bevy_ecs::entity::Entity;
 use bevy_ecs::hierarchy::ChildOf;
 use bevy_ecs::query::{Changed, Or, QueryState, With};
@@ -42,6 +43,58 @@ pub type ChangedHost = Or<(Changed<PartFrame>, Changed<Shape>)>;
 /// A cut opening: the host patch entities with their trims, the loops and the pad
 /// patch, or why not.
 type CutResult = Result<(Vec<(Entity, HostTrim)>, Cut, Option<Patch>), String>;
+
+/// What an opening was last cut from: the neck and host patches (held, so the
+/// pointers compared cannot be reused), the pad, the tolerance and the two
+/// relative placements the cut and the pad patch are computed with. When all are
+/// the same — bit for bit, as when a course below moves both the host and the
+/// nozzle by a whole number of millimetres — cutting again would give the same
+/// opening, so it is skipped.
+#[derive(Component, Clone, Debug)]
+pub struct OpeningInput {
+    neck: Arc<Patch>,
+    hosts: Vec<Arc<Patch>>,
+    pad_od: Option<f64>,
+    tolerance: f64,
+    /// `host_frame⁻¹ · nozzle_frame` (the cut's placement).
+    nozzle_in_host: DAffine3,
+    /// `nozzle_frame⁻¹ · host_frame` (the pad patch's placement).
+    host_in_nozzle: DAffine3,
+}
+
+impl OpeningInput {
+    fn of(job: &Job, tolerance: f64) -> Self {
+        Self {
+            neck: job.neck.clone(),
+            hosts: job.hosts.iter().map(|(_, p)| p.clone()).collect(),
+            pad_od: job.pad_od,
+            tolerance,
+            nozzle_in_host: job.host_frame.inverse() * job.frame,
+            host_in_nozzle: job.frame.inverse() * job.host_frame,
+        }
+    }
+
+    /// Same inputs: same patches (by identity), equal numbers, equal bits.
+    fn same(&self, other: &Self) -> bool {
+        Arc::ptr_eq(&self.neck, &other.neck)
+            && self.hosts.len() == other.hosts.len()
+            && self
+                .hosts
+                .iter()
+                .zip(&other.hosts)
+                .all(|(a, b)| Arc::ptr_eq(a, b))
+            && self.pad_od.map(f64::to_bits) == other.pad_od.map(f64::to_bits)
+            && self.tolerance.to_bits() == other.tolerance.to_bits()
+            && bits(&self.nozzle_in_host) == bits(&other.nozzle_in_host)
+            && bits(&self.host_in_nozzle) == bits(&other.host_in_nozzle)
+    }
+}
+
+/// The bit patterns of an affine map's twelve numbers.
+fn bits(a: &DAffine3) -> [u64; 12] {
+    let m = a.to_cols_array();
+    std::array::from_fn(|k| m[k].to_bits())
+}
 
 /// One opening to compute.
 struct Job {
@@ -128,6 +181,7 @@ pub fn cut_openings(
     }
     let tolerance = world.resource::<Tessellation>().0.tolerance;
     let mut jobs = Vec::new();
+    let mut skipped = 0u64;
     for &nozzle in &dirty {
         let (Some(host), Some(frame)) = (
             world.get::<MountedOn>(nozzle).map(|m| m.0),
@@ -160,7 +214,7 @@ pub fn cut_openings(
             Some(Shape::Nozzle(_, pad)) => pad.map(|p| p.0),
             _ => None,
         };
-        jobs.push(Job {
+        let job = Job {
             nozzle,
             pad_od,
             neck_patch,
@@ -168,9 +222,19 @@ pub fn cut_openings(
             frame,
             host_frame,
             hosts,
-        });
+        };
+        // Cut before from the same inputs (and it succeeded): nothing to do.
+        let unchanged = world.get::<Opening>(nozzle).is_some()
+            && world
+                .get::<OpeningInput>(nozzle)
+                .is_some_and(|input| input.same(&OpeningInput::of(&job, tolerance)));
+        if unchanged {
+            skipped += 1;
+        } else {
+            jobs.push(job);
+        }
     }
-    let results: Vec<(Entity, Entity, CutResult)> = jobs
+    let results: Vec<(Entity, Entity, CutResult, OpeningInput)> = jobs
         .par_iter()
         .map(|job| {
             let hosts: Vec<&Patch> = job.hosts.iter().map(|(_, p)| p.as_ref()).collect();
@@ -198,12 +262,17 @@ pub fn cut_openings(
                     .collect();
                 Ok((trims, cut, pad))
             });
-            (job.nozzle, job.neck_patch, result)
+            (
+                job.nozzle,
+                job.neck_patch,
+                result,
+                OpeningInput::of(job, tolerance),
+            )
         })
         .collect();
     let mut cut_count = 0;
     let mut failures = 0;
-    for (nozzle, neck_patch, result) in results {
+    for (nozzle, neck_patch, result, input) in results {
         match result {
             Ok((hosts, cut, pad)) => {
                 let opening = Opening {
@@ -228,10 +297,11 @@ pub fn cut_openings(
                 };
                 cut_count += u64::from(changed);
                 set_pad(world, nozzle, pad);
+                world.entity_mut(nozzle).insert(input);
             }
             Err(rule) => {
                 failures += 1;
-                world.entity_mut(nozzle).remove::<Opening>();
+                world.entity_mut(nozzle).remove::<(Opening, OpeningInput)>();
                 let error = violation(world, nozzle, rule);
                 world.resource_mut::<ModelErrors>().0.push(error);
             }
@@ -239,5 +309,6 @@ pub fn cut_openings(
     }
     let mut counters = world.resource_mut::<WorkCounters>();
     counters.openings_cut += cut_count;
+    counters.openings_unchanged += skipped;
     counters.failures += failures;
 }

@@ -68,8 +68,8 @@ pub fn entity_input(world: &World, tag: &str, e: Entity) -> Option<EntityInput> 
         .filter_map(|p| {
             Some(PatchInput {
                 patch: world.get::<PatchSurface>(p)?.0.clone(),
-                region: world.get::<PatchRegion>(p).map(|r| r.0.clone()),
-                mesh: world.get::<PatchMesh>(p)?.0.clone(),
+                region: world.get::<PatchRegion>(p).and_then(|r| r.region.clone()),
+                mesh: Arc::new(world.get::<PatchMesh>(p)?.0.unpack()),
             })
         })
         .collect();

@@ -13,7 +13,7 @@ use bevy_ecs::world::World;
 use rayon::prelude::*;
 
 use super::DirtyPatches;
-use super::{ModelErrors, OpeningHosts, Tessellation, WorkCounters};
+use super::{ModelErrors, OpeningHosts, Tessellation, Views, WorkCounters};
 use crate::components::{Mounts, Opening, PadOf, PadPatch, PatchOf, PatchRegion, PatchSurface};
 use crate::design::RuleViolation;
 use crate::mesh::{HostTrim, Notch, host_region, pad_region};
@@ -93,7 +93,11 @@ pub fn lay_out_regions(
     all: &mut QueryState<Entity, With<PatchSurface>>,
 ) {
     let options = world.resource::<Tessellation>().0;
-    let mut dirty: BTreeSet<Entity> = if world.is_resource_changed::<Tessellation>() {
+    let keep = *world.resource::<Views>() == Views::Kept;
+    // Views turned back on: lay every region out again to keep its loops (the
+    // fingerprints come out equal, so nothing is re-meshed).
+    let restore = keep && world.is_resource_changed::<Views>();
+    let mut dirty: BTreeSet<Entity> = if world.is_resource_changed::<Tessellation>() || restore {
         all.iter(world).collect()
     } else {
         world
@@ -174,17 +178,25 @@ pub fn lay_out_regions(
     for (patch, result) in results {
         match result {
             Ok(region) => {
-                let region = PatchRegion(Arc::new(region));
+                let region = Arc::new(region);
+                let component = PatchRegion {
+                    fingerprint: region.fingerprint(),
+                    region: keep.then(|| region.clone()),
+                };
+                world
+                    .resource_mut::<DirtyPatches>()
+                    .laid_out
+                    .push((patch, region));
                 let changed = match world.get_mut::<PatchRegion>(patch) {
                     Some(mut current) => {
-                        let differs = *current != region;
-                        if differs {
-                            *current = region;
+                        let differs = current.fingerprint != component.fingerprint;
+                        if differs || current.region.is_some() != keep {
+                            *current = component;
                         }
                         differs
                     }
                     None => {
-                        world.entity_mut(patch).insert(region);
+                        world.entity_mut(patch).insert(component);
                         true
                     }
                 };

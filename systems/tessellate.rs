@@ -2,6 +2,7 @@
 //! patch when the tessellation options changed) with the error-bounded
 //! constrained-Delaunay mesher, in parallel with rayon.
 
+use std::collections::HashMap;
 use std::sync::Arc;
 
 use bevy_ecs::entity::Entity;
@@ -12,59 +13,54 @@ use rayon::prelude::*;
 
 use super::DirtyPatches;
 use super::{ModelErrors, WorkCounters};
-use crate::components::{PatchMesh, PatchRegion, PatchSurface};
+use crate::components::{PatchMesh, PatchSurface};
 use crate::design::RuleViolation;
-use crate::mesh::TessellationOptions;
 use crate::mesh::cdt::{Region, mesh_patch_region};
+use crate::mesh::{PackedMesh, TessellationOptions};
 use crate::parts::Patch;
 
 /// The tessellation options every patch is meshed with.
 #[derive(Resource, Clone, Copy, Debug, PartialEq)]
 pub struct Tessellation(pub TessellationOptions);
 
-/// Meshes every patch whose surface or region changed.
-pub fn remesh_dirty_patches(
-    world: &mut World,
-    all: &mut QueryState<(Entity, &PatchSurface, &PatchRegion)>,
-) {
+/// Meshes every patch whose surface or region changed, within the region laid
+/// out in this run (every patch when the tessellation options changed: then
+/// every region was laid out again).
+pub fn remesh_dirty_patches(world: &mut World, surfaces: &mut QueryState<&PatchSurface>) {
     let options = world.resource::<Tessellation>().0;
-    let work: Vec<(Entity, Arc<Patch>, Arc<Region>)> =
-        if world.is_resource_changed::<Tessellation>() {
-            all.iter(world)
-                .map(|(e, s, r)| (e, s.0.clone(), r.0.clone()))
-                .collect()
-        } else {
-            // Surface or region written in this run (see `DirtyPatches`).
-            let lists = world.resource::<DirtyPatches>();
-            let mut dirty: Vec<Entity> = lists
-                .surfaces
-                .iter()
-                .chain(&lists.regions)
-                .copied()
-                .collect();
-            dirty.sort_unstable();
-            dirty.dedup();
-            dirty
-                .into_iter()
-                .filter_map(|e| {
-                    let (s, r) = all.get(world, e).ok().map(|(_, s, r)| (s, r))?;
-                    Some((e, s.0.clone(), r.0.clone()))
-                })
-                .collect()
-        };
+    let lists = world.resource::<DirtyPatches>();
+    let laid: HashMap<Entity, &Arc<Region>> = lists.laid_out.iter().map(|(e, r)| (*e, r)).collect();
+    let mut dirty: Vec<Entity> = if world.is_resource_changed::<Tessellation>() {
+        laid.keys().copied().collect()
+    } else {
+        // Surface or region written in this run (see `DirtyPatches`).
+        lists
+            .surfaces
+            .iter()
+            .chain(&lists.regions)
+            .copied()
+            .collect()
+    };
+    dirty.sort_unstable();
+    dirty.dedup();
+    let work: Vec<(Entity, Arc<Patch>, Arc<Region>)> = dirty
+        .into_iter()
+        .filter_map(|e| {
+            // A patch whose region could not be laid out has its error already.
+            let region = (*laid.get(&e)?).clone();
+            Some((e, surfaces.get(world, e).ok()?.0.clone(), region))
+        })
+        .collect();
     if work.is_empty() {
         return;
     }
     let meshes: Vec<_> = work
         .par_iter()
         .map(|(e, p, r)| {
-            // Kept for the model's lifetime: drop the growth slack of the vectors.
-            let result = mesh_patch_region(p, r, &options).map(|(mut mesh, stats)| {
-                mesh.positions.shrink_to_fit();
-                mesh.normals.shrink_to_fit();
-                mesh.indices.shrink_to_fit();
-                (mesh, stats)
-            });
+            // Kept for the model's lifetime: packed (exact positions, 4-byte
+            // normals, narrow indices, no growth slack).
+            let result = mesh_patch_region(p, r, &options)
+                .map(|(mesh, stats)| (PackedMesh::pack(&mesh), stats));
             (*e, result)
         })
         .collect();

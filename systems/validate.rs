@@ -6,10 +6,9 @@
 //! rules, in parallel. A vessel that fails (only possible if the world was edited
 //! around `Model::apply`) keeps its derived data and its violations are recorded.
 
-use bevy_ecs::change_detection::{DetectChanges, Ref};
+use bevy_ecs::change_detection::Ref;
 use bevy_ecs::entity::Entity;
-use bevy_ecs::hierarchy::{ChildOf, Children};
-use bevy_ecs::query::{Changed, Or};
+use bevy_ecs::hierarchy::Children;
 use bevy_ecs::resource::Resource;
 use bevy_ecs::system::{Query, ResMut};
 use rayon::prelude::*;
@@ -57,14 +56,20 @@ pub(crate) fn read_vessel(
     }
 }
 
-/// A part, nozzle or note whose parameters changed.
-type ChangedSpec = Or<(Changed<PartSpec>, Changed<NozzleSpec>, Changed<NoteSpec>)>;
+/// Vessels whose own or whose children's parameters were written (or whose
+/// children were added or removed) since the last update: pushed by the model's
+/// edit commit, the only writer of parameter components, and drained by
+/// [`resolve_dirty_vessels`]. A list instead of `Changed<…>` filters, which
+/// visit every part, nozzle and note of the plant on every update (0.3 ms at
+/// 10 000 vessels).
+#[derive(Resource, Default, Debug)]
+pub struct EditedVessels(pub Vec<Entity>);
 
 /// Resolves every vessel whose parameters (or whose children's) changed.
 #[expect(clippy::too_many_arguments, reason = "one query per parameter kind")]
 pub fn resolve_dirty_vessels(
     vessels: Query<(Entity, Ref<VesselSpec>, &DesignOrder, Option<&Children>)>,
-    changed_children: Query<&ChildOf, ChangedSpec>,
+    mut edited: ResMut<EditedVessels>,
     parts: Query<(&PartSpec, &DesignOrder)>,
     nozzles: Query<(&NozzleSpec, &DesignOrder)>,
     notes: Query<(&NoteSpec, &DesignOrder)>,
@@ -72,13 +77,7 @@ pub fn resolve_dirty_vessels(
     mut errors: ResMut<ModelErrors>,
     mut counters: ResMut<WorkCounters>,
 ) {
-    let mut dirty: Vec<Entity> = changed_children.iter().map(|c| c.parent()).collect();
-    dirty.extend(
-        vessels
-            .iter()
-            .filter(|(_, s, _, _)| s.is_changed())
-            .map(|(e, ..)| e),
-    );
+    let mut dirty: Vec<Entity> = std::mem::take(&mut edited.0);
     dirty.sort_unstable();
     dirty.dedup();
     let work: Vec<(Entity, u32, VesselDesign)> = dirty

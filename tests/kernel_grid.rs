@@ -273,3 +273,39 @@ proptest! {
         prop_assert!(normal_error <= RANDOM_NORMAL_TOL, "normal error {normal_error:e}");
     }
 }
+
+/// The first-order evaluation (the intersection's Newton path) gives exactly the
+/// point and first derivatives of the full one, on every head and the shell, and
+/// on a degree-5 surface (the general-size path).
+#[test]
+fn first_derivatives_equal_the_full_evaluation() {
+    let mut surfaces: Vec<NurbsSurface> = shell().into_iter().map(|p| p.surface).collect();
+    for head in all_heads() {
+        surfaces.extend(head.patches().unwrap().into_iter().map(|p| p.surface));
+    }
+    let knots = KnotVector::new(
+        5,
+        vec![0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 1.0, 1.0, 1.0, 1.0, 1.0, 1.0],
+    );
+    let lin = KnotVector::new(1, vec![0.0, 0.0, 1.0, 1.0]);
+    let points: Vec<DVec4> = (0..12)
+        .map(|k| {
+            let (i, j) = ((k / 2) as f64, (k % 2) as f64);
+            DVec4::new(i * 10.0, j * 7.0 + i * i, (i * j).sin(), 1.0 + 0.1 * i)
+        })
+        .collect();
+    surfaces.push(NurbsSurface::try_new(knots, lin, points).unwrap());
+    for s in &surfaces {
+        let (us, vs) = (params(s.u_knots(), 9), params(s.v_knots(), 9));
+        for &u in &us {
+            for &v in &vs {
+                let full = s.derivatives(u, v);
+                let first = s.first_derivatives(u, v);
+                assert_eq!(
+                    (first.point, first.du, first.dv),
+                    (full.point, full.du, full.dv)
+                );
+            }
+        }
+    }
+}

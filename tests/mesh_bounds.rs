@@ -29,7 +29,7 @@ fn every_triangle_is_within_the_tolerance() {
         let mut triangles = 0;
         for (surface, mesh) in query.iter(world) {
             let s = &surface.0.surface;
-            let m = &mesh.0;
+            let m = &mesh.0.unpack();
             for t in m.indices.chunks(3) {
                 let [a, b, c] = [t[0], t[1], t[2]].map(|i| m.positions[i as usize]);
                 let n = (b - a).cross(c - a);
@@ -103,7 +103,7 @@ fn quality(
     let mut query = world.query::<(&PatchSurface, &PatchMesh)>();
     let (mut slivers, mut total, mut smallest, mut worst) = (0usize, 0usize, f64::INFINITY, 0.0f64);
     for (surface, mesh) in query.iter(world) {
-        let m = &mesh.0;
+        let m = &mesh.0.unpack();
         for t in m.indices.chunks(3) {
             let [a, b, c] = [t[0], t[1], t[2]].map(|i| m.positions[i as usize]);
             let min = [

@@ -81,9 +81,8 @@ fn check_vessel(scene: &Scene, tag: &str, bores: &[(DAffine3, f64, f64)]) {
         for patch in &node.patches {
             let ids: Vec<usize> = patch
                 .mesh
-                .positions
-                .iter()
-                .map(|&p| {
+                .positions()
+                .map(|p| {
                     let q = node.frame.transform_point3(p);
                     let id = welder.id(q);
                     if id == positions.len() {
@@ -92,7 +91,7 @@ fn check_vessel(scene: &Scene, tag: &str, bores: &[(DAffine3, f64, f64)]) {
                     id
                 })
                 .collect();
-            for t in patch.mesh.indices.chunks(3) {
+            for t in patch.mesh.triangles() {
                 let [a, b, c] = [ids[t[0] as usize], ids[t[1] as usize], ids[t[2] as usize]];
                 assert!(
                     a != b && b != c && a != c,

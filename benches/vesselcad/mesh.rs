@@ -221,7 +221,12 @@ fn shell_with_openings() -> Piece {
     let (patch, region) = query
         .iter(world)
         .find(|(s, _)| s.0.name == "shell")
-        .map(|(s, r)| (s.0.clone(), r.0.clone()))
+        .map(|(s, r)| {
+            (
+                s.0.clone(),
+                r.region.clone().expect("views kept: region kept"),
+            )
+        })
         .expect("the design has a shell patch");
     let holes = region
         .holes

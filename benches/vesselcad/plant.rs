@@ -2,7 +2,8 @@
 //! on a plant small enough for a short run: a full build, a one-parameter edit
 //! (apply + incremental update of model and meshes), a tick of 100 edits, an
 //! update with nothing to do (the change-detection overhead), the operating
-//! figures of a vessel, and streaming the GLB.
+//! figures of a vessel, packing the meshes into the model's compact form (exact
+//! to 40/32 bits, octahedral normals), and streaming the GLB.
 
 use std::hint::black_box;
 use std::time::Duration;
@@ -10,8 +11,8 @@ use std::time::Duration;
 use criterion::{Criterion, criterion_group};
 use vesselcad::design::resolve;
 use vesselcad::export::stream_glb;
-use vesselcad::mesh::TessellationOptions;
-use vesselcad::model::Model;
+use vesselcad::mesh::{Mesh, PackedMesh, TessellationOptions};
+use vesselcad::model::{Model, Views};
 use vesselcad::operating::state_of_design;
 use vesselcad::plant::{Simulation, generate_plant};
 
@@ -27,9 +28,10 @@ fn bench(c: &mut Criterion) {
         .measurement_time(Duration::from_secs(3))
         .sample_size(10);
     group.bench_function("full build, 40 vessels at 1 mm", |b| {
-        b.iter(|| black_box(Model::from_design(&design, options).expect("valid")))
+        b.iter(|| black_box(Model::from_design_with(&design, options, Views::Off).expect("valid")))
     });
-    let model = Model::from_design(&design, options).expect("valid");
+    // As `vesselcad bench`: a plant model keeps no drawing views.
+    let model = Model::from_design_with(&design, options, Views::Off).expect("valid");
     let mut sim = Simulation::new(model, &design, 7);
     group.sample_size(50);
     group.bench_function("one-parameter edit + update", |b| {
@@ -52,7 +54,22 @@ fn bench(c: &mut Criterion) {
         })
     });
     let scene = sim.model().scene();
+    let meshes: Vec<Mesh> = scene
+        .vessels
+        .iter()
+        .flat_map(|v| &v.nodes)
+        .flat_map(|n| &n.patches)
+        .map(|p| p.mesh.unpack())
+        .collect();
     group.sample_size(10);
+    group.bench_function("pack the plant's meshes", |b| {
+        b.iter(|| {
+            meshes
+                .iter()
+                .map(|m| black_box(PackedMesh::pack(m)).heap_bytes())
+                .sum::<usize>()
+        })
+    });
     group.bench_function("stream GLB to memory", |b| {
         b.iter(|| {
             let mut out = Vec::new();

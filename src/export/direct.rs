@@ -19,7 +19,8 @@ use crate::constraints::PartGeometry;
 use crate::design::{Design, resolve};
 use crate::mesh::cdt::mesh_patch_region;
 use crate::mesh::{
-    HostTrim, Mesh, Notch, TessellationOptions, cut_opening, host_region, pad_patch, pad_region,
+    HostTrim, Mesh, Notch, PackedMesh, TessellationOptions, cut_opening, host_region, pad_patch,
+    pad_region,
 };
 use crate::nurbs::intersect::IntersectionLoop;
 use crate::parts::{Nozzle, PartError, Patch};
@@ -220,7 +221,7 @@ pub fn build_scene(design: &Design, options: &TessellationOptions) -> Result<Sce
         })?;
         vessels[v].nodes[n].patches.push(ScenePatch {
             name: patch_name(patch),
-            mesh: Arc::new(mesh),
+            mesh: Arc::new(PackedMesh::pack(&mesh)),
         });
     }
     Ok(Scene { vessels })

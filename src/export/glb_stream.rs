@@ -19,10 +19,10 @@ use super::glb::{
 use super::gltf_buffers::{MeshBuffers, metres, unit_normal};
 use super::gltf_document::{document_with, is_empty};
 use super::scene::Scene;
-use crate::mesh::Mesh;
+use crate::mesh::PackedMesh;
 
 /// Appends one view's bytes of one mesh.
-type ViewWriter = dyn Fn(&Mesh, &mut Vec<u8>);
+type ViewWriter = dyn Fn(&PackedMesh, &mut Vec<u8>);
 
 /// Writes the scene as GLB to `out`, streaming the mesh data; returns the bytes
 /// written. The bytes equal [`super::write_glb`]'s.
@@ -76,21 +76,21 @@ pub fn stream_glb(scene: &Scene, out: impl Write, name: &Path) -> Result<u64, Ex
         // The first pass checked every normal: none is zero or non-finite here.
         let views: [&ViewWriter; 3] = [
             &|m, chunk| {
-                for &p in &m.positions {
+                for p in m.positions() {
                     for c in metres(p).to_array() {
                         chunk.extend_from_slice(&c.to_le_bytes());
                     }
                 }
             },
             &|m, chunk| {
-                for &n in &m.normals {
-                    for c in unit_normal(n).unwrap_or_default().to_array() {
+                for n in m.oct_normals() {
+                    for c in unit_normal(n.decode()).unwrap_or_default().to_array() {
                         chunk.extend_from_slice(&c.to_le_bytes());
                     }
                 }
             },
             &|m, chunk| {
-                for &i in &m.indices {
+                for i in m.indices() {
                     chunk.extend_from_slice(&i.to_le_bytes());
                 }
             },

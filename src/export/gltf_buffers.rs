@@ -16,7 +16,7 @@ use json::validation::{Checked, USize64};
 use serde_json::Value;
 
 use super::error::ExportError;
-use crate::mesh::Mesh;
+use crate::mesh::PackedMesh;
 
 /// Millimetres → metres.
 pub(super) const MM_TO_M: f64 = 1e-3;
@@ -75,7 +75,7 @@ impl MeshBuffers {
     pub fn push(
         &mut self,
         root: &mut json::Root,
-        mesh: &Mesh,
+        mesh: &PackedMesh,
         entity: &str,
         patch: &str,
     ) -> Result<PrimitiveAccessors, ExportError> {
@@ -85,15 +85,16 @@ impl MeshBuffers {
             patch: patch.to_string(),
             vertex,
         };
-        let count = mesh.positions.len();
+        let count = mesh.vertex_count();
         let [position_offset, normal_offset, index_offset] = self.lengths;
         self.lengths[0] += 12 * count;
         self.lengths[1] += 12 * count;
-        self.lengths[2] += 4 * mesh.indices.len();
+        self.lengths[2] += 4 * mesh.index_count();
         let keep = !self.layout_only;
         let mut lo = Vec3::splat(f32::INFINITY);
         let mut hi = Vec3::splat(f32::NEG_INFINITY);
-        for (vertex, (&p, &n)) in mesh.positions.iter().zip(&mesh.normals).enumerate() {
+        for (vertex, p) in mesh.positions().enumerate() {
+            let n = mesh.normal(vertex);
             let p = metres(p);
             let n = unit_normal(n).ok_or_else(|| vertex_error(vertex))?;
             if !p.is_finite() {
@@ -107,7 +108,7 @@ impl MeshBuffers {
             }
         }
         if keep {
-            for &i in &mesh.indices {
+            for i in mesh.indices() {
                 self.indices.extend_from_slice(&i.to_le_bytes());
             }
         }
@@ -132,7 +133,7 @@ impl MeshBuffers {
         let indices = root.push(accessor(
             INDICES_VIEW,
             index_offset,
-            mesh.indices.len(),
+            mesh.index_count(),
             Type::Scalar,
             ComponentType::U32,
         ));
@@ -193,26 +194,26 @@ impl MeshBuffers {
 }
 
 /// Checks counts and index ranges of a mesh.
-fn check_topology(mesh: &Mesh, entity: &str, patch: &str) -> Result<(), ExportError> {
+fn check_topology(mesh: &PackedMesh, entity: &str, patch: &str) -> Result<(), ExportError> {
     let malformed = |rule: String| ExportError::MalformedMesh {
         entity: entity.to_string(),
         patch: patch.to_string(),
         rule,
     };
-    let count = mesh.positions.len();
-    if mesh.normals.len() != count {
+    let count = mesh.vertex_count();
+    if mesh.normal_count() != count {
         return Err(malformed(format!(
             "{} normals for {count} positions",
-            mesh.normals.len()
+            mesh.normal_count()
         )));
     }
-    if !mesh.indices.len().is_multiple_of(3) {
+    if !mesh.index_count().is_multiple_of(3) {
         return Err(malformed(format!(
             "{} indices is not a whole number of triangles",
-            mesh.indices.len()
+            mesh.index_count()
         )));
     }
-    if let Some(&bad) = mesh.indices.iter().find(|&&i| i as usize >= count) {
+    if let Some(bad) = mesh.indices().find(|&i| i as usize >= count) {
         return Err(malformed(format!("index {bad} with {count} vertices")));
     }
     Ok(())

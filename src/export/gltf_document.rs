@@ -174,8 +174,8 @@ fn push_node(
 }
 
 /// True for a mesh with no triangle (nothing to draw).
-pub(super) fn is_empty(mesh: &crate::mesh::Mesh) -> bool {
-    mesh.positions.is_empty() || mesh.indices.is_empty()
+pub(super) fn is_empty(mesh: &crate::mesh::PackedMesh) -> bool {
+    mesh.vertex_count() == 0 || mesh.index_count() == 0
 }
 
 /// Sets a node's children; an empty list is left out, as glTF requires.

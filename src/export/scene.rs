@@ -7,7 +7,7 @@ use std::sync::Arc;
 use glam::DAffine3;
 use serde_json::Value;
 
-use crate::mesh::Mesh;
+use crate::mesh::PackedMesh;
 
 /// A whole plant, vessels in design order.
 #[derive(Clone, Debug, Default)]
@@ -59,5 +59,5 @@ pub struct ScenePatch {
     /// Patch name within its part, e.g. `"crown"` (with its index if > 0).
     pub name: String,
     /// The mesh, in the part's local frame, mm.
-    pub mesh: Arc<Mesh>,
+    pub mesh: Arc<PackedMesh>,
 }

@@ -1,8 +1,9 @@
 //! Meshes: triangle approximations of patches, in the patch's part-local frame.
 //!
 //! The Tessellate stage turns each dirty patch's exact surface into a [`Mesh`] with
-//! [`tessellate`], driven by [`TessellationOptions`]. Exporters convert meshes to
-//! `f32` buffers; the model keeps them in `f64`.
+//! [`tessellate`], driven by [`TessellationOptions`]. The model keeps each
+//! finished mesh as a [`PackedMesh`] (exact `f64` positions, octahedral normals,
+//! narrow indices); exporters convert them to `f32` buffers.
 
 pub mod cdt;
 mod edges;
@@ -10,6 +11,7 @@ mod grid;
 mod layout;
 mod opening;
 mod options;
+mod packed;
 mod seams;
 
 pub use edges::{MAX_EDGE_SEGMENTS, edge_parameters, edge_segments};
@@ -17,6 +19,7 @@ pub use grid::tessellate;
 pub use layout::{LayoutError, SEAM_CUTS, closed_in_u, host_region, pad_region, patch_region};
 pub use opening::{Cut, PAD_PATCH, cut_opening, pad_patch};
 pub use options::{OptionsError, TessellationOptions};
+pub use packed::{OctNormal, PackedMesh};
 pub use seams::{HostTrim, Notch};
 
 use glam::DVec3;
@@ -36,6 +39,18 @@ impl Mesh {
     /// Number of triangles.
     pub fn triangle_count(&self) -> usize {
         self.indices.len() / 3
+    }
+
+    /// Number of vertices.
+    pub fn vertex_count(&self) -> usize {
+        self.positions.len()
+    }
+
+    /// Heap bytes held (by capacity), with the struct itself.
+    pub fn heap_bytes(&self) -> usize {
+        std::mem::size_of::<Self>()
+            + (self.positions.capacity() + self.normals.capacity()) * std::mem::size_of::<DVec3>()
+            + self.indices.capacity() * std::mem::size_of::<u32>()
     }
 
     /// Axis-aligned bounds `(min, max)` of the vertices; `None` when empty.

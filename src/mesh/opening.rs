@@ -91,17 +91,20 @@ pub fn cut_opening(
     };
     let mut last = String::from("the host has no patch");
     for (k, patch) in host_patches.iter().enumerate() {
-        let result = loop_on(&neck, &patch.surface, tolerance).and_then(|neck_loop| {
-            let pad_loop = match &pad {
-                Some(p) => {
-                    Some(loop_on(p, &patch.surface, tolerance).map_err(|e| format!("pad: {e}"))?)
-                }
-                None => None,
-            };
+        // The neck's and the pad's loops are independent: marched side by side
+        // (an edit's latency is that of the longer one).
+        let (neck_loop, pad_loop) = rayon::join(
+            || loop_on(&neck, &patch.surface, tolerance),
+            || {
+                pad.as_ref()
+                    .map(|p| loop_on(p, &patch.surface, tolerance).map_err(|e| format!("pad: {e}")))
+            },
+        );
+        let result = neck_loop.and_then(|neck_loop| {
             Ok(Cut {
                 hosts: vec![(k, HostTrim::Hole)],
                 neck: neck_loop,
-                pad: pad_loop,
+                pad: pad_loop.transpose()?,
             })
         });
         match result {

@@ -8,14 +8,17 @@
 //! returns the [`WorkCounters`] of that run.
 
 mod edit;
+mod memory;
 mod read;
 mod staging;
 mod sync;
 
 pub use edit::Edit;
+pub use memory::MemoryBreakdown;
 
 use std::collections::HashMap;
 
+use bevy_ecs::change_detection::DetectChangesMut;
 use bevy_ecs::entity::Entity;
 use bevy_ecs::resource::Resource;
 use bevy_ecs::schedule::Schedule;
@@ -27,8 +30,8 @@ use crate::export::Scene;
 use crate::mesh::{OptionsError, TessellationOptions};
 pub use crate::systems::Views;
 use crate::systems::{
-    ChangeLog, DirtyPatches, ModelErrors, OpeningHosts, PendingResolutions, Tessellation,
-    WorkCounters, build_schedule,
+    ChangeLog, DirtyPatches, EditedVessels, ModelErrors, OpeningHosts, PendingResolutions,
+    StageTimes, Tessellation, WorkCounters, build_schedule,
 };
 
 /// Why an edit or model construction was refused. The model is unchanged.
@@ -82,6 +85,8 @@ impl Model {
         world.init_resource::<OpeningHosts>();
         world.init_resource::<DirtyPatches>();
         world.init_resource::<Views>();
+        world.init_resource::<StageTimes>();
+        world.init_resource::<EditedVessels>();
         Ok(Self {
             world,
             schedule: build_schedule(),
@@ -108,7 +113,8 @@ impl Model {
 
     /// Whether the Project stage keeps drawing views from the next update on.
     pub fn set_views(&mut self, views: Views) {
-        *self.world.resource_mut::<Views>() = views;
+        // Only a real change counts: turning views on lays every region out again.
+        self.world.resource_mut::<Views>().set_if_neq(views);
     }
 
     /// Checks `edit` against every rule and, if it passes, writes it into the
@@ -167,22 +173,22 @@ impl Model {
         self.world.resource::<ModelErrors>()
     }
 
-    /// Bytes held by the patch meshes (positions, normals and indices, by
-    /// capacity): the bulk of a built model's memory.
+    /// Bytes held by the patch meshes (positions, normals and indices): the
+    /// bulk of a built model's memory.
     pub fn mesh_bytes(&self) -> usize {
-        let Some(mut meshes) = self.world.try_query::<&crate::components::PatchMesh>() else {
-            return 0;
-        };
-        meshes
-            .iter(&self.world)
-            .map(|m| {
-                let m = &m.0;
-                std::mem::size_of::<crate::mesh::Mesh>()
-                    + (m.positions.capacity() + m.normals.capacity())
-                        * std::mem::size_of::<glam::DVec3>()
-                    + m.indices.capacity() * std::mem::size_of::<u32>()
-            })
-            .sum()
+        self.memory().meshes
+    }
+
+    /// How long each stage (Validate, Constrain, Geometry, Tessellate, Project,
+    /// Export) took in the last update.
+    pub fn stage_times(&self) -> [std::time::Duration; crate::systems::STAGES] {
+        self.world.resource::<StageTimes>().durations()
+    }
+
+    /// Heap bytes of the derived data by kind (meshes, surfaces, regions,
+    /// openings).
+    pub fn memory(&self) -> MemoryBreakdown {
+        memory::breakdown(&self.world)
     }
 
     /// The ECS world, for queries.

@@ -11,7 +11,7 @@ use super::staging::{Staged, StagedVessel};
 use super::{VesselIndex, read};
 use crate::components::{DesignOrder, NoteSpec, NozzleSpec, OperatingSpec, PartSpec, VesselSpec};
 use crate::design::VesselDesign;
-use crate::systems::ChangeLog;
+use crate::systems::{ChangeLog, EditedVessels};
 
 /// Sets a component if it differs; returns whether it was written.
 fn put<T: Component<Mutability = Mutable> + PartialEq>(
@@ -29,21 +29,23 @@ fn put<T: Component<Mutability = Mutable> + PartialEq>(
 }
 
 /// Matches `wanted` children (by id) to `existing` ones, updating, spawning and
-/// despawning; returns whether the set of children changed, and the removed ids.
+/// despawning; returns whether the set of children changed, the removed ids, and
+/// whether any child's parameters were written.
 fn sync_children<T: Component<Mutability = Mutable> + PartialEq>(
     world: &mut World,
     vessel: Entity,
     existing: Vec<(Entity, String)>,
     wanted: Vec<(String, T)>,
-) -> (bool, Vec<String>) {
+) -> (bool, Vec<String>, bool) {
     let mut pool = existing;
     let mut structure = false;
+    let mut written = false;
     for (k, (id, spec)) in wanted.into_iter().enumerate() {
         let order = DesignOrder(k as u32);
         match pool.iter().position(|(_, i)| *i == id) {
             Some(at) => {
                 let (e, _) = pool.swap_remove(at);
-                put(world, e, spec);
+                written |= put(world, e, spec);
                 put(world, e, order);
             }
             None => {
@@ -58,7 +60,7 @@ fn sync_children<T: Component<Mutability = Mutable> + PartialEq>(
         removed.push(id);
         structure = true;
     }
-    (structure, removed)
+    (structure, removed, written)
 }
 
 /// Writes one vessel's design into its entities.
@@ -72,9 +74,10 @@ fn put_vessel(world: &mut World, design: VesselDesign, order: u32) {
         drawing: design.drawing,
     };
     let operating = OperatingSpec(design.operating);
+    let mut edited = existing.is_none();
     let entity = match existing {
         Some(e) => {
-            put(world, e, spec);
+            edited |= put(world, e, spec);
             put(world, e, DesignOrder(order));
             put(world, e, operating);
             e
@@ -100,7 +103,7 @@ fn put_vessel(world: &mut World, design: VesselDesign, order: u32) {
         .into_iter()
         .map(|(e, n)| (e, n.0.id))
         .collect();
-    let (a, ra) = sync_children(
+    let (a, ra, wa) = sync_children(
         world,
         entity,
         parts,
@@ -110,7 +113,7 @@ fn put_vessel(world: &mut World, design: VesselDesign, order: u32) {
             .map(|p| (p.id().to_string(), PartSpec(p)))
             .collect(),
     );
-    let (b, rb) = sync_children(
+    let (b, rb, wb) = sync_children(
         world,
         entity,
         nozzles,
@@ -120,7 +123,7 @@ fn put_vessel(world: &mut World, design: VesselDesign, order: u32) {
             .map(|n| (n.mark.clone(), NozzleSpec(n)))
             .collect(),
     );
-    let (c, rc) = sync_children(
+    let (c, rc, wc) = sync_children(
         world,
         entity,
         notes,
@@ -139,6 +142,9 @@ fn put_vessel(world: &mut World, design: VesselDesign, order: u32) {
         if let Some(mut s) = world.get_mut::<VesselSpec>(entity) {
             s.set_changed();
         }
+    }
+    if edited || a || b || c || wa || wb || wc {
+        world.resource_mut::<EditedVessels>().0.push(entity);
     }
 }
 

@@ -19,7 +19,7 @@ pub fn basis_functions(knots: &[f64], span: usize, u: f64, p: usize) -> [f64; MA
 }
 
 /// [`basis_functions`] in arrays of `N > p` entries: the same values, with less
-/// stack to clear for a low degree (the hot loops of row evaluation use `N = 4`).
+/// stack to clear for a low degree (row evaluation uses [`SMALL_ORDER`]).
 #[inline]
 pub fn basis_functions_in<const N: usize>(
     knots: &[f64],
@@ -45,6 +45,9 @@ pub fn basis_functions_in<const N: usize>(
     n
 }
 
+/// Order of the small-array evaluation path: degrees up to 3.
+pub const SMALL_ORDER: usize = 4;
+
 /// Values and derivatives up to order `d` of the non-zero basis functions at `u`
 /// (A2.3): `result[k][j]` is the k-th derivative of `N_{span−p+j, p}(u)`.
 /// Derivatives above the degree are zero.
@@ -54,17 +57,30 @@ pub fn basis_derivatives<const D: usize>(
     u: f64,
     p: usize,
 ) -> [[f64; MAX_ORDER]; D] {
+    if p < SMALL_ORDER {
+        let small = basis_derivatives_in::<D, SMALL_ORDER>(knots, span, u, p);
+        let mut out = [[0.0; MAX_ORDER]; D];
+        for (o, s) in out.iter_mut().zip(&small) {
+            o[..SMALL_ORDER].copy_from_slice(s);
+        }
+        return out;
+    }
     basis_derivatives_in::<D, MAX_ORDER>(knots, span, u, p)
 }
 
-/// [`basis_derivatives`] in arrays of `N > p` entries: the same values, with less
-/// stack to clear for a low degree.
+/// Values and derivatives up to order `d` of the non-zero basis functions at `u`
+/// (A2.3): `result[k][j]` is the k-th derivative of `N_{span−p+j, p}(u)`.
+/// Derivatives above the degree are zero. Works in arrays of `N > p` entries: the
+/// kernel's quadratics and cubics use `N = 4` ([`SMALL_ORDER`]), which keeps the
+/// scratch arrays (zeroed on every call) a tenth of the general size.
+#[inline]
 pub fn basis_derivatives_in<const D: usize, const N: usize>(
     knots: &[f64],
     span: usize,
     u: f64,
     p: usize,
 ) -> [[f64; N]; D] {
+    debug_assert!(p < N, "degree {p} needs arrays of more than {N}");
     let mut ders = [[0.0; N]; D];
     let mut ndu = [[0.0; N]; N];
     let mut left = [0.0; N];

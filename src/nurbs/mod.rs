@@ -28,7 +28,7 @@ mod row;
 mod surface;
 mod transform;
 
-pub use basis::{MAX_ORDER, basis_derivatives, basis_functions};
+pub use basis::{MAX_ORDER, SMALL_ORDER, basis_derivatives, basis_derivatives_in, basis_functions};
 pub use bbox::Aabb;
 pub use compatible::make_compatible;
 pub use curve::{CurveDerivatives, NurbsCurve, euclidean, homogeneous};
@@ -40,7 +40,7 @@ pub use intersect::{
 pub use inversion::{CurveProjection, SurfaceProjection};
 pub use knots::KnotVector;
 pub use row::SurfaceRow;
-pub use surface::{NurbsSurface, Side, SurfaceDerivatives};
+pub use surface::{FirstDerivatives, NurbsSurface, Side, SurfaceDerivatives};
 pub use transform::{MIN_PROJECTION_COSINE, ParallelProjection};
 
 /// Highest degree the kernel evaluates (fixed-size stack buffers are sized from it).

@@ -15,9 +15,11 @@ use std::cell::Cell;
 
 use glam::{DVec3, DVec4};
 
-use super::basis::{MAX_ORDER, basis_derivatives, basis_derivatives_in, basis_functions_in};
+use super::basis::{
+    MAX_ORDER, SMALL_ORDER, basis_derivatives, basis_derivatives_in, basis_functions_in,
+};
 use super::curve::euclidean;
-use super::surface::{LOW_ORDER, NurbsSurface, SurfaceDerivatives, rational_surface_derivatives};
+use super::surface::{NurbsSurface, SurfaceDerivatives, rational_surface_derivatives};
 
 /// One row of constant v of a surface; see the module documentation.
 #[derive(Clone, Debug)]
@@ -67,8 +69,8 @@ impl NurbsSurface {
 impl SurfaceRow<'_> {
     /// S(u, v) on this row (u clamped to the domain).
     pub fn point(&self, u: f64) -> DVec3 {
-        if self.surface.u_degree() < LOW_ORDER {
-            self.point_in::<LOW_ORDER>(u)
+        if self.surface.u_degree() < SMALL_ORDER {
+            self.point_in::<SMALL_ORDER>(u)
         } else {
             self.point_in::<MAX_ORDER>(u)
         }
@@ -78,8 +80,8 @@ impl SurfaceRow<'_> {
     /// clamped): what a mesh vertex needs, at about half the cost of
     /// [`derivatives`](Self::derivatives).
     pub fn first_derivatives(&self, u: f64) -> (DVec3, DVec3, DVec3) {
-        if self.surface.u_degree() < LOW_ORDER {
-            self.first_derivatives_in::<LOW_ORDER>(u)
+        if self.surface.u_degree() < SMALL_ORDER {
+            self.first_derivatives_in::<SMALL_ORDER>(u)
         } else {
             self.first_derivatives_in::<MAX_ORDER>(u)
         }
@@ -123,8 +125,8 @@ impl SurfaceRow<'_> {
 
     /// The derivatives up to second order at (u, v) on this row (u clamped).
     pub fn derivatives(&self, u: f64) -> SurfaceDerivatives {
-        if self.surface.u_degree() < LOW_ORDER {
-            self.derivatives_in::<LOW_ORDER>(u)
+        if self.surface.u_degree() < SMALL_ORDER {
+            self.derivatives_in::<SMALL_ORDER>(u)
         } else {
             self.derivatives_in::<MAX_ORDER>(u)
         }

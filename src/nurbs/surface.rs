@@ -7,11 +7,9 @@
 
 use glam::{DVec3, DVec4};
 
-use super::basis::{MAX_ORDER, basis_derivatives_in, basis_functions, basis_functions_in};
-
-/// Basis arrays for degrees up to 3 (every vessel surface): the same values with
-/// less stack to clear and copy than [`MAX_ORDER`].
-pub(super) const LOW_ORDER: usize = 4;
+use super::basis::{
+    MAX_ORDER, SMALL_ORDER, basis_derivatives_in, basis_functions, basis_functions_in,
+};
 use super::curve::{check_homogeneous, euclidean};
 use super::{KnotVector, NurbsCurve, NurbsError};
 
@@ -21,6 +19,18 @@ pub struct NurbsSurface {
     u_knots: KnotVector,
     v_knots: KnotVector,
     points: Vec<DVec4>,
+}
+
+/// Point and first partial derivatives of a surface at one (u, v): what Newton
+/// iterations need, at half the cost of [`SurfaceDerivatives`].
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct FirstDerivatives {
+    /// S(u, v).
+    pub point: DVec3,
+    /// ∂S/∂u.
+    pub du: DVec3,
+    /// ∂S/∂v.
+    pub dv: DVec3,
 }
 
 /// Point, first and second partial derivatives of a surface at one (u, v).
@@ -138,8 +148,8 @@ impl NurbsSurface {
     /// Homogeneous point Sʷ(u, v); parameters are clamped to the domain.
     #[inline]
     pub fn homogeneous_point(&self, u: f64, v: f64) -> DVec4 {
-        if self.u_degree() < LOW_ORDER && self.v_degree() < LOW_ORDER {
-            self.homogeneous_point_in::<LOW_ORDER>(u, v)
+        if self.u_degree() < SMALL_ORDER && self.v_degree() < SMALL_ORDER {
+            self.homogeneous_point_in::<SMALL_ORDER>(u, v)
         } else {
             self.homogeneous_point_in::<MAX_ORDER>(u, v)
         }
@@ -177,15 +187,18 @@ impl NurbsSurface {
 
     /// Homogeneous partial derivatives `[A, A_u, A_v, A_uu, A_uv, A_vv]`.
     pub fn homogeneous_derivatives(&self, u: f64, v: f64) -> [DVec4; 6] {
-        if self.u_degree() < LOW_ORDER && self.v_degree() < LOW_ORDER {
-            self.homogeneous_derivatives_in::<LOW_ORDER>(u, v)
+        // The meshing and intersection hot path: vessel surfaces are quadratic
+        // (or at most cubic), so their scratch arrays stay small.
+        if self.u_degree() < SMALL_ORDER && self.v_degree() < SMALL_ORDER {
+            self.homogeneous_derivatives_in::<SMALL_ORDER>(u, v)
         } else {
             self.homogeneous_derivatives_in::<MAX_ORDER>(u, v)
         }
     }
 
-    /// [`homogeneous_derivatives`](Self::homogeneous_derivatives) with basis
-    /// arrays of `N` entries (`N` above both degrees).
+    /// [`homogeneous_derivatives`](Self::homogeneous_derivatives) with scratch
+    /// arrays of `N` (more than either degree).
+    #[inline]
     fn homogeneous_derivatives_in<const N: usize>(&self, u: f64, v: f64) -> [DVec4; 6] {
         let (p, q) = (self.u_degree(), self.v_degree());
         let u = self.u_knots.clamp(u);
@@ -213,6 +226,51 @@ impl NurbsSurface {
             out[3] += temp[0][k] * du[2][k];
             out[4] += temp[1][k] * du[1][k];
             out[5] += temp[2][k] * du[0][k];
+        }
+        out
+    }
+
+    /// Point and first partial derivatives of the rational surface (A4.4 to first
+    /// order): equal to the first three of [`derivatives`](Self::derivatives).
+    pub fn first_derivatives(&self, u: f64, v: f64) -> FirstDerivatives {
+        let a = if self.u_degree() < SMALL_ORDER && self.v_degree() < SMALL_ORDER {
+            self.homogeneous_first_in::<SMALL_ORDER>(u, v)
+        } else {
+            self.homogeneous_first_in::<MAX_ORDER>(u, v)
+        };
+        let inv = 1.0 / a[0].w;
+        let point = a[0].truncate() * inv;
+        FirstDerivatives {
+            point,
+            du: (a[1].truncate() - a[1].w * point) * inv,
+            dv: (a[2].truncate() - a[2].w * point) * inv,
+        }
+    }
+
+    /// Homogeneous `[A, A_u, A_v]` with scratch arrays of `N`.
+    #[inline]
+    fn homogeneous_first_in<const N: usize>(&self, u: f64, v: f64) -> [DVec4; 3] {
+        let (p, q) = (self.u_degree(), self.v_degree());
+        let u = self.u_knots.clamp(u);
+        let v = self.v_knots.clamp(v);
+        let su = self.u_knots.find_span(u);
+        let sv = self.v_knots.find_span(v);
+        let du = basis_derivatives_in::<2, N>(self.u_knots.as_slice(), su, u, p);
+        let dv = basis_derivatives_in::<2, N>(self.v_knots.as_slice(), sv, v, q);
+        let stride = self.v_count();
+        let mut temp = [[DVec4::ZERO; N]; 2];
+        for (k, row_point) in (0..=p).map(|k| (k, (su - p + k) * stride + sv - q)) {
+            let row = &self.points[row_point..=row_point + q];
+            for (l, &pt) in row.iter().enumerate() {
+                temp[0][k] += pt * dv[0][l];
+                temp[1][k] += pt * dv[1][l];
+            }
+        }
+        let mut out = [DVec4::ZERO; 3];
+        for k in 0..=p {
+            out[0] += temp[0][k] * du[0][k];
+            out[1] += temp[0][k] * du[1][k];
+            out[2] += temp[1][k] * du[0][k];
         }
         out
     }

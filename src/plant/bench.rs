@@ -19,6 +19,7 @@ use crate::design::Design;
 use crate::export::{ExportError, stream_glb_to};
 use crate::mesh::TessellationOptions;
 use crate::model::{Model, ModelError, Views};
+use crate::systems::STAGES;
 
 /// What to measure.
 #[derive(Clone, Debug)]
@@ -133,14 +134,6 @@ pub fn run_bench(
     let model = one.install(|| Model::from_design_with(&design, options, Views::Off))?;
     let t1 = start.elapsed();
     let heap_model = heap().zip(heap_before).map(|(a, b)| a.saturating_sub(b));
-    let triangles = model
-        .scene()
-        .vessels
-        .iter()
-        .flat_map(|v| &v.nodes)
-        .flat_map(|n| &n.patches)
-        .map(|p| p.mesh.triangle_count())
-        .sum::<usize>();
     drop(model);
     progress("full build, 2 threads");
     let start = Instant::now();
@@ -183,12 +176,22 @@ pub fn run_bench(
     let mut sim = Simulation::new(model, &design, config.seed ^ 0x5EED);
     progress(&format!("{} one-parameter edits", config.edits));
     let mut samples = Vec::with_capacity(config.edits);
+    // Where an edit's time goes: drawing + checking + writing the edit, then
+    // the update's stages (summed over the edits).
+    let mut apply = Duration::ZERO;
+    let mut stages = [Duration::ZERO; STAGES];
     two.install(|| {
         for _ in 0..config.edits {
             let report = sim.tick(1, 0);
             samples.push(report.latency);
+            apply += report.latency.saturating_sub(report.update);
+            for (total, stage) in stages.iter_mut().zip(report.stages) {
+                *total += stage;
+            }
         }
     });
+    let edits = config.edits.max(1) as f64;
+    let mean = |d: Duration| ms(d) / edits;
     let p50 = quantile(&mut samples, 0.5);
     let p99 = quantile(&mut samples, 0.99);
     rows.push(row(
@@ -202,6 +205,42 @@ pub fn run_bench(
         format!("{:.3} ms", ms(p99)),
         "≤ 2 ms",
         Some(ms(p99) <= 2.0),
+    ));
+    rows.push(row(
+        "  edit, mean: draw+check+write | Validate | Constrain",
+        format!(
+            "{:.3} | {:.3} | {:.3} ms",
+            mean(apply),
+            mean(stages[0]),
+            mean(stages[1])
+        ),
+        "",
+        None,
+    ));
+    rows.push(row(
+        "  edit, mean: Geometry | Tessellate | Project | Export",
+        format!(
+            "{:.3} | {:.3} | {:.3} | {:.3} ms",
+            mean(stages[2]),
+            mean(stages[3]),
+            mean(stages[4]),
+            mean(stages[5])
+        ),
+        "",
+        None,
+    ));
+    let mut idle: Vec<Duration> = (0..20)
+        .map(|_| {
+            let start = Instant::now();
+            sim.model_mut().update();
+            start.elapsed()
+        })
+        .collect();
+    rows.push(row(
+        "  update with nothing to do (p50)",
+        format!("{:.3} ms", ms(quantile(&mut idle, 0.5))),
+        "",
+        None,
     ));
     let ratio = t2.as_secs_f64() / p50.as_secs_f64();
     rows.push(row(
@@ -230,7 +269,7 @@ pub fn run_bench(
         Some(ms(tick50) <= 20.0),
     ));
 
-    let mesh_bytes: usize = sim.model().mesh_bytes();
+    let memory = sim.model().memory();
     if let Some(bytes) = heap_model {
         let per = bytes as f64 / n / 1024.0;
         rows.push(row(
@@ -243,12 +282,26 @@ pub fn run_bench(
             Some(per <= 500.0),
         ));
     }
+    let kb = |bytes: usize| format!("{:.0} KB", bytes as f64 / n / 1024.0);
     rows.push(row(
         "  of which meshes",
         format!(
-            "{:.0} KB ({:.0} triangles/vessel)",
-            mesh_bytes as f64 / n / 1024.0,
-            triangles as f64 / n
+            "{} ({:.0} triangles, {:.0} vertices/vessel)",
+            kb(memory.meshes),
+            memory.triangles as f64 / n,
+            memory.vertices as f64 / n
+        ),
+        "",
+        None,
+    ));
+    rows.push(row(
+        "  of which surfaces, regions, openings",
+        format!(
+            "{}, {}, {} ({:.0} patches/vessel)",
+            kb(memory.surfaces),
+            kb(memory.regions),
+            kb(memory.openings),
+            memory.patches as f64 / n
         ),
         "",
         None,

@@ -19,7 +19,7 @@ use crate::components::VesselSpec;
 use crate::design::{Design, OperatingDesign, PartDesign, VesselDesign};
 use crate::model::{Edit, Model};
 use crate::operating::OperatingState;
-use crate::systems::WorkCounters;
+use crate::systems::{STAGES, WorkCounters};
 
 /// Draws tried for one edit before the tick moves on without it.
 const MAX_TRIES: usize = 16;
@@ -39,6 +39,9 @@ pub struct TickReport {
     pub levels: usize,
     /// Work done by the update.
     pub counters: WorkCounters,
+    /// Of the update, each stage's time (Validate, Constrain, Geometry,
+    /// Tessellate, Project, Export).
+    pub stages: [Duration; STAGES],
 }
 
 /// A plant model under simulation.
@@ -97,6 +100,7 @@ impl Simulation {
         let update = Instant::now();
         report.counters = self.model.update();
         report.update = update.elapsed();
+        report.stages = self.model.stage_times();
         report.latency = start.elapsed();
         report
     }

@@ -68,6 +68,33 @@ impl Region {
         }
     }
 
+    /// A 128-bit fingerprint of the loops: two independent 64-bit hashes of
+    /// every coordinate's bit pattern and of the loop lengths. Equal regions
+    /// have equal fingerprints; different ones collide with probability about
+    /// 2⁻¹²⁸, so the model compares fingerprints instead of keeping the loops.
+    pub fn fingerprint(&self) -> u128 {
+        use std::hash::{BuildHasher, Hasher};
+        let hash = |seed: u64| {
+            let mut h = rustc_hash::FxBuildHasher.build_hasher();
+            let mut s = std::collections::hash_map::DefaultHasher::new();
+            h.write_u64(seed);
+            s.write_u64(seed);
+            for l in self.loops() {
+                h.write_usize(l.uv.len());
+                s.write_usize(l.uv.len());
+                for p in &l.uv {
+                    for c in [p.x.to_bits(), p.y.to_bits()] {
+                        h.write_u64(c);
+                        s.write_u64(c);
+                    }
+                }
+            }
+            (h.finish(), s.finish())
+        };
+        let (fx, sip) = hash(0x5EED);
+        (u128::from(sip) << 64) | u128::from(fx)
+    }
+
     /// A region bounded by `outer` with no holes.
     pub fn new(outer: UvLoop) -> Region {
         Region {

@@ -15,7 +15,7 @@
 use glam::{DMat3, DVec2, DVec3};
 
 use super::pair::{NeckPoint, Pair};
-use crate::nurbs::{NurbsError, NurbsSurface, SurfaceDerivatives};
+use crate::nurbs::{FirstDerivatives, NurbsError, NurbsSurface};
 
 /// Newton iterations per solve.
 const MAX_ITERATIONS: usize = 50;
@@ -115,12 +115,12 @@ pub(super) struct Solution {
 struct Iterate {
     x: DVec3,
     neck: NeckPoint,
-    host: SurfaceDerivatives,
+    host: FirstDerivatives,
     residual: DVec3,
 }
 
 /// The Jacobian `[N_s, −H_a, −H_b]` of N(u, s) − H(a, b) with respect to (s, a, b).
-fn jacobian(neck: &NeckPoint, host: &SurfaceDerivatives) -> DMat3 {
+fn jacobian(neck: &NeckPoint, host: &FirstDerivatives) -> DMat3 {
     DMat3::from_cols(neck.dv, -host.du, -host.dv)
 }
 

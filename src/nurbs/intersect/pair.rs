@@ -9,7 +9,7 @@
 
 use glam::{DVec2, DVec3};
 
-use crate::nurbs::{KnotVector, NurbsError, NurbsSurface, SurfaceDerivatives};
+use crate::nurbs::{FirstDerivatives, KnotVector, NurbsError, NurbsSurface};
 
 /// Relative distance (of the surfaces' size) below which two control points coincide:
 /// for detecting closed directions.
@@ -153,8 +153,17 @@ impl<'a> Pair<'a> {
     /// The neck at (u, s), its generator extended linearly beyond the v-domain.
     pub fn neck_at(&self, u: f64, s: f64) -> NeckPoint {
         let inside = s.clamp(self.neck_v.start, self.neck_v.end);
-        let d = self.neck.derivatives(self.neck_u.wrap(u), inside);
         let beyond = s - inside;
+        if beyond == 0.0 {
+            // On the neck: first derivatives suffice (half the evaluation).
+            let d = self.neck.first_derivatives(self.neck_u.wrap(u), inside);
+            return NeckPoint {
+                point: d.point,
+                du: d.du,
+                dv: d.dv,
+            };
+        }
+        let d = self.neck.derivatives(self.neck_u.wrap(u), inside);
         NeckPoint {
             point: d.point + d.dv * beyond,
             du: d.du + d.duv * beyond,
@@ -163,9 +172,9 @@ impl<'a> Pair<'a> {
     }
 
     /// The host at unwrapped parameters `x`.
-    pub fn host_at(&self, x: DVec2) -> SurfaceDerivatives {
+    pub fn host_at(&self, x: DVec2) -> FirstDerivatives {
         let [a, b] = self.host_axes;
-        self.host.derivatives(a.wrap(x.x), b.wrap(x.y))
+        self.host.first_derivatives(a.wrap(x.x), b.wrap(x.y))
     }
 
     /// `x` kept as a host iterate (open directions clamped).
