@@ -10,6 +10,8 @@ use criterion::criterion_main;
 mod grid;
 #[path = "vesselcad/mesh.rs"]
 mod mesh;
+#[path = "vesselcad/mesh_tuning.rs"]
+mod mesh_tuning;
 #[path = "vesselcad/model.rs"]
 mod model;
 #[path = "vesselcad/plant.rs"]

@@ -15,7 +15,7 @@
 //! MEASURED deviation: [`max_deviation`] samples every triangle at its centroid and
 //! edge midpoints, inverts each sample onto the exact surface with
 //! `NurbsSurface::closest_point` and takes the largest distance. vesselcad is run at
-//! 0.1 mm; curvo's settings are then searched ([`tune_curvo`], with
+//! 0.1 mm; curvo's settings are then searched ([`tune_curvo`](super::mesh_tuning::tune_curvo), with
 //! `MESH_BENCH_TUNE=1`) for the fewest triangles at a measured deviation at most
 //! vesselcad's, over several families: `norm_tolerance` alone, `norm_tolerance`
 //! after `min_depth` 4–10 forced divisions, a uniform grid (`min_divs_u/v`), and
@@ -78,9 +78,9 @@ const TOLERANCE: f64 = 0.1;
 /// Deepest subdivision allowed to curvo (its default, 8, is too shallow at 0.1 mm).
 const CURVO_MAX_DEPTH: usize = 24;
 /// Bisection steps of a curvo setting once a passing value is bracketed.
-const TUNING_STEPS: usize = 6;
+pub(super) const TUNING_STEPS: usize = 6;
 /// Largest triangle count a curvo trial may reach before the search stops refining.
-const CURVO_TRIANGLE_CAP: usize = 3_000_000;
+pub(super) const CURVO_TRIANGLE_CAP: usize = 3_000_000;
 /// A `norm_tolerance` that never divides a cell (unit normals differ by at most 2).
 const NO_NORMAL_DIVISION: f64 = 4.0;
 
@@ -104,7 +104,7 @@ const SHELL_DESIGN: &str = r#"{
 }"#;
 
 /// One surface to mesh, for both meshers.
-struct Piece {
+pub(super) struct Piece {
     /// The patch's name.
     name: &'static str,
     /// The exact surface.
@@ -119,7 +119,7 @@ struct Piece {
 }
 
 /// A surface as curvo takes it.
-enum CurvoInput {
+pub(super) enum CurvoInput {
     /// The whole surface.
     Untrimmed(NurbsSurface3D<f64>),
     /// The surface with holes (polylines through vesselcad's hole vertices).
@@ -127,9 +127,9 @@ enum CurvoInput {
 }
 
 /// A benchmark case: the pieces meshed together, and curvo's settings for it.
-struct Case {
-    name: &'static str,
-    pieces: Vec<Piece>,
+pub(super) struct Case {
+    pub(super) name: &'static str,
+    pub(super) pieces: Vec<Piece>,
     curvo: Knobs,
 }
 
@@ -138,7 +138,7 @@ type Soup = Vec<(usize, [DVec3; 3])>;
 
 /// curvo's settings.
 #[derive(Clone, Copy, Debug, PartialEq)]
-enum Knobs {
+pub(super) enum Knobs {
     /// Adaptive division on the change of the unit normal across a cell
     /// (`norm_tolerance`), after `min_depth` unconditional divisions.
     Normal {
@@ -160,7 +160,7 @@ enum Knobs {
     },
 }
 
-/// curvo's settings per case, found with `MESH_BENCH_TUNE=1` (see [`tune_curvo`]):
+/// curvo's settings per case, found with `MESH_BENCH_TUNE=1` (see [`tune_curvo`](super::mesh_tuning::tune_curvo)):
 /// of all the families searched, the one giving the fewest triangles at a measured
 /// deviation at most vesselcad's. No setting reaches it on the shell with openings
 /// (see the module docs); the one used there is a compromise between deviation and
@@ -416,7 +416,7 @@ fn distance(surface: &NurbsSurface, p: DVec3) -> f64 {
 /// The measured deviation: the largest distance to its exact surface (point
 /// inversion) of the centroid and edge midpoints of every triangle, mm, and the
 /// sample where it occurs.
-fn max_deviation(pieces: &[Piece], soup: &Soup) -> (f64, DVec3) {
+pub(super) fn max_deviation(pieces: &[Piece], soup: &Soup) -> (f64, DVec3) {
     soup.par_iter()
         .flat_map_iter(|(k, t)| samples(t).map(|p| (distance(&pieces[*k].surface, p), p)))
         .reduce(|| (0.0, DVec3::ZERO), |a, b| if b.0 > a.0 { b } else { a })
@@ -425,7 +425,7 @@ fn max_deviation(pieces: &[Piece], soup: &Soup) -> (f64, DVec3) {
 /// Whether every sample of every triangle is within `limit` of its analytic surface
 /// (stops at the first one that is not). Used while tuning; the analytic surfaces
 /// are the patches' exact shapes, so this agrees with point inversion.
-fn within(pieces: &[Piece], soup: &Soup, limit: f64) -> bool {
+pub(super) fn within(pieces: &[Piece], soup: &Soup, limit: f64) -> bool {
     soup.par_iter().all(|(k, t)| {
         samples(t)
             .iter()
@@ -488,7 +488,7 @@ fn ideal_counts(pieces: &[Piece], options: &TessellationOptions) -> Vec<Ideal> {
 }
 
 /// curvo's soup for a case.
-fn curvo_soup(pieces: &[Piece], knobs: Knobs) -> Soup {
+pub(super) fn curvo_soup(pieces: &[Piece], knobs: Knobs) -> Soup {
     pieces
         .iter()
         .enumerate()
@@ -506,117 +506,6 @@ fn our_soup(pieces: &[Piece], options: &TessellationOptions) -> Soup {
             triangles(&mesh).map(move |t| (k, t)).collect::<Vec<_>>()
         })
         .collect()
-}
-
-/// A one-parameter family of curvo settings, finer as the parameter decreases.
-#[derive(Clone, Copy, Debug)]
-enum Family {
-    /// [`Knobs::Normal`] with a fixed `min_depth`, over `norm_tolerance`.
-    Normal { min_depth: usize },
-    /// [`Knobs::Grid`] over the cell edge.
-    Grid,
-    /// [`Knobs::MaxEdge`] over the edge.
-    MaxEdge,
-}
-
-impl Family {
-    /// The families searched.
-    const ALL: [Family; 7] = [
-        Family::Normal { min_depth: 0 },
-        Family::Normal { min_depth: 4 },
-        Family::Normal { min_depth: 6 },
-        Family::Normal { min_depth: 8 },
-        Family::Normal { min_depth: 10 },
-        Family::Grid,
-        Family::MaxEdge,
-    ];
-
-    /// The settings at parameter `x`.
-    fn knobs(self, x: f64) -> Knobs {
-        match self {
-            Family::Normal { min_depth } => Knobs::Normal {
-                norm_tolerance: x,
-                min_depth,
-            },
-            Family::Grid => Knobs::Grid { edge: x },
-            Family::MaxEdge => Knobs::MaxEdge { edge: x },
-        }
-    }
-
-    /// The coarsest and finest parameters tried.
-    fn range(self) -> (f64, f64) {
-        match self {
-            Family::Normal { .. } => (0.2, 1e-3),
-            Family::Grid | Family::MaxEdge => (400.0, 2.0),
-        }
-    }
-}
-
-/// The outcome of searching one family.
-#[derive(Clone, Copy, Debug)]
-enum Search {
-    /// The coarsest passing settings found, with their triangle count.
-    Passed(Knobs, usize),
-    /// No setting passed; the finest tried, its triangles and its deviation.
-    Floor(Knobs, usize, f64),
-}
-
-/// The coarsest settings of `family` whose deviation is at most `target`: halve the
-/// parameter from the coarse end until a mesh passes, then bisect (geometrically)
-/// between the last failure and the first pass. Stops refining at the fine end of
-/// the range or past [`CURVO_TRIANGLE_CAP`].
-fn search(pieces: &[Piece], family: Family, target: f64) -> Search {
-    let (coarse, fine) = family.range();
-    let mut fail = None;
-    let mut x = coarse;
-    let pass = loop {
-        let soup = curvo_soup(pieces, family.knobs(x));
-        if within(pieces, &soup, target) {
-            break x;
-        }
-        if x / 2.0 < fine || soup.len() * 4 > CURVO_TRIANGLE_CAP {
-            let (deviation, _) = max_deviation(pieces, &soup);
-            return Search::Floor(family.knobs(x), soup.len(), deviation);
-        }
-        fail = Some(x);
-        x /= 2.0;
-    };
-    let mut lo = pass;
-    if let Some(mut hi) = fail {
-        for _ in 0..TUNING_STEPS {
-            let mid = (lo * hi).sqrt();
-            if within(pieces, &curvo_soup(pieces, family.knobs(mid)), target) {
-                lo = mid;
-            } else {
-                hi = mid;
-            }
-        }
-    }
-    Search::Passed(family.knobs(lo), curvo_soup(pieces, family.knobs(lo)).len())
-}
-
-/// Searches every family for `case` and prints the outcomes and the best one (run
-/// with `MESH_BENCH_TUNE=1`; copy the best into [`TUNED`]).
-fn tune_curvo(case: &Case, target: f64) {
-    let mut best: Option<(Knobs, usize)> = None;
-    for family in Family::ALL {
-        match search(&case.pieces, family, target) {
-            Search::Passed(knobs, n) => {
-                println!(
-                    "  tuning {}: passes with {n} triangles: {knobs:?}",
-                    case.name
-                );
-                if best.is_none_or(|b| n < b.1) {
-                    best = Some((knobs, n));
-                }
-            }
-            Search::Floor(knobs, n, deviation) => println!(
-                "  tuning {}: does not pass; finest tried {knobs:?}: {n} triangles, {deviation:.4} mm",
-                case.name
-            ),
-        }
-    }
-    println!("  tuning {}: best {best:?}", case.name);
 }
 
 /// Milliseconds of the fastest of `runs` runs of `f`.
@@ -665,7 +554,7 @@ fn prepare() -> Vec<Prepared> {
         let soup = our_soup(&case.pieces, &options);
         let (deviation, _) = max_deviation(&case.pieces, &soup);
         if tuning() {
-            tune_curvo(&case, deviation);
+            super::mesh_tuning::tune_curvo(&case, deviation);
         }
         let ideals = ideal_counts(&case.pieces, &options);
         let ideal = ideals.iter().map(|i| i.isotropic).sum::<f64>();
