@@ -1,0 +1,108 @@
+//! Where an edit's time goes, by kind of edit: draws random valid edits as
+//! `vesselcad simulate` does, applies each with its own update (drawing views off,
+//! as in `vesselcad bench`) and prints, per kind, the mean update time, each
+//! stage's share and the work counters. Run under `perf record` to profile edits.
+//!
+//! `cargo run --release --example tick_profile -- [vessels] [edits]`
+
+use std::collections::BTreeMap;
+use std::time::Instant;
+
+use vesselcad::design::{PartDesign, VesselDesign};
+use vesselcad::mesh::TessellationOptions;
+use vesselcad::model::{Edit, Model, Views};
+use vesselcad::plant::rng::SplitMix64;
+use vesselcad::plant::{draw_edit, generate_plant};
+
+/// Totals for one kind of edit.
+#[derive(Default)]
+struct Totals {
+    count: usize,
+    ms: f64,
+    stages: [f64; 6],
+    meshes: u64,
+    triangles: u64,
+    cuts: u64,
+}
+
+/// A name for the kind of `edit` made to `old`.
+fn kind(old: &VesselDesign, edit: &Edit) -> &'static str {
+    match edit {
+        Edit::SetPart { part, .. } => {
+            match (old.parts.iter().find(|p| p.id() == part.id()), part) {
+                (Some(PartDesign::Shell(a)), PartDesign::Shell(b)) if a.od != b.od => "shell od",
+                (_, PartDesign::Shell(_)) => "shell length",
+                _ => "head swap",
+            }
+        }
+        Edit::SetNozzle { nozzle, .. } => {
+            match old.nozzles.iter().find(|n| n.mark == nozzle.mark) {
+                Some(n) if n.elevation != nozzle.elevation => "nozzle elevation",
+                Some(n) if n.orientation != nozzle.orientation => "nozzle orientation",
+                _ => "nozzle projection",
+            }
+        }
+        _ => "other",
+    }
+}
+
+fn main() {
+    let mut args = std::env::args().skip(1);
+    let vessels: usize = args.next().and_then(|a| a.parse().ok()).unwrap_or(300);
+    let edits: usize = args.next().and_then(|a| a.parse().ok()).unwrap_or(600);
+    let design = generate_plant(vessels, 1).expect("generated");
+    let mut model = Model::from_design_with(&design, TessellationOptions::chord(1.0), Views::Off)
+        .expect("valid");
+    let mut designs = design.vessels.clone();
+    let mut rng = SplitMix64::new(7);
+    let mut stats: BTreeMap<&'static str, Totals> = BTreeMap::new();
+    for _ in 0..edits {
+        let i = rng.int(0, designs.len() as u64 - 1) as usize;
+        let Some((edit, after)) = draw_edit(&mut rng, &designs[i]) else {
+            continue;
+        };
+        let what = kind(&designs[i], &edit);
+        if model.apply(edit).is_err() {
+            continue;
+        }
+        designs[i] = after;
+        let start = Instant::now();
+        let c = model.update();
+        let ms = start.elapsed().as_secs_f64() * 1e3;
+        let t = stats.entry(what).or_default();
+        t.count += 1;
+        t.ms += ms;
+        for (total, stage) in t.stages.iter_mut().zip(model.stage_times()) {
+            *total += stage.as_secs_f64() * 1e3;
+        }
+        t.meshes += c.meshes_rebuilt;
+        t.triangles += c.triangles_meshed;
+        t.cuts += c.openings_cut;
+    }
+    let mut all = 0.0;
+    let mut count = 0;
+    for (what, t) in stats {
+        let n = t.count as f64;
+        let s = t.stages.map(|x| x / n);
+        all += t.ms;
+        count += t.count;
+        println!(
+            "{what:18} n={:4} mean {:.3} ms | V {:.3} C {:.3} G {:.3} T {:.3} P {:.3} E {:.3} | meshes {:.1} tris {:.0} cuts {:.1}",
+            t.count,
+            t.ms / n,
+            s[0],
+            s[1],
+            s[2],
+            s[3],
+            s[4],
+            s[5],
+            t.meshes as f64 / n,
+            t.triangles as f64 / n,
+            t.cuts as f64 / n
+        );
+    }
+    println!(
+        "all                n={count:4} mean {:.3} ms",
+        all / count.max(1) as f64
+    );
+}
