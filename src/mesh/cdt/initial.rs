@@ -8,15 +8,15 @@
 //! (the boundary would not be kept as given), as is a loop vertex that spade merged
 //! with another. Seeds spade rejects are only counted. The triangles inside the
 //! region are found by a flood fill from the left side of every loop segment that
-//! never crosses a loop segment; reaching the convex hull means the loops do not
+//! never crosses a loop segment, walked on spade's own face adjacency; reaching the
+//! convex hull means the loops do not
 //! enclose a region. The result is copied into a [`TriMesh`] for refinement.
 
-use std::collections::VecDeque;
-
-use rustc_hash::{FxHashMap as HashMap, FxHashSet as HashSet};
+use rustc_hash::FxHashSet as HashSet;
 
 use glam::DVec2;
 use rayon::prelude::*;
+use spade::handles::FixedVertexHandle;
 use spade::{ConstrainedDelaunayTriangulation, HasPosition, Point2, Triangulation};
 
 use super::metric::Metric;
@@ -39,6 +39,9 @@ impl HasPosition for ChartVertex {
         self.position
     }
 }
+
+/// spade's triangulation of the chart.
+type Cdt = ConstrainedDelaunayTriangulation<ChartVertex>;
 
 /// The chart position of `uv`, validated for spade.
 fn chart(metric: &Metric, uv: DVec2) -> Result<Point2<f64>, spade::InsertionError> {
@@ -145,8 +148,7 @@ pub(super) fn triangulate(
             Err(_) => stats.failed_insertions += 1,
         }
     }
-    let mut cdt = ConstrainedDelaunayTriangulation::<ChartVertex>::bulk_load(chart_vertices)
-        .map_err(CdtError::Triangulation)?;
+    let mut cdt = Cdt::bulk_load(chart_vertices).map_err(CdtError::Triangulation)?;
     let mut handle = vec![None; uvs.len()];
     for h in cdt.fixed_vertices() {
         handle[cdt.vertex(h).data().id as usize] = Some(h);
@@ -156,6 +158,7 @@ pub(super) fn triangulate(
         .filter(|h| h.is_none())
         .count();
     let mut loop_edges: HashSet<(u32, u32)> = HashSet::default();
+    let mut starts = Vec::with_capacity(loop_vertices);
     for &(loop_index, first, len) in &loops {
         let lost = (0..len).find(|&k| handle[first as usize + k].is_none());
         if let Some(vertex) = lost {
@@ -187,13 +190,10 @@ pub(super) fn triangulate(
                 }
             }
             loop_edges.insert((a, b));
+            starts.push((ha, hb));
         }
     }
-    let faces: Vec<[u32; 3]> = cdt
-        .inner_faces()
-        .map(|f| f.vertices().map(|v| v.data().id))
-        .collect();
-    let inside = flood(&faces, &loop_edges)?;
+    let inside = flood(&cdt, &starts)?;
     // Keep the vertices the inside triangles use, loop vertices first.
     let mut new_index = vec![u32::MAX; uvs.len()];
     for (k, slot) in new_index.iter_mut().enumerate().take(loop_vertices) {
@@ -222,44 +222,44 @@ pub(super) fn triangulate(
     }))
 }
 
-/// The faces reachable from the left side of a loop segment without crossing one.
-fn flood(faces: &[[u32; 3]], loop_edges: &HashSet<(u32, u32)>) -> Result<Vec<[u32; 3]>, CdtError> {
-    let mut directed: HashMap<(u32, u32), usize> = HashMap::default();
-    directed.reserve(faces.len() * 3);
-    for (f, tri) in faces.iter().enumerate() {
-        for i in 0..3 {
-            directed.insert((tri[i], tri[(i + 1) % 3]), f);
+/// The inner faces reachable from the left side of a loop segment (`starts`, by
+/// their vertex handles) without crossing one, as vertex ids in spade's face
+/// order. Every constraint of `cdt` is a loop segment, so spade's own topology
+/// answers both questions (which face lies left of a segment, whether an edge is
+/// one) without an edge map.
+fn flood(
+    cdt: &Cdt,
+    starts: &[(FixedVertexHandle, FixedVertexHandle)],
+) -> Result<Vec<[u32; 3]>, CdtError> {
+    let mut seen = vec![false; cdt.num_all_faces()];
+    let mut stack = Vec::new();
+    for &(a, b) in starts {
+        let edge = cdt
+            .get_edge_from_neighbors(a, b)
+            .ok_or(CdtError::RegionNotClosed)?;
+        let face = edge.face().as_inner().ok_or(CdtError::RegionNotClosed)?;
+        if !std::mem::replace(&mut seen[face.fix().index()], true) {
+            stack.push(face);
         }
     }
-    let mut seen = vec![false; faces.len()];
-    let mut queue = VecDeque::new();
-    let mut starts: Vec<&(u32, u32)> = loop_edges.iter().collect();
-    starts.sort_unstable();
-    for edge in starts {
-        let f = *directed.get(edge).ok_or(CdtError::RegionNotClosed)?;
-        if !seen[f] {
-            seen[f] = true;
-            queue.push_back(f);
-        }
-    }
-    while let Some(f) = queue.pop_front() {
-        let tri = faces[f];
-        for i in 0..3 {
-            let (a, b) = (tri[i], tri[(i + 1) % 3]);
-            if loop_edges.contains(&(a, b)) || loop_edges.contains(&(b, a)) {
+    while let Some(face) = stack.pop() {
+        for edge in face.adjacent_edges() {
+            if edge.is_constraint_edge() {
                 continue;
             }
-            let n = *directed.get(&(b, a)).ok_or(CdtError::RegionNotClosed)?;
-            if !seen[n] {
-                seen[n] = true;
-                queue.push_back(n);
+            let next = edge
+                .rev()
+                .face()
+                .as_inner()
+                .ok_or(CdtError::RegionNotClosed)?;
+            if !std::mem::replace(&mut seen[next.fix().index()], true) {
+                stack.push(next);
             }
         }
     }
-    Ok(faces
-        .iter()
-        .zip(&seen)
-        .filter(|&(_, &s)| s)
-        .map(|(&t, _)| t)
+    Ok(cdt
+        .inner_faces()
+        .filter(|f| seen[f.fix().index()])
+        .map(|f| f.vertices().map(|v| v.data().id))
         .collect())
 }

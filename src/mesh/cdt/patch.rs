@@ -151,7 +151,7 @@ impl<'a> PatchInfo<'a> {
             for j in 0..n {
                 let t = DVec2::new(i as f64, j as f64) / (n - 1) as f64;
                 let p = lo + (hi - lo) * t;
-                let d = surface.derivatives(wrap(surface, closed_u, p.x), p.y);
+                let d = surface.first_derivatives(wrap(surface, closed_u, p.x), p.y);
                 sum += DVec2::new(d.du.length(), d.dv.length());
             }
         }

@@ -21,6 +21,13 @@ use super::region::{Region, inside_by_crossings};
 
 /// Evaluation samples per knot span when integrating spacings.
 const SAMPLES_PER_SPAN: usize = 8;
+/// Samples per u knot span of the grid giving the row density across v (its
+/// maximum over u) and the lattice size estimate. Coarser than
+/// [`SAMPLES_PER_SPAN`]: on a revolved patch the spacing across v does not depend
+/// on u at all, and elsewhere the density only sizes the lattice (the chordal
+/// bound comes from the screen and refinement); the full grid was most of a
+/// small patch's planning time.
+const GRID_SAMPLES_PER_U_SPAN: usize = 2;
 /// Seeds closer to a loop than this many local spacings are dropped.
 pub(super) const MARGIN: f64 = 0.55;
 /// Consecutive rows keep one point count while it is at most this factor above
@@ -72,17 +79,22 @@ fn place(params: &[f64], cumulative: &[f64], n: usize, offset: f64) -> Vec<f64> 
     out
 }
 
+/// `per_span` samples per u knot span across `lo.x..hi.x`.
+fn u_samples(info: &PatchInfo, lo: DVec2, hi: DVec2, per_span: usize) -> Vec<f64> {
+    let (u0, u1) = info.surface.u_knots().domain();
+    let u_spans = info.surface.u_knots().spans().len().max(1);
+    let periods = (hi.x - lo.x) / (u1 - u0);
+    samples(
+        lo.x,
+        hi.x,
+        (per_span as f64 * u_spans as f64 * periods).ceil() as usize,
+    )
+}
+
 /// The u samples across `lo..hi` and the v samples of each v knot span inside it.
 fn sample_grid(info: &PatchInfo, lo: DVec2, hi: DVec2) -> (Vec<f64>, Vec<Vec<f64>>) {
     let surface = info.surface;
-    let (u0, u1) = surface.u_knots().domain();
-    let u_spans = surface.u_knots().spans().len().max(1);
-    let periods = (hi.x - lo.x) / (u1 - u0);
-    let us = samples(
-        lo.x,
-        hi.x,
-        (SAMPLES_PER_SPAN as f64 * u_spans as f64 * periods).ceil() as usize,
-    );
+    let us = u_samples(info, lo, hi, SAMPLES_PER_SPAN);
     let mut v_spans: Vec<Vec<f64>> = Vec::new();
     for (a, b) in surface.v_knots().spans() {
         let (a, b) = (a.max(lo.y), b.min(hi.y));
@@ -109,17 +121,21 @@ struct Plan {
 fn plan(info: &PatchInfo, region: &Region, budget: usize) -> Result<Plan, CdtError> {
     let (lo, hi) = region.bounds();
     let (us, v_spans) = sample_grid(info, lo, hi);
+    let grid_us = u_samples(info, lo, hi, GRID_SAMPLES_PER_U_SPAN);
     // Row density across v (max over u) and an estimate of the lattice size.
     let mut rows: Vec<f64> = Vec::new();
     let mut estimate = 0.0;
     for vs in &v_spans {
-        let metrics: Vec<Vec<Metric>> = vs.par_iter().map(|&v| info.row_metrics(v, &us)).collect();
+        let metrics: Vec<Vec<Metric>> = vs
+            .par_iter()
+            .map(|&v| info.row_metrics(v, &grid_us))
+            .collect();
         let density: Vec<f64> = metrics
             .iter()
             .map(|row| row.iter().map(Metric::across_v).fold(0.0, f64::max) / ROW_HEIGHT)
             .collect();
         for (j, w) in vs.windows(2).enumerate() {
-            for (i, x) in us.windows(2).enumerate() {
+            for (i, x) in grid_us.windows(2).enumerate() {
                 let cell = [
                     metrics[j][i],
                     metrics[j][i + 1],
