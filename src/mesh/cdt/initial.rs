@@ -8,9 +8,9 @@
 //! (the boundary would not be kept as given), as is a loop vertex that spade merged
 //! with another. Seeds spade rejects are only counted. The triangles inside the
 //! region are found by a flood fill from the left side of every loop segment that
-//! never crosses a loop segment, walked on spade's own face adjacency; reaching the
-//! convex hull means the loops do not
-//! enclose a region. The result is copied into a [`TriMesh`] for refinement.
+//! never crosses a loop segment, walked on spade's own face adjacency; reaching
+//! the convex hull means the loops do not enclose a region. The result is copied
+//! into a [`TriMesh`] for refinement.
 
 use rustc_hash::FxHashSet as HashSet;
 

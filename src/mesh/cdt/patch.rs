@@ -17,7 +17,7 @@ pub(super) const COINCIDENT: f64 = 1e-12;
 /// Samples along a collapsed side averaged for the normal of its point.
 const POLE_NORMAL_SAMPLES: usize = 16;
 /// Samples per direction used to average |S_u| and |S_v| over the region.
-const SCALE_SAMPLES: usize = 9;
+const SCALE_SAMPLES: usize = 4;
 
 /// The value `u` wrapped into the u-domain when `surface` is closed in u (its first
 /// and last control columns coincide), `u0 + (u − u0) mod (u1 − u0)`; `u` itself
