@@ -1,4 +1,8 @@
-//! Temporary profiling driver (not committed).
+//! Times the mesher on the issue-4 bench cases without curvo: `fd` (ASME F&D
+//! head OD 2400), `sphere` (R 1000), `shell` (2400×6000 course with six nozzles), at
+//! 0.1 mm or `TOL`; best of `reps`. For profiling (callgrind, perf) of one case.
+//!
+//! `cargo run --release --example mesh_profile -- [fd|sphere|shell|both] [reps]`
 use std::time::Instant;
 use vesselcad::mesh::cdt::mesh_region_on;
 use vesselcad::mesh::{TessellationOptions, patch_region};
