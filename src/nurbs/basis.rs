@@ -28,6 +28,23 @@ pub fn basis_functions_in<const N: usize>(
     p: usize,
 ) -> [f64; N] {
     let mut n = [0.0; N];
+    if p == 2 && N > 2 {
+        // Unrolled: the same operations as the loop below, without it.
+        let left1 = u - knots[span];
+        let right1 = knots[span + 1] - u;
+        let temp = 1.0 / (right1 + left1);
+        let n0 = 0.0 + right1 * temp;
+        let n1 = left1 * temp;
+        let left2 = u - knots[span - 1];
+        let right2 = knots[span + 2] - u;
+        let temp = n0 / (right1 + left2);
+        n[0] = 0.0 + right1 * temp;
+        let saved = left2 * temp;
+        let temp = n1 / (right2 + left1);
+        n[1] = saved + right2 * temp;
+        n[2] = left1 * temp;
+        return n;
+    }
     let mut left = [0.0; N];
     let mut right = [0.0; N];
     n[0] = 1.0;
@@ -81,6 +98,21 @@ pub fn basis_derivatives_in<const D: usize, const N: usize>(
     p: usize,
 ) -> [[f64; N]; D] {
     debug_assert!(p < N, "degree {p} needs arrays of more than {N}");
+    match p {
+        1 => linear_derivatives(knots, span, u),
+        2 => quadratic_derivatives(knots, span, u),
+        _ => general_derivatives(knots, span, u, p),
+    }
+}
+
+/// [`basis_derivatives_in`] for any degree: A2.3 as published (corrected).
+#[inline]
+fn general_derivatives<const D: usize, const N: usize>(
+    knots: &[f64],
+    span: usize,
+    u: f64,
+    p: usize,
+) -> [[f64; N]; D] {
     let mut ders = [[0.0; N]; D];
     let mut ndu = [[0.0; N]; N];
     let mut left = [0.0; N];
@@ -147,6 +179,103 @@ pub fn basis_derivatives_in<const D: usize, const N: usize>(
     ders
 }
 
+/// [`basis_derivatives_in`] for degree 1, unrolled: the same floating-point
+/// operations in the same order as the general algorithm (so the same bits),
+/// without its loops, scratch arrays and index arithmetic. Lines and the linear
+/// direction of courses and cones are degree 1.
+#[inline]
+fn linear_derivatives<const D: usize, const N: usize>(
+    knots: &[f64],
+    span: usize,
+    u: f64,
+) -> [[f64; N]; D] {
+    let mut ders = [[0.0; N]; D];
+    if D == 0 {
+        return ders;
+    }
+    let left1 = u - knots[span];
+    let right1 = knots[span + 1] - u;
+    let ndu10 = right1 + left1;
+    let temp = 1.0 / ndu10;
+    let ndu01 = 0.0 + right1 * temp;
+    let ndu11 = left1 * temp;
+    ders[0][0] = ndu01;
+    ders[0][1] = ndu11;
+    if D > 1 {
+        // r = 0: a = −1/ndu10, d = 0 + a·ndu00; r = 1: a = 1/ndu10, d = a·ndu00;
+        // then both times the degree, 1.
+        ders[1][0] = (0.0 + (-1.0 / ndu10) * 1.0) * 1.0;
+        ders[1][1] = ((1.0 / ndu10) * 1.0) * 1.0;
+    }
+    ders
+}
+
+/// [`basis_derivatives_in`] for degree 2, unrolled like [`linear_derivatives`]
+/// (the same operations, so the same bits). Every circle and conic of the kernel
+/// is a rational quadratic, so this is the most evaluated basis.
+#[inline]
+fn quadratic_derivatives<const D: usize, const N: usize>(
+    knots: &[f64],
+    span: usize,
+    u: f64,
+) -> [[f64; N]; D] {
+    let mut ders = [[0.0; N]; D];
+    if D == 0 {
+        return ders;
+    }
+    // A2.2's triangle: ndu[j][r] below the diagonal are knot differences, on and
+    // above it basis values.
+    let left1 = u - knots[span];
+    let right1 = knots[span + 1] - u;
+    let ndu10 = right1 + left1;
+    let temp = 1.0 / ndu10;
+    let ndu01 = 0.0 + right1 * temp;
+    let ndu11 = left1 * temp;
+    let left2 = u - knots[span - 1];
+    let right2 = knots[span + 2] - u;
+    let ndu20 = right1 + left2;
+    let temp = ndu01 / ndu20;
+    let ndu02 = 0.0 + right1 * temp;
+    let saved = left2 * temp;
+    let ndu21 = right2 + left1;
+    let temp = ndu11 / ndu21;
+    let ndu12 = saved + right2 * temp;
+    let ndu22 = left1 * temp;
+    ders[0][0] = ndu02;
+    ders[0][1] = ndu12;
+    ders[0][2] = ndu22;
+    if D == 1 {
+        return ders;
+    }
+    // A2.3 with p = 2: first derivatives (k = 1, pk = 1) of each function r, and
+    // the a-coefficients the second derivatives (k = 2, pk = 0) go on from.
+    // r = 0
+    let a1_1 = -1.0 / ndu20;
+    let d1_0 = 0.0 + a1_1 * ndu01;
+    // r = 1
+    let b1_0 = 1.0 / ndu20;
+    let b1_1 = -1.0 / ndu21;
+    let d1_1 = b1_0 * ndu01 + b1_1 * ndu11;
+    // r = 2
+    let c1_0 = 1.0 / ndu21;
+    let d1_2 = c1_0 * ndu11;
+    ders[1][0] = d1_0 * 2.0;
+    ders[1][1] = d1_1 * 2.0;
+    ders[1][2] = d1_2 * 2.0;
+    if D > 2 {
+        // r = 0: a₂[2] = −a₁[1]/ndu10.
+        let d2_0 = 0.0 + (-a1_1 / ndu10) * 1.0;
+        // r = 1: a₂[1] = (a₁[1] − a₁[0])/ndu10.
+        let d2_1 = 0.0 + ((b1_1 - b1_0) / ndu10) * 1.0;
+        // r = 2: a₂[0] = a₁[0]/ndu10.
+        let d2_2 = (c1_0 / ndu10) * 1.0;
+        ders[2][0] = d2_0 * 2.0;
+        ders[2][1] = d2_1 * 2.0;
+        ders[2][2] = d2_2 * 2.0;
+    }
+    ders
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
@@ -185,7 +314,14 @@ mod properties {
 
     /// A clamped knot vector of `degree` with random interior knots.
     fn knots() -> impl Strategy<Value = (usize, Vec<f64>)> {
-        (1usize..=5).prop_flat_map(|p| {
+        knots_of(1..=5)
+    }
+
+    /// [`knots`] of a degree in `degrees`.
+    fn knots_of(
+        degrees: std::ops::RangeInclusive<usize>,
+    ) -> impl Strategy<Value = (usize, Vec<f64>)> {
+        degrees.prop_flat_map(|p| {
             proptest::collection::vec(0.0..1.0f64, 0..12).prop_map(move |mut interior| {
                 interior.sort_by(f64::total_cmp);
                 let mut k = vec![0.0; p + 1];
@@ -198,6 +334,26 @@ mod properties {
 
     proptest! {
         #![proptest_config(ProptestConfig { cases: 512, failure_persistence: None, ..ProptestConfig::default() })]
+
+        /// The unrolled degree-1 and degree-2 paths give the general algorithm's
+        /// values and derivatives bit for bit (values from A2.2 too), so no
+        /// evaluation changes with the path taken.
+        #[test]
+        fn unrolled_degrees_are_bit_identical((p, k) in knots_of(1..=2), t in 0.0..=1.0f64) {
+            let kv = crate::nurbs::KnotVector::new(p, k);
+            let span = kv.find_span(t);
+            let knots = kv.as_slice();
+            let bits = |rows: &[[f64; SMALL_ORDER]]| -> Vec<u64> {
+                rows.iter().flat_map(|r| r[..=p].iter().map(|x| x.to_bits())).collect()
+            };
+            let fast = basis_derivatives_in::<3, SMALL_ORDER>(knots, span, t, p);
+            let slow = general_derivatives::<3, SMALL_ORDER>(knots, span, t, p);
+            prop_assert_eq!(bits(&fast), bits(&slow));
+            let first = basis_derivatives_in::<2, SMALL_ORDER>(knots, span, t, p);
+            prop_assert_eq!(bits(&first), bits(&slow[..2]));
+            let values = basis_functions_in::<SMALL_ORDER>(knots, span, t, p);
+            prop_assert_eq!(bits(&[values]), bits(&slow[..1]));
+        }
 
         /// Partition of unity and non-negativity at any parameter, for the values
         /// of A2.2 and the zeroth row of A2.3; derivatives of the sum vanish.
