@@ -22,9 +22,13 @@ pub struct WorkCounters {
     pub regions_laid_out: u64,
     /// Patches rebuilt.
     pub patches_rebuilt: u64,
-    /// Patch meshes rebuilt.
+    /// Patch meshes rebuilt (replaced).
     pub meshes_rebuilt: u64,
-    /// Triangles in the rebuilt meshes.
+    /// Of the rebuilt meshes, those taken from another patch with the same
+    /// surface, region and options instead of being meshed (see
+    /// [`MeshInstances`](crate::mesh::MeshInstances)).
+    pub meshes_shared: u64,
+    /// Triangles the mesher produced (shared meshes not counted).
     pub triangles_meshed: u64,
     /// Entity views (one part or nozzle in one view) rebuilt by the Project stage.
     pub views_rebuilt: u64,

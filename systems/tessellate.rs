@@ -1,6 +1,8 @@
 //! Tessellate stage: mesh every patch whose surface or region changed (or every
 //! patch when the tessellation options changed) with the error-bounded
-//! constrained-Delaunay mesher, in parallel with rayon.
+//! constrained-Delaunay mesher, in parallel with rayon. A patch equal to one
+//! whose mesh is in use (same surface, region and options, by content) shares
+//! that mesh instead of being meshed again.
 
 use std::collections::HashMap;
 use std::sync::Arc;
@@ -10,14 +12,20 @@ use bevy_ecs::query::QueryState;
 use bevy_ecs::resource::Resource;
 use bevy_ecs::world::World;
 use rayon::prelude::*;
+use rustc_hash::FxHashMap;
 
 use super::DirtyPatches;
 use super::{ModelErrors, WorkCounters};
 use crate::components::{PatchMesh, PatchSurface};
 use crate::design::RuleViolation;
 use crate::mesh::cdt::{Region, mesh_patch_region};
-use crate::mesh::{PackedMesh, TessellationOptions};
+use crate::mesh::{MeshInstances, PackedMesh, TessellationOptions, mesh_key};
 use crate::parts::Patch;
+
+/// The meshes in use by content (see [`MeshInstances`]): the Tessellate stage's
+/// memory of what it has meshed.
+#[derive(Resource, Debug, Default)]
+pub struct Instances(pub MeshInstances);
 
 /// The tessellation options every patch is meshed with.
 #[derive(Resource, Clone, Copy, Debug, PartialEq)]
@@ -54,26 +62,58 @@ pub fn remesh_dirty_patches(world: &mut World, surfaces: &mut QueryState<&PatchS
     if work.is_empty() {
         return;
     }
-    let meshes: Vec<_> = work
+    // Patches equal to one whose mesh is in use, or to an earlier one of this
+    // batch, share its mesh; each distinct patch is meshed once.
+    let keys: Vec<u128> = work
         .par_iter()
-        .map(|(e, p, r)| {
+        .map(|(_, p, r)| mesh_key(p, r.fingerprint(), &options))
+        .collect();
+    let instances = &world.resource::<Instances>().0;
+    let in_use: Vec<Option<Arc<PackedMesh>>> = keys.iter().map(|&k| instances.get(k)).collect();
+    let mut first: FxHashMap<u128, usize> = FxHashMap::default();
+    let to_mesh: Vec<usize> = (0..work.len())
+        .filter(|&i| in_use[i].is_none() && *first.entry(keys[i]).or_insert(i) == i)
+        .collect();
+    let meshed: FxHashMap<u128, Result<Arc<PackedMesh>, String>> = to_mesh
+        .par_iter()
+        .map(|&i| {
+            let (_, p, r) = &work[i];
             // Kept for the model's lifetime: packed (exact positions, 4-byte
             // normals, narrow indices, no growth slack).
             let result = mesh_patch_region(p, r, &options)
-                .map(|(mesh, stats)| (PackedMesh::pack(&mesh), stats));
-            (*e, result)
+                .map(|(mesh, _stats)| Arc::new(PackedMesh::pack(&mesh)))
+                .map_err(|e| e.to_string());
+            (keys[i], result)
         })
         .collect();
-    let mut triangles = 0u64;
-    let mut failures = 0u64;
-    for (e, result) in meshes {
-        match result {
-            Ok((mesh, _stats)) => {
-                triangles += mesh.triangle_count() as u64;
-                world.entity_mut(e).insert(PatchMesh(Arc::new(mesh)));
-                world.resource_mut::<DirtyPatches>().meshes.push(e);
+    let triangles: u64 = meshed
+        .values()
+        .filter_map(|m| m.as_ref().ok())
+        .map(|m| m.triangle_count() as u64)
+        .sum();
+    {
+        let mut instances = world.resource_mut::<Instances>();
+        for (&key, mesh) in &meshed {
+            if let Ok(mesh) = mesh {
+                instances.0.insert(key, mesh);
             }
-            Err(err) => {
+        }
+    }
+    let mut failures = 0u64;
+    for (((e, _, _), key), held) in work.iter().zip(&keys).zip(in_use) {
+        let result = match held {
+            Some(mesh) => Ok(mesh),
+            None => meshed
+                .get(key)
+                .cloned()
+                .unwrap_or_else(|| Err("the mesh of an equal patch is missing".into())),
+        };
+        match result {
+            Ok(mesh) => {
+                world.entity_mut(*e).insert(PatchMesh(mesh));
+                world.resource_mut::<DirtyPatches>().meshes.push(*e);
+            }
+            Err(rule) => {
                 failures += 1;
                 world.resource_mut::<ModelErrors>().0.push((
                     format!("{e}"),
@@ -82,7 +122,7 @@ pub fn remesh_dirty_patches(world: &mut World, surfaces: &mut QueryState<&PatchS
                         entity: format!("{e}"),
                         field: "mesh".into(),
                         value: String::new(),
-                        rule: err.to_string(),
+                        rule,
                     }],
                 ));
             }
@@ -90,6 +130,7 @@ pub fn remesh_dirty_patches(world: &mut World, surfaces: &mut QueryState<&PatchS
     }
     let mut counters = world.resource_mut::<WorkCounters>();
     counters.meshes_rebuilt += work.len() as u64;
+    counters.meshes_shared += (work.len() - to_mesh.len()) as u64;
     counters.triangles_meshed += triangles;
     counters.failures += failures;
 }

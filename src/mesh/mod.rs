@@ -8,6 +8,7 @@
 pub mod cdt;
 mod edges;
 mod grid;
+mod instances;
 mod layout;
 mod opening;
 mod options;
@@ -16,6 +17,7 @@ mod seams;
 
 pub use edges::{MAX_EDGE_SEGMENTS, edge_parameters, edge_segments};
 pub use grid::tessellate;
+pub use instances::{MeshInstances, mesh_key};
 pub use layout::{LayoutError, SEAM_CUTS, closed_in_u, host_region, pad_region, patch_region};
 pub use opening::{Cut, PAD_PATCH, cut_opening, pad_patch};
 pub use options::{OptionsError, TessellationOptions};

@@ -8,6 +8,7 @@
 
 use std::collections::HashSet;
 use std::mem::size_of;
+use std::sync::Arc;
 
 use bevy_ecs::world::World;
 use glam::{DVec2, DVec3};
@@ -19,9 +20,10 @@ use crate::nurbs::intersect::IntersectionLoop;
 /// Heap bytes held by a model's derived data, by kind.
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
 pub struct MemoryBreakdown {
-    /// Patch meshes: positions, normals, indices.
+    /// Patch meshes: positions, normals, indices (a mesh shared by equal
+    /// patches counted once).
     pub meshes: usize,
-    /// Vertices and triangles of the meshes.
+    /// Vertices of the patches' meshes (shared ones counted per patch).
     pub vertices: usize,
     /// Triangles of the meshes.
     pub triangles: usize,
@@ -46,8 +48,12 @@ fn loop_bytes(l: &IntersectionLoop) -> usize {
 pub(crate) fn breakdown(world: &World) -> MemoryBreakdown {
     let mut out = MemoryBreakdown::default();
     if let Some(mut q) = world.try_query::<&PatchMesh>() {
+        // A mesh shared by equal patches is held once.
+        let mut seen = HashSet::new();
         for m in q.iter(world) {
-            out.meshes += m.0.heap_bytes();
+            if seen.insert(Arc::as_ptr(&m.0)) {
+                out.meshes += m.0.heap_bytes();
+            }
             out.vertices += m.0.vertex_count();
             out.triangles += m.0.triangle_count();
         }

@@ -30,8 +30,8 @@ use crate::export::Scene;
 use crate::mesh::{OptionsError, TessellationOptions};
 pub use crate::systems::Views;
 use crate::systems::{
-    ChangeLog, DirtyPatches, EditedVessels, ModelErrors, OpeningHosts, PendingResolutions,
-    StageTimes, Tessellation, WorkCounters, build_schedule,
+    ChangeLog, DirtyPatches, EditedVessels, Instances, ModelErrors, OpeningHosts,
+    PendingResolutions, StageTimes, Tessellation, WorkCounters, build_schedule,
 };
 
 /// Why an edit or model construction was refused. The model is unchanged.
@@ -78,6 +78,7 @@ impl Model {
         let mut world = World::new();
         world.insert_resource(Tessellation(options));
         world.init_resource::<WorkCounters>();
+        world.init_resource::<Instances>();
         world.init_resource::<PendingResolutions>();
         world.init_resource::<ModelErrors>();
         world.init_resource::<ChangeLog>();

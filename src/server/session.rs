@@ -372,6 +372,7 @@ fn work_json(w: &WorkCounters) -> Value {
         "regions_laid_out": w.regions_laid_out,
         "patches_rebuilt": w.patches_rebuilt,
         "meshes_rebuilt": w.meshes_rebuilt,
+        "meshes_shared": w.meshes_shared,
         "triangles_meshed": w.triangles_meshed,
         "failures": w.failures,
     })

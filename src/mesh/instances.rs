@@ -1,0 +1,190 @@
+//! Content-addressed sharing of patch meshes: patches that are the same surface,
+//! trimmed by the same region and meshed to the same options get one mesh.
+//!
+//! The mesher is deterministic, so its output is a function of exactly those
+//! inputs. In a plant, most of them repeat: every nozzle of one size, rating and
+//! projection has the same flange faces, hub and rim in its own frame; every head
+//! of one diameter and shape is the same in its part frame. The Tessellate stage
+//! looks each dirty patch up here by [`mesh_key`] before meshing it, so a full
+//! build meshes each distinct patch once, and an edit that makes a patch equal to
+//! one already in the model (a head swapped to a shape some other vessel of that
+//! diameter has, a flange moved to a projection another nozzle has) meshes
+//! nothing. The table holds weak references: a mesh lives as long as a patch uses
+//! it, and sharing never changes a byte of any mesh.
+
+use std::hash::{BuildHasher, Hasher};
+use std::sync::{Arc, Weak};
+
+use glam::DVec3;
+use rustc_hash::FxHashMap;
+
+use super::{PackedMesh, TessellationOptions};
+use crate::parts::{Analytic, Patch};
+
+/// A 128-bit key of everything the mesh of `patch` within the region with
+/// fingerprint `region` at `options` depends on: the surface's degrees, knots and
+/// homogeneous control points, the analytic surface the probes measure against,
+/// the region's fingerprint and the options, all by their exact bits. Two
+/// independent 64-bit hashes, like [`Region::fingerprint`](crate::mesh::cdt::Region::fingerprint):
+/// different inputs collide with probability about 2⁻¹²⁸.
+pub fn mesh_key(patch: &Patch, region: u128, options: &TessellationOptions) -> u128 {
+    let mut fx = rustc_hash::FxBuildHasher.build_hasher();
+    let mut sip = std::collections::hash_map::DefaultHasher::new();
+    let mut write = |x: u64| {
+        fx.write_u64(x);
+        sip.write_u64(x);
+    };
+    let s = &patch.surface;
+    for knots in [s.u_knots(), s.v_knots()] {
+        write(knots.degree() as u64);
+        write(knots.as_slice().len() as u64);
+        for k in knots.as_slice() {
+            write(k.to_bits());
+        }
+    }
+    for p in s.homogeneous_points() {
+        for c in p.to_array() {
+            write(c.to_bits());
+        }
+    }
+    analytic_bits(&patch.analytic, &mut write);
+    write(region as u64);
+    write((region >> 64) as u64);
+    // Destructured, so that a new option cannot be left out of the key.
+    let TessellationOptions {
+        tolerance,
+        angle_tolerance,
+        max_edge_length,
+        max_stretch,
+    } = *options;
+    let optional = |x: Option<f64>| x.map_or(u64::MAX, f64::to_bits);
+    write(tolerance.to_bits());
+    write(optional(angle_tolerance));
+    write(optional(max_edge_length));
+    write(optional(max_stretch));
+    (u128::from(sip.finish()) << 64) | u128::from(fx.finish())
+}
+
+/// Feeds the kind and every number of `analytic` to `write`.
+fn analytic_bits(analytic: &Analytic, write: &mut impl FnMut(u64)) {
+    let mut vector = |kind: u64, vectors: &[DVec3], scalars: &[f64]| {
+        write(kind);
+        for v in vectors {
+            for c in v.to_array() {
+                write(c.to_bits());
+            }
+        }
+        for s in scalars {
+            write(s.to_bits());
+        }
+    };
+    match *analytic {
+        Analytic::Plane { point, normal } => vector(0, &[point, normal], &[]),
+        Analytic::Cylinder {
+            point,
+            axis,
+            radius,
+        } => vector(1, &[point, axis], &[radius]),
+        Analytic::Cone {
+            apex,
+            axis,
+            half_angle,
+        } => vector(2, &[apex, axis], &[half_angle]),
+        Analytic::ObliqueCone {
+            apex,
+            base_center,
+            base_normal,
+            radius,
+        } => vector(3, &[apex, base_center, base_normal], &[radius]),
+        Analytic::Sphere { center, radius } => vector(4, &[center], &[radius]),
+        Analytic::Torus {
+            center,
+            axis,
+            major,
+            minor,
+        } => vector(5, &[center, axis], &[major, minor]),
+        Analytic::Spheroid {
+            center,
+            axis,
+            equatorial,
+            polar,
+        } => vector(6, &[center, axis], &[equatorial, polar]),
+    }
+}
+
+/// The meshes in use, by [`mesh_key`]: weak references, so an entry dies with the
+/// last patch using its mesh (dead entries are swept as the table grows).
+#[derive(Debug, Default)]
+pub struct MeshInstances {
+    table: FxHashMap<u128, Weak<PackedMesh>>,
+    /// Table size after the last sweep.
+    swept: usize,
+}
+
+impl MeshInstances {
+    /// The mesh in use for `key`, if a patch still holds it.
+    pub fn get(&self, key: u128) -> Option<Arc<PackedMesh>> {
+        self.table.get(&key)?.upgrade()
+    }
+
+    /// Records `mesh` as the mesh of `key`.
+    pub fn insert(&mut self, key: u128, mesh: &Arc<PackedMesh>) {
+        self.table.insert(key, Arc::downgrade(mesh));
+        if self.table.len() > 2 * self.swept + 1024 {
+            self.table.retain(|_, m| m.strong_count() > 0);
+            self.swept = self.table.len();
+        }
+    }
+
+    /// Entries (some possibly dead until the next sweep).
+    pub fn len(&self) -> usize {
+        self.table.len()
+    }
+
+    /// Whether the table is empty.
+    pub fn is_empty(&self) -> bool {
+        self.table.is_empty()
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::mesh::cdt::Region;
+    use crate::parts::heads::{Head, HeadKind};
+
+    fn crown(od: f64) -> Patch {
+        let patches = Head::new(od, HeadKind::TWO_TO_ONE)
+            .patches()
+            .expect("a valid head");
+        patches[0].clone()
+    }
+
+    #[test]
+    fn keys_follow_every_input() {
+        let options = TessellationOptions::chord(1.0);
+        let a = crown(2000.0);
+        let region = Region::rectangle(&a.surface).fingerprint();
+        let key = mesh_key(&a, region, &options);
+        assert_eq!(key, mesh_key(&crown(2000.0), region, &options));
+        assert_ne!(key, mesh_key(&crown(2000.000001), region, &options));
+        assert_ne!(key, mesh_key(&a, region ^ 1, &options));
+        assert_ne!(key, mesh_key(&a, region, &TessellationOptions::chord(0.5)));
+        let mut moved = a.clone();
+        if let Analytic::Spheroid { center, .. } = &mut moved.analytic {
+            center.z += 1e-9;
+        }
+        assert_ne!(key, mesh_key(&moved, region, &options));
+    }
+
+    #[test]
+    fn entries_live_as_long_as_a_patch_holds_the_mesh() {
+        let mut table = MeshInstances::default();
+        let mesh = Arc::new(PackedMesh::pack(&crate::mesh::Mesh::default()));
+        table.insert(7, &mesh);
+        assert!(Arc::ptr_eq(&table.get(7).expect("held"), &mesh));
+        drop(mesh);
+        assert!(table.get(7).is_none());
+        assert!(table.get(8).is_none());
+    }
+}

@@ -1,0 +1,121 @@
+//! Equal patches share one mesh: a patch with the same surface, region and
+//! options as one whose mesh is in use takes that mesh instead of being meshed
+//! again, at the first build and after edits, and the model still holds exactly
+//! what a from-scratch build of its design gives.
+
+use std::collections::HashSet;
+use std::sync::Arc;
+
+use vesselcad::components::PatchMesh;
+use vesselcad::design::{Design, HeadShape, PartDesign, VesselDesign, load};
+use vesselcad::export::{build_scene, write_glb};
+use vesselcad::mesh::TessellationOptions;
+use vesselcad::model::{Edit, Model};
+
+fn options() -> TessellationOptions {
+    TessellationOptions::chord(2.0)
+}
+
+fn small_plant() -> Design {
+    load(format!(
+        "{}/examples/designs/small-plant.json",
+        env!("CARGO_MANIFEST_DIR")
+    ))
+    .expect("the example loads")
+}
+
+/// Distinct meshes held by the model's patches, and the number of patches.
+fn distinct_meshes(model: &mut Model) -> (usize, usize) {
+    let world = model.world_mut();
+    let mut q = world.query::<&PatchMesh>();
+    let all: Vec<*const _> = q.iter(world).map(|m| Arc::as_ptr(&m.0)).collect();
+    let distinct: HashSet<_> = all.iter().collect();
+    (distinct.len(), all.len())
+}
+
+/// The ids of `vessel`'s heads that carry no nozzle.
+fn free_heads(vessel: &VesselDesign) -> Vec<String> {
+    vessel
+        .parts
+        .iter()
+        .filter(|p| matches!(p, PartDesign::Head(_)))
+        .map(|p| p.id().to_string())
+        .filter(|id| !vessel.nozzles.iter().any(|n| n.host == *id))
+        .collect()
+}
+
+/// `vessel` with head `id` made torispherical (ASME F&D defaults).
+fn torispherical(vessel: &VesselDesign, id: &str) -> Edit {
+    let mut part = vessel
+        .parts
+        .iter()
+        .find(|p| p.id() == id)
+        .expect("the head exists")
+        .clone();
+    let PartDesign::Head(h) = &mut part else {
+        panic!("{id} is a head");
+    };
+    h.shape = HeadShape::Torispherical;
+    h.ratio = None;
+    Edit::SetPart {
+        vessel: vessel.tag.clone(),
+        part,
+    }
+}
+
+fn assert_matches_full_build(model: &Model) {
+    let incremental = write_glb(&model.scene()).expect("the model exports");
+    let full = write_glb(&build_scene(&model.design(), &options()).expect("the design builds"))
+        .expect("the build exports");
+    assert!(
+        incremental == full,
+        "incremental GLB differs from the full build"
+    );
+}
+
+#[test]
+fn equal_patches_share_one_mesh_from_the_first_build_on() {
+    let mut model = Model::new(options()).expect("valid options");
+    model
+        .apply(Edit::ReplaceDesign(small_plant()))
+        .expect("the example is valid");
+    let c = model.update();
+    // The plant's two drums have equal 2:1 heads and many equal flanges.
+    assert!(c.meshes_shared > 0, "{c:?}");
+    assert!(c.meshes_shared < c.meshes_rebuilt, "{c:?}");
+    let (distinct, patches) = distinct_meshes(&mut model);
+    assert_eq!(patches as u64, c.meshes_rebuilt);
+    assert_eq!(
+        distinct as u64,
+        c.meshes_rebuilt - c.meshes_shared,
+        "each distinct patch is meshed once: {c:?}"
+    );
+    assert!(model.errors().0.is_empty());
+    assert_matches_full_build(&model);
+}
+
+#[test]
+fn an_edit_that_repeats_a_patch_in_use_meshes_nothing() {
+    let design = small_plant();
+    let (a, b) = (&design.vessels[0], &design.vessels[1]);
+    let (head_a, head_b) = (free_heads(a), free_heads(b));
+    let (Some(head_a), Some(head_b)) = (head_a.first(), head_b.first()) else {
+        panic!("the example's drums have heads without nozzles");
+    };
+    let mut model = Model::from_design(&design, options()).expect("the example is valid");
+    // The first drum's head becomes torispherical: new patches, meshed.
+    let first = model
+        .edit(torispherical(a, head_a))
+        .expect("a valid head swap");
+    assert!(first.triangles_meshed > 0, "{first:?}");
+    // The second drum's equal head becomes the same: every patch is one the
+    // model already holds, so nothing is meshed.
+    let second = model
+        .edit(torispherical(b, head_b))
+        .expect("a valid head swap");
+    assert!(second.meshes_rebuilt > 0, "{second:?}");
+    assert_eq!(second.meshes_shared, second.meshes_rebuilt, "{second:?}");
+    assert_eq!(second.triangles_meshed, 0, "{second:?}");
+    assert!(model.errors().0.is_empty());
+    assert_matches_full_build(&model);
+}
