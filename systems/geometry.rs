@@ -14,6 +14,7 @@ use bevy_ecs::world::World;
 use rayon::prelude::*;
 
 use super::DirtyPatches;
+use super::labels::stable_id;
 use super::{ModelErrors, WorkCounters};
 use crate::components::{PatchOf, PatchSurface, Patches, Shape};
 use crate::parts::{PartError, Patch};
@@ -45,11 +46,12 @@ pub fn rebuild_dirty_patches(
             Ok(p) => p,
             Err(e) => {
                 // Only reachable if the world was edited around `Model::apply`.
+                let id = stable_id(world, entity);
                 world.resource_mut::<ModelErrors>().0.push((
-                    format!("{entity}"),
+                    id.clone(),
                     vec![crate::design::RuleViolation {
                         path: String::new(),
-                        entity: format!("{entity}"),
+                        entity: id,
                         field: "shape".into(),
                         value: String::new(),
                         rule: e.to_string(),

@@ -12,6 +12,7 @@ mod counters;
 mod dirty;
 mod export;
 mod geometry;
+mod labels;
 mod openings;
 mod operating;
 mod project;

@@ -10,7 +10,6 @@ use std::sync::Arc;
 
 use bevy_ecs::component::Component;
 use bevy_ecs::entity::Entity;
-use bevy_ecs::hierarchy::ChildOf;
 use bevy_ecs::query::{Changed, Or, QueryState, With};
 use bevy_ecs::resource::Resource;
 use bevy_ecs::world::World;
@@ -18,10 +17,10 @@ use glam::DAffine3;
 use rayon::prelude::*;
 
 use super::DirtyPatches;
+use super::labels::stable_id;
 use super::{ModelErrors, Tessellation, WorkCounters};
 use crate::components::{
-    MountedOn, Mounts, NozzleSpec, Opening, PadOf, PadPatch, PartFrame, PartSpec, PatchSurface,
-    Patches, Shape, VesselSpec,
+    MountedOn, Mounts, Opening, PadOf, PadPatch, PartFrame, PatchSurface, Patches, Shape,
 };
 use crate::design::RuleViolation;
 use crate::mesh::{Cut, HostTrim, cut_opening, pad_patch};
@@ -105,22 +104,6 @@ struct Job {
     frame: DAffine3,
     host_frame: DAffine3,
     hosts: Vec<(Entity, Arc<Patch>)>,
-}
-
-/// The stable id (`tag/id`) of a part or nozzle, or the entity where it has none.
-fn stable_id(world: &World, entity: Entity) -> String {
-    let id = world
-        .get::<PartSpec>(entity)
-        .map(|p| p.0.id().to_string())
-        .or_else(|| world.get::<NozzleSpec>(entity).map(|n| n.0.mark.clone()));
-    let tag = world
-        .get::<ChildOf>(entity)
-        .and_then(|c| world.get::<VesselSpec>(c.parent()))
-        .map(|v| v.tag.clone());
-    match (tag, id) {
-        (Some(tag), Some(id)) => format!("{tag}/{id}"),
-        _ => format!("{entity}"),
-    }
 }
 
 /// The error of an opening that cannot be cut: the nozzle (or boot), and as value

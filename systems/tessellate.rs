@@ -15,6 +15,7 @@ use rayon::prelude::*;
 use rustc_hash::FxHashMap;
 
 use super::DirtyPatches;
+use super::labels::patch_label;
 use super::{ModelErrors, WorkCounters};
 use crate::components::{PatchMesh, PatchSurface};
 use crate::design::RuleViolation;
@@ -101,6 +102,7 @@ pub fn remesh_dirty_patches(world: &mut World, surfaces: &mut QueryState<&PatchS
     }
     let mut failures = 0u64;
     for (((e, _, _), key), held) in work.iter().zip(&keys).zip(in_use) {
+        let e = *e;
         let result = match held {
             Some(mesh) => Ok(mesh),
             None => meshed
@@ -110,16 +112,17 @@ pub fn remesh_dirty_patches(world: &mut World, surfaces: &mut QueryState<&PatchS
         };
         match result {
             Ok(mesh) => {
-                world.entity_mut(*e).insert(PatchMesh(mesh));
-                world.resource_mut::<DirtyPatches>().meshes.push(*e);
+                world.entity_mut(e).insert(PatchMesh(mesh));
+                world.resource_mut::<DirtyPatches>().meshes.push(e);
             }
             Err(rule) => {
                 failures += 1;
+                let label = patch_label(world, e);
                 world.resource_mut::<ModelErrors>().0.push((
-                    format!("{e}"),
+                    label.clone(),
                     vec![RuleViolation {
                         path: String::new(),
-                        entity: format!("{e}"),
+                        entity: label,
                         field: "mesh".into(),
                         value: String::new(),
                         rule,
