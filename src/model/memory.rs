@@ -36,6 +36,8 @@ pub struct MemoryBreakdown {
     pub openings: usize,
     /// Patch entities.
     pub patches: usize,
+    /// Distinct meshes the patches hold (equal patches share one).
+    pub distinct_meshes: usize,
 }
 
 fn loop_bytes(l: &IntersectionLoop) -> usize {
@@ -53,6 +55,7 @@ pub(crate) fn breakdown(world: &World) -> MemoryBreakdown {
         for m in q.iter(world) {
             if seen.insert(Arc::as_ptr(&m.0)) {
                 out.meshes += m.0.heap_bytes();
+                out.distinct_meshes += 1;
             }
             out.vertices += m.0.vertex_count();
             out.triangles += m.0.triangle_count();

@@ -172,6 +172,15 @@ pub fn run_bench(
         "≥ 1.8×",
         Some(speedup >= 1.8),
     ));
+    // A patch that failed to mesh is work not done: the figures above and below
+    // only count if nothing did.
+    let failed = model.errors().0.len();
+    rows.push(row(
+        "  patches or openings that failed (model errors)",
+        format!("{failed}"),
+        "0",
+        Some(failed == 0),
+    ));
 
     let mut sim = Simulation::new(model, &design, config.seed ^ 0x5EED);
     progress(&format!("{} one-parameter edits", config.edits));
@@ -286,10 +295,12 @@ pub fn run_bench(
     rows.push(row(
         "  of which meshes",
         format!(
-            "{} ({:.0} triangles, {:.0} vertices/vessel)",
+            "{} ({:.0} triangles, {:.0} vertices/vessel; {:.0} % of patches share a mesh)",
             kb(memory.meshes),
             memory.triangles as f64 / n,
-            memory.vertices as f64 / n
+            memory.vertices as f64 / n,
+            100.0 * memory.patches.saturating_sub(memory.distinct_meshes) as f64
+                / memory.patches.max(1) as f64
         ),
         "",
         None,
