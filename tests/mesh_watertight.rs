@@ -416,3 +416,25 @@ fn a_pad_across_a_head_seam_is_refused_clearly() {
     model.edit(Edit::ReplaceDesign(edited)).unwrap();
     assert!(model.errors().0.is_empty(), "{:?}", model.errors());
 }
+
+/// Openings on a course that cover every one of its eight standard seam-cut
+/// angles (one small nozzle on each, at different elevations, gaps between them)
+/// still leave the layout a cut: any angle where both end circles have a vertex
+/// and no opening reaches will do. The vessel meshes without errors and stays
+/// closed.
+#[test]
+fn a_course_with_openings_on_every_standard_cut_angle_is_meshed() {
+    let mut design = example("horizontal-drum");
+    let v = &mut design.vessels[0];
+    let template = v.nozzles.iter().find(|n| n.mark == "N6").unwrap().clone();
+    v.nozzles.retain(|n| n.host != "S1" || n.mark == "N1");
+    v.notes.retain(|n| n.target != "N6");
+    for k in 0..8 {
+        let mut n = template.clone();
+        n.mark = format!("X{k}");
+        n.orientation = 45.0 * k as f64;
+        n.elevation = Some(1800.0 + 600.0 * k as f64);
+        v.nozzles.push(n);
+    }
+    check_design(&design, 1.0);
+}
