@@ -2,14 +2,16 @@
 //! cut nozzle) on a shell and on heads at the plant's 1 mm chordal tolerance, a
 //! whole cut with a reinforcing pad (two loops), and the region layout of a shell
 //! course holding six openings (the Tessellate stage's work per host patch before
-//! meshing). These are the costs a nozzle or shell edit pays per opening.
+//! meshing), afresh and with the course's sides kept from its last layout. These are the costs a nozzle or shell edit pays per opening.
 
 use std::hint::black_box;
 use std::time::Duration;
 
 use criterion::{Criterion, criterion_group};
 use glam::{DAffine3, DMat3, DVec3};
-use vesselcad::mesh::{TessellationOptions, cut_opening, host_region};
+use vesselcad::mesh::{
+    PatchSides, TessellationOptions, cut_opening, host_region, host_region_with,
+};
 use vesselcad::nurbs::{NurbsSurface, neck_host_intersection};
 use vesselcad::parts::heads::{Head, HeadKind};
 use vesselcad::parts::tables::{FlangeClass, Nps, PipeSchedule};
@@ -171,6 +173,16 @@ fn bench(c: &mut Criterion) {
     group.bench_function("layout: 2 m course with six openings", |b| {
         b.iter(|| {
             black_box(host_region(&course.surface, &options, &holes, &[], None).expect("a region"))
+        })
+    });
+    // The same with the course's sides kept from its last layout (as the Regions
+    // system does while the course's surface is unchanged).
+    let sides = PatchSides::of(&course.surface, &options);
+    group.bench_function("layout: the same, sides kept", |b| {
+        b.iter(|| {
+            black_box(
+                host_region_with(&course.surface, &sides, &holes, &[], None).expect("a region"),
+            )
         })
     });
     group.finish();

@@ -23,6 +23,11 @@ const MAX_ITERATIONS: usize = 50;
 /// Step halvings tried before a Newton step counts as not reducing the residual.
 const MAX_HALVINGS: usize = 30;
 
+/// A converged residual below this fraction of the tolerance (1e-14 of the size of
+/// the surfaces, some tens of units in the last place of their coordinates) is at
+/// the level of rounding: the extra polishing step is skipped.
+const ROUNDING: f64 = 1e-2;
+
 /// |det J| below this fraction of the product of its column lengths counts as
 /// singular: the generator is (nearly) tangent to the host or H_a or H_b vanishes.
 const SINGULAR: f64 = 1e-12;
@@ -179,7 +184,8 @@ impl Pair<'_> {
         for _ in 0..iterations {
             let r = here.residual.length();
             if r <= self.eps {
-                if polished {
+                // Polished, or already down to rounding: nothing left to gain.
+                if polished || r <= ROUNDING * self.eps {
                     break;
                 }
                 polished = true;
