@@ -1,6 +1,6 @@
 //! Benchmarks of vesselcad: one criterion entry point, one module per topic.
 //!
-//! Run with `cargo bench --bench vesselcad` (or `-- grid` / `-- mesh` / `-- model` / `-- plant` / `-- project` / `-- server` for one
+//! Run with `cargo bench --bench vesselcad` (or `-- grid` / `-- mesh` / `-- model` / `-- opening` / `-- plant` / `-- project` / `-- server` for one
 //! topic); each topic keeps its measurement short so the whole run takes a few
 //! minutes.
 
@@ -14,6 +14,8 @@ mod mesh;
 mod mesh_tuning;
 #[path = "vesselcad/model.rs"]
 mod model;
+#[path = "vesselcad/opening.rs"]
+mod opening;
 #[path = "vesselcad/plant.rs"]
 mod plant;
 #[path = "vesselcad/project.rs"]
@@ -25,6 +27,7 @@ criterion_main!(
     grid::group,
     mesh::group,
     model::group,
+    opening::group,
     plant::group,
     project::group,
     server::group

@@ -29,7 +29,7 @@ pub use geometry::rebuild_dirty_patches;
 pub use openings::{OpeningHosts, OpeningInput, cut_openings};
 pub use operating::update_operating_states;
 pub use project::{Views, entity_input, project_dirty_views, views_kept};
-pub use regions::lay_out_regions;
+pub use regions::{HostSides, lay_out_regions};
 pub use tessellate::{Instances, Tessellation, remesh_dirty_patches};
 pub use validate::{EditedVessels, ModelErrors, PendingResolutions, resolve_dirty_vessels};
 

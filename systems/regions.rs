@@ -3,22 +3,43 @@
 //! curves, the openings of the nozzles it hosts as holes, and for a nozzle neck the
 //! intersection with its host as its bottom edge. Runs in the Tessellate stage
 //! before meshing, in parallel with rayon.
+//!
+//! A host patch is laid out again whenever one of its openings changes, mostly
+//! with its own surface unchanged; its sampled sides ([`PatchSides`], the costly
+//! part of a layout) are kept in [`HostSides`] and reused while its surface is the
+//! same.
 
-use std::collections::BTreeSet;
+use std::collections::{BTreeSet, HashMap};
 use std::sync::Arc;
 
 use bevy_ecs::entity::Entity;
 use bevy_ecs::query::{Changed, QueryState, With};
+use bevy_ecs::resource::Resource;
 use bevy_ecs::world::World;
 use rayon::prelude::*;
 
 use super::DirtyPatches;
+use super::labels::patch_label;
 use super::{ModelErrors, OpeningHosts, Tessellation, Views, WorkCounters};
 use crate::components::{Mounts, Opening, PadOf, PadPatch, PatchOf, PatchRegion, PatchSurface};
 use crate::design::RuleViolation;
-use crate::mesh::{HostTrim, Notch, host_region, pad_region};
+use crate::mesh::{HostTrim, Notch, PatchSides, host_region_with, pad_region};
 use crate::nurbs::intersect::IntersectionLoop;
 use crate::parts::Patch;
+
+/// The sampled sides of every host patch (one with openings or notches) as last
+/// laid out, with the surface they were sampled from (held, so the pointer compared
+/// cannot be reused). Cleared when the tessellation options change.
+#[derive(Resource, Default, Debug)]
+pub struct HostSides(HashMap<Entity, (Arc<Patch>, Arc<PatchSides>)>);
+
+impl HostSides {
+    /// Heap bytes held by the kept sides (not the surfaces, which the patches hold).
+    pub fn heap_bytes(&self) -> usize {
+        self.0.capacity() * std::mem::size_of::<(Entity, (Arc<Patch>, Arc<PatchSides>))>()
+            + self.0.values().map(|(_, s)| s.heap_bytes()).sum::<usize>()
+    }
+}
 
 /// How a patch is trimmed.
 enum Trim {
@@ -41,6 +62,15 @@ struct Job {
     patch: Entity,
     surface: Arc<Patch>,
     trim: Trim,
+    /// The patch's sides as kept from its last layout, if its surface is the same.
+    sides: Option<Arc<PatchSides>>,
+}
+
+impl Job {
+    /// Whether the patch hosts openings (its sides are worth keeping).
+    fn hosts(&self) -> bool {
+        matches!(&self.trim, Trim::Patch { holes, notches, .. } if !holes.is_empty() || !notches.is_empty())
+    }
 }
 
 /// How `patch` is trimmed: by the openings that cut it, its own neck bottom, or as
@@ -94,6 +124,16 @@ pub fn lay_out_regions(
 ) {
     let options = world.resource::<Tessellation>().0;
     let keep = *world.resource::<Views>() == Views::Kept;
+    if !world.contains_resource::<HostSides>() {
+        world.init_resource::<HostSides>();
+    }
+    let mut kept = std::mem::take(&mut world.resource_mut::<HostSides>().0);
+    if world.is_resource_changed::<Tessellation>() {
+        kept.clear();
+    }
+    for patch in world.removed::<PatchSurface>() {
+        kept.remove(&patch);
+    }
     // Views turned back on: lay every region out again to keep its loops (the
     // fingerprints come out equal, so nothing is re-meshed).
     let restore = keep && world.is_resource_changed::<Views>();
@@ -140,10 +180,15 @@ pub fn lay_out_regions(
         .filter_map(|patch| {
             let surface = world.get::<PatchSurface>(patch)?.0.clone();
             let trim = trims(world, patch)?;
+            let sides = kept
+                .get(&patch)
+                .filter(|(from, _)| Arc::ptr_eq(from, &surface))
+                .map(|(_, sides)| sides.clone());
             Some(Job {
                 patch,
                 surface,
                 trim,
+                sides,
             })
         })
         .collect();
@@ -158,24 +203,36 @@ pub fn lay_out_regions(
                 } => {
                     let holes: Vec<&IntersectionLoop> = holes.iter().map(|h| h.as_ref()).collect();
                     let notches: Vec<&Notch> = notches.iter().flat_map(|n| n.iter()).collect();
-                    host_region(
+                    let sides = j
+                        .sides
+                        .clone()
+                        .unwrap_or_else(|| Arc::new(PatchSides::of(&j.surface.surface, &options)));
+                    let region = host_region_with(
                         &j.surface.surface,
-                        &options,
+                        &sides,
                         &holes,
                         &notches,
                         bottom.as_deref(),
-                    )
+                    );
+                    (region, j.hosts().then_some(sides))
                 }
                 Trim::Pad { outer, inner } => {
-                    pad_region(&j.surface.surface, &options, outer, inner)
+                    (pad_region(&j.surface.surface, &options, outer, inner), None)
                 }
             };
             (j.patch, region)
         })
         .collect();
+    for (job, (_, (_, sides))) in jobs.iter().zip(&results) {
+        match sides {
+            Some(sides) => kept.insert(job.patch, (job.surface.clone(), sides.clone())),
+            None => kept.remove(&job.patch),
+        };
+    }
+    world.resource_mut::<HostSides>().0 = kept;
     let mut laid = 0;
     let mut failures = 0;
-    for (patch, result) in results {
+    for (patch, (result, _)) in results {
         match result {
             Ok(region) => {
                 let region = Arc::new(region);
@@ -207,11 +264,12 @@ pub fn lay_out_regions(
             }
             Err(e) => {
                 failures += 1;
+                let label = patch_label(world, patch);
                 world.resource_mut::<ModelErrors>().0.push((
-                    format!("{patch}"),
+                    label.clone(),
                     vec![RuleViolation {
                         path: String::new(),
-                        entity: format!("{patch}"),
+                        entity: label,
                         field: "region".into(),
                         value: String::new(),
                         rule: e.to_string(),

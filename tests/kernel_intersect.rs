@@ -2,13 +2,16 @@
 //! reducers (by hand-built frames and by the constraint resolver on the example
 //! designs) lies on both surfaces and both analytic forms, closes once around the
 //! neck, is simple and meets its chordal tolerance; the radial nozzle on a cylinder
-//! matches the closed form; misplaced nozzles give typed errors.
+//! matches the closed form; misplaced nozzles give typed errors; the loop's
+//! crossings with host isolines (seam samples) are exact on the isoline and on both
+//! surfaces.
 
 use std::path::Path;
 
 use glam::{DAffine3, DMat3, DVec2, DVec3};
 use vesselcad::design::{load, resolve};
 use vesselcad::nurbs::builders::{line, revolve};
+use vesselcad::nurbs::intersect::{HostIsoline, LoopSample, loop_crossing};
 use vesselcad::nurbs::{NurbsError, NurbsSurface, intersect_generator, neck_host_intersection};
 use vesselcad::parts::heads::{Head, HeadKind};
 use vesselcad::parts::tables::{FlangeClass, Nps, PipeSchedule};
@@ -565,4 +568,64 @@ fn sample_counts_follow_the_square_root_of_the_tolerance() {
     // Even a huge tolerance keeps the turning limit: at least 360° / 20° chords.
     let coarse = neck_host_intersection(&n.surface, &host.surface, 1e4).unwrap();
     assert!(coarse.points.len() >= 18);
+}
+
+#[test]
+fn loop_crossings_lie_on_their_isoline_and_on_both_surfaces() {
+    let host = shell(2000.0, 3000.0);
+    let h = &host.surface;
+    let on = 1e-9 * size(h);
+    let n = neck(
+        &nozzle(8.0, 1400.0),
+        frame_along(
+            DVec3::new(0.0, 0.0, 1500.0),
+            DVec3::new(0.6, 0.8, 0.0),
+            DVec3::Z,
+        ),
+    );
+    let l = neck_host_intersection(&n.surface, h, 1.0).unwrap();
+    let sample = |i: usize| LoopSample {
+        neck_uv: l.neck_uv[i],
+        host_uv: l.host_uv[i],
+    };
+    // Every chord crosses the isolines through its ends' midpoint parameters: the
+    // meridian (host u held) and the parallel (host v held).
+    let mut crossed = 0;
+    for i in 0..l.points.len() - 1 {
+        let (a, b) = (sample(i), sample(i + 1));
+        let middle = 0.5 * (a.host_uv + b.host_uv);
+        for isoline in [HostIsoline::U(middle.x), HostIsoline::V(middle.y)] {
+            let (held, from, to) = match isoline {
+                HostIsoline::U(x) => (x, a.host_uv.x, b.host_uv.x),
+                HostIsoline::V(y) => (y, a.host_uv.y, b.host_uv.y),
+            };
+            if from == to {
+                continue;
+            }
+            let c = loop_crossing(&n.surface, h, isoline, a, b).unwrap();
+            let got = match isoline {
+                HostIsoline::U(_) => c.host_uv.x,
+                HostIsoline::V(_) => c.host_uv.y,
+            };
+            assert_eq!(got, held, "chord {i}: the held parameter is exact");
+            assert!(c.neck_uv.x > a.neck_uv.x && c.neck_uv.x < b.neck_uv.x);
+            let on_neck = (n.surface.point(c.neck_uv.x, c.neck_uv.y) - c.point).length();
+            let on_host = (h.point(wrap(h, c.host_uv).x, c.host_uv.y) - c.point).length();
+            let analytic = host.analytic.distance(c.point);
+            for (what, d) in [("neck", on_neck), ("host", on_host), ("analytic", analytic)] {
+                assert!(d <= on, "chord {i}: crossing {d} mm off the {what}");
+            }
+            crossed += 1;
+        }
+    }
+    assert!(crossed >= 2 * (l.points.len() - 1) - 4, "{crossed}");
+    // An isoline the chord does not cross: a typed error, not a point elsewhere.
+    let (a, b) = (sample(0), sample(1));
+    let beyond = a.host_uv.y + 10.0 * (b.host_uv.y - a.host_uv.y);
+    if a.host_uv.y != b.host_uv.y {
+        assert!(matches!(
+            loop_crossing(&n.surface, h, HostIsoline::V(beyond), a, b),
+            Err(NurbsError::IntersectionNotConverged { .. })
+        ));
+    }
 }

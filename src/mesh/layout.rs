@@ -218,6 +218,69 @@ pub fn patch_region(
     host_region(surface, options, holes, &[], bottom)
 }
 
+/// What the layout of a patch takes from its surface and the options alone: its
+/// two v-sides sampled from their edge curves (the costly part, an arc-length
+/// profile of each) and the options its seam sides are sampled with. A caller that
+/// lays out the same patch again with other openings may keep it
+/// ([`host_region_with`]) instead of sampling the sides again.
+#[derive(Clone, Debug, PartialEq)]
+pub struct PatchSides {
+    /// Whether the patch closes in u (its u0 and u1 edges coincide).
+    closed: bool,
+    /// Parameters along the v0 side.
+    v0: Vec<f64>,
+    /// Parameters along the v1 side.
+    v1: Vec<f64>,
+    /// The options the seam sides (meridians) of the patch are sampled with.
+    meridian_options: TessellationOptions,
+}
+
+impl PatchSides {
+    /// The sides of `surface` sampled for `options`.
+    pub fn of(surface: &NurbsSurface, options: &TessellationOptions) -> Self {
+        let (_, (v0, v1)) = surface.domain();
+        let closed = closed_in_u(surface);
+        let multiple = if closed { SEAM_CUTS } else { 1 };
+        let params_v0 = side(&surface.boundary(Side::VMin), options, multiple);
+        let params_v1 = side(&surface.boundary(Side::VMax), options, multiple);
+        // The seam sides of a closed patch belong to it alone: sample them no
+        // coarser than `max_stretch` times the spacing along its v sides, so that the
+        // triangles along a straight generator are not needles.
+        let meridian_options = if let (true, Some(stretch)) = (closed, options.max_stretch) {
+            let spacing = |params: &[f64], v: f64| {
+                params
+                    .windows(2)
+                    .map(|w| (surface.point(w[1], v) - surface.point(w[0], v)).length())
+                    .fold(0.0f64, f64::max)
+            };
+            let across = [spacing(&params_v0, v0), spacing(&params_v1, v1)]
+                .into_iter()
+                .filter(|&s| s > SAME)
+                .fold(f64::INFINITY, f64::min);
+            if across.is_finite() {
+                let cap = stretch * across;
+                options
+                    .with_max_edge_length(Some(options.max_edge_length.map_or(cap, |m| m.min(cap))))
+            } else {
+                *options
+            }
+        } else {
+            *options
+        };
+        Self {
+            closed,
+            v0: params_v0,
+            v1: params_v1,
+            meridian_options,
+        }
+    }
+
+    /// Heap bytes held.
+    pub fn heap_bytes(&self) -> usize {
+        (self.v0.capacity() + self.v1.capacity()) * std::mem::size_of::<f64>()
+    }
+}
+
 /// [`patch_region`] with `notches` too: pieces of openings that cross the patch's
 /// v0 or v1 side (a seam with its neighbour), each replacing the side's samples
 /// between its ends.
@@ -228,10 +291,23 @@ pub fn host_region(
     notches: &[&Notch],
     bottom: Option<&IntersectionLoop>,
 ) -> Result<Region, LayoutError> {
+    let sides = PatchSides::of(surface, options);
+    host_region_with(surface, &sides, holes, notches, bottom)
+}
+
+/// [`host_region`] with the patch's `sides` already sampled ([`PatchSides::of`] the
+/// same surface, for the options the region is laid out for): the same region,
+/// without sampling them again.
+pub fn host_region_with(
+    surface: &NurbsSurface,
+    sides: &PatchSides,
+    holes: &[&IntersectionLoop],
+    notches: &[&Notch],
+    bottom: Option<&IntersectionLoop>,
+) -> Result<Region, LayoutError> {
     let ((u0, u1), (v0, v1)) = surface.domain();
     let period = u1 - u0;
-    let closed = closed_in_u(surface);
-    let multiple = if closed { SEAM_CUTS } else { 1 };
+    let closed = sides.closed;
     // A loop round the pole (a nozzle centred on a head) replaces the pole side.
     let (around, holes): (Vec<&IntersectionLoop>, Vec<&IntersectionLoop>) = holes
         .iter()
@@ -277,38 +353,15 @@ pub fn host_region(
         u0
     };
     let (left_u, right_u) = (cut, cut + if closed { period } else { u1 - u0 });
-    let params_v0 = side(&surface.boundary(Side::VMin), options, multiple);
-    let params_v1 = side(&surface.boundary(Side::VMax), options, multiple);
-    // The seam sides of a closed patch belong to it alone: sample them no coarser
-    // than `max_stretch` times the spacing along its v sides, so that the triangles
-    // along a straight generator are not needles.
-    let meridian_options = if let (true, Some(stretch)) = (closed, options.max_stretch) {
-        let spacing = |params: &[f64], v: f64| {
-            params
-                .windows(2)
-                .map(|w| (surface.point(w[1], v) - surface.point(w[0], v)).length())
-                .fold(0.0f64, f64::max)
-        };
-        let across = [spacing(&params_v0, v0), spacing(&params_v1, v1)]
-            .into_iter()
-            .filter(|&s| s > SAME)
-            .fold(f64::INFINITY, f64::min);
-        if across.is_finite() {
-            let cap = stretch * across;
-            options.with_max_edge_length(Some(options.max_edge_length.map_or(cap, |m| m.min(cap))))
-        } else {
-            *options
-        }
-    } else {
-        *options
-    };
+    let (params_v0, params_v1) = (&sides.v0, &sides.v1);
+    let meridian_options = sides.meridian_options;
     let (along_v0, along_v1) = if closed {
         (
-            rotated(&params_v0, u0, period, cut),
-            rotated(&params_v1, u0, period, cut),
+            rotated(params_v0, u0, period, cut),
+            rotated(params_v1, u0, period, cut),
         )
     } else {
-        (params_v0, params_v1)
+        (params_v0.clone(), params_v1.clone())
     };
     // Each notch shifted into the window [cut, cut + period], by side.
     let window = |side: Side| -> Vec<Vec<DVec2>> {

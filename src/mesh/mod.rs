@@ -18,7 +18,10 @@ mod seams;
 pub use edges::{MAX_EDGE_SEGMENTS, edge_parameters, edge_segments};
 pub use grid::tessellate;
 pub use instances::{MeshInstances, mesh_key};
-pub use layout::{LayoutError, SEAM_CUTS, closed_in_u, host_region, pad_region, patch_region};
+pub use layout::{
+    LayoutError, PatchSides, SEAM_CUTS, closed_in_u, host_region, host_region_with, pad_region,
+    patch_region,
+};
 pub use opening::{Cut, PAD_PATCH, cut_opening, pad_patch};
 pub use options::{OptionsError, TessellationOptions};
 pub use packed::{OctNormal, PackedMesh};

@@ -7,7 +7,9 @@
 //! single host patch holds is cut on neighbouring patches joined in v and split at
 //! their seam (`seams`). A loop that goes
 //! round the host's pole (a nozzle centred on a head) gets an extra sample exactly
-//! on the host's seam angle, shared by the neck, so the host can be cut there.
+//! on the host's seam angle, shared by the neck, so the host can be cut there: one
+//! Newton solve on the seam ([`loop_crossing`]), a bisection over generators where
+//! that fails.
 
 use std::f64::consts::TAU;
 
@@ -17,7 +19,10 @@ use crate::nurbs::builders::{line, revolve};
 
 use super::seams::{HostTrim, Placed, insert_seam_samples, split_at_seams};
 use crate::nurbs::NurbsSurface;
-use crate::nurbs::intersect::{IntersectionLoop, intersect_generator, neck_host_intersection};
+use crate::nurbs::intersect::{
+    HostIsoline, IntersectionLoop, LoopSample, intersect_generator, loop_crossing,
+    neck_host_intersection,
+};
 use crate::parts::Patch;
 
 /// Bisection steps placing the seam sample.
@@ -90,7 +95,8 @@ pub fn cut_opening(
         }
     };
     let mut last = String::from("the host has no patch");
-    for (k, patch) in host_patches.iter().enumerate() {
+    for k in try_order(&neck, host_patches) {
+        let patch = host_patches[k];
         // The neck's and the pad's loops are independent: marched side by side
         // (an edit's latency is that of the longer one).
         let (neck_loop, pad_loop) = rayon::join(
@@ -120,6 +126,52 @@ pub fn cut_opening(
     match cut_across_seams(&neck, pad.is_some(), host_patches, tolerance)? {
         Some(cut) => Ok(cut),
         None => Err(last),
+    }
+}
+
+/// The order in which to try the host patches for the whole loop: by how much of
+/// the neck's first generator runs inside each patch's bounding box (that of its
+/// control net, which holds the surface), most first; ties in the given order. Only
+/// one patch can hold the whole loop, so the order changes no result, only how
+/// often a cut first fails on a patch its neck does not meet (slow to rule out: a
+/// head nozzle's neck starts on the plane of the straight flange's top edge).
+fn try_order(neck: &NurbsSurface, host_patches: &[&Patch]) -> Vec<usize> {
+    let ((u0, _), (v0, v1)) = neck.domain();
+    let (a, b) = (neck.point(u0, v0), neck.point(u0, v1));
+    let inside: Vec<f64> = host_patches
+        .iter()
+        .map(|p| {
+            let aabb = p.surface.bounding_box();
+            segment_in_box(a, b, aabb.min, aabb.max)
+        })
+        .collect();
+    let mut order: Vec<usize> = (0..host_patches.len()).collect();
+    order.sort_by(|&i, &j| inside[j].total_cmp(&inside[i]));
+    order
+}
+
+/// The fraction of the segment from `a` to `b` inside the box `[lo, hi]` (slab
+/// test): 0 where it misses the box or only touches it.
+fn segment_in_box(a: DVec3, b: DVec3, lo: DVec3, hi: DVec3) -> f64 {
+    let d = b - a;
+    let (mut t0, mut t1) = (0.0f64, 1.0f64);
+    for axis in 0..3 {
+        let (p, q, l, h) = (a[axis], d[axis], lo[axis], hi[axis]);
+        if q == 0.0 {
+            if p < l || p > h {
+                return 0.0;
+            }
+            continue;
+        }
+        let (x, y) = ((l - p) / q, (h - p) / q);
+        t0 = t0.max(x.min(y));
+        t1 = t1.min(x.max(y));
+    }
+    let inside = t1 - t0;
+    if inside.is_finite() {
+        inside.max(0.0)
+    } else {
+        0.0
     }
 }
 
@@ -216,6 +268,23 @@ fn add_seam_sample(
         if !(target > lo && target < a.max(b)) {
             continue;
         }
+        let at = i + 1;
+        let from = LoopSample {
+            neck_uv: curve.neck_uv[i],
+            host_uv: curve.host_uv[i],
+        };
+        let to = LoopSample {
+            neck_uv: DVec2::new(nb, curve.neck_uv[j].y),
+            host_uv: DVec2::new(b, curve.host_uv[j].y),
+        };
+        // One Newton solve on the seam angle; the bisection over generators below
+        // only where it does not converge.
+        if let Ok(c) = loop_crossing(neck, host, HostIsoline::U(target), from, to) {
+            curve.points.insert(at, c.point);
+            curve.neck_uv.insert(at, c.neck_uv);
+            curve.host_uv.insert(at, c.host_uv);
+            return Ok(());
+        }
         let (mut x0, mut x1) = (na, nb);
         let mut hit = None;
         for _ in 0..SEAM_STEPS {
@@ -237,7 +306,6 @@ fn add_seam_sample(
         let Some((nu, h)) = hit else {
             return Err("seam sample not found".into());
         };
-        let at = i + 1;
         curve.points.insert(at, h.point);
         curve.neck_uv.insert(at, DVec2::new(nu, h.neck_v));
         curve.host_uv.insert(at, DVec2::new(target, h.host_uv.y));

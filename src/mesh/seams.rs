@@ -16,7 +16,9 @@ use std::sync::Arc;
 use glam::DVec2;
 
 use super::layout::closed_in_u;
-use crate::nurbs::intersect::{IntersectionLoop, intersect_generator};
+use crate::nurbs::intersect::{
+    HostIsoline, IntersectionLoop, LoopSample, intersect_generator, loop_crossing,
+};
 use crate::nurbs::{NurbsSurface, Side};
 
 /// Bisection steps placing a seam sample.
@@ -99,6 +101,28 @@ pub(super) fn insert_seam_samples(
             i += 1;
             continue;
         };
+        let from = LoopSample {
+            neck_uv: curve.neck_uv[i],
+            host_uv: a,
+        };
+        let to = LoopSample {
+            neck_uv: DVec2::new(nb, curve.neck_uv[j].y),
+            host_uv: b,
+        };
+        // One Newton solve on the seam; the bisection over generators below only
+        // where it does not converge.
+        if let Ok(x) = loop_crossing(neck, host, HostIsoline::V(c), from, to) {
+            let mut hu = x.host_uv.x;
+            if closed {
+                let expected = a.x + (b.x - a.x) * (x.neck_uv.x - na) / (nb - na);
+                hu += period * ((expected - hu) / period).round();
+            }
+            curve.points.insert(i + 1, x.point);
+            curve.neck_uv.insert(i + 1, x.neck_uv);
+            curve.host_uv.insert(i + 1, DVec2::new(hu, c));
+            i += 1;
+            continue;
+        }
         let (mut x0, mut x1) = (na, nb);
         let mut hit = None;
         for _ in 0..SEAM_STEPS {

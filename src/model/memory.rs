@@ -29,7 +29,8 @@ pub struct MemoryBreakdown {
     pub triangles: usize,
     /// Exact patch surfaces: control points and knots.
     pub surfaces: usize,
-    /// Patch regions: the (u, v) loops meshed within.
+    /// Patch regions: the (u, v) loops meshed within, and the sampled sides kept
+    /// for host patches (`systems::HostSides`).
     pub regions: usize,
     /// Openings: intersection loops (3D points and (u, v) on both surfaces) and
     /// notches.
@@ -81,6 +82,9 @@ pub(crate) fn breakdown(world: &World) -> MemoryBreakdown {
                     })
                     .sum::<usize>();
         }
+    }
+    if let Some(sides) = world.get_resource::<crate::systems::HostSides>() {
+        out.regions += sides.heap_bytes();
     }
     if let Some(mut q) = world.try_query::<&Opening>() {
         let mut seen = HashSet::new();

@@ -23,6 +23,11 @@ const MAX_ITERATIONS: usize = 50;
 /// Step halvings tried before a Newton step counts as not reducing the residual.
 const MAX_HALVINGS: usize = 30;
 
+/// A converged residual below this fraction of the tolerance (1e-14 of the size of
+/// the surfaces, some tens of units in the last place of their coordinates) is at
+/// the level of rounding: the extra polishing step is skipped.
+const ROUNDING: f64 = 1e-2;
+
 /// |det J| below this fraction of the product of its column lengths counts as
 /// singular: the generator is (nearly) tangent to the host or H_a or H_b vanishes.
 const SINGULAR: f64 = 1e-12;
@@ -35,6 +40,10 @@ const SEARCH_STARTS: usize = 5;
 
 /// Alternating projections per starting point of the coarse search.
 const ALTERNATIONS: usize = 24;
+
+/// Newton iterations tried straight from a first projection of the coarse search
+/// (the damped iteration converges in a handful from a seed near the curve).
+const QUICK_ITERATIONS: usize = 12;
 
 /// How far the coarse search may follow the generator line beyond the neck's ends,
 /// in multiples of the neck's length.
@@ -133,7 +142,7 @@ fn solve(j: DMat3, rhs: DVec3) -> Option<DVec3> {
 
 /// The Newton step for residual `f`, or the Levenberg–Marquardt step where J is
 /// singular.
-fn newton_step(j: DMat3, f: DVec3) -> DVec3 {
+pub(super) fn newton_step(j: DMat3, f: DVec3) -> DVec3 {
     solve(j, -f).unwrap_or_else(|| {
         let jt = j.transpose();
         let normal = jt * j;
@@ -165,12 +174,18 @@ impl Pair<'_> {
 
     /// Newton's method from `seed` = (s, a, b); the residual where it stalls.
     pub(super) fn newton(&self, u: f64, seed: DVec3) -> Result<Solution, f64> {
+        self.newton_within(u, seed, MAX_ITERATIONS)
+    }
+
+    /// [`Pair::newton`] giving up after `iterations` steps.
+    fn newton_within(&self, u: f64, seed: DVec3, iterations: usize) -> Result<Solution, f64> {
         let mut here = self.iterate(u, seed);
         let mut polished = false;
-        for _ in 0..MAX_ITERATIONS {
+        for _ in 0..iterations {
             let r = here.residual.length();
             if r <= self.eps {
-                if polished {
+                // Polished, or already down to rounding: nothing left to gain.
+                if polished || r <= ROUNDING * self.eps {
                     break;
                 }
                 polished = true;
@@ -178,7 +193,11 @@ impl Pair<'_> {
             let step = newton_step(jacobian(&here.neck, &here.host), here.residual);
             let mut t = 1.0;
             let mut next = None;
-            for _ in 0..MAX_HALVINGS {
+            // Once converged, one full step polishes the last digits; where rounding
+            // keeps it from lowering the residual there is nothing left to gain, so
+            // shorter steps are not tried.
+            let halvings = if polished { 1 } else { MAX_HALVINGS };
+            for _ in 0..halvings {
                 let trial = self.iterate(u, here.x + step * t);
                 if trial.residual.length() < r {
                     next = Some(trial);
@@ -235,6 +254,13 @@ impl Pair<'_> {
     /// tangent predictor. `None` where it fails or leaves the neck.
     pub(super) fn continue_from(&self, from: &Solution, u: f64) -> Option<Solution> {
         let seed = DVec3::new(from.s, from.host.x, from.host.y) + from.rates * (u - from.u);
+        self.converge_near(from, u, seed)
+    }
+
+    /// The solution at `u` by Newton from `seed` = (s, a, b), kept in the host
+    /// period nearest the nearby solution `from`. `None` where it fails or leaves
+    /// the neck.
+    pub(super) fn converge_near(&self, from: &Solution, u: f64, seed: DVec3) -> Option<Solution> {
         let found = self.newton(u, seed).ok()?;
         // Near a pole the host's u may turn fast: keep the nearest period, so that a
         // step never wraps around.
@@ -259,7 +285,7 @@ impl Pair<'_> {
         for k in 0..SEARCH_STARTS {
             let mut t = k as f64 / (SEARCH_STARTS - 1) as f64;
             let mut best = None;
-            for _ in 0..ALTERNATIONS {
+            for alternation in 0..ALTERNATIONS {
                 let projection = self.host.closest_point(p0 + d * t)?;
                 let next = ((projection.point - p0).dot(d) / length2)
                     .clamp(-SEARCH_REACH, 1.0 + SEARCH_REACH);
@@ -268,6 +294,15 @@ impl Pair<'_> {
                     distance,
                     DVec3::new(v0 + next * (v1 - v0), projection.u, projection.v),
                 ));
+                // Fast path: Newton straight from the first projection usually
+                // converges; the alternations below are for where it does not.
+                if alternation == 0
+                    && let Some(&(_, seed)) = best.as_ref()
+                    && let Ok(found) = self.newton_within(u, seed, QUICK_ITERATIONS)
+                    && let Ok(found) = self.within_neck(found)
+                {
+                    return Ok(found);
+                }
                 let moved = (next - t).abs() * length2.sqrt();
                 t = next;
                 if distance <= self.eps || moved <= self.eps {

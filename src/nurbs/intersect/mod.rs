@@ -9,12 +9,17 @@
 //! [`IntersectionLoop`] with the points and their parameters on both surfaces, for
 //! trimming both.
 //!
+//! `crossing` finds where the loop crosses a host isoline (a seam), for the
+//! samples an opening needs exactly there.
+//!
 //! `pair` holds what both share: the two surfaces with their domains (the neck's
 //! generators extended beyond its ends, the host wrapped across its seam).
 
+mod crossing;
 mod generator;
 mod march;
 mod pair;
 
+pub use crossing::{Crossing, HostIsoline, LoopSample, loop_crossing};
 pub use generator::{GeneratorHit, intersect_generator};
 pub use march::{IntersectionLoop, MAX_TURNING_ANGLE, neck_host_intersection};
