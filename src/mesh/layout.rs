@@ -83,6 +83,41 @@ fn side(curve: &NurbsCurve, options: &TessellationOptions, multiple: usize) -> V
     }
 }
 
+/// A cut for a closed patch whose openings cover every standard cut angle: any u
+/// that is a sample of both v sides (so neither neighbour gets a vertex it does
+/// not have; a side collapsed to a pole has every u) and lies in no opening's
+/// u-span, the one farthest from the spans; `None` when there is none.
+fn other_cut(sides: &PatchSides, u0: f64, period: f64, spans: &[(f64, f64)]) -> Option<f64> {
+    let on = |params: &[f64], c: f64| params.len() <= 2 || params.contains(&c);
+    // Distance in u from `c` to the nearest span (each span taken in every
+    // period), zero inside one.
+    let clearance = |c: f64| {
+        spans
+            .iter()
+            .flat_map(|&(lo, hi)| {
+                (-1..=1).map(move |k| {
+                    let shift = f64::from(k) * period;
+                    (lo + shift - c).max(c - hi - shift).max(0.0)
+                })
+            })
+            .fold(f64::INFINITY, f64::min)
+    };
+    let candidates: &[f64] = if sides.v0.len() > 2 {
+        &sides.v0
+    } else {
+        &sides.v1
+    };
+    candidates
+        .iter()
+        .copied()
+        .filter(|&c| c >= u0 && c < u0 + period)
+        .filter(|&c| on(&sides.v0, c) && on(&sides.v1, c))
+        .map(|c| (c, clearance(c)))
+        .filter(|&(_, d)| d > 0.0)
+        .max_by(|a, b| a.1.total_cmp(&b.1))
+        .map(|(c, _)| c)
+}
+
 /// The v-side samples of a closed patch rotated to start at the cut `c`, as u values
 /// from `c` to `c + period` inclusive.
 fn rotated(params: &[f64], u0: f64, period: f64, c: f64) -> Vec<f64> {
@@ -348,6 +383,7 @@ pub fn host_region_with(
         (0..SEAM_CUTS)
             .map(|k| u0 + period * k as f64 / SEAM_CUTS as f64)
             .find(|&c| !blocked(c))
+            .or_else(|| other_cut(sides, u0, period, &spans))
             .ok_or(LayoutError::SeamBlocked)?
     } else {
         u0
