@@ -220,7 +220,14 @@ pub fn lay_out_regions(
                     (pad_region(&j.surface.surface, &options, outer, inner), None)
                 }
             };
-            (j.patch, region)
+            // The fingerprint hashes every loop coordinate: done here, in
+            // parallel, not in the serial loop below.
+            let (region, sides) = region;
+            let region = region.map(|r| {
+                let fingerprint = r.fingerprint();
+                (Arc::new(r), fingerprint)
+            });
+            (j.patch, (region, sides))
         })
         .collect();
     for (job, (_, (_, sides))) in jobs.iter().zip(&results) {
@@ -234,10 +241,9 @@ pub fn lay_out_regions(
     let mut failures = 0;
     for (patch, (result, _)) in results {
         match result {
-            Ok(region) => {
-                let region = Arc::new(region);
+            Ok((region, fingerprint)) => {
                 let component = PatchRegion {
-                    fingerprint: region.fingerprint(),
+                    fingerprint,
                     region: keep.then(|| region.clone()),
                 };
                 world
