@@ -30,19 +30,10 @@ pub fn basis_functions_in<const N: usize>(
     let mut n = [0.0; N];
     if p == 2 && N > 2 {
         // Unrolled: the same operations as the loop below, without it.
-        let left1 = u - knots[span];
-        let right1 = knots[span + 1] - u;
-        let temp = 1.0 / (right1 + left1);
-        let n0 = 0.0 + right1 * temp;
-        let n1 = left1 * temp;
-        let left2 = u - knots[span - 1];
-        let right2 = knots[span + 2] - u;
-        let temp = n0 / (right1 + left2);
-        n[0] = 0.0 + right1 * temp;
-        let saved = left2 * temp;
-        let temp = n1 / (right2 + left1);
-        n[1] = saved + right2 * temp;
-        n[2] = left1 * temp;
+        let t = Quadratic::at(knots, span, u);
+        n[0] = t.n[0];
+        n[1] = t.n[1];
+        n[2] = t.n[2];
         return n;
     }
     let mut left = [0.0; N];
@@ -179,6 +170,69 @@ fn general_derivatives<const D: usize, const N: usize>(
     ders
 }
 
+/// A2.2's triangle for degree 1 at `u` in knot span `span`: the knot difference
+/// `ndu[1][0]` and the two basis values, by the general algorithm's operations.
+struct Linear {
+    left1: f64,
+    right1: f64,
+    ndu10: f64,
+    n: [f64; 2],
+}
+
+impl Linear {
+    #[inline]
+    fn at(knots: &[f64], span: usize, u: f64) -> Self {
+        let left1 = u - knots[span];
+        let right1 = knots[span + 1] - u;
+        let ndu10 = right1 + left1;
+        let temp = 1.0 / ndu10;
+        Self {
+            left1,
+            right1,
+            ndu10,
+            n: [0.0 + right1 * temp, left1 * temp],
+        }
+    }
+}
+
+/// A2.2's triangle for degree 2: the knot differences below the diagonal, the
+/// degree-1 values (`first`) and the three basis values, by the general
+/// algorithm's operations in its order.
+struct Quadratic {
+    ndu10: f64,
+    ndu20: f64,
+    ndu21: f64,
+    first: [f64; 2],
+    n: [f64; 3],
+}
+
+impl Quadratic {
+    #[inline]
+    fn at(knots: &[f64], span: usize, u: f64) -> Self {
+        let Linear {
+            left1,
+            right1,
+            ndu10,
+            n: first,
+        } = Linear::at(knots, span, u);
+        let left2 = u - knots[span - 1];
+        let right2 = knots[span + 2] - u;
+        let ndu20 = right1 + left2;
+        let temp = first[0] / ndu20;
+        let n0 = 0.0 + right1 * temp;
+        let saved = left2 * temp;
+        let ndu21 = right2 + left1;
+        let temp = first[1] / ndu21;
+        Self {
+            ndu10,
+            ndu20,
+            ndu21,
+            first,
+            n: [n0, saved + right2 * temp, left1 * temp],
+        }
+    }
+}
+
 /// [`basis_derivatives_in`] for degree 1, unrolled: the same floating-point
 /// operations in the same order as the general algorithm (so the same bits),
 /// without its loops, scratch arrays and index arithmetic. Lines and the linear
@@ -193,14 +247,9 @@ fn linear_derivatives<const D: usize, const N: usize>(
     if D == 0 {
         return ders;
     }
-    let left1 = u - knots[span];
-    let right1 = knots[span + 1] - u;
-    let ndu10 = right1 + left1;
-    let temp = 1.0 / ndu10;
-    let ndu01 = 0.0 + right1 * temp;
-    let ndu11 = left1 * temp;
-    ders[0][0] = ndu01;
-    ders[0][1] = ndu11;
+    let Linear { ndu10, n, .. } = Linear::at(knots, span, u);
+    ders[0][0] = n[0];
+    ders[0][1] = n[1];
     if D > 1 {
         // r = 0: a = −1/ndu10, d = 0 + a·ndu00; r = 1: a = 1/ndu10, d = a·ndu00;
         // then both times the degree, 1.
@@ -223,27 +272,17 @@ fn quadratic_derivatives<const D: usize, const N: usize>(
     if D == 0 {
         return ders;
     }
-    // A2.2's triangle: ndu[j][r] below the diagonal are knot differences, on and
-    // above it basis values.
-    let left1 = u - knots[span];
-    let right1 = knots[span + 1] - u;
-    let ndu10 = right1 + left1;
-    let temp = 1.0 / ndu10;
-    let ndu01 = 0.0 + right1 * temp;
-    let ndu11 = left1 * temp;
-    let left2 = u - knots[span - 1];
-    let right2 = knots[span + 2] - u;
-    let ndu20 = right1 + left2;
-    let temp = ndu01 / ndu20;
-    let ndu02 = 0.0 + right1 * temp;
-    let saved = left2 * temp;
-    let ndu21 = right2 + left1;
-    let temp = ndu11 / ndu21;
-    let ndu12 = saved + right2 * temp;
-    let ndu22 = left1 * temp;
-    ders[0][0] = ndu02;
-    ders[0][1] = ndu12;
-    ders[0][2] = ndu22;
+    let Quadratic {
+        ndu10,
+        ndu20,
+        ndu21,
+        first,
+        n,
+    } = Quadratic::at(knots, span, u);
+    let [ndu01, ndu11] = first;
+    ders[0][0] = n[0];
+    ders[0][1] = n[1];
+    ders[0][2] = n[2];
     if D == 1 {
         return ders;
     }
