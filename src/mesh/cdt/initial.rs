@@ -3,8 +3,8 @@
 //! Loop vertices and seeds go into spade in a chart of the parameter plane mapped
 //! by the patch's mean size metric, so its Delaunay triangles are roughly the
 //! shapes refinement wants; every coordinate is validated before insertion. Each loop segment
-//! is then added as a constraint with `can_add_constraint` / `try_add_constraint`;
-//! a segment that crosses another loop, or runs through another vertex, is an error
+//! goes in as a constraint during spade's bulk load (`try_bulk_load_cdt`, while
+//! the triangulation round its ends is still small); a segment that crosses another loop, or runs through another vertex, is an error
 //! (the boundary would not be kept as given), as is a loop vertex that spade merged
 //! with another. Seeds spade rejects are only counted. The triangles inside the
 //! region are found by a flood fill from the left side of every loop segment that
@@ -148,7 +148,18 @@ pub(super) fn triangulate(
             Err(_) => stats.failed_insertions += 1,
         }
     }
-    let mut cdt = Cdt::bulk_load(chart_vertices).map_err(CdtError::Triangulation)?;
+    // The loop segments go in with the vertices: spade inserts each as soon as
+    // both ends are in, while the triangulation round them is still small.
+    let mut edges = Vec::with_capacity(loop_vertices);
+    for &(_, first, len) in &loops {
+        for k in 0..len {
+            let (a, b) = (first as usize + k, first as usize + (k + 1) % len);
+            edges.push([a, b]);
+        }
+    }
+    let mut conflicts = 0usize;
+    let cdt = Cdt::try_bulk_load_cdt(chart_vertices, edges, |_| conflicts += 1)
+        .map_err(CdtError::Triangulation)?;
     let mut handle = vec![None; uvs.len()];
     for h in cdt.fixed_vertices() {
         handle[cdt.vertex(h).data().id as usize] = Some(h);
@@ -169,29 +180,31 @@ pub(super) fn triangulate(
             let (Some(ha), Some(hb)) = (handle[a as usize], handle[b as usize]) else {
                 continue;
             };
-            let fail = |reason| CdtError::ConstraintFailed {
-                loop_index,
-                segment: k,
-                reason,
-            };
+            // A segment spade refused crossed another one; a segment it split ran
+            // through another vertex: either way it is not an edge of the result.
             if !cdt.exists_constraint(ha, hb) {
-                if !cdt.can_add_constraint(ha, hb) {
-                    stats.failed_constraints += 1;
-                    return Err(fail("it crosses another loop segment"));
-                }
-                let added = cdt.try_add_constraint(ha, hb);
-                if added.len() != 1 {
-                    stats.failed_constraints += 1;
-                    return Err(fail(if added.is_empty() {
-                        "spade refused it"
+                stats.failed_constraints += 1;
+                return Err(CdtError::ConstraintFailed {
+                    loop_index,
+                    segment: k,
+                    reason: if conflicts > 0 {
+                        "it crosses another loop segment"
                     } else {
                         "it runs through another vertex"
-                    }));
-                }
+                    },
+                });
             }
             loop_edges.insert((a, b));
             starts.push((ha, hb));
         }
+    }
+    if cdt.num_constraints() != loop_edges.len() {
+        stats.failed_constraints += 1;
+        return Err(CdtError::ConstraintFailed {
+            loop_index: 0,
+            segment: 0,
+            reason: "a loop segment runs through another vertex",
+        });
     }
     let inside = flood(&cdt, &starts)?;
     // Keep the vertices the inside triangles use, loop vertices first.
