@@ -1,6 +1,6 @@
 //! Where an edit's time goes, by kind of edit: draws random valid edits as
 //! `vesselcad simulate` does, applies each with its own update (drawing views off,
-//! as in `vesselcad bench`) and prints, per kind, the mean update time, each
+//! as in `vesselcad bench`) and prints, per kind, the mean and 99th-percentile update time, each
 //! stage's share and the work counters. Run under `perf record` to profile edits.
 //!
 //! `cargo run --release --example tick_profile -- [vessels] [edits]`
@@ -19,6 +19,8 @@ use vesselcad::plant::{draw_edit, generate_plant};
 struct Totals {
     count: usize,
     ms: f64,
+    /// Every update's time, for the percentiles.
+    times: Vec<f64>,
     stages: [f64; 6],
     meshes: u64,
     triangles: u64,
@@ -72,6 +74,7 @@ fn main() {
         let t = stats.entry(what).or_default();
         t.count += 1;
         t.ms += ms;
+        t.times.push(ms);
         for (total, stage) in t.stages.iter_mut().zip(model.stage_times()) {
             *total += stage.as_secs_f64() * 1e3;
         }
@@ -81,13 +84,17 @@ fn main() {
     }
     let mut all = 0.0;
     let mut count = 0;
-    for (what, t) in stats {
+    let mut every = Vec::new();
+    for (what, mut t) in stats {
         let n = t.count as f64;
+        t.times.sort_by(f64::total_cmp);
+        let p99 = percentile(&t.times, 0.99);
+        every.extend_from_slice(&t.times);
         let s = t.stages.map(|x| x / n);
         all += t.ms;
         count += t.count;
         println!(
-            "{what:18} n={:4} mean {:.3} ms | V {:.3} C {:.3} G {:.3} T {:.3} P {:.3} E {:.3} | meshes {:.1} tris {:.0} cuts {:.1}",
+            "{what:18} n={:4} mean {:.3} p99 {p99:.3} ms | V {:.3} C {:.3} G {:.3} T {:.3} P {:.3} E {:.3} | meshes {:.1} tris {:.0} cuts {:.1}",
             t.count,
             t.ms / n,
             s[0],
@@ -101,8 +108,20 @@ fn main() {
             t.cuts as f64 / n
         );
     }
+    every.sort_by(f64::total_cmp);
     println!(
-        "all                n={count:4} mean {:.3} ms",
-        all / count.max(1) as f64
+        "all                n={count:4} mean {:.3} p50 {:.3} p99 {:.3} ms",
+        all / count.max(1) as f64,
+        percentile(&every, 0.5),
+        percentile(&every, 0.99)
     );
+}
+
+/// The `q` quantile of sorted `times` (nearest rank), 0 when empty.
+fn percentile(times: &[f64], q: f64) -> f64 {
+    if times.is_empty() {
+        return 0.0;
+    }
+    let k = ((times.len() as f64 * q).ceil() as usize).clamp(1, times.len()) - 1;
+    times[k]
 }
