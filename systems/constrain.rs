@@ -8,7 +8,7 @@ use bevy_ecs::entity::Entity;
 use bevy_ecs::hierarchy::Children;
 use bevy_ecs::world::World;
 
-use super::{PendingResolutions, WorkCounters};
+use super::{DirtyParts, PendingResolutions, WorkCounters};
 use crate::components::{
     Annotates, MountedOn, NoteAnchor, NoteSpec, NozzleSpec, Opening, PartFrame, PartSpan, PartSpec,
     Shape, VesselFrame, VesselSummary,
@@ -34,12 +34,44 @@ fn put<T: Component<Mutability = Mutable> + PartialEq>(
     }
 }
 
-/// Points an immutable relationship component at a new target if it differs.
-fn relate<T: Component + PartialEq>(world: &mut World, entity: Entity, value: T) {
+/// Points an immutable relationship component at a new target if it differs;
+/// returns whether anything was written.
+fn relate<T: Component + PartialEq>(world: &mut World, entity: Entity, value: T) -> bool {
     if world.get::<T>(entity) != Some(&value)
         && let Ok(mut e) = world.get_entity_mut(entity)
     {
         e.insert(value);
+        return true;
+    }
+    false
+}
+
+/// What one vessel's resolution wrote, for [`DirtyParts`].
+#[derive(Default)]
+struct Written {
+    vessel_frame: bool,
+    frames: Vec<Entity>,
+    shapes: Vec<Entity>,
+    mounts: Vec<Entity>,
+}
+
+impl Written {
+    fn frame(&mut self, entity: Entity, written: bool) {
+        if written {
+            self.frames.push(entity);
+        }
+    }
+
+    fn shape(&mut self, entity: Entity, written: bool) {
+        if written {
+            self.shapes.push(entity);
+        }
+    }
+
+    fn mount(&mut self, entity: Entity, written: bool) {
+        if written {
+            self.mounts.push(entity);
+        }
     }
 }
 
@@ -78,8 +110,11 @@ impl Lookup {
 }
 
 /// Applies one resolved vessel.
-fn apply(world: &mut World, vessel: Entity, r: ResolvedVessel) -> u64 {
-    put(world, vessel, VesselFrame(r.frame));
+fn apply(world: &mut World, vessel: Entity, r: ResolvedVessel) -> Written {
+    let mut written = Written {
+        vessel_frame: put(world, vessel, VesselFrame(r.frame)),
+        ..Written::default()
+    };
     put(
         world,
         vessel,
@@ -90,7 +125,6 @@ fn apply(world: &mut World, vessel: Entity, r: ResolvedVessel) -> u64 {
         },
     );
     let ids = Lookup::of(world, vessel);
-    let mut frames = 0;
     let hosts: Vec<Option<String>> = r
         .parts
         .iter()
@@ -100,13 +134,18 @@ fn apply(world: &mut World, vessel: Entity, r: ResolvedVessel) -> u64 {
         let Some(e) = Lookup::find(&ids.parts, &p.id) else {
             continue;
         };
-        frames += u64::from(put(world, e, PartFrame(p.frame)));
+        let moved = put(world, e, PartFrame(p.frame));
+        written.frame(e, moved);
         put(world, e, PartSpan(p.span.0, p.span.1));
-        put(world, e, Shape::Part(p.geometry));
+        let reshaped = put(world, e, Shape::Part(p.geometry));
+        written.shape(e, reshaped);
         // A part cut into another (a boot into its course) is mounted on it, like a
         // nozzle on its host, so the Geometry stage cuts its opening.
         match host_id.and_then(|h| Lookup::find(&ids.parts, &h)) {
-            Some(host) => relate(world, e, MountedOn(host)),
+            Some(host) => {
+                let mounted = relate(world, e, MountedOn(host));
+                written.mount(e, mounted);
+            }
             None => {
                 if world.get::<MountedOn>(e).is_some() {
                     world.entity_mut(e).remove::<(MountedOn, Opening)>();
@@ -119,14 +158,17 @@ fn apply(world: &mut World, vessel: Entity, r: ResolvedVessel) -> u64 {
         let Some(e) = Lookup::find(&ids.nozzles, &n.mark) else {
             continue;
         };
-        frames += u64::from(put(world, e, PartFrame(n.frame)));
-        put(world, e, Shape::Nozzle(n.geometry, n.pad));
+        let moved = put(world, e, PartFrame(n.frame));
+        written.frame(e, moved);
+        let reshaped = put(world, e, Shape::Nozzle(n.geometry, n.pad));
+        written.shape(e, reshaped);
         let host_id = world
             .get::<NozzleSpec>(e)
             .map(|s| s.0.host.clone())
             .unwrap_or_default();
         if let Some(host) = Lookup::find(&ids.parts, &host_id) {
-            relate(world, e, MountedOn(host));
+            let mounted = relate(world, e, MountedOn(host));
+            written.mount(e, mounted);
         }
         nozzle_entities.push(e);
     }
@@ -156,15 +198,24 @@ fn apply(world: &mut World, vessel: Entity, r: ResolvedVessel) -> u64 {
             relate(world, e, Annotates(t));
         }
     }
-    frames
+    written
 }
 
-/// Writes every pending resolution into the world.
+/// Writes every pending resolution into the world, listing what it wrote in
+/// [`DirtyParts`].
 pub fn apply_resolutions(world: &mut World) {
     let pending = std::mem::take(&mut world.resource_mut::<PendingResolutions>().0);
     let mut frames = 0;
     for (vessel, resolved) in pending {
-        frames += apply(world, vessel, resolved);
+        let written = apply(world, vessel, resolved);
+        frames += written.frames.len() as u64;
+        let mut dirty = world.resource_mut::<DirtyParts>();
+        if written.vessel_frame {
+            dirty.vessel_frames.push(vessel);
+        }
+        dirty.frames.extend(written.frames);
+        dirty.shapes.extend(written.shapes);
+        dirty.mounts.extend(written.mounts);
     }
     world.resource_mut::<WorkCounters>().frames_updated += frames;
 }

@@ -1,6 +1,6 @@
-//! Dirty-patch lists: the patches whose surface, region or mesh was written in
-//! this run, handed from stage to stage so that the patch stages cost what
-//! changed, not what exists.
+//! Dirty lists: the parts whose frame, shape or host, and the patches whose
+//! surface, region or mesh was written in this run, handed from stage to stage so
+//! that every stage costs what changed, not what exists.
 //!
 //! A plant of 10 000 vessels holds over a million patch entities; a
 //! `Changed<PatchSurface>` filter still visits every one of them in every run
@@ -8,7 +8,12 @@
 //! patch's surface (`rebuild_dirty_patches`, `cut_openings` for pads), region
 //! (`lay_out_regions`) or mesh (`remesh_dirty_patches`) push its entity here;
 //! the next stage reads the list instead of scanning; `collect_changes` clears
-//! it at the end of the run.
+//! it at the end of the run. [`DirtyParts`] does the same one level up: the
+//! Constrain stage (`apply_resolutions`, the only writer of frames, shapes and
+//! hosts) lists the vessels, parts and nozzles it wrote, and `cut_openings`
+//! the nozzles whose opening it wrote, for the Geometry, Tessellate and Export
+//! stages (their `Changed<…>` filters visited every part of the plant in every
+//! run: a third of a millisecond at 10 000 vessels).
 
 use std::sync::Arc;
 
@@ -39,5 +44,40 @@ impl DirtyPatches {
         self.regions.clear();
         self.meshes.clear();
         self.laid_out.clear();
+    }
+}
+
+/// Vessels, parts and nozzles written in the current run of the schedule.
+#[derive(Resource, Default, Debug)]
+pub struct DirtyParts {
+    /// Vessels whose `VesselFrame` was inserted or changed.
+    pub vessel_frames: Vec<Entity>,
+    /// Parts and nozzles whose `PartFrame` was inserted or changed.
+    pub frames: Vec<Entity>,
+    /// Parts and nozzles whose `Shape` was inserted or changed.
+    pub shapes: Vec<Entity>,
+    /// Parts and nozzles whose `MountedOn` was inserted or changed.
+    pub mounts: Vec<Entity>,
+    /// Nozzles (and boots) whose `Opening` was inserted or changed.
+    pub openings: Vec<Entity>,
+}
+
+impl DirtyParts {
+    /// Parts and nozzles whose frame or shape was written, each once, in entity
+    /// order.
+    pub fn moved_or_reshaped(&self) -> Vec<Entity> {
+        let mut out: Vec<Entity> = self.frames.iter().chain(&self.shapes).copied().collect();
+        out.sort_unstable();
+        out.dedup();
+        out
+    }
+
+    /// Empties every list (keeping their capacity).
+    pub fn clear(&mut self) {
+        self.vessel_frames.clear();
+        self.frames.clear();
+        self.shapes.clear();
+        self.mounts.clear();
+        self.openings.clear();
     }
 }

@@ -6,13 +6,12 @@ use std::collections::BTreeSet;
 
 use bevy_ecs::entity::Entity;
 use bevy_ecs::hierarchy::ChildOf;
-use bevy_ecs::query::{Changed, Or};
 use bevy_ecs::resource::Resource;
 use bevy_ecs::system::{Query, ResMut};
 
-use super::DirtyPatches;
+use super::{DirtyParts, DirtyPatches};
 
-use crate::components::{NozzleSpec, PadOf, PartFrame, PartSpec, PatchOf, VesselFrame, VesselSpec};
+use crate::components::{NozzleSpec, PadOf, PartSpec, PatchOf, VesselSpec};
 
 /// Stable ids changed and removed since the log was last drained.
 #[derive(Resource, Default, Debug, Clone, PartialEq, Eq)]
@@ -25,21 +24,21 @@ pub struct ChangeLog {
 
 /// Part or nozzle identity: its vessel and its spec.
 type Owner<'a> = (&'a ChildOf, Option<&'a PartSpec>, Option<&'a NozzleSpec>);
-/// A part or nozzle whose frame or shape changed.
-type MovedFilter = Or<(Changed<PartFrame>, Changed<crate::components::Shape>)>;
 
-/// Records what changed in this run into the [`ChangeLog`].
+/// Records what changed in this run into the [`ChangeLog`] (from the dirty
+/// lists, which it then clears for the next run).
 pub fn collect_changes(
-    vessels: Query<&VesselSpec, Changed<VesselFrame>>,
-    moved: Query<Owner, MovedFilter>,
     patches: Query<(Option<&PatchOf>, Option<&PadOf>)>,
     owners: Query<Owner>,
     tags: Query<&VesselSpec>,
     mut log: ResMut<ChangeLog>,
     mut dirty: ResMut<DirtyPatches>,
+    mut parts: ResMut<DirtyParts>,
 ) {
-    for v in &vessels {
-        log.changed.insert(v.tag.clone());
+    for &v in &parts.vessel_frames {
+        if let Ok(spec) = tags.get(v) {
+            log.changed.insert(spec.tag.clone());
+        }
     }
     let id_of =
         |child: &ChildOf, part: Option<&PartSpec>, nozzle: Option<&NozzleSpec>| -> Option<String> {
@@ -49,11 +48,14 @@ pub fn collect_changes(
                 .or_else(|| nozzle.map(|n| n.0.mark.clone()))?;
             Some(format!("{tag}/{id}"))
         };
-    for (c, p, n) in &moved {
-        if let Some(id) = id_of(c, p, n) {
+    for moved in parts.moved_or_reshaped() {
+        if let Ok((c, p, n)) = owners.get(moved)
+            && let Some(id) = id_of(c, p, n)
+        {
             log.changed.insert(id);
         }
     }
+    parts.clear();
     let owner_ids: Vec<Entity> = dirty
         .meshes
         .iter()

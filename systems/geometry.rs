@@ -9,12 +9,11 @@
 use std::sync::Arc;
 
 use bevy_ecs::entity::Entity;
-use bevy_ecs::query::{Changed, QueryState};
 use bevy_ecs::world::World;
 use rayon::prelude::*;
 
-use super::DirtyPatches;
 use super::labels::stable_id;
+use super::{DirtyParts, DirtyPatches};
 use super::{ModelErrors, WorkCounters};
 use crate::components::{PatchOf, PatchSurface, Patches, Shape};
 use crate::parts::{PartError, Patch};
@@ -27,12 +26,16 @@ pub(crate) fn shape_patches(shape: &Shape) -> Result<Vec<Patch>, PartError> {
     }
 }
 
-/// Rebuilds the patches of every entity whose [`Shape`] changed.
-pub fn rebuild_dirty_patches(
-    world: &mut World,
-    dirty: &mut QueryState<(Entity, &Shape), Changed<Shape>>,
-) {
-    let work: Vec<(Entity, Shape)> = dirty.iter(world).map(|(e, s)| (e, s.clone())).collect();
+/// Rebuilds the patches of every entity whose [`Shape`] changed (listed by the
+/// Constrain stage in [`DirtyParts`]).
+pub fn rebuild_dirty_patches(world: &mut World) {
+    let mut reshaped = world.resource::<DirtyParts>().shapes.clone();
+    reshaped.sort_unstable();
+    reshaped.dedup();
+    let work: Vec<(Entity, Shape)> = reshaped
+        .into_iter()
+        .filter_map(|e| Some((e, world.get::<Shape>(e)?.clone())))
+        .collect();
     if work.is_empty() {
         return;
     }

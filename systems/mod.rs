@@ -23,7 +23,7 @@ mod validate;
 pub use clock::{STAGES, StageTimes, stamp_stage};
 pub use constrain::apply_resolutions;
 pub use counters::WorkCounters;
-pub use dirty::DirtyPatches;
+pub use dirty::{DirtyParts, DirtyPatches};
 pub use export::{ChangeLog, collect_changes};
 pub use geometry::rebuild_dirty_patches;
 pub use openings::{OpeningHosts, OpeningInput, cut_openings};

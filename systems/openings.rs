@@ -10,14 +10,13 @@ use std::sync::Arc;
 
 use bevy_ecs::component::Component;
 use bevy_ecs::entity::Entity;
-use bevy_ecs::query::{Changed, Or, QueryState, With};
 use bevy_ecs::resource::Resource;
 use bevy_ecs::world::World;
 use glam::DAffine3;
 use rayon::prelude::*;
 
-use super::DirtyPatches;
 use super::labels::stable_id;
+use super::{DirtyParts, DirtyPatches};
 use super::{ModelErrors, Tessellation, WorkCounters};
 use crate::components::{
     MountedOn, Mounts, Opening, PadOf, PadPatch, PartFrame, PatchSurface, Patches, Shape,
@@ -30,14 +29,6 @@ use crate::parts::Patch;
 /// patch whose opening moved away or disappeared).
 #[derive(Resource, Default, Debug)]
 pub struct OpeningHosts(pub HashMap<Entity, Vec<Entity>>);
-
-/// Nozzles and boots whose own frame or shape changed, or that were re-hosted.
-pub type ChangedNozzle = (
-    With<MountedOn>,
-    Or<(Changed<PartFrame>, Changed<Shape>, Changed<MountedOn>)>,
-);
-/// Host parts that moved or changed shape.
-pub type ChangedHost = Or<(Changed<PartFrame>, Changed<Shape>)>;
 
 /// A cut opening: the host patch entities with their trims, the loops and the pad
 /// patch, or why not.
@@ -150,14 +141,21 @@ fn set_pad(world: &mut World, nozzle: Entity, pad: Option<Patch>) {
 }
 
 /// Computes the opening of every nozzle that needs it.
-pub fn cut_openings(
-    world: &mut World,
-    nozzles: &mut QueryState<Entity, ChangedNozzle>,
-    hosts: &mut QueryState<&Mounts, ChangedHost>,
-) {
-    let mut dirty: BTreeSet<Entity> = nozzles.iter(world).collect();
-    for mounts in hosts.iter(world) {
-        dirty.extend(mounts.entities().iter().copied());
+pub fn cut_openings(world: &mut World) {
+    // Nozzles and boots whose own frame, shape or host changed, and those mounted
+    // on a part that moved or changed shape (listed by the Constrain stage).
+    let lists = world.resource::<DirtyParts>();
+    let moved = lists.moved_or_reshaped();
+    let mut dirty: BTreeSet<Entity> = moved
+        .iter()
+        .chain(&lists.mounts)
+        .copied()
+        .filter(|&e| world.get::<MountedOn>(e).is_some())
+        .collect();
+    for &part in &moved {
+        if let Some(mounts) = world.get::<Mounts>(part) {
+            dirty.extend(mounts.entities().iter().copied());
+        }
     }
     if dirty.is_empty() {
         return;
@@ -279,6 +277,9 @@ pub fn cut_openings(
                     }
                 };
                 cut_count += u64::from(changed);
+                if changed {
+                    world.resource_mut::<DirtyParts>().openings.push(nozzle);
+                }
                 set_pad(world, nozzle, pad);
                 world.entity_mut(nozzle).insert(input);
             }

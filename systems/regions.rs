@@ -4,22 +4,22 @@
 //! intersection with its host as its bottom edge. Runs in the Tessellate stage
 //! before meshing, in parallel with rayon.
 //!
-//! A host patch is laid out again whenever one of its openings changes, mostly
-//! with its own surface unchanged; its sampled sides ([`PatchSides`], the costly
-//! part of a layout) are kept in [`HostSides`] and reused while its surface is the
-//! same.
+//! A host patch is laid out again whenever one of its openings changes, and a
+//! nozzle neck whenever its opening moves, mostly with their own surface
+//! unchanged; their sampled sides ([`PatchSides`], the costly part of a layout)
+//! are kept in [`HostSides`] and reused while the surface is the same.
 
 use std::collections::{BTreeSet, HashMap};
 use std::sync::Arc;
 
 use bevy_ecs::entity::Entity;
-use bevy_ecs::query::{Changed, QueryState, With};
+use bevy_ecs::query::{QueryState, With};
 use bevy_ecs::resource::Resource;
 use bevy_ecs::world::World;
 use rayon::prelude::*;
 
-use super::DirtyPatches;
 use super::labels::patch_label;
+use super::{DirtyParts, DirtyPatches};
 use super::{ModelErrors, OpeningHosts, Tessellation, Views, WorkCounters};
 use crate::components::{Mounts, Opening, PadOf, PadPatch, PatchOf, PatchRegion, PatchSurface};
 use crate::design::RuleViolation;
@@ -27,8 +27,8 @@ use crate::mesh::{HostTrim, Notch, PatchSides, host_region_with, pad_region};
 use crate::nurbs::intersect::IntersectionLoop;
 use crate::parts::Patch;
 
-/// The sampled sides of every host patch (one with openings or notches) as last
-/// laid out, with the surface they were sampled from (held, so the pointer compared
+/// The sampled sides of every patch an opening trims (a host, with openings or
+/// notches, or a nozzle neck) as last laid out, with the surface they were sampled from (held, so the pointer compared
 /// cannot be reused). Cleared when the tessellation options change.
 #[derive(Resource, Default, Debug)]
 pub struct HostSides(HashMap<Entity, (Arc<Patch>, Arc<PatchSides>)>);
@@ -67,9 +67,12 @@ struct Job {
 }
 
 impl Job {
-    /// Whether the patch hosts openings (its sides are worth keeping).
+    /// Whether an opening trims the patch — it hosts one, or it is a neck cut at
+    /// its host: the patch is laid out again whenever that opening moves, mostly
+    /// with its own surface unchanged, so its sides are worth keeping.
     fn hosts(&self) -> bool {
-        matches!(&self.trim, Trim::Patch { holes, notches, .. } if !holes.is_empty() || !notches.is_empty())
+        matches!(&self.trim, Trim::Patch { holes, notches, bottom }
+            if !holes.is_empty() || !notches.is_empty() || bottom.is_some())
     }
 }
 
@@ -117,11 +120,7 @@ fn trims(world: &World, patch: Entity) -> Option<Trim> {
 }
 
 /// Lays out the region of every patch that needs it.
-pub fn lay_out_regions(
-    world: &mut World,
-    openings: &mut QueryState<(Entity, &Opening), Changed<Opening>>,
-    all: &mut QueryState<Entity, With<PatchSurface>>,
-) {
+pub fn lay_out_regions(world: &mut World, all: &mut QueryState<Entity, With<PatchSurface>>) {
     let options = world.resource::<Tessellation>().0;
     let keep = *world.resource::<Views>() == Views::Kept;
     if !world.contains_resource::<HostSides>() {
@@ -147,9 +146,16 @@ pub fn lay_out_regions(
             .copied()
             .collect()
     };
-    let changed: Vec<(Entity, Vec<Entity>, Entity)> = openings
-        .iter(world)
-        .map(|(n, o)| (n, o.hosts.iter().map(|h| h.0).collect(), o.neck_patch))
+    // Openings cut in this run (listed by `cut_openings`).
+    let mut cut = world.resource::<DirtyParts>().openings.clone();
+    cut.sort_unstable();
+    cut.dedup();
+    let changed: Vec<(Entity, Vec<Entity>, Entity)> = cut
+        .into_iter()
+        .filter_map(|n| {
+            let o = world.get::<Opening>(n)?;
+            Some((n, o.hosts.iter().map(|h| h.0).collect(), o.neck_patch))
+        })
         .collect();
     for &(nozzle, ..) in &changed {
         if let Some(pad) = world.get::<PadPatch>(nozzle) {

@@ -30,7 +30,7 @@ use crate::export::Scene;
 use crate::mesh::{OptionsError, TessellationOptions};
 pub use crate::systems::Views;
 use crate::systems::{
-    ChangeLog, DirtyPatches, EditedVessels, Instances, ModelErrors, OpeningHosts,
+    ChangeLog, DirtyParts, DirtyPatches, EditedVessels, Instances, ModelErrors, OpeningHosts,
     PendingResolutions, StageTimes, Tessellation, WorkCounters, build_schedule,
 };
 
@@ -85,6 +85,7 @@ impl Model {
         world.init_resource::<VesselIndex>();
         world.init_resource::<OpeningHosts>();
         world.init_resource::<DirtyPatches>();
+        world.init_resource::<DirtyParts>();
         world.init_resource::<Views>();
         world.init_resource::<StageTimes>();
         world.init_resource::<EditedVessels>();
