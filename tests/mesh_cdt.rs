@@ -219,6 +219,34 @@ fn bad_input_is_a_typed_error() {
     ));
 }
 
+/// A hole inside another hole (two openings one inside the other): the region
+/// would lie on both sides of the outer hole's loop, so it is refused instead of
+/// meshed over that hole.
+#[test]
+fn a_hole_inside_a_hole_is_a_typed_error() {
+    let shell = Shell {
+        outside_diameter: 1000.0,
+        length: 500.0,
+    };
+    let s = &shell.patches().unwrap()[0].surface;
+    let diamond = |centre: DVec2, half: f64| {
+        UvLoop::new(vec![
+            centre - DVec2::new(half, 0.0),
+            centre + DVec2::new(0.0, half),
+            centre + DVec2::new(half, 0.0),
+            centre - DVec2::new(0.0, half),
+        ])
+    };
+    let nested = Region::new(box_loop(s, DVec2::new(0.3, 0.0), DVec2::new(0.7, 1.0), 0.5))
+        .with_hole(diamond(DVec2::new(0.5, 0.5), 0.15))
+        .with_hole(diamond(DVec2::new(0.5, 0.5), 0.03));
+    let result = mesh_region(s, &nested, &options(0.5));
+    assert!(
+        matches!(result, Err(CdtError::NestedLoop { loop_index: 1 })),
+        "{result:?}"
+    );
+}
+
 #[test]
 fn interior_edges_respect_the_maximum_length() {
     let shell = Shell {

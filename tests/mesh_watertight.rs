@@ -421,8 +421,9 @@ fn a_pad_across_a_head_seam_is_refused_clearly() {
 /// angles (one small nozzle on each, at different elevations, gaps between them)
 /// still leave the layout a cut: any angle where both end circles have a vertex
 /// and no opening reaches will do. The vessel meshes without errors and stays
-/// closed. (The drum's boot is left out: a shell nozzle level with the boot
-/// leaves a gap along the boot's opening whatever the cut, a separate defect.)
+/// closed. The drum's boot stays: it hangs at 180° round 4000 mm, so the nozzle
+/// at 180° sits at 1800 mm, clear of the boot's opening (one inside it is refused,
+/// see [`a_nozzle_inside_the_boot_opening_is_refused_clearly`]).
 #[test]
 fn a_course_with_openings_on_every_standard_cut_angle_is_meshed() {
     let mut design = example("horizontal-drum");
@@ -430,13 +431,70 @@ fn a_course_with_openings_on_every_standard_cut_angle_is_meshed() {
     let template = v.nozzles.iter().find(|n| n.mark == "N6").unwrap().clone();
     v.nozzles.retain(|n| n.host != "S1" || n.mark == "N1");
     v.notes.retain(|n| n.target != "N6");
-    v.parts.retain(|p| p.kind() != "boot");
     for k in 0..8 {
         let mut n = template.clone();
         n.mark = format!("X{k}");
         n.orientation = 45.0 * k as f64;
-        n.elevation = Some(1800.0 + 600.0 * k as f64);
+        n.elevation = Some(1800.0 + 600.0 * ((k + 4) % 8) as f64);
         v.nozzles.push(n);
     }
+    check_design(&design, 1.0);
+}
+
+/// The drum of [`a_course_with_openings_on_every_standard_cut_angle_is_meshed`]
+/// with its boot (hanging at 180° round 4000 mm, OD 610) and its shell nozzles
+/// on S1 other than N1 replaced by copies of N6 at `(mark, orientation, elevation)`.
+fn drum_with_shell_nozzles(nozzles: &[(&str, f64, f64)]) -> Design {
+    let mut design = example("horizontal-drum");
+    let v = &mut design.vessels[0];
+    let template = v.nozzles.iter().find(|n| n.mark == "N6").unwrap().clone();
+    v.nozzles.retain(|n| n.host != "S1" || n.mark == "N1");
+    v.notes.retain(|n| n.target != "N6");
+    for &(mark, orientation, elevation) in nozzles {
+        let mut n = template.clone();
+        n.mark = mark.into();
+        n.orientation = orientation;
+        n.elevation = Some(elevation);
+        v.nozzles.push(n);
+    }
+    design
+}
+
+/// A 2-inch nozzle at 180° and 4200 mm lies inside the boot's opening in S1 (the
+/// boot hangs at 180° too, its opening reaching 305 mm either side of 4000 mm):
+/// there is no shell there to cut it into. It used to pass every rule and mesh
+/// silently with an open edge along the boot's opening (the course's region had
+/// the nozzle's hole inside the boot's, and its mesh covered the boot's hole);
+/// the design is now refused, naming both openings.
+#[test]
+fn a_nozzle_inside_the_boot_opening_is_refused_clearly() {
+    let design = drum_with_shell_nozzles(&[("X4", 180.0, 4200.0)]);
+    let Err(vesselcad::model::ModelError::Design(error)) =
+        Model::from_design(&design, TessellationOptions::chord(1.0))
+    else {
+        panic!("a nozzle inside the boot's opening must be refused");
+    };
+    let violations = error.violations();
+    assert_eq!(violations.len(), 1, "{violations:?}");
+    let v = &violations[0];
+    assert_eq!(
+        (v.entity.as_str(), v.field.as_str()),
+        ("V-101/X4", "mark"),
+        "{v}"
+    );
+    assert!(v.rule.contains("overlaps the opening of boot B1"), "{v}");
+}
+
+/// Nozzles level with the boot but clear of its opening — 90° away on either
+/// side, and at 180° just past its axial reach — are cut beside it, and the
+/// envelope stays closed along the boot's opening.
+#[test]
+fn shell_nozzles_beside_the_boot_are_watertight() {
+    let design = drum_with_shell_nozzles(&[
+        ("X2", 90.0, 4200.0),
+        ("X6", 270.0, 4200.0),
+        ("X4", 180.0, 4400.0),
+        ("X5", 180.0, 3600.0),
+    ]);
     check_design(&design, 1.0);
 }

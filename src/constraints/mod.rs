@@ -20,6 +20,7 @@
 //! reported, not only the first.
 
 mod conditions;
+mod footprints;
 mod frames;
 mod geometry;
 mod notes;

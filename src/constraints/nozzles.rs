@@ -11,6 +11,7 @@
 
 use glam::{DAffine3, DMat3, DVec3};
 
+use super::footprints::Footprint;
 use super::frames::check_angle;
 use super::geometry::{PartGeometry, report_part_error};
 use super::stack::Course;
@@ -96,8 +97,10 @@ pub(crate) fn place(
     report: &mut Report,
 ) -> Vec<ResolvedNozzle> {
     let mut out = Vec::new();
-    // (mark, centre of the opening on the host, reach radius) of placed nozzles.
-    let mut footprints: Vec<(String, DVec3, f64)> = Vec::new();
+    // The openings already cut into the vessel's parts: its boots', then each
+    // placed nozzle's.
+    let mut footprints: Vec<Footprint> =
+        parts.iter().flatten().filter_map(Footprint::boot).collect();
     for (k, n) in vessel.nozzles.iter().enumerate() {
         let path = format!("nozzles[{k}]");
         let id = Some(n.mark.as_str());
@@ -288,20 +291,21 @@ pub(crate) fn place(
         }
         nozzle.projection = n.projection;
         let centre = frame.transform_point3(DVec3::new(0.0, 0.0, surface_z));
-        if let Some((other, _, _)) = footprints
-            .iter()
-            .find(|(_, c, r): &&(String, DVec3, f64)| (*c - centre).length() < r + reach / 2.0)
-        {
+        let footprint = Footprint::nozzle(&n.mark, centre, reach);
+        if let Some(other) = footprints.iter().find(|f| f.overlaps(&footprint)) {
             report.push(
                 format!("{path}.mark"),
                 id,
                 "mark",
                 &n.mark,
-                format!("its opening (reach {reach} mm) overlaps the opening of nozzle {other}: move one of them"),
+                format!(
+                    "its opening (reach {reach} mm) overlaps the opening of {}: move one of them",
+                    other.name
+                ),
             );
             continue;
         }
-        footprints.push((n.mark.clone(), centre, reach / 2.0));
+        footprints.push(footprint);
         out.push(ResolvedNozzle {
             mark: n.mark.clone(),
             host,

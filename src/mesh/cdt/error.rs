@@ -60,6 +60,17 @@ pub enum CdtError {
     /// loop is open, crosses another or has the wrong orientation.
     #[error("the loops do not enclose a region (crossing loops or wrong orientation)")]
     RegionNotClosed,
+    /// The region lies on both sides of a loop: a loop inside a hole (nested
+    /// holes, such as two openings one inside the other). Meshed, the outer hole
+    /// would be covered and its loop left inside the mesh.
+    #[error(
+        "loop {loop_index} has the region on both sides: a loop lies inside a hole \
+         (one opening inside another)"
+    )]
+    NestedLoop {
+        /// 0 for the outer loop, 1 + k for hole k.
+        loop_index: usize,
+    },
     /// Meshing would need more vertices than the budget allows.
     #[error("meshing needs more than {limit} vertices (tolerance too small for the patch)")]
     BudgetExceeded {

@@ -9,8 +9,11 @@
 //! with another. Seeds spade rejects are only counted. The triangles inside the
 //! region are found by a flood fill from the left side of every loop segment that
 //! never crosses a loop segment, walked on spade's own face adjacency; reaching
-//! the convex hull means the loops do not enclose a region. The result is copied
-//! into a [`TriMesh`] for refinement.
+//! the convex hull means the loops do not enclose a region, and reaching the right
+//! side of a loop segment means a loop lies inside a hole (nested holes: the fill
+//! from the inner loop covers the outer hole, whose segments would then be inside
+//! the mesh instead of on its boundary). The result is copied into a [`TriMesh`]
+//! for refinement.
 
 use rustc_hash::FxHashSet as HashSet;
 
@@ -169,6 +172,7 @@ pub(super) fn triangulate(
         .filter(|h| h.is_none())
         .count();
     let mut loop_edges: HashSet<(u32, u32)> = HashSet::default();
+    // (loop index, segment's first vertex handle, second) of every loop segment.
     let mut starts = Vec::with_capacity(loop_vertices);
     for &(loop_index, first, len) in &loops {
         let lost = (0..len).find(|&k| handle[first as usize + k].is_none());
@@ -195,7 +199,7 @@ pub(super) fn triangulate(
                 });
             }
             loop_edges.insert((a, b));
-            starts.push((ha, hb));
+            starts.push((loop_index, ha, hb));
         }
     }
     if cdt.num_constraints() != loop_edges.len() {
@@ -235,18 +239,20 @@ pub(super) fn triangulate(
     }))
 }
 
-/// The inner faces reachable from the left side of a loop segment (`starts`, by
-/// their vertex handles) without crossing one, as vertex ids in spade's face
+/// The inner faces reachable from the left side of a loop segment (`starts`: loop
+/// index and vertex handles) without crossing one, as vertex ids in spade's face
 /// order. Every constraint of `cdt` is a loop segment, so spade's own topology
 /// answers both questions (which face lies left of a segment, whether an edge is
-/// one) without an edge map.
+/// one) without an edge map. Each segment must then have the region on its left
+/// only: a face on its right reached too means a loop lies inside a hole, and the
+/// region is refused ([`CdtError::NestedLoop`]) rather than meshed over the hole.
 fn flood(
     cdt: &Cdt,
-    starts: &[(FixedVertexHandle, FixedVertexHandle)],
+    starts: &[(usize, FixedVertexHandle, FixedVertexHandle)],
 ) -> Result<Vec<[u32; 3]>, CdtError> {
     let mut seen = vec![false; cdt.num_all_faces()];
     let mut stack = Vec::new();
-    for &(a, b) in starts {
+    for &(_, a, b) in starts {
         let edge = cdt
             .get_edge_from_neighbors(a, b)
             .ok_or(CdtError::RegionNotClosed)?;
@@ -268,6 +274,14 @@ fn flood(
             if !std::mem::replace(&mut seen[next.fix().index()], true) {
                 stack.push(next);
             }
+        }
+    }
+    for &(loop_index, a, b) in starts {
+        let right = cdt
+            .get_edge_from_neighbors(b, a)
+            .and_then(|edge| edge.face().as_inner());
+        if right.is_some_and(|face| seen[face.fix().index()]) {
+            return Err(CdtError::NestedLoop { loop_index });
         }
     }
     Ok(cdt
