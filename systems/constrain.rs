@@ -46,35 +46,6 @@ fn relate<T: Component + PartialEq>(world: &mut World, entity: Entity, value: T)
     false
 }
 
-/// What one vessel's resolution wrote, for [`DirtyParts`].
-#[derive(Default)]
-struct Written {
-    vessel_frame: bool,
-    frames: Vec<Entity>,
-    shapes: Vec<Entity>,
-    mounts: Vec<Entity>,
-}
-
-impl Written {
-    fn frame(&mut self, entity: Entity, written: bool) {
-        if written {
-            self.frames.push(entity);
-        }
-    }
-
-    fn shape(&mut self, entity: Entity, written: bool) {
-        if written {
-            self.shapes.push(entity);
-        }
-    }
-
-    fn mount(&mut self, entity: Entity, written: bool) {
-        if written {
-            self.mounts.push(entity);
-        }
-    }
-}
-
 /// Children of a vessel keyed by kind and id.
 struct Lookup {
     parts: Vec<(String, Entity)>,
@@ -109,12 +80,11 @@ impl Lookup {
     }
 }
 
-/// Applies one resolved vessel.
-fn apply(world: &mut World, vessel: Entity, r: ResolvedVessel) -> Written {
-    let mut written = Written {
-        vessel_frame: put(world, vessel, VesselFrame(r.frame)),
-        ..Written::default()
-    };
+/// Applies one resolved vessel, listing what it wrote in `dirty`.
+fn apply(world: &mut World, vessel: Entity, r: ResolvedVessel, dirty: &mut DirtyParts) {
+    if put(world, vessel, VesselFrame(r.frame)) {
+        dirty.vessel_frames.push(vessel);
+    }
     put(
         world,
         vessel,
@@ -134,17 +104,20 @@ fn apply(world: &mut World, vessel: Entity, r: ResolvedVessel) -> Written {
         let Some(e) = Lookup::find(&ids.parts, &p.id) else {
             continue;
         };
-        let moved = put(world, e, PartFrame(p.frame));
-        written.frame(e, moved);
+        if put(world, e, PartFrame(p.frame)) {
+            dirty.frames.push(e);
+        }
         put(world, e, PartSpan(p.span.0, p.span.1));
-        let reshaped = put(world, e, Shape::Part(p.geometry));
-        written.shape(e, reshaped);
+        if put(world, e, Shape::Part(p.geometry)) {
+            dirty.shapes.push(e);
+        }
         // A part cut into another (a boot into its course) is mounted on it, like a
         // nozzle on its host, so the Geometry stage cuts its opening.
         match host_id.and_then(|h| Lookup::find(&ids.parts, &h)) {
             Some(host) => {
-                let mounted = relate(world, e, MountedOn(host));
-                written.mount(e, mounted);
+                if relate(world, e, MountedOn(host)) {
+                    dirty.mounts.push(e);
+                }
             }
             None => {
                 if world.get::<MountedOn>(e).is_some() {
@@ -158,17 +131,20 @@ fn apply(world: &mut World, vessel: Entity, r: ResolvedVessel) -> Written {
         let Some(e) = Lookup::find(&ids.nozzles, &n.mark) else {
             continue;
         };
-        let moved = put(world, e, PartFrame(n.frame));
-        written.frame(e, moved);
-        let reshaped = put(world, e, Shape::Nozzle(n.geometry, n.pad));
-        written.shape(e, reshaped);
+        if put(world, e, PartFrame(n.frame)) {
+            dirty.frames.push(e);
+        }
+        if put(world, e, Shape::Nozzle(n.geometry, n.pad)) {
+            dirty.shapes.push(e);
+        }
         let host_id = world
             .get::<NozzleSpec>(e)
             .map(|s| s.0.host.clone())
             .unwrap_or_default();
-        if let Some(host) = Lookup::find(&ids.parts, &host_id) {
-            let mounted = relate(world, e, MountedOn(host));
-            written.mount(e, mounted);
+        if let Some(host) = Lookup::find(&ids.parts, &host_id)
+            && relate(world, e, MountedOn(host))
+        {
+            dirty.mounts.push(e);
         }
         nozzle_entities.push(e);
     }
@@ -198,24 +174,19 @@ fn apply(world: &mut World, vessel: Entity, r: ResolvedVessel) -> Written {
             relate(world, e, Annotates(t));
         }
     }
-    written
 }
 
 /// Writes every pending resolution into the world, listing what it wrote in
 /// [`DirtyParts`].
 pub fn apply_resolutions(world: &mut World) {
     let pending = std::mem::take(&mut world.resource_mut::<PendingResolutions>().0);
-    let mut frames = 0;
+    // Taken out while the entities are written, put back after.
+    let mut dirty = std::mem::take(&mut *world.resource_mut::<DirtyParts>());
+    let before = dirty.frames.len();
     for (vessel, resolved) in pending {
-        let written = apply(world, vessel, resolved);
-        frames += written.frames.len() as u64;
-        let mut dirty = world.resource_mut::<DirtyParts>();
-        if written.vessel_frame {
-            dirty.vessel_frames.push(vessel);
-        }
-        dirty.frames.extend(written.frames);
-        dirty.shapes.extend(written.shapes);
-        dirty.mounts.extend(written.mounts);
+        apply(world, vessel, resolved, &mut dirty);
     }
+    let frames = (dirty.frames.len() - before) as u64;
+    *world.resource_mut::<DirtyParts>() = dirty;
     world.resource_mut::<WorkCounters>().frames_updated += frames;
 }

@@ -66,10 +66,7 @@ impl DirtyParts {
     /// Parts and nozzles whose frame or shape was written, each once, in entity
     /// order.
     pub fn moved_or_reshaped(&self) -> Vec<Entity> {
-        let mut out: Vec<Entity> = self.frames.iter().chain(&self.shapes).copied().collect();
-        out.sort_unstable();
-        out.dedup();
-        out
+        unique(self.frames.iter().chain(&self.shapes).copied())
     }
 
     /// Empties every list (keeping their capacity).
@@ -80,4 +77,12 @@ impl DirtyParts {
         self.mounts.clear();
         self.openings.clear();
     }
+}
+
+/// The entities of a dirty list, each once, in entity order.
+pub fn unique(entities: impl IntoIterator<Item = Entity>) -> Vec<Entity> {
+    let mut out: Vec<Entity> = entities.into_iter().collect();
+    out.sort_unstable();
+    out.dedup();
+    out
 }

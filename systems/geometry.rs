@@ -12,6 +12,7 @@ use bevy_ecs::entity::Entity;
 use bevy_ecs::world::World;
 use rayon::prelude::*;
 
+use super::dirty::unique;
 use super::labels::stable_id;
 use super::{DirtyParts, DirtyPatches};
 use super::{ModelErrors, WorkCounters};
@@ -29,9 +30,7 @@ pub(crate) fn shape_patches(shape: &Shape) -> Result<Vec<Patch>, PartError> {
 /// Rebuilds the patches of every entity whose [`Shape`] changed (listed by the
 /// Constrain stage in [`DirtyParts`]).
 pub fn rebuild_dirty_patches(world: &mut World) {
-    let mut reshaped = world.resource::<DirtyParts>().shapes.clone();
-    reshaped.sort_unstable();
-    reshaped.dedup();
+    let reshaped = unique(world.resource::<DirtyParts>().shapes.iter().copied());
     let work: Vec<(Entity, Shape)> = reshaped
         .into_iter()
         .filter_map(|e| Some((e, world.get::<Shape>(e)?.clone())))

@@ -18,6 +18,7 @@ use bevy_ecs::resource::Resource;
 use bevy_ecs::world::World;
 use rayon::prelude::*;
 
+use super::dirty::unique;
 use super::labels::patch_label;
 use super::{DirtyParts, DirtyPatches};
 use super::{ModelErrors, OpeningHosts, Tessellation, Views, WorkCounters};
@@ -28,8 +29,9 @@ use crate::nurbs::intersect::IntersectionLoop;
 use crate::parts::Patch;
 
 /// The sampled sides of every patch an opening trims (a host, with openings or
-/// notches, or a nozzle neck) as last laid out, with the surface they were sampled from (held, so the pointer compared
-/// cannot be reused). Cleared when the tessellation options change.
+/// notches, or a nozzle neck) as last laid out, with the surface they were
+/// sampled from (held, so the pointer compared cannot be reused). Cleared when
+/// the tessellation options change.
 #[derive(Resource, Default, Debug)]
 pub struct HostSides(HashMap<Entity, (Arc<Patch>, Arc<PatchSides>)>);
 
@@ -70,7 +72,7 @@ impl Job {
     /// Whether an opening trims the patch — it hosts one, or it is a neck cut at
     /// its host: the patch is laid out again whenever that opening moves, mostly
     /// with its own surface unchanged, so its sides are worth keeping.
-    fn hosts(&self) -> bool {
+    fn trimmed(&self) -> bool {
         matches!(&self.trim, Trim::Patch { holes, notches, bottom }
             if !holes.is_empty() || !notches.is_empty() || bottom.is_some())
     }
@@ -147,9 +149,7 @@ pub fn lay_out_regions(world: &mut World, all: &mut QueryState<Entity, With<Patc
             .collect()
     };
     // Openings cut in this run (listed by `cut_openings`).
-    let mut cut = world.resource::<DirtyParts>().openings.clone();
-    cut.sort_unstable();
-    cut.dedup();
+    let cut = unique(world.resource::<DirtyParts>().openings.iter().copied());
     let changed: Vec<(Entity, Vec<Entity>, Entity)> = cut
         .into_iter()
         .filter_map(|n| {
@@ -220,7 +220,7 @@ pub fn lay_out_regions(world: &mut World, all: &mut QueryState<Entity, With<Patc
                         &notches,
                         bottom.as_deref(),
                     );
-                    (region, j.hosts().then_some(sides))
+                    (region, j.trimmed().then_some(sides))
                 }
                 Trim::Pad { outer, inner } => {
                     (pad_region(&j.surface.surface, &options, outer, inner), None)

@@ -2,11 +2,12 @@
 //!
 //! Loop vertices and seeds go into spade in a chart of the parameter plane mapped
 //! by the patch's mean size metric, so its Delaunay triangles are roughly the
-//! shapes refinement wants; every coordinate is validated before insertion. Each loop segment
-//! goes in as a constraint during spade's bulk load (`try_bulk_load_cdt`, while
-//! the triangulation round its ends is still small); a segment that crosses another loop, or runs through another vertex, is an error
-//! (the boundary would not be kept as given), as is a loop vertex that spade merged
-//! with another. Seeds spade rejects are only counted. The triangles inside the
+//! shapes refinement wants; every coordinate is validated before insertion. Each
+//! loop segment goes in as a constraint during spade's bulk load
+//! (`try_bulk_load_cdt`, while the triangulation round its ends is still small);
+//! a segment that is not then an edge of the result — it crossed another loop, or
+//! spade split it at a vertex it runs through — is an error (the boundary would
+//! not be kept as given), as is a loop vertex that spade merged with another. Seeds spade rejects are only counted. The triangles inside the
 //! region are found by a flood fill from the left side of every loop segment that
 //! never crosses a loop segment, walked on spade's own face adjacency; reaching
 //! the convex hull means the loops do not enclose a region, and reaching the right
@@ -201,14 +202,6 @@ pub(super) fn triangulate(
             loop_edges.insert((a, b));
             starts.push((loop_index, ha, hb));
         }
-    }
-    if cdt.num_constraints() != loop_edges.len() {
-        stats.failed_constraints += 1;
-        return Err(CdtError::ConstraintFailed {
-            loop_index: 0,
-            segment: 0,
-            reason: "a loop segment runs through another vertex",
-        });
     }
     let inside = flood(&cdt, &starts)?;
     // Keep the vertices the inside triangles use, loop vertices first.
