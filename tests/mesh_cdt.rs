@@ -81,6 +81,96 @@ fn a_hole_stays_empty_and_its_vertices_are_kept() {
     println!("shell with a hole: {:?}", out.stats);
 }
 
+/// A clockwise polygon in (u, v) round `centre` on a course of OD `od` and
+/// length `length`: radius `radius(angle)` mm, sampled finely enough for `tol`.
+fn opening(
+    centre: DVec2,
+    od: f64,
+    length: f64,
+    tol: f64,
+    radius: impl Fn(f64) -> f64,
+) -> Vec<DVec2> {
+    let (su, sv) = (std::f64::consts::PI * od, length);
+    let largest = (0..64).map(|k| radius(k as f64 / 10.0)).fold(0.0, f64::max);
+    let n = (std::f64::consts::TAU / (2.0 * (1.0 - tol / largest).acos())).ceil() as usize * 2;
+    (0..n)
+        .map(|k| {
+            let a = -std::f64::consts::TAU * k as f64 / n as f64;
+            let r = radius(a);
+            centre + DVec2::new(r * a.cos() / su, r * a.sin() / sv)
+        })
+        .collect()
+}
+
+/// A whole course (its rings structure kept) with openings of every kind the
+/// cavities meet: a lone round one, two stacked close enough to share a cavity, a
+/// kidney-shaped one (not convex), a long slot, and one beside the seam; at 1 and
+/// 0.1 mm, with and without a stretch limit (which gives the course rows). Each
+/// mesh is checked in full: chordal bound by point inversion, valid triangles
+/// facing along the normals, every loop vertex kept, nothing inside an opening,
+/// and exactly one boundary loop per opening besides the two end rings.
+#[test]
+fn openings_in_a_whole_course_are_meshed_in_their_cavities() {
+    let (od, length) = (2400.0, 6000.0);
+    let shell = Shell {
+        outside_diameter: od,
+        length,
+    };
+    let patch = &shell.patches().unwrap()[0];
+    let s = &patch.surface;
+    for tol in [1.0, 0.1] {
+        let round = |r: f64| move |_: f64| r;
+        let holes = [
+            opening(DVec2::new(0.3, 0.5), od, length, tol, round(300.0)),
+            opening(DVec2::new(0.55, 0.3), od, length, tol, round(60.0)),
+            opening(DVec2::new(0.555, 0.33), od, length, tol, round(50.0)),
+            opening(DVec2::new(0.75, 0.7), od, length, tol, |a: f64| {
+                150.0 + 90.0 * (2.0 * a).cos()
+            }),
+            opening(DVec2::new(0.9, 0.2), od, length, tol, |a: f64| {
+                // A slot: long round the course, short along it.
+                let (c, s) = (a.cos(), a.sin());
+                1.0 / ((c / 200.0).powi(2) + (s / 40.0).powi(2)).sqrt()
+            }),
+        ];
+        let seam = opening(DVec2::new(0.02, 0.5), od, length, tol, round(80.0));
+        for with_seam in [false, true] {
+            for stretch in [None, Some(3.0)] {
+                let mut region = full_region(s, tol);
+                for hole in holes.iter().chain(with_seam.then_some(&seam)) {
+                    region = region.with_hole(UvLoop::new(hole.clone()));
+                }
+                let what = format!(
+                    "course with openings at {tol} mm, seam {with_seam}, stretch {stretch:?}"
+                );
+                let options = options(tol).with_max_stretch(stretch);
+                let out = mesh_region_with_uvs(s, &region, &options).unwrap();
+                check(s, &region, &out, tol, &what);
+                for (t, tri) in out.mesh.indices.chunks(3).enumerate() {
+                    // A triangle on the seam has welded vertices at u = 0: unwrap.
+                    let mut uvs = [0, 1, 2].map(|i| out.uvs[tri[i] as usize]);
+                    if uvs.iter().any(|p| p.x > 0.5) {
+                        for p in &mut uvs {
+                            p.x += if p.x < 0.25 { 1.0 } else { 0.0 };
+                        }
+                    }
+                    let c = (uvs[0] + uvs[1] + uvs[2]) / 3.0;
+                    for (h, hole) in region.holes.iter().enumerate() {
+                        assert!(
+                            !in_polygon(c, &hole.uv),
+                            "{what}: triangle {t} {uvs:?} lies in hole {h}"
+                        );
+                    }
+                }
+                assert_eq!(boundary_loops(&out.mesh), 2 + region.holes.len(), "{what}");
+                let again = mesh_region_with_uvs(s, &region, &options).unwrap();
+                assert_eq!(again, out, "{what}: not deterministic");
+                println!("{what}: {:?}", out.stats);
+            }
+        }
+    }
+}
+
 #[test]
 fn a_region_across_the_seam_evaluates_at_wrapped_u() {
     let tol = 0.5;

@@ -192,9 +192,10 @@ fn quad(mesh: &TriMesh, s: u32, t: u32) -> Option<Quad> {
 /// Rounds of [`bisect`].
 const BISECT_ROUNDS: usize = 3;
 
-/// Splits what `mend` left outside the limits: the longest edge of each failing
-/// triangle is cut at the surface point of its parametric midpoint, with the
-/// triangle across it (longest-edge bisection, conforming), and the four new
+/// Splits what `mend` left outside the limits: the edge of each failing triangle
+/// whose chord strays farthest from the surface at its middle (the longest among
+/// equals) is cut at the surface point of its parametric midpoint, with the
+/// triangle across it (conforming), and the four new
 /// triangles are screened; up to [`BISECT_ROUNDS`] times. Loop segments and the
 /// seam (edges with no triangle across them here) are not cut: a triangle failing
 /// there is left to refinement, as is anything still failing after the last round.
@@ -218,13 +219,28 @@ pub(super) fn bisect(
         let mut wanted: rustc_hash::FxHashMap<(u32, u32), (u32, usize)> = Default::default();
         for &t in &failing {
             let tri = mesh.tris[t as usize];
-            let length = |i: usize| {
-                let (p, q) = (tri[i], tri[(i + 1) % 3]);
-                (mesh.verts[p as usize].point - mesh.verts[q as usize].point).length_squared()
+            // Each edge by how far its chord's midpoint lies off the surface (the
+            // edge that bends most is the one to cut: on a course, the short edge
+            // round the axis, not the long straight one along it), then by length.
+            let rank = |i: usize| {
+                let (p, q) = (
+                    &mesh.verts[tri[i] as usize],
+                    &mesh.verts[tri[(i + 1) % 3] as usize],
+                );
+                let uv = 0.5 * (p.uv + q.uv);
+                let sagitta = (info.surface.point(info.wrap_u(uv.x), uv.y)
+                    - 0.5 * (p.point + q.point))
+                    .length();
+                let sagitta = if sagitta.is_finite() { sagitta } else { 0.0 };
+                // Sagittas within a hundredth of the tolerance count as equal.
+                let bend = (sagitta / (0.01 * screen.tolerance())).floor();
+                (bend, (p.point - q.point).length_squared())
             };
             let Some(i) = (0..3)
                 .filter(|&i| !mesh.fixed[t as usize][i])
-                .max_by(|&a, &b| length(a).total_cmp(&length(b)))
+                .map(|i| (i, rank(i)))
+                .max_by(|(_, a), (_, b)| a.0.total_cmp(&b.0).then(a.1.total_cmp(&b.1)))
+                .map(|(i, _)| i)
             else {
                 continue;
             };

@@ -7,7 +7,9 @@
 //! within the chordal tolerance of the exact surface.
 //!
 //! Pipeline: `region` (validate) → for a whole patch closed in u, `rings` (the
-//! lattice's rows zipped seam to seam, checked, refined only if needed); otherwise
+//! lattice's rows zipped seam to seam round the `cavity` of each opening, each
+//! cavity zipped to its hole and flipped to Delaunay, checked, refined only if
+//! needed); otherwise
 //! `seed` (curvature-sized lattice clipped to the
 //! region, in the size `metric` of the surface) → `initial` (spade's constrained
 //! Delaunay triangulation of loop vertices and seeds, inside found by flood fill) →
@@ -16,6 +18,7 @@
 //! `output` (weld poles and seams, check every triangle, statistics). `patch` holds
 //! the facts about the surface every stage uses.
 
+mod cavity;
 mod error;
 mod flip;
 mod initial;

@@ -268,6 +268,22 @@ impl<'a> PatchInfo<'a> {
         Ok(vertex)
     }
 
+    /// The mesh vertex at `uv` from first derivatives only, its metric
+    /// [unset](Metric::UNSET) (filled by [`fill_metric`](Self::fill_metric) when
+    /// refinement needs it).
+    pub fn vertex_lazy(&self, uv: DVec2) -> Result<Vertex, CdtError> {
+        let f = self.surface.first_derivatives(self.wrap_u(uv.x), uv.y);
+        let d = SurfaceDerivatives {
+            point: f.point,
+            du: f.du,
+            dv: f.dv,
+            duu: DVec3::NAN,
+            duv: DVec3::NAN,
+            dvv: DVec3::NAN,
+        };
+        self.vertex_from(uv, &d)
+    }
+
     /// The vertices of the row of constant `v` at the parameters `us`, evaluated
     /// along the row (see [`SurfaceRow`](crate::nurbs::SurfaceRow)), with their
     /// metrics [unset](Metric::UNSET): only refinement reads them, after

@@ -1,6 +1,6 @@
 //! The structured path: a whole patch closed in u (a head, a course, a cone, a
-//! flange face — no opening in it) meshed ring by ring without a triangulation
-//! search.
+//! flange face, with or without nozzle openings) meshed ring by ring without a
+//! triangulation search over the whole patch.
 //!
 //! Such a patch's region is its parameter rectangle cut at a seam: the two v sides
 //! (given rings of loop vertices, or a pole) and the two copies of the seam. The
@@ -24,6 +24,7 @@ use std::ops::Range;
 
 use rayon::prelude::*;
 
+use super::cavity::{self, Cavity, ChainView};
 use super::patch::{PatchInfo, Vertex};
 use super::region::Region;
 use super::screen::Screen;
@@ -73,11 +74,13 @@ struct Chain {
     len: usize,
 }
 
-/// The structured mesh of `region` when it is a whole patch closed in u; `None`
-/// for any other region.
+/// The structured mesh of `region` when it is a whole patch closed in u, holes
+/// included; `None` for any other region, or when a hole's cavity would reach the
+/// seam or a pole (see `cavity`).
 ///
 /// The chains (bottom side, the lattice's rows, top side) are zipped into strips
-/// and every strip is screened; `mend` re-triangulates around the triangles that
+/// round the holes' cavities, each cavity is triangulated to its holes, and every
+/// strip and cavity is screened; `mend` re-triangulates around the triangles that
 /// fail. What still fails is left to the caller's refinement.
 pub(super) fn triangulate(
     info: &PatchInfo,
@@ -141,12 +144,53 @@ pub(super) fn triangulate(
         chains[k].first = first;
         chains[k].len = us.len();
     }
-    if mesh.verts.len() > budget {
+    if mesh.verts.len() + region.vertex_count() > budget {
         return Err(CdtError::BudgetExceeded { limit: budget });
     }
-    let Some(strips) = build(&mut mesh, &chains) else {
+    let views: Vec<ChainView> = chains
+        .iter()
+        .map(|c| ChainView {
+            v: c.v,
+            row: matches!(c.kind, Kind::Row),
+            first: c.first,
+            len: c.len,
+        })
+        .collect();
+    let cavities = if region.holes.is_empty() {
+        Vec::new()
+    } else {
+        match cavity::plan(&mesh, &views, region) {
+            Some(cavities) => cavities,
+            None => return Ok(None),
+        }
+    };
+    let Some(mut strips) = build(&mut mesh, &chains, &cavities) else {
         return Ok(None);
     };
+    let mut zipped: Vec<bool> = (0..strips.len())
+        .map(|k| matches!((chains[k].kind, chains[k + 1].kind), (Kind::Row, Kind::Row)))
+        .collect();
+    if !cavities.is_empty() {
+        let Some(range) = cavity::fill(info, &mut mesh, &views, &cavities, region)? else {
+            return Ok(None);
+        };
+        // The cavities' edges along the v sides are loop segments too.
+        let last = chains.len() - 1;
+        if matches!(chains[0].kind, Kind::Row) {
+            fix_ring(
+                &mut mesh,
+                range.clone(),
+                (chains[0].first, chains[0].len),
+                true,
+            );
+        }
+        if matches!(chains[last].kind, Kind::Row) {
+            let top = (chains[last].first, chains[last].len);
+            fix_ring(&mut mesh, range.clone(), top, false);
+        }
+        strips.push(range);
+        zipped.push(false);
+    }
     let Some(screen) = Screen::new(info, options) else {
         let seam = seam_edges(&mesh, lo.x, hi.x);
         return Ok(Some(Rings {
@@ -159,9 +203,6 @@ pub(super) fn triangulate(
     let flags: Vec<Vec<bool>> = strips
         .par_iter()
         .map(|range| screen.strip(&mesh, range.clone()))
-        .collect();
-    let zipped: Vec<bool> = (0..strips.len())
-        .map(|k| matches!((chains[k].kind, chains[k + 1].kind), (Kind::Row, Kind::Row)))
         .collect();
     let (mut within, mended) = mend::mend(info, &screen, &mut mesh, &strips, &zipped, flags)?;
     let bisected = mend::bisect(info, &screen, &mut mesh, &mut within)?;
@@ -209,7 +250,7 @@ fn evaluate(info: &PatchInfo, rows: &[(f64, &[f64])]) -> Result<Vec<Vec<Vertex>>
 
 /// Zips every pair of consecutive chains into `mesh` (replacing its triangles);
 /// returns each strip's range of triangles, or `None` when two poles meet.
-fn build(mesh: &mut TriMesh, chains: &[Chain]) -> Option<Vec<Range<u32>>> {
+fn build(mesh: &mut TriMesh, chains: &[Chain], cavities: &[Cavity]) -> Option<Vec<Range<u32>>> {
     mesh.tris.clear();
     mesh.adj.clear();
     mesh.fixed.clear();
@@ -226,7 +267,23 @@ fn build(mesh: &mut TriMesh, chains: &[Chain]) -> Option<Vec<Range<u32>>> {
         let start = mesh.tris.len() as u32;
         let (a, b) = (chains[k], chains[k + 1]);
         match (a.kind, b.kind) {
-            (Kind::Row, Kind::Row) => zip(mesh, (a.first, a.len), (b.first, b.len)),
+            (Kind::Row, Kind::Row) => {
+                // Zip the pieces between the cavities crossing this strip.
+                let mut cuts: Vec<_> = cavities
+                    .iter()
+                    .filter(|c| c.lo <= k && k < c.hi)
+                    .filter_map(|c| Some((c.cut(k)?, c.cut(k + 1)?)))
+                    .collect();
+                cuts.sort_unstable();
+                let (mut sa, mut sb) = (0usize, 0usize);
+                for ((la, ra), (lb, rb)) in cuts {
+                    let (pa, pb) = (a.first + sa as u32, b.first + sb as u32);
+                    zip(mesh, (pa, la + 1 - sa), (pb, lb + 1 - sb));
+                    (sa, sb) = (ra, rb);
+                }
+                let (pa, pb) = (a.first + sa as u32, b.first + sb as u32);
+                zip(mesh, (pa, a.len - sa), (pb, b.len - sb));
+            }
             (Kind::Pole, Kind::Row) => fan(mesh, (b.first, b.len), a.first, true),
             (Kind::Row, Kind::Pole) => fan(mesh, (a.first, a.len), b.first, false),
             // Two poles and no row between them: not a structured patch.
@@ -255,7 +312,7 @@ pub(super) fn fix_seam(mesh: &mut TriMesh, seam: &[(u32, usize)]) {
 /// The region's v sides, when it is a whole patch closed in u: one outer loop on
 /// the rectangle `lo..hi` spanning one period, every vertex on one of its sides.
 fn sides(info: &PatchInfo, region: &Region) -> Option<(Side, Side)> {
-    if !info.closed_u || !region.holes.is_empty() {
+    if !info.closed_u {
         return None;
     }
     let (lo, hi) = region.bounds();

@@ -77,6 +77,11 @@ impl<'a> Screen<'a> {
         self.triangles(mesh, &triangles)
     }
 
+    /// The chordal tolerance screened against, mm.
+    pub fn tolerance(&self) -> f64 {
+        self.limits.tolerance
+    }
+
     /// [`strip`](Self::strip) of any triangles of `mesh`, in the order given (best
     /// when they share few v values).
     pub fn triangles(&self, mesh: &TriMesh, triangles: &[u32]) -> Vec<bool> {
@@ -120,6 +125,9 @@ impl Groups {
         g
     }
 }
+
+/// Probes of one v beyond which they are evaluated along a row.
+const ROW_WORTH: usize = 2;
 
 /// The limits a triangle is screened against.
 struct Limits {
@@ -232,10 +240,17 @@ fn screen_triangles(
         next[q.group as usize] += 1;
     }
     for (g, &v) in groups.values.iter().enumerate() {
-        let row = info.surface.row(v);
-        for &k in &order[starts[g]..starts[g + 1]] {
+        let members = &order[starts[g]..starts[g + 1]];
+        // A row evaluator pays the v half once for every control column: worth it
+        // for a strip's shared v values, not for a lone probe (a cavity's).
+        let row = (members.len() > ROW_WORTH).then(|| info.surface.row(v));
+        for &k in members {
             let q = &probes[k as usize];
-            let s = row.point(info.wrap_u(q.uv.x));
+            let u = info.wrap_u(q.uv.x);
+            let s = match &row {
+                Some(row) => row.point(u),
+                None => info.surface.point(u, v),
+            };
             let distance = analytic.distance(q.point);
             for slot in [q.triangle, q.other] {
                 let Some(&Some((origin, unit))) = planes.get(slot as usize) else {
