@@ -221,6 +221,7 @@ pub(super) fn fill(
     }
     let verts: Vec<Vertex> = uvs
         .par_iter()
+        .with_min_len(super::MIN_VERTICES)
         .map(|&uv| info.vertex_lazy(uv))
         .collect::<Result<_, _>>()?;
     mesh.verts.extend(verts);

@@ -220,6 +220,7 @@ pub(super) fn triangulate(
     }
     let verts = kept
         .par_iter()
+        .with_min_len(super::MIN_VERTICES)
         .map(|&k| info.vertex(uvs[k as usize]))
         .collect::<Result<Vec<_>, _>>()?;
     let tris: Vec<[u32; 3]> = inside

@@ -272,6 +272,7 @@ pub(super) fn bisect(
         added += cuts.len();
         let mids: Vec<_> = cuts
             .par_iter()
+            .with_min_len(super::MIN_VERTICES)
             .map(|[(t, i), _]| {
                 let tri = mesh.tris[*t as usize];
                 let (p, q) = (tri[*i], tri[(*i + 1) % 3]);

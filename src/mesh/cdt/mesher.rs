@@ -125,6 +125,7 @@ fn mesh_oriented(
         let mut mesh = rings.mesh;
         mesh.verts
             .par_iter_mut()
+            .with_min_len(super::MIN_VERTICES)
             .filter(|v| v.metric.uu.is_nan())
             .for_each(|v| info.fill_metric(v));
         let fixed: rustc_hash::FxHashSet<(u32, u32)> = (0..mesh.tris.len() as u32)

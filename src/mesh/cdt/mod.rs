@@ -35,6 +35,12 @@ mod screen;
 mod seed;
 mod trimesh;
 
+/// Fewest vertices or triangles per parallel task in the mesher's per-item loops:
+/// one item costs a few thousand instructions, so smaller tasks on a small patch
+/// cost more in hand-offs than they save (a patch is usually meshed beside
+/// others, in the Tessellate stage's own parallel loop).
+const MIN_VERTICES: usize = 64;
+
 pub use error::CdtError;
 pub use mesher::{
     VERTEX_BUDGET, mesh_patch_region, mesh_region, mesh_region_on, mesh_region_with_uvs,

@@ -22,6 +22,8 @@
 use glam::{DVec2, DVec3};
 use rayon::prelude::*;
 
+use super::MIN_VERTICES as MIN_TRIANGLES;
+
 use super::flip::{effective_uv, should_flip, strictly_ccw};
 use super::measure::deviation;
 use super::patch::{PatchInfo, Vertex};
@@ -159,6 +161,7 @@ pub(super) fn assess_all(
     let limits = limits(info, mesh, options);
     let cache = (0..mesh.tris.len() as u32)
         .into_par_iter()
+        .with_min_len(MIN_TRIANGLES)
         .map(|t| {
             if within.is_some_and(|w| w[t as usize]) {
                 None
@@ -239,6 +242,7 @@ fn run(
             .collect();
         let fresh: Vec<Option<Candidate>> = stale
             .par_iter()
+            .with_min_len(MIN_TRIANGLES)
             .map(|&t| assess(info, mesh, t, limits))
             .collect();
         cache.resize(mesh.tris.len(), None);
