@@ -2,6 +2,9 @@
 //! head OD 2400), `sphere` (R 1000), `shell` (2400×6000 course with six nozzles), at
 //! 0.1 mm or `TOL`; best of `reps`. For profiling (callgrind, perf) of one case.
 //!
+//! Meshes inside the rayon pool, as the bench and the Tessellate stage do;
+//! `STATS=1` prints each mesh's statistics.
+//!
 //! `cargo run --release --example mesh_profile -- [fd|sphere|shell|both] [reps]`
 use std::time::Instant;
 use vesselcad::mesh::cdt::mesh_region_on;
