@@ -23,23 +23,14 @@
 use glam::DVec2;
 use rayon::prelude::*;
 
-use super::flip::strictly_ccw;
+use super::flip::{incircle, strictly_ccw};
 use super::initial;
 use super::metric::Metric;
 use super::patch::{PatchInfo, Vertex};
 use super::region::{Region, UvLoop};
+use super::rings::{Chain, Kind};
 use super::trimesh::{NONE, TriMesh};
 use super::{CdtError, MeshStats};
-
-/// A chain of the structured mesh as the cavities see it: its v, whether it is a
-/// row (not a pole), and its vertices `first..first + len`.
-#[derive(Clone, Copy, Debug)]
-pub(super) struct ChainView {
-    pub v: f64,
-    pub row: bool,
-    pub first: u32,
-    pub len: usize,
-}
 
 /// A triangle of a cavity: its vertices (counter-clockwise in (u, v)) and which of
 /// its edges are loop segments.
@@ -72,7 +63,7 @@ impl Cavity {
 /// The cavities of `region`'s holes in the chains, sorted by their left cut, none
 /// overlapping another in any strip; `None` when a cavity would reach the seam, a
 /// pole or past the outermost chains.
-pub(super) fn plan(mesh: &TriMesh, chains: &[ChainView], region: &Region) -> Option<Vec<Cavity>> {
+pub(super) fn plan(mesh: &TriMesh, chains: &[Chain], region: &Region) -> Option<Vec<Cavity>> {
     let mut cavities: Vec<Cavity> = Vec::with_capacity(region.holes.len());
     for (h, hole) in region.holes.iter().enumerate() {
         let bounds = loop_bounds(hole)?;
@@ -116,7 +107,7 @@ fn loop_bounds(hole: &UvLoop) -> Option<(DVec2, DVec2)> {
 /// The cavity of holes with parameter bounds `bounds` in the chains.
 fn place(
     mesh: &TriMesh,
-    chains: &[ChainView],
+    chains: &[Chain],
     bounds: (DVec2, DVec2),
     holes: Vec<usize>,
 ) -> Option<Cavity> {
@@ -132,7 +123,7 @@ fn place(
     if k1 + 1 < chains.len() && chains[k1].v - hi.y < 0.5 * (chains[k1].v - chains[k1 - 1].v) {
         k1 += 1;
     }
-    if !chains[k0..=k1].iter().all(|c| c.row) {
+    if !chains[k0..=k1].iter().all(|c| matches!(c.kind, Kind::Row)) {
         return None;
     }
     let cuts = chains[k0..=k1]
@@ -181,7 +172,7 @@ fn overlap(a: &Cavity, b: &Cavity) -> bool {
 /// The boundary of a cavity as vertex indices of the mesh, counter-clockwise:
 /// its bottom chain left to right, the right ends upwards, its top chain right to
 /// left, the left ends downwards.
-fn boundary(chains: &[ChainView], cavity: &Cavity) -> Vec<u32> {
+fn boundary(chains: &[Chain], cavity: &Cavity) -> Vec<u32> {
     let at = |k: usize, i: usize| chains[k].first + i as u32;
     let (lo, hi) = (cavity.lo, cavity.hi);
     let mut out = Vec::new();
@@ -205,7 +196,7 @@ fn boundary(chains: &[ChainView], cavity: &Cavity) -> Vec<u32> {
 pub(super) fn fill(
     info: &PatchInfo,
     mesh: &mut TriMesh,
-    chains: &[ChainView],
+    chains: &[Chain],
     cavities: &[Cavity],
     region: &Region,
 ) -> Result<Option<std::ops::Range<u32>>, CdtError> {
@@ -307,9 +298,6 @@ fn zip_ring(
     Some(out)
 }
 
-/// Relative incircle determinant treated as zero (cocircular: no flip).
-const COCIRCULAR: f64 = 1e-10;
-
 /// Lawson's flips on a zipped cavity until its triangles are Delaunay in `chart`
 /// (the size metric at the cavity) with its fixed edges and its boundary kept:
 /// the zip's greedy choices leave needles where a boundary vertex fans to many
@@ -340,7 +328,7 @@ fn delaunay_flips(tris: &mut [Triangle], chart: impl Fn(u32) -> DVec2) {
         let c = tris[t].0[(i + 2) % 3];
         let d = tris[s].0[(j + 2) % 3];
         let [pa, pb, pc, pd] = [a, b, c, d].map(&chart);
-        if incircle(pa, pb, pc, pd) <= 0.0 {
+        if !incircle(pa, pb, pc, pd) {
             continue;
         }
         if !(strictly_ccw(pc, pa, pd) && strictly_ccw(pd, pb, pc)) {
@@ -361,23 +349,6 @@ fn delaunay_flips(tris: &mut [Triangle], chart: impl Fn(u32) -> DVec2) {
             }
         }
         stack.extend([(c, a), (a, d), (d, b), (b, c)]);
-    }
-}
-
-/// Whether `d` lies inside the circle through the counter-clockwise `a, b, c`:
-/// positive inside, with a margin relative to the size.
-fn incircle(a: DVec2, b: DVec2, c: DVec2, d: DVec2) -> f64 {
-    let (x, y, z) = (a - d, b - d, c - d);
-    let det = x.length_squared() * y.perp_dot(z) - y.length_squared() * x.perp_dot(z)
-        + z.length_squared() * x.perp_dot(y);
-    let scale = x
-        .length_squared()
-        .max(y.length_squared())
-        .max(z.length_squared());
-    if det > COCIRCULAR * scale * scale {
-        det
-    } else {
-        0.0
     }
 }
 
@@ -436,14 +407,14 @@ mod tests {
 
     /// A flat lattice: `rows` chains of `n` vertices over the unit square, u
     /// from 0 (the seam) to 1, mapped to 10 × 10 mm.
-    fn lattice(rows: usize, n: usize) -> (TriMesh, Vec<ChainView>) {
+    fn lattice(rows: usize, n: usize) -> (TriMesh, Vec<Chain>) {
         let mut mesh = TriMesh::default();
         let mut chains = Vec::new();
         for r in 0..rows {
             let v = r as f64 / (rows - 1) as f64;
-            chains.push(ChainView {
+            chains.push(Chain {
                 v,
-                row: true,
+                kind: Kind::Row,
                 first: mesh.verts.len() as u32,
                 len: n,
             });
@@ -538,7 +509,7 @@ mod tests {
             if let Some(&(s, j, _)) = edges.get(&(b, a)) {
                 let c = tris[t].0[(i + 2) % 3];
                 let d = tris[s].0[(j + 2) % 3];
-                assert!(incircle(uv(a), uv(b), uv(c), uv(d)) <= 0.0);
+                assert!(!incircle(uv(a), uv(b), uv(c), uv(d)));
             }
         }
     }

@@ -81,7 +81,7 @@ pub(super) fn should_flip(mesh: &TriMesh, t: u32, i: usize) -> bool {
 
 /// Whether `d` lies strictly inside the circumcircle of the counter-clockwise
 /// triangle `(a, b, c)`, beyond rounding.
-fn incircle(a: DVec2, b: DVec2, c: DVec2, d: DVec2) -> bool {
+pub(super) fn incircle(a: DVec2, b: DVec2, c: DVec2, d: DVec2) -> bool {
     let (ad, bd, cd) = (a - d, b - d, c - d);
     let (la, lb, lc) = (
         ad.length_squared(),

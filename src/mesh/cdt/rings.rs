@@ -24,7 +24,7 @@ use std::ops::Range;
 
 use rayon::prelude::*;
 
-use super::cavity::{self, Cavity, ChainView};
+use super::cavity::{self, Cavity};
 use super::patch::{PatchInfo, Vertex};
 use super::region::Region;
 use super::screen::Screen;
@@ -60,18 +60,18 @@ pub(super) struct Rings {
 /// seam to seam, or a pole — one pole vertex under the middle of each segment of
 /// the neighbouring row (they weld into one on output).
 #[derive(Clone, Copy, Debug)]
-enum Kind {
+pub(super) enum Kind {
     Row,
     Pole,
 }
 
 /// One chain: its vertices `first..first + len` of the mesh's vertices.
 #[derive(Clone, Copy, Debug)]
-struct Chain {
-    v: f64,
-    kind: Kind,
-    first: u32,
-    len: usize,
+pub(super) struct Chain {
+    pub v: f64,
+    pub kind: Kind,
+    pub first: u32,
+    pub len: usize,
 }
 
 /// The structured mesh of `region` when it is a whole patch closed in u, holes
@@ -147,19 +147,10 @@ pub(super) fn triangulate(
     if mesh.verts.len() + region.vertex_count() > budget {
         return Err(CdtError::BudgetExceeded { limit: budget });
     }
-    let views: Vec<ChainView> = chains
-        .iter()
-        .map(|c| ChainView {
-            v: c.v,
-            row: matches!(c.kind, Kind::Row),
-            first: c.first,
-            len: c.len,
-        })
-        .collect();
     let cavities = if region.holes.is_empty() {
         Vec::new()
     } else {
-        match cavity::plan(&mesh, &views, region) {
+        match cavity::plan(&mesh, &chains, region) {
             Some(cavities) => cavities,
             None => return Ok(None),
         }
@@ -171,7 +162,7 @@ pub(super) fn triangulate(
         .map(|k| matches!((chains[k].kind, chains[k + 1].kind), (Kind::Row, Kind::Row)))
         .collect();
     if !cavities.is_empty() {
-        let Some(range) = cavity::fill(info, &mut mesh, &views, &cavities, region)? else {
+        let Some(range) = cavity::fill(info, &mut mesh, &chains, &cavities, region)? else {
             return Ok(None);
         };
         // The cavities' edges along the v sides are loop segments too.
