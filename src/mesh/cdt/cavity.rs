@@ -27,7 +27,7 @@ use super::flip::{incircle, strictly_ccw};
 use super::initial;
 use super::metric::Metric;
 use super::patch::{PatchInfo, Vertex};
-use super::region::{Region, UvLoop};
+use super::region::{Region, UvLoop, bounds_of};
 use super::rings::{Chain, Kind};
 use super::trimesh::{NONE, TriMesh};
 use super::{CdtError, MeshStats};
@@ -60,8 +60,8 @@ impl Cavity {
     }
 }
 
-/// The cavities of `region`'s holes in the chains, sorted by their left cut, none
-/// overlapping another in any strip; `None` when a cavity would reach the seam, a
+/// The cavities of `region`'s holes in the chains, none overlapping another in
+/// any strip (each strip orders those crossing it by their cuts); `None` when a cavity would reach the seam, a
 /// pole or past the outermost chains.
 pub(super) fn plan(mesh: &TriMesh, chains: &[Chain], region: &Region) -> Option<Vec<Cavity>> {
     let mut cavities: Vec<Cavity> = Vec::with_capacity(region.holes.len());
@@ -90,17 +90,12 @@ pub(super) fn plan(mesh: &TriMesh, chains: &[Chain], region: &Region) -> Option<
         }
         break;
     }
-    cavities.sort_by_key(|c| (c.lo, c.cuts[0].0));
     Some(cavities)
 }
 
 /// The parameter bounds of a loop's vertices, `None` when not finite.
 fn loop_bounds(hole: &UvLoop) -> Option<(DVec2, DVec2)> {
-    let first = *hole.uv.first()?;
-    let bounds = hole
-        .uv
-        .iter()
-        .fold((first, first), |(lo, hi), &p| (lo.min(p), hi.max(p)));
+    let bounds = bounds_of(&hole.uv);
     (bounds.0.is_finite() && bounds.1.is_finite()).then_some(bounds)
 }
 

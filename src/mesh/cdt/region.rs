@@ -187,7 +187,7 @@ pub(super) fn inside_by_crossings(crossings: &[f64], u: f64) -> bool {
 }
 
 /// Bounds `(min, max)` of a point set (`(0, 0)` twice when empty).
-fn bounds_of(points: &[DVec2]) -> (DVec2, DVec2) {
+pub(super) fn bounds_of(points: &[DVec2]) -> (DVec2, DVec2) {
     let Some(&first) = points.first() else {
         return (DVec2::ZERO, DVec2::ZERO);
     };
