@@ -3,7 +3,8 @@
 //! as in `vesselcad bench`) and prints, per kind, the mean and 99th-percentile update time, each
 //! stage's share and the work counters. Run under `perf record` to profile edits.
 //!
-//! `cargo run --release --example tick_profile -- [vessels] [edits]`
+//! `cargo run --release --example tick_profile -- [vessels] [edits]`; `ONLY=<kind>`
+//! (e.g. `ONLY="nozzle elevation"`) applies only edits of that kind.
 
 use std::collections::BTreeMap;
 use std::time::Instant;
@@ -58,12 +59,17 @@ fn main() {
     let mut designs = design.vessels.clone();
     let mut rng = SplitMix64::new(7);
     let mut stats: BTreeMap<&'static str, Totals> = BTreeMap::new();
+    let only = std::env::var("ONLY").ok();
+    edits_begin();
     for _ in 0..edits {
         let i = rng.int(0, designs.len() as u64 - 1) as usize;
         let Some((edit, after)) = draw_edit(&mut rng, &designs[i]) else {
             continue;
         };
         let what = kind(&designs[i], &edit);
+        if only.as_deref().is_some_and(|o| o != what) {
+            continue;
+        }
         if model.apply(edit).is_err() {
             continue;
         }
@@ -115,6 +121,14 @@ fn main() {
         percentile(&every, 0.5),
         percentile(&every, 0.99)
     );
+}
+
+/// Marks the end of the build: `valgrind --tool=callgrind
+/// --dump-before='*edits_begin*'` writes the build's counts to a first file and
+/// the edits' alone to a second.
+#[inline(never)]
+fn edits_begin() {
+    std::hint::black_box(());
 }
 
 /// The `q` quantile of sorted `times` (nearest rank), 0 when empty.

@@ -14,6 +14,10 @@ pub struct WorkCounters {
     pub shapes_rebuilt: u64,
     /// Nozzle openings (neck–host intersections) recomputed.
     pub openings_cut: u64,
+    /// Of the recomputed openings, those in a straight course whose nozzle only
+    /// moved along the course's axis: placed again from their kept canonical cut
+    /// instead of marched (see `mesh::cut_opening_reusing`).
+    pub openings_placed: u64,
     /// Openings whose host or nozzle moved or changed but whose inputs (patches,
     /// relative placement, pad, tolerance) came out bit for bit the same, so
     /// they were not cut again.

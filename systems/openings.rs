@@ -22,7 +22,7 @@ use crate::components::{
     MountedOn, Mounts, Opening, PadOf, PadPatch, PartFrame, PatchSurface, Patches, Shape,
 };
 use crate::design::RuleViolation;
-use crate::mesh::{Cut, HostTrim, cut_opening, pad_patch};
+use crate::mesh::{AxialCut, Cut, HostTrim, cut_opening_reusing, pad_patch};
 use crate::parts::Patch;
 
 /// The host patches each nozzle's opening was last cut in (to re-lay-out a host
@@ -39,7 +39,9 @@ type CutResult = Result<(Vec<(Entity, HostTrim)>, Cut, Option<Patch>), String>;
 /// relative placements the cut and the pad patch are computed with. When all are
 /// the same — bit for bit, as when a course below moves both the host and the
 /// nozzle by a whole number of millimetres — cutting again would give the same
-/// opening, so it is skipped.
+/// opening, so it is skipped. With the same neck, pad and tolerance, an opening
+/// in a straight course that only moved along the course's axis is placed again
+/// from the kept [`AxialCut`] without marching.
 #[derive(Component, Clone, Debug)]
 pub struct OpeningInput {
     neck: Arc<Patch>,
@@ -50,10 +52,12 @@ pub struct OpeningInput {
     nozzle_in_host: DAffine3,
     /// `nozzle_frame⁻¹ · host_frame` (the pad patch's placement).
     host_in_nozzle: DAffine3,
+    /// The loops on the canonical host, when the opening lies in a straight course.
+    axial: Option<Arc<AxialCut>>,
 }
 
 impl OpeningInput {
-    fn of(job: &Job, tolerance: f64) -> Self {
+    fn of(job: &Job, tolerance: f64, axial: Option<Arc<AxialCut>>) -> Self {
         Self {
             neck: job.neck.clone(),
             hosts: job.hosts.iter().map(|(_, p)| p.clone()).collect(),
@@ -61,7 +65,24 @@ impl OpeningInput {
             tolerance,
             nozzle_in_host: job.host_frame.inverse() * job.frame,
             host_in_nozzle: job.frame.inverse() * job.host_frame,
+            axial,
         }
+    }
+
+    /// The kept canonical cut, if the opening is cut again with the same neck,
+    /// pad and tolerance (it then applies wherever the nozzle moved along the
+    /// course's axis).
+    fn kept_for(&self, job: &Job, tolerance: f64) -> Option<Arc<AxialCut>> {
+        let same = Arc::ptr_eq(&self.neck, &job.neck)
+            && self.pad_od.map(f64::to_bits) == job.pad_od.map(f64::to_bits)
+            && self.tolerance.to_bits() == tolerance.to_bits();
+        same.then(|| self.axial.clone()).flatten()
+    }
+
+    /// Heap bytes held by the kept canonical cut (the patches are the model's).
+    pub fn heap_bytes(&self) -> usize {
+        self.hosts.capacity() * std::mem::size_of::<Arc<Patch>>()
+            + self.axial.as_ref().map_or(0, |a| a.heap_bytes())
     }
 
     /// Same inputs: same patches (by identity), equal numbers, equal bits.
@@ -95,6 +116,8 @@ struct Job {
     frame: DAffine3,
     host_frame: DAffine3,
     hosts: Vec<(Entity, Arc<Patch>)>,
+    /// The canonical cut kept from the last cut, if it may apply.
+    kept: Option<Arc<AxialCut>>,
 }
 
 /// The error of an opening that cannot be cut: the nozzle (or boot), and as value
@@ -195,7 +218,7 @@ pub fn cut_openings(world: &mut World) {
             Some(Shape::Nozzle(_, pad)) => pad.map(|p| p.0),
             _ => None,
         };
-        let job = Job {
+        let mut job = Job {
             nozzle,
             pad_od,
             neck_patch,
@@ -203,31 +226,40 @@ pub fn cut_openings(world: &mut World) {
             frame,
             host_frame,
             hosts,
+            kept: None,
         };
+        let last = world
+            .get::<OpeningInput>(nozzle)
+            .filter(|_| world.get::<Opening>(nozzle).is_some());
         // Cut before from the same inputs (and it succeeded): nothing to do.
-        let unchanged = world.get::<Opening>(nozzle).is_some()
-            && world
-                .get::<OpeningInput>(nozzle)
-                .is_some_and(|input| input.same(&OpeningInput::of(&job, tolerance)));
+        let unchanged =
+            last.is_some_and(|input| input.same(&OpeningInput::of(&job, tolerance, None)));
         if unchanged {
             skipped += 1;
         } else {
+            job.kept = last.and_then(|input| input.kept_for(&job, tolerance));
             jobs.push(job);
         }
     }
-    let results: Vec<(Entity, Entity, CutResult, OpeningInput)> = jobs
+    let results: Vec<(Entity, Entity, CutResult, OpeningInput, bool)> = jobs
         .par_iter()
         .map(|job| {
             let hosts: Vec<&Patch> = job.hosts.iter().map(|(_, p)| p.as_ref()).collect();
-            let result = cut_opening(
+            let mut axial = None;
+            let mut reused = false;
+            let result = cut_opening_reusing(
                 &job.neck,
                 job.pad_od,
                 &job.frame,
                 &job.host_frame,
                 &hosts,
                 tolerance,
+                job.kept.as_ref(),
             )
-            .and_then(|cut| {
+            .and_then(|c| {
+                axial = c.axial;
+                reused = c.reused;
+                let cut = c.cut;
                 // A pad is only cut on one host patch (`cut_opening` refuses one
                 // across a seam).
                 let pad = match (&cut.pad, cut.hosts.first()) {
@@ -247,13 +279,15 @@ pub fn cut_openings(world: &mut World) {
                 job.nozzle,
                 job.neck_patch,
                 result,
-                OpeningInput::of(job, tolerance),
+                OpeningInput::of(job, tolerance, axial),
+                reused,
             )
         })
         .collect();
     let mut cut_count = 0;
+    let mut placed = 0;
     let mut failures = 0;
-    for (nozzle, neck_patch, result, input) in results {
+    for (nozzle, neck_patch, result, input, reused) in results {
         match result {
             Ok((hosts, cut, pad)) => {
                 let opening = Opening {
@@ -277,6 +311,7 @@ pub fn cut_openings(world: &mut World) {
                     }
                 };
                 cut_count += u64::from(changed);
+                placed += u64::from(changed && reused);
                 if changed {
                     world.resource_mut::<DirtyParts>().openings.push(nozzle);
                 }
@@ -294,5 +329,6 @@ pub fn cut_openings(world: &mut World) {
     let mut counters = world.resource_mut::<WorkCounters>();
     counters.openings_cut += cut_count;
     counters.openings_unchanged += skipped;
+    counters.openings_placed += placed;
     counters.failures += failures;
 }

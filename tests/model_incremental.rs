@@ -74,6 +74,39 @@ fn nozzle_orientation_moves_only_that_nozzle() {
 }
 
 #[test]
+fn nozzle_elevation_places_its_opening_without_marching_and_shares_its_neck_mesh() {
+    let mut m = model("small-plant");
+    m.take_changes();
+    let mut n = m.design().vessels[0].nozzles[0].clone();
+    n.elevation = n.elevation.map(|e| e + 300.0);
+    let c = m
+        .edit(Edit::SetNozzle {
+            vessel: "V-101".into(),
+            nozzle: n,
+        })
+        .unwrap();
+    // The nozzle only moved along its course's axis: the opening is placed
+    // from its kept canonical cut and the neck's region comes out the same, so
+    // the neck keeps its mesh; only the host and the pad (a piece of the host
+    // surface, moved) are meshed again. Turning it (below) re-meshes all three.
+    assert_eq!((c.openings_cut, c.openings_placed), (1, 1), "{c:?}");
+    assert_eq!(c.meshes_rebuilt, 2, "{c:?}");
+    assert_matches_full_build(&m);
+    // Turning it is not a move along the axis: marched again.
+    let mut n = m.design().vessels[0].nozzles[0].clone();
+    n.orientation += 30.0;
+    let c = m
+        .edit(Edit::SetNozzle {
+            vessel: "V-101".into(),
+            nozzle: n,
+        })
+        .unwrap();
+    assert_eq!((c.openings_cut, c.openings_placed), (1, 0), "{c:?}");
+    assert_eq!(c.meshes_rebuilt, 3, "{c:?}");
+    assert_matches_full_build(&m);
+}
+
+#[test]
 fn nozzle_projection_rebuilds_only_that_nozzle() {
     let mut m = model("small-plant");
     m.take_changes();
@@ -93,9 +126,15 @@ fn nozzle_projection_rebuilds_only_that_nozzle() {
         c.meshes_rebuilt >= c.patches_rebuilt && c.meshes_rebuilt <= 9,
         "{c:?}"
     );
-    assert_eq!(
-        m.take_changes().changed.into_iter().collect::<Vec<_>>(),
-        vec!["V-101/N2".to_string(), "V-101/S1".to_string()]
+    // The host changes only if the loop's samples moved (a longer radial neck
+    // meets the course in the same curve, marched on the same canonical host).
+    let changed = m.take_changes().changed;
+    assert!(changed.contains("V-101/N2"), "{changed:?}");
+    assert!(
+        changed
+            .iter()
+            .all(|id| id == "V-101/N2" || id == "V-101/S1"),
+        "{changed:?}"
     );
     assert_matches_full_build(&m);
 }
@@ -283,6 +322,11 @@ fn lengthening_a_course_moves_what_is_above_without_rebuilding_it() {
     // head move; shell nozzles keep their elevation above the datum, so they stay.
     assert_eq!(c.shapes_rebuilt, 1, "{c:?}");
     assert_eq!(c.frames_updated, 4, "{c:?}");
+    // The shell nozzles on S1 and S2 are cut again, but each only moved along its
+    // course's axis: all placed from their canonical cuts, without marching, and
+    // no neck is meshed again — only the two courses and one pad.
+    assert_eq!((c.openings_cut, c.openings_placed), (8, 8), "{c:?}");
+    assert_eq!(c.meshes_rebuilt, 3, "{c:?}");
     let changed = m.take_changes().changed;
     for id in ["C-201/H2", "C-201/N3", "C-201/R1", "C-201/S1", "C-201/S2"] {
         assert!(changed.contains(id), "{id} missing from {changed:?}");

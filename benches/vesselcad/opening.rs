@@ -1,6 +1,7 @@
 //! Nozzle openings: one neck–host intersection loop (the Geometry stage's work per
 //! cut nozzle) on a shell and on heads at the plant's 1 mm chordal tolerance, a
-//! whole cut with a reinforcing pad (two loops), and the region layout of a shell
+//! whole cut with a reinforcing pad (two loops) and the same cut placed again
+//! after a move along the shell's axis, and the region layout of a shell
 //! course holding six openings (the Tessellate stage's work per host patch before
 //! meshing), afresh and with the course's sides kept from its last layout. These are the costs a nozzle or shell edit pays per opening.
 
@@ -10,7 +11,8 @@ use std::time::Duration;
 use criterion::{Criterion, criterion_group};
 use glam::{DAffine3, DMat3, DVec3};
 use vesselcad::mesh::{
-    PatchSides, TessellationOptions, cut_opening, host_region, host_region_with,
+    PatchSides, TessellationOptions, cut_opening, cut_opening_reusing, host_region,
+    host_region_with,
 };
 use vesselcad::nurbs::{NurbsSurface, neck_host_intersection};
 use vesselcad::parts::heads::{Head, HeadKind};
@@ -152,6 +154,39 @@ fn bench(c: &mut Criterion) {
                 )
                 .expect("a cut"),
             )
+        })
+    });
+
+    // The same cut after the nozzle moved 100 mm along the course's axis, placed
+    // from the canonical cut kept from the first (what an elevation edit, or a
+    // longer course below, costs per opening).
+    let kept = cut_opening_reusing(
+        &neck,
+        pad_od,
+        &frame,
+        &DAffine3::IDENTITY,
+        &[&course],
+        TOLERANCE,
+        None,
+    )
+    .expect("a cut")
+    .axial
+    .expect("a course keeps its canonical cut");
+    let moved = DAffine3::from_translation(DVec3::new(0.0, 0.0, 100.0)) * frame;
+    group.bench_function("cut: 8in with pad moved along the shell's axis", |b| {
+        b.iter(|| {
+            let cut = cut_opening_reusing(
+                &neck,
+                pad_od,
+                &moved,
+                &DAffine3::IDENTITY,
+                &[&course],
+                TOLERANCE,
+                Some(&kept),
+            )
+            .expect("a cut");
+            assert!(cut.reused);
+            black_box(cut)
         })
     });
 

@@ -5,6 +5,7 @@
 //! finished mesh as a [`PackedMesh`] (exact `f64` positions, octahedral normals,
 //! narrow indices); exporters convert them to `f32` buffers.
 
+mod axial;
 pub mod cdt;
 mod edges;
 mod grid;
@@ -15,6 +16,7 @@ mod options;
 mod packed;
 mod seams;
 
+pub use axial::AxialCut;
 pub use edges::{MAX_EDGE_SEGMENTS, edge_parameters, edge_segments};
 pub use grid::tessellate;
 pub use instances::{MeshInstances, mesh_key};
@@ -22,7 +24,7 @@ pub use layout::{
     LayoutError, PatchSides, SEAM_CUTS, closed_in_u, host_region, host_region_with, pad_region,
     patch_region,
 };
-pub use opening::{Cut, PAD_PATCH, cut_opening, pad_patch};
+pub use opening::{Cut, PAD_PATCH, ReusableCut, cut_opening, cut_opening_reusing, pad_patch};
 pub use options::{OptionsError, TessellationOptions};
 pub use packed::{OctNormal, PackedMesh};
 pub use seams::{HostTrim, Notch};

@@ -12,11 +12,13 @@
 //! that fails.
 
 use std::f64::consts::TAU;
+use std::sync::Arc;
 
 use glam::{DAffine3, DVec2, DVec3};
 
 use crate::nurbs::builders::{line, revolve};
 
+use super::axial::{AxialCut, Extrusion, axial_range, canonical_host, split_placement};
 use super::seams::{HostTrim, Placed, insert_seam_samples, split_at_seams};
 use crate::nurbs::NurbsSurface;
 use crate::nurbs::intersect::{
@@ -68,9 +70,58 @@ pub fn cut_opening(
     host_patches: &[&Patch],
     tolerance: f64,
 ) -> Result<Cut, String> {
+    cut_opening_reusing(
+        neck,
+        pad_od,
+        nozzle_frame,
+        host_frame,
+        host_patches,
+        tolerance,
+        None,
+    )
+    .map(|c| c.cut)
+}
+
+/// An opening as [`cut_opening_reusing`] gives it.
+#[derive(Clone, Debug)]
+pub struct ReusableCut {
+    /// The opening.
+    pub cut: Cut,
+    /// Its loops on the canonical host, when it lies in a straight course: keep it
+    /// to place the opening again after a move along the course's axis.
+    pub axial: Option<Arc<AxialCut>>,
+    /// Whether it was placed from the `kept` cut without marching.
+    pub reused: bool,
+}
+
+/// [`cut_opening`], placing the opening from `kept` without marching when the
+/// nozzle only moved along the axis of the straight course `kept` was cut in (see
+/// [`axial`](super::axial)). `kept` must come from a cut of the same neck, pad and
+/// tolerance; the result is bit for bit the one a fresh cut gives.
+pub fn cut_opening_reusing(
+    neck: &Patch,
+    pad_od: Option<f64>,
+    nozzle_frame: &DAffine3,
+    host_frame: &DAffine3,
+    host_patches: &[&Patch],
+    tolerance: f64,
+    kept: Option<&Arc<AxialCut>>,
+) -> Result<ReusableCut, String> {
     let relative = host_frame.inverse() * *nozzle_frame;
-    let place = |s: &NurbsSurface| {
-        s.transformed(&relative)
+    let (across, t) = split_placement(&relative);
+    if let Some(kept) = kept
+        && let Some(host) = host_patches.get(kept.host())
+        && kept.fits(&host.surface, &across)
+        && let Some(cut) = kept.place(&host.surface, t)
+    {
+        return Ok(ReusableCut {
+            cut,
+            axial: Some(kept.clone()),
+            reused: true,
+        });
+    }
+    let place = |s: &NurbsSurface, at: &DAffine3| {
+        s.transformed(at)
             .map_err(|e| format!("cannot place the nozzle in its host's frame: {e}"))
     };
     // The pad's outside cylinder spans the neck's height (in the nozzle frame).
@@ -80,8 +131,7 @@ pub fn cut_opening(
         .iter()
         .fold(0.0f64, |m, p| m.max(p.z))
         .max(1.0);
-    let neck = place(&neck.surface)?;
-    let pad = match pad_od {
+    let pad_cylinder = match pad_od {
         None => None,
         Some(od) => {
             let generator = line(
@@ -89,30 +139,61 @@ pub fn cut_opening(
                 DVec3::new(od / 2.0, 0.0, top),
             )
             .map_err(|e| e.to_string())?;
-            let cylinder =
-                revolve(&generator, DVec3::ZERO, DVec3::Z, TAU).map_err(|e| e.to_string())?;
-            Some(place(&cylinder)?)
+            Some(revolve(&generator, DVec3::ZERO, DVec3::Z, TAU).map_err(|e| e.to_string())?)
         }
     };
+    let neck_placed = place(&neck.surface, &relative)?;
+    let pad = pad_cylinder
+        .as_ref()
+        .map(|c| place(c, &relative))
+        .transpose()?;
+    // Placed at the canonical position along a course's axis, when a host patch
+    // is one (computed at the first such patch).
+    let mut canonical: Option<(NurbsSurface, Option<NurbsSurface>)> = None;
     let mut last = String::from("the host has no patch");
-    for k in try_order(&neck, host_patches) {
+    for k in try_order(&neck_placed, host_patches) {
         let patch = host_patches[k];
-        // The neck's and the pad's loops are independent: marched side by side
-        // (an edit's latency is that of the longer one).
-        let (neck_loop, pad_loop) = rayon::join(
-            || loop_on(&neck, &patch.surface, tolerance),
-            || {
-                pad.as_ref()
-                    .map(|p| loop_on(p, &patch.surface, tolerance).map_err(|e| format!("pad: {e}")))
-            },
-        );
-        let result = neck_loop.and_then(|neck_loop| {
-            Ok(Cut {
-                hosts: vec![(k, HostTrim::Hole)],
-                neck: neck_loop,
-                pad: pad_loop.transpose()?,
-            })
-        });
+        let result = match Extrusion::of(&patch.surface) {
+            Some(ext) => {
+                if canonical.is_none() {
+                    let n = place(&neck.surface, &across)?;
+                    let p = pad_cylinder
+                        .as_ref()
+                        .map(|c| place(c, &across))
+                        .transpose()?;
+                    canonical = Some((n, p));
+                }
+                let Some((n, p)) = &canonical else {
+                    continue;
+                };
+                let zs = axial_range(std::iter::once(n).chain(p));
+                canonical_host(&patch.surface, &ext, zs)
+                    .and_then(|host| loops(n, p.as_ref(), &host, tolerance))
+                    .and_then(|(neck_loop, pad_loop)| {
+                        let axial =
+                            AxialCut::new(k, &patch.surface, &ext, &across, neck_loop, pad_loop);
+                        let cut = axial
+                            .place(&patch.surface, t)
+                            .ok_or_else(|| "the loop runs past an end of the course".to_string())?;
+                        Ok(ReusableCut {
+                            cut,
+                            axial: Some(Arc::new(axial)),
+                            reused: false,
+                        })
+                    })
+            }
+            None => loops(&neck_placed, pad.as_ref(), &patch.surface, tolerance).map(
+                |(neck_loop, pad_loop)| ReusableCut {
+                    cut: Cut {
+                        hosts: vec![(k, HostTrim::Hole)],
+                        neck: neck_loop,
+                        pad: pad_loop,
+                    },
+                    axial: None,
+                    reused: false,
+                },
+            ),
+        };
         match result {
             Ok(cut) => return Ok(cut),
             Err(e) => {
@@ -123,10 +204,29 @@ pub fn cut_opening(
             }
         }
     }
-    match cut_across_seams(&neck, pad.is_some(), host_patches, tolerance)? {
-        Some(cut) => Ok(cut),
+    match cut_across_seams(&neck_placed, pad.is_some(), host_patches, tolerance)? {
+        Some(cut) => Ok(ReusableCut {
+            cut,
+            axial: None,
+            reused: false,
+        }),
         None => Err(last),
     }
+}
+
+/// The neck's and the pad's loops on one host surface. They are independent:
+/// marched side by side (an edit's latency is that of the longer one).
+fn loops(
+    neck: &NurbsSurface,
+    pad: Option<&NurbsSurface>,
+    host: &NurbsSurface,
+    tolerance: f64,
+) -> Result<(IntersectionLoop, Option<IntersectionLoop>), String> {
+    let (neck_loop, pad_loop) = rayon::join(
+        || loop_on(neck, host, tolerance),
+        || pad.map(|p| loop_on(p, host, tolerance).map_err(|e| format!("pad: {e}"))),
+    );
+    Ok((neck_loop?, pad_loop.transpose()?))
 }
 
 /// The order in which to try the host patches for the whole loop: by how much of

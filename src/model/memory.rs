@@ -32,8 +32,9 @@ pub struct MemoryBreakdown {
     /// Patch regions: the (u, v) loops meshed within, and the sampled sides kept
     /// for host patches (`systems::HostSides`).
     pub regions: usize,
-    /// Openings: intersection loops (3D points and (u, v) on both surfaces) and
-    /// notches.
+    /// Openings: intersection loops (3D points and (u, v) on both surfaces),
+    /// notches, and the inputs each was cut from (with the canonical loops kept
+    /// for openings in straight courses).
     pub openings: usize,
     /// Patch entities.
     pub patches: usize,
@@ -106,6 +107,13 @@ pub(crate) fn breakdown(world: &World) -> MemoryBreakdown {
                         .sum::<usize>();
                 }
             }
+        }
+    }
+    // The inputs each opening was cut from, with the canonical cuts kept for
+    // straight courses.
+    if let Some(mut q) = world.try_query::<&crate::systems::OpeningInput>() {
+        for input in q.iter(world) {
+            out.openings += size_of::<crate::systems::OpeningInput>() + input.heap_bytes();
         }
     }
     out

@@ -369,6 +369,7 @@ fn work_json(w: &WorkCounters) -> Value {
         "frames_updated": w.frames_updated,
         "shapes_rebuilt": w.shapes_rebuilt,
         "openings_cut": w.openings_cut,
+        "openings_placed": w.openings_placed,
         "regions_laid_out": w.regions_laid_out,
         "patches_rebuilt": w.patches_rebuilt,
         "meshes_rebuilt": w.meshes_rebuilt,

@@ -1,0 +1,430 @@
+//! Openings in a straight course, marched once per placement across its axis.
+//!
+//! A course is a cross-section swept straight along its axis (part-frame Z).
+//! Moving a nozzle along that axis, to a new elevation or because a course
+//! below got longer, moves its neck–host loop by the same translation and
+//! changes nothing else. `opening::cut_opening` therefore marches such a loop
+//! on a canonical copy of the host: the same cross-section, with the nozzle
+//! moved along the axis to 0. It then places the result where the nozzle is
+//! ([`AxialCut::place`]):
+//! - the points move along the axis;
+//! - the host v is read off each point's axial coordinate;
+//! - the neck (u, v) and the host u stay as they are.
+//!
+//! The canonical march depends only on the cross-section, the nozzle's
+//! placement across the axis, its neck, its pad and the tolerance. So the Geometry stage keeps
+//! the [`AxialCut`] and, for an opening that only moved along the axis, places
+//! it again without marching. The result has the very bits a fresh cut gives, so
+//! the incremental model stays byte-identical to a full build. The neck's region
+//! is then unchanged too, and the Tessellate stage shares its old mesh.
+
+use glam::{DAffine3, DVec2, DVec3, DVec4};
+
+use super::seams::HostTrim;
+use crate::nurbs::intersect::IntersectionLoop;
+use crate::nurbs::{KnotVector, NurbsSurface};
+
+/// How far the two rows' axial coordinates may stray from one value, relative to
+/// the course's length (rounding of z·w / w).
+const ROW_SLACK: f64 = 1e-12;
+
+/// A host patch swept straight along part-frame Z: degree 1 and two control rows
+/// in v, equal x·w, y·w and w in both rows, each row at one z.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub(super) struct Extrusion {
+    /// Axial coordinate of the v0 row.
+    z0: f64,
+    /// Axial coordinate of the v1 row.
+    z1: f64,
+    /// The v-domain.
+    v: (f64, f64),
+}
+
+impl Extrusion {
+    /// The extrusion `surface` is, if it is one.
+    pub(super) fn of(surface: &NurbsSurface) -> Option<Self> {
+        if surface.v_degree() != 1 || surface.v_count() != 2 {
+            return None;
+        }
+        let points = surface.homogeneous_points();
+        let z = |p: DVec4| p.z / p.w;
+        let (z0, z1) = (z(points[0]), z(points[1]));
+        if !(z0.is_finite() && z1.is_finite()) || z0 == z1 {
+            return None;
+        }
+        let slack = ROW_SLACK * (z1 - z0).abs().max(z0.abs()).max(z1.abs());
+        let swept = points.chunks_exact(2).all(|row| {
+            let (a, b) = (row[0], row[1]);
+            a.x.to_bits() == b.x.to_bits()
+                && a.y.to_bits() == b.y.to_bits()
+                && a.w.to_bits() == b.w.to_bits()
+                && (z(a) - z0).abs() <= slack
+                && (z(b) - z1).abs() <= slack
+        });
+        swept.then_some(Self {
+            z0,
+            z1,
+            v: surface.v_knots().domain(),
+        })
+    }
+
+    /// The v at axial coordinate `z` (v is linear in z: both rows share weights).
+    fn v_at(&self, z: f64) -> f64 {
+        let (v0, v1) = self.v;
+        v0 + (z - self.z0) / (self.z1 - self.z0) * (v1 - v0)
+    }
+
+    /// Whether `v` lies strictly inside the v-domain.
+    fn holds(&self, v: f64) -> bool {
+        v > self.v.0 && v < self.v.1
+    }
+}
+
+/// The bits of everything a canonical cut depends on besides the neck, the pad
+/// and the tolerance: the host's cross-section (u knots, x·w, y·w, w of its
+/// control points, which way v runs) and the nozzle's placement across the axis.
+fn key(surface: &NurbsSurface, ext: &Extrusion, across: &DAffine3) -> Vec<u64> {
+    let knots = surface.u_knots();
+    let mut key = Vec::with_capacity(3 + knots.len() + 3 * surface.u_count() + 12);
+    key.push(knots.degree() as u64);
+    key.push(knots.len() as u64);
+    key.extend(knots.as_slice().iter().map(|k| k.to_bits()));
+    for row in surface.homogeneous_points().chunks_exact(2) {
+        key.extend([row[0].x, row[0].y, row[0].w].map(f64::to_bits));
+    }
+    key.push(u64::from(ext.z1 > ext.z0));
+    key.extend(across.to_cols_array().map(f64::to_bits));
+    key
+}
+
+/// The nozzle's placement in the host split into its part along the axis (`t`)
+/// and the rest (`across`, the placement with its axial translation zeroed):
+/// `relative = translate(t·Z) · across`, exactly.
+pub(super) fn split_placement(relative: &DAffine3) -> (DAffine3, f64) {
+    let t = relative.translation.z;
+    let mut across = *relative;
+    across.translation.z = 0.0;
+    (across, t)
+}
+
+/// The canonical host for a nozzle whose placed neck (and pad) span the axial
+/// range `zs`: the cross-section of `surface` swept over that range widened by
+/// its own length and 1 mm on each side, v over [0, 1] running the same way as in
+/// `surface`. The loop lies on the neck, so within the neck's control net and
+/// well inside this host.
+pub(super) fn canonical_host(
+    surface: &NurbsSurface,
+    ext: &Extrusion,
+    zs: (f64, f64),
+) -> Result<NurbsSurface, String> {
+    let margin = (zs.1 - zs.0) + 1.0;
+    let (lo, hi) = (zs.0 - margin, zs.1 + margin);
+    let (a, b) = if ext.z1 > ext.z0 { (lo, hi) } else { (hi, lo) };
+    let points = surface
+        .homogeneous_points()
+        .chunks_exact(2)
+        .flat_map(|row| {
+            let p = row[0];
+            [
+                DVec4::new(p.x, p.y, a * p.w, p.w),
+                DVec4::new(p.x, p.y, b * p.w, p.w),
+            ]
+        })
+        .collect();
+    let v = KnotVector::try_new(1, vec![0.0, 0.0, 1.0, 1.0]).map_err(|e| e.to_string())?;
+    NurbsSurface::try_new(surface.u_knots().clone(), v, points)
+        .map_err(|e| format!("canonical host: {e}"))
+}
+
+/// The axial range of the control nets of `surfaces`.
+pub(super) fn axial_range<'a>(surfaces: impl IntoIterator<Item = &'a NurbsSurface>) -> (f64, f64) {
+    surfaces
+        .into_iter()
+        .flat_map(|s| s.homogeneous_points().iter().map(|p| p.z / p.w))
+        .fold((f64::INFINITY, f64::NEG_INFINITY), |(lo, hi), z| {
+            (lo.min(z), hi.max(z))
+        })
+}
+
+/// An opening's loops marched on a course's canonical host (see the module
+/// documentation), kept to place it again when the nozzle only moves along the
+/// course's axis.
+#[derive(Clone, Debug, PartialEq)]
+pub struct AxialCut {
+    /// The host patch it was cut in, by index among the host part's patches.
+    host: usize,
+    /// See [`key`].
+    key: Vec<u64>,
+    /// The neck's loop on the canonical host.
+    neck: IntersectionLoop,
+    /// The pad's outer loop on the canonical host.
+    pad: Option<IntersectionLoop>,
+}
+
+impl AxialCut {
+    /// A cut of host patch `host` (an extrusion `ext`) from loops marched on its
+    /// canonical host with the nozzle placed at `across`.
+    pub(super) fn new(
+        host: usize,
+        surface: &NurbsSurface,
+        ext: &Extrusion,
+        across: &DAffine3,
+        neck: IntersectionLoop,
+        pad: Option<IntersectionLoop>,
+    ) -> Self {
+        Self {
+            host,
+            key: key(surface, ext, across),
+            neck,
+            pad,
+        }
+    }
+
+    /// The host patch index it was cut in.
+    pub(super) fn host(&self) -> usize {
+        self.host
+    }
+
+    /// Whether this cut applies to a nozzle placed at `across` in host patch
+    /// `surface` (same cross-section, same placement across the axis, bit for
+    /// bit).
+    pub(super) fn fits(&self, surface: &NurbsSurface, across: &DAffine3) -> bool {
+        Extrusion::of(surface).is_some_and(|ext| key(surface, &ext, across) == self.key)
+    }
+
+    /// The opening in host patch `surface` with the nozzle `t` along the axis from
+    /// the canonical placement: `None` when a loop does not lie strictly within the
+    /// patch's v-domain (it crosses an end of the course).
+    pub(super) fn place(&self, surface: &NurbsSurface, t: f64) -> Option<super::Cut> {
+        let ext = Extrusion::of(surface)?;
+        let neck = placed(&self.neck, &ext, t)?;
+        let pad = match &self.pad {
+            Some(p) => Some(placed(p, &ext, t)?),
+            None => None,
+        };
+        Some(super::Cut {
+            hosts: vec![(self.host, HostTrim::Hole)],
+            neck,
+            pad,
+        })
+    }
+
+    /// Heap bytes held.
+    pub fn heap_bytes(&self) -> usize {
+        let bytes = |l: &IntersectionLoop| {
+            l.points.capacity() * std::mem::size_of::<DVec3>()
+                + (l.neck_uv.capacity() + l.host_uv.capacity()) * std::mem::size_of::<DVec2>()
+        };
+        self.key.capacity() * 8 + bytes(&self.neck) + self.pad.as_ref().map_or(0, bytes)
+    }
+}
+
+/// `canonical` moved `t` along the axis onto the extrusion `ext`, or `None` if a
+/// point falls outside its v-domain.
+fn placed(canonical: &IntersectionLoop, ext: &Extrusion, t: f64) -> Option<IntersectionLoop> {
+    let points: Vec<DVec3> = canonical
+        .points
+        .iter()
+        .map(|p| DVec3::new(p.x, p.y, p.z + t))
+        .collect();
+    let host_uv = canonical
+        .host_uv
+        .iter()
+        .zip(&points)
+        .map(|(uv, p)| {
+            let v = ext.v_at(p.z);
+            ext.holds(v).then_some(DVec2::new(uv.x, v))
+        })
+        .collect::<Option<Vec<_>>>()?;
+    Some(IntersectionLoop {
+        points,
+        neck_uv: canonical.neck_uv.clone(),
+        host_uv,
+    })
+}
+
+#[cfg(test)]
+mod tests {
+    use std::sync::Arc;
+
+    use glam::{DAffine3, DMat3, DVec3};
+
+    use super::Extrusion;
+    use crate::mesh::opening::{ReusableCut, cut_opening_reusing};
+    use crate::nurbs::intersect::IntersectionLoop;
+    use crate::parts::heads::{Head, HeadKind};
+    use crate::parts::tables::{FlangeClass, Nps, PipeSchedule};
+    use crate::parts::{Facing, FlangeType, Nozzle, Patch, Shell};
+
+    const TOLERANCE: f64 = 1.0;
+    const OD: f64 = 2000.0;
+
+    fn course() -> Patch {
+        let s = Shell {
+            outside_diameter: OD,
+            length: 3000.0,
+        };
+        s.patches().unwrap().remove(0)
+    }
+
+    fn neck() -> Patch {
+        let n = Nozzle {
+            nps: Nps::try_new(8.0).unwrap(),
+            schedule: PipeSchedule::Std,
+            class: FlangeClass::C150,
+            flange: FlangeType::WeldNeck,
+            facing: Facing::RaisedFace,
+            projection: 1400.0,
+        };
+        n.patches().unwrap().remove(0)
+    }
+
+    /// A frame at `origin` whose +Z is `axis` (its +X made orthogonal from Z).
+    fn frame(origin: DVec3, axis: DVec3) -> DAffine3 {
+        let z = axis.normalize();
+        let x = (DVec3::Z - z * DVec3::Z.dot(z)).normalize();
+        DAffine3::from_mat3_translation(DMat3::from_cols(x, z.cross(x), z), origin)
+    }
+
+    fn cut(
+        frame: &DAffine3,
+        pad: bool,
+        kept: Option<&Arc<super::AxialCut>>,
+    ) -> Result<ReusableCut, String> {
+        let (neck, course) = (neck(), course());
+        cut_opening_reusing(
+            &neck,
+            pad.then_some(450.0),
+            frame,
+            &DAffine3::IDENTITY,
+            &[&course],
+            TOLERANCE,
+            kept,
+        )
+    }
+
+    /// Every point of `l` lies on the course's cylinder, on the host surface at
+    /// its host (u, v) and on the placed neck at its neck (u, v).
+    fn assert_on_both(l: &IntersectionLoop, neck: &crate::nurbs::NurbsSurface) {
+        let host = course();
+        let eps = 1e-9 * OD;
+        for k in 0..l.points.len() {
+            let p = l.points[k];
+            let r = DVec3::new(p.x, p.y, 0.0).length();
+            assert!(
+                (r - OD / 2.0).abs() <= eps,
+                "off the cylinder by {}",
+                r - OD / 2.0
+            );
+            let h = host.surface.point(l.host_uv[k].x, l.host_uv[k].y);
+            assert!(h.distance(p) <= eps, "host (u, v) off by {}", h.distance(p));
+            let n = neck.point(l.neck_uv[k].x, l.neck_uv[k].y);
+            assert!(n.distance(p) <= eps, "neck (u, v) off by {}", n.distance(p));
+        }
+    }
+
+    #[test]
+    fn a_course_is_an_extrusion_and_a_head_is_not() {
+        let ext = Extrusion::of(&course().surface).expect("a course is swept along Z");
+        assert_eq!((ext.z0, ext.z1, ext.v), (0.0, 3000.0, (0.0, 1.0)));
+        let head = Head::new(OD, HeadKind::TWO_TO_ONE).with_straight_flange(50.0);
+        for p in head.patches().unwrap() {
+            // The straight flange is a short cylinder: an extrusion like a course.
+            let swept = Extrusion::of(&p.surface).is_some();
+            assert_eq!(swept, p.name == "straight flange", "{}", p.name);
+        }
+    }
+
+    #[test]
+    fn a_cut_moved_along_the_axis_is_placed_bit_for_bit() {
+        // Radial, and off-centre and inclined (a hillside nozzle leaning up).
+        let placements = [
+            (DVec3::ZERO, DVec3::new(0.6, 0.8, 0.0)),
+            (DVec3::new(-120.0, 90.0, 0.0), DVec3::new(0.8, -0.6, 0.3)),
+        ];
+        for (offset, axis) in placements {
+            for pad in [false, true] {
+                let at = |z: f64| frame(offset + DVec3::new(0.0, 0.0, z), axis);
+                let first = cut(&at(1500.0), pad, None).unwrap();
+                assert!(!first.reused);
+                let kept = first
+                    .axial
+                    .clone()
+                    .expect("a course keeps its canonical cut");
+                for z in [1100.0, 1500.0, 2345.678] {
+                    let fresh = cut(&at(z), pad, None).unwrap();
+                    let placed = cut(&at(z), pad, Some(&kept)).unwrap();
+                    assert!(placed.reused, "moved along the axis: placed, not marched");
+                    assert_eq!(placed.cut, fresh.cut, "pad {pad}, z {z}");
+                    let bits = |l: &IntersectionLoop| {
+                        l.points
+                            .iter()
+                            .flat_map(|p| p.to_array().map(f64::to_bits))
+                            .collect::<Vec<_>>()
+                    };
+                    assert_eq!(bits(&placed.cut.neck), bits(&fresh.cut.neck));
+                    let neck = neck().surface.transformed(&at(z)).unwrap();
+                    assert_on_both(&placed.cut.neck, &neck);
+                    assert_eq!(placed.cut.pad.is_some(), pad);
+                }
+            }
+        }
+    }
+
+    #[test]
+    fn a_moved_loop_is_the_marched_loop_on_the_real_course() {
+        // The canonical march agrees with a march on the course itself: every
+        // sample of one lies on the other's curve (both within the tolerance of
+        // the exact intersection, sampled alike).
+        let at = frame(DVec3::new(0.0, 0.0, 900.0), DVec3::new(0.0, -1.0, 0.0));
+        let placed = cut(&at, false, None).unwrap().cut.neck;
+        let neck = neck().surface.transformed(&at).unwrap();
+        let direct =
+            crate::nurbs::neck_host_intersection(&neck, &course().surface, TOLERANCE).unwrap();
+        assert_on_both(&placed, &neck);
+        for p in &placed.points {
+            let nearest = direct
+                .points
+                .windows(2)
+                .map(|w| {
+                    let (a, b) = (w[0], w[1]);
+                    let t = ((*p - a).dot(b - a) / (b - a).length_squared()).clamp(0.0, 1.0);
+                    p.distance(a + (b - a) * t)
+                })
+                .fold(f64::INFINITY, f64::min);
+            assert!(nearest <= TOLERANCE, "{nearest} mm from the direct loop");
+        }
+    }
+
+    #[test]
+    fn a_loop_past_the_course_end_is_not_placed() {
+        let axis = DVec3::new(1.0, 0.0, 0.0);
+        let first = cut(&frame(DVec3::new(0.0, 0.0, 1500.0), axis), true, None).unwrap();
+        let kept = first.axial.unwrap();
+        // The 8 in neck (pad 450 mm) at 150 mm runs past the course's bottom.
+        let low = frame(DVec3::new(0.0, 0.0, 150.0), axis);
+        assert!(kept.place(&course().surface, 150.0).is_none());
+        let fresh = cut(&low, true, None);
+        let reusing = cut(&low, true, Some(&kept));
+        assert!(
+            fresh.is_err() && reusing.is_err(),
+            "{fresh:?} / {reusing:?}"
+        );
+        assert_eq!(fresh.unwrap_err(), reusing.unwrap_err());
+    }
+
+    #[test]
+    fn a_turned_nozzle_is_marched_again() {
+        let first = cut(
+            &frame(DVec3::new(0.0, 0.0, 1500.0), DVec3::new(1.0, 0.0, 0.0)),
+            false,
+            None,
+        )
+        .unwrap();
+        let kept = first.axial.unwrap();
+        let turned = frame(DVec3::new(0.0, 0.0, 1500.0), DVec3::new(0.0, 1.0, 0.0));
+        let again = cut(&turned, false, Some(&kept)).unwrap();
+        assert!(!again.reused);
+        assert_eq!(again.cut, cut(&turned, false, None).unwrap().cut);
+    }
+}
