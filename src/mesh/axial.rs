@@ -18,6 +18,8 @@
 //! the incremental model stays byte-identical to a full build. The neck's region
 //! is then unchanged too, and the Tessellate stage shares its old mesh.
 
+use std::hash::{BuildHasher, Hasher};
+
 use glam::{DAffine3, DVec2, DVec3, DVec4};
 
 use super::seams::HostTrim;
@@ -80,21 +82,33 @@ impl Extrusion {
     }
 }
 
-/// The bits of everything a canonical cut depends on besides the neck, the pad
-/// and the tolerance: the host's cross-section (u knots, x·w, y·w, w of its
-/// control points, which way v runs) and the nozzle's placement across the axis.
-fn key(surface: &NurbsSurface, ext: &Extrusion, across: &DAffine3) -> Vec<u64> {
+/// A 128-bit key of everything a canonical cut depends on besides the neck, the
+/// pad and the tolerance: the host's cross-section (u knots, x·w, y·w, w of its
+/// control points, which way v runs) and the nozzle's placement across the axis,
+/// all by their exact bits. Two independent 64-bit hashes, like
+/// [`mesh_key`](crate::mesh::mesh_key): different inputs collide with
+/// probability about 2⁻¹²⁸.
+fn key(surface: &NurbsSurface, ext: &Extrusion, across: &DAffine3) -> u128 {
+    let mut fx = rustc_hash::FxBuildHasher.build_hasher();
+    let mut sip = std::collections::hash_map::DefaultHasher::new();
+    let mut write = |x: u64| {
+        fx.write_u64(x);
+        sip.write_u64(x);
+    };
     let knots = surface.u_knots();
-    let mut key = Vec::with_capacity(3 + knots.len() + 3 * surface.u_count() + 12);
-    key.push(knots.degree() as u64);
-    key.push(knots.len() as u64);
-    key.extend(knots.as_slice().iter().map(|k| k.to_bits()));
+    write(knots.degree() as u64);
+    write(knots.len() as u64);
+    knots.as_slice().iter().for_each(|k| write(k.to_bits()));
     for row in surface.homogeneous_points().chunks_exact(2) {
-        key.extend([row[0].x, row[0].y, row[0].w].map(f64::to_bits));
+        for x in [row[0].x, row[0].y, row[0].w] {
+            write(x.to_bits());
+        }
     }
-    key.push(u64::from(ext.z1 > ext.z0));
-    key.extend(across.to_cols_array().map(f64::to_bits));
-    key
+    write(u64::from(ext.z1 > ext.z0));
+    for x in across.to_cols_array() {
+        write(x.to_bits());
+    }
+    (u128::from(sip.finish()) << 64) | u128::from(fx.finish())
 }
 
 /// The nozzle's placement in the host split into its part along the axis (`t`)
@@ -154,7 +168,7 @@ pub struct AxialCut {
     /// The host patch it was cut in, by index among the host part's patches.
     host: usize,
     /// See [`key`].
-    key: Vec<u64>,
+    key: u128,
     /// The neck's loop on the canonical host.
     neck: IntersectionLoop,
     /// The pad's outer loop on the canonical host.
@@ -187,7 +201,7 @@ impl AxialCut {
 
     /// Whether this cut applies to a nozzle placed at `across` in host patch
     /// `surface` (same cross-section, same placement across the axis, bit for
-    /// bit).
+    /// bit, by [`key`]).
     pub(super) fn fits(&self, surface: &NurbsSurface, across: &DAffine3) -> bool {
         Extrusion::of(surface).is_some_and(|ext| key(surface, &ext, across) == self.key)
     }
@@ -215,7 +229,7 @@ impl AxialCut {
             l.points.capacity() * std::mem::size_of::<DVec3>()
                 + (l.neck_uv.capacity() + l.host_uv.capacity()) * std::mem::size_of::<DVec2>()
         };
-        self.key.capacity() * 8 + bytes(&self.neck) + self.pad.as_ref().map_or(0, bytes)
+        bytes(&self.neck) + self.pad.as_ref().map_or(0, bytes)
     }
 }
 
