@@ -26,6 +26,7 @@ struct Totals {
     meshes: u64,
     triangles: u64,
     cuts: u64,
+    placed: u64,
 }
 
 /// A name for the kind of `edit` made to `old`.
@@ -87,6 +88,7 @@ fn main() {
         t.meshes += c.meshes_rebuilt;
         t.triangles += c.triangles_meshed;
         t.cuts += c.openings_cut;
+        t.placed += c.openings_placed;
     }
     let mut all = 0.0;
     let mut count = 0;
@@ -100,7 +102,7 @@ fn main() {
         all += t.ms;
         count += t.count;
         println!(
-            "{what:18} n={:4} mean {:.3} p99 {p99:.3} ms | V {:.3} C {:.3} G {:.3} T {:.3} P {:.3} E {:.3} | meshes {:.1} tris {:.0} cuts {:.1}",
+            "{what:18} n={:4} mean {:.3} p99 {p99:.3} ms | V {:.3} C {:.3} G {:.3} T {:.3} P {:.3} E {:.3} | meshes {:.1} tris {:.0} cuts {:.1} (placed {:.1})",
             t.count,
             t.ms / n,
             s[0],
@@ -111,7 +113,8 @@ fn main() {
             s[5],
             t.meshes as f64 / n,
             t.triangles as f64 / n,
-            t.cuts as f64 / n
+            t.cuts as f64 / n,
+            t.placed as f64 / n
         );
     }
     every.sort_by(f64::total_cmp);
