@@ -9,7 +9,9 @@
 //! round the host's pole (a nozzle centred on a head) gets an extra sample exactly
 //! on the host's seam angle, shared by the neck, so the host can be cut there: one
 //! Newton solve on the seam ([`loop_crossing`]), a bisection over generators where
-//! that fails.
+//! that fails. In a straight course the loops are marched on its canonical copy
+//! and placed along its axis (`axial`), so a cut kept from before can be placed
+//! again without marching ([`cut_opening_reusing`]).
 
 use std::f64::consts::TAU;
 use std::sync::Arc;
@@ -147,25 +149,25 @@ pub fn cut_opening_reusing(
         .as_ref()
         .map(|c| place(c, &relative))
         .transpose()?;
-    // Placed at the canonical position along a course's axis, when a host patch
-    // is one (computed at the first such patch).
-    let mut canonical: Option<(NurbsSurface, Option<NurbsSurface>)> = None;
+    // Placed at the canonical position along the axis, when a host patch is a
+    // straight course.
+    let canonical = if host_patches
+        .iter()
+        .any(|p| Extrusion::of(&p.surface).is_some())
+    {
+        let p = pad_cylinder
+            .as_ref()
+            .map(|c| place(c, &across))
+            .transpose()?;
+        Some((place(&neck.surface, &across)?, p))
+    } else {
+        None
+    };
     let mut last = String::from("the host has no patch");
     for k in try_order(&neck_placed, host_patches) {
         let patch = host_patches[k];
-        let result = match Extrusion::of(&patch.surface) {
-            Some(ext) => {
-                if canonical.is_none() {
-                    let n = place(&neck.surface, &across)?;
-                    let p = pad_cylinder
-                        .as_ref()
-                        .map(|c| place(c, &across))
-                        .transpose()?;
-                    canonical = Some((n, p));
-                }
-                let Some((n, p)) = &canonical else {
-                    continue;
-                };
+        let result = match (Extrusion::of(&patch.surface), &canonical) {
+            (Some(ext), Some((n, p))) => {
                 let zs = axial_range(std::iter::once(n).chain(p));
                 canonical_host(&patch.surface, &ext, zs)
                     .and_then(|host| loops(n, p.as_ref(), &host, tolerance))
@@ -182,7 +184,7 @@ pub fn cut_opening_reusing(
                         })
                     })
             }
-            None => loops(&neck_placed, pad.as_ref(), &patch.surface, tolerance).map(
+            _ => loops(&neck_placed, pad.as_ref(), &patch.surface, tolerance).map(
                 |(neck_loop, pad_loop)| ReusableCut {
                     cut: Cut {
                         hosts: vec![(k, HostTrim::Hole)],
