@@ -80,6 +80,10 @@ pub struct Opening {
     pub curve: Arc<IntersectionLoop>,
     /// The reinforcing pad's outer loop on the host, in the host part's frame.
     pub pad: Option<Arc<IntersectionLoop>>,
+    /// The pad patch's trim: its outer loop and the neck's, with host (u, v) on
+    /// the pad patch (a straight course's canonical copy, for a pad on a course:
+    /// see `mesh::axial`).
+    pub pad_trim: Option<(Arc<IntersectionLoop>, Arc<IntersectionLoop>)>,
 }
 
 /// The (u, v) region a patch is meshed within: its sides sampled from the edge

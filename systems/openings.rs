@@ -22,7 +22,8 @@ use crate::components::{
     MountedOn, Mounts, Opening, PadOf, PadPatch, PartFrame, PatchSurface, Patches, Shape,
 };
 use crate::design::RuleViolation;
-use crate::mesh::{AxialCut, Cut, HostTrim, cut_opening_reusing, pad_patch};
+use crate::mesh::{AxialCut, Cut, HostTrim, PadCut, cut_opening_reusing};
+use crate::nurbs::intersect::IntersectionLoop;
 use crate::parts::Patch;
 
 /// The host patches each nozzle's opening was last cut in (to re-lay-out a host
@@ -31,8 +32,8 @@ use crate::parts::Patch;
 pub struct OpeningHosts(pub HashMap<Entity, Vec<Entity>>);
 
 /// A cut opening: the host patch entities with their trims, the loops and the pad
-/// patch, or why not.
-type CutResult = Result<(Vec<(Entity, HostTrim)>, Cut, Option<Patch>), String>;
+/// patch with its trim, or why not.
+type CutResult = Result<(Vec<(Entity, HostTrim)>, Cut, Option<PadCut>), String>;
 
 /// What an opening was last cut from: the neck and host patches (held, so the
 /// pointers compared cannot be reused), the pad, the tolerance and the two
@@ -79,10 +80,19 @@ impl OpeningInput {
         same.then(|| self.axial.clone()).flatten()
     }
 
-    /// Heap bytes held by the kept canonical cut (the patches are the model's).
+    /// Heap bytes held besides the kept canonical cut's loops (the patches are
+    /// the model's).
     pub fn heap_bytes(&self) -> usize {
         self.hosts.capacity() * std::mem::size_of::<Arc<Patch>>()
-            + self.axial.as_ref().map_or(0, |a| a.heap_bytes())
+            + self
+                .axial
+                .as_ref()
+                .map_or(0, |_| std::mem::size_of::<AxialCut>())
+    }
+
+    /// The kept canonical cut, if any.
+    pub fn axial(&self) -> Option<&AxialCut> {
+        self.axial.as_deref()
     }
 
     /// Same inputs: same patches (by identity), equal numbers, equal bits.
@@ -256,24 +266,16 @@ pub fn cut_openings(world: &mut World) {
                 tolerance,
                 job.kept.as_ref(),
             )
-            .and_then(|c| {
+            .map(|c| {
                 axial = c.axial;
                 reused = c.reused;
-                let cut = c.cut;
-                // A pad is only cut on one host patch (`cut_opening` refuses one
-                // across a seam).
-                let pad = match (&cut.pad, cut.hosts.first()) {
-                    (Some(_), Some(&(k, _))) => {
-                        Some(pad_patch(hosts[k], &job.frame, &job.host_frame)?)
-                    }
-                    _ => None,
-                };
-                let trims = cut
+                let trims = c
+                    .cut
                     .hosts
                     .iter()
                     .map(|(k, trim)| (job.hosts[*k].0, trim.clone()))
                     .collect();
-                Ok((trims, cut, pad))
+                (trims, c.cut, c.pad)
             });
             (
                 job.nozzle,
@@ -290,11 +292,25 @@ pub fn cut_openings(world: &mut World) {
     for (nozzle, neck_patch, result, input, reused) in results {
         match result {
             Ok((hosts, cut, pad)) => {
+                let curve = Arc::new(cut.neck);
+                let pad_loop = cut.pad.map(Arc::new);
+                // Off a straight course the pad's trim is the opening's own loops:
+                // held once.
+                let share = |l: &Arc<IntersectionLoop>, own: Option<&Arc<IntersectionLoop>>| {
+                    own.filter(|o| o == &l).unwrap_or(l).clone()
+                };
+                let pad_trim = pad.as_ref().map(|p| {
+                    (
+                        share(&p.outer, pad_loop.as_ref()),
+                        share(&p.inner, Some(&curve)),
+                    )
+                });
                 let opening = Opening {
                     hosts,
                     neck_patch,
-                    curve: Arc::new(cut.neck),
-                    pad: cut.pad.map(Arc::new),
+                    curve,
+                    pad: pad_loop,
+                    pad_trim,
                 };
                 let changed = match world.get_mut::<Opening>(nozzle) {
                     Some(mut current) => {
@@ -315,7 +331,7 @@ pub fn cut_openings(world: &mut World) {
                 if changed {
                     world.resource_mut::<DirtyParts>().openings.push(nozzle);
                 }
-                set_pad(world, nozzle, pad);
+                set_pad(world, nozzle, pad.map(|p| p.patch));
                 world.entity_mut(nozzle).insert(input);
             }
             Err(rule) => {

@@ -82,11 +82,8 @@ impl Job {
 /// a pad.
 fn trims(world: &World, patch: Entity) -> Option<Trim> {
     if let Some(nozzle) = world.get::<PadOf>(patch).map(|p| p.0) {
-        let o = world.get::<Opening>(nozzle)?;
-        return Some(Trim::Pad {
-            outer: o.pad.clone()?,
-            inner: o.curve.clone(),
-        });
+        let (outer, inner) = world.get::<Opening>(nozzle)?.pad_trim.clone()?;
+        return Some(Trim::Pad { outer, inner });
     }
     let Some(owner) = world.get::<PatchOf>(patch).map(|p| p.0) else {
         return Some(Trim::Patch {

@@ -19,8 +19,8 @@ use crate::constraints::PartGeometry;
 use crate::design::{Design, resolve};
 use crate::mesh::cdt::mesh_patch_region;
 use crate::mesh::{
-    HostTrim, Mesh, Notch, PackedMesh, TessellationOptions, cut_opening, host_region, pad_patch,
-    pad_region,
+    HostTrim, Mesh, Notch, PackedMesh, PadCut, TessellationOptions, cut_opening_reusing,
+    host_region, pad_region,
 };
 use crate::nurbs::intersect::IntersectionLoop;
 use crate::parts::{Nozzle, PartError, Patch};
@@ -125,24 +125,16 @@ pub fn build_scene(design: &Design, options: &TessellationOptions) -> Result<Sce
             let (nozzle_frame, host_frame) =
                 (&vessels[v].nodes[n].frame, &vessels[v].nodes[h].frame);
             let result = match neck {
-                Some(neck) => cut_opening(
+                Some(neck) => cut_opening_reusing(
                     neck,
                     pad,
                     nozzle_frame,
                     host_frame,
                     &hosts,
                     options.tolerance,
+                    None,
                 )
-                .and_then(|cut| {
-                    // A pad is only cut on one host patch.
-                    let pad = match (&cut.pad, cut.hosts.first()) {
-                        (Some(_), Some(&(k, _))) => {
-                            Some(pad_patch(hosts[k], nozzle_frame, host_frame)?)
-                        }
-                        _ => None,
-                    };
-                    Ok((cut, pad))
-                }),
+                .map(|c| (c.cut, c.pad)),
                 None => Err("the part has no patch to cut into its host".to_string()),
             };
             ((v, n, h), result)
@@ -151,7 +143,7 @@ pub fn build_scene(design: &Design, options: &TessellationOptions) -> Result<Sce
     let mut holes: HashMap<(usize, usize, usize), Vec<IntersectionLoop>> = HashMap::new();
     let mut notches: HashMap<(usize, usize, usize), Vec<Notch>> = HashMap::new();
     let mut bottoms: HashMap<(usize, usize), IntersectionLoop> = HashMap::new();
-    let mut pads: Vec<((usize, usize), Patch, IntersectionLoop, IntersectionLoop)> = Vec::new();
+    let mut pads: Vec<((usize, usize), PadCut)> = Vec::new();
     for ((v, n, h), result) in cut {
         match result {
             Ok((cut, pad)) => {
@@ -167,8 +159,8 @@ pub fn build_scene(design: &Design, options: &TessellationOptions) -> Result<Sce
                             .extend(list.iter().cloned()),
                     }
                 }
-                if let (Some(patch), Some(outer)) = (pad, cut.pad) {
-                    pads.push(((v, n), patch, outer, cut.neck.clone()));
+                if let Some(pad) = pad {
+                    pads.push(((v, n), pad));
                 }
                 bottoms.insert((v, n), cut.neck);
             }
@@ -187,15 +179,15 @@ pub fn build_scene(design: &Design, options: &TessellationOptions) -> Result<Sce
     for ((v, n), list) in &patches {
         flat.extend(list.iter().enumerate().map(|(k, p)| (*v, *n, k, p, false)));
         if let Some(&i) = pad_of.get(&(*v, *n)) {
-            flat.push((*v, *n, usize::MAX, &pads[i].1, true));
+            flat.push((*v, *n, usize::MAX, &pads[i].1.patch, true));
         }
     }
     let meshes: Vec<Result<Mesh, String>> = flat
         .par_iter()
         .map(|&(v, n, k, patch, is_pad)| {
             let region = if is_pad {
-                let (_, _, outer, inner) = &pads[pad_of[&(v, n)]];
-                pad_region(&patch.surface, options, outer, inner)
+                let (_, pad) = &pads[pad_of[&(v, n)]];
+                pad_region(&patch.surface, options, &pad.outer, &pad.inner)
             } else {
                 let hole_list: Vec<&IntersectionLoop> = holes
                     .get(&(v, n, k))

@@ -11,6 +11,11 @@
 //! - the host v is read off each point's axial coordinate;
 //! - the neck (u, v) and the host u stay as they are.
 //!
+//! A reinforcing pad's patch is the canonical host itself, moved into the
+//! nozzle's frame, trimmed by the canonical loops ([`AxialCut::pad_cut`]). It
+//! too is the same wherever the nozzle sits along the axis, so a pad moved along
+//! the course keeps its mesh.
+//!
 //! The canonical march depends only on the cross-section, the nozzle's
 //! placement across the axis, its neck, its pad and the tolerance. So the Geometry stage keeps
 //! the [`AxialCut`] and, for an opening that only moved along the axis, places
@@ -22,9 +27,13 @@ use std::hash::{BuildHasher, Hasher};
 
 use glam::{DAffine3, DVec2, DVec3, DVec4};
 
+use std::sync::Arc;
+
+use super::opening::{PAD_PATCH, PadCut};
 use super::seams::HostTrim;
 use crate::nurbs::intersect::IntersectionLoop;
 use crate::nurbs::{KnotVector, NurbsSurface};
+use crate::parts::Patch;
 
 /// How far the two rows' axial coordinates may stray from one value, relative to
 /// the course's length (rounding of z·w / w).
@@ -169,29 +178,59 @@ pub struct AxialCut {
     host: usize,
     /// See [`key`].
     key: u128,
+    /// The axial range of the placed neck's (and pad's) control nets, which sizes
+    /// the canonical host.
+    zs: (f64, f64),
     /// The neck's loop on the canonical host.
-    neck: IntersectionLoop,
+    neck: Arc<IntersectionLoop>,
     /// The pad's outer loop on the canonical host.
-    pad: Option<IntersectionLoop>,
+    pad: Option<Arc<IntersectionLoop>>,
 }
 
 impl AxialCut {
     /// A cut of host patch `host` (an extrusion `ext`) from loops marched on its
-    /// canonical host with the nozzle placed at `across`.
+    /// canonical host (sized by `zs`) with the nozzle placed at `across`.
     pub(super) fn new(
         host: usize,
         surface: &NurbsSurface,
         ext: &Extrusion,
         across: &DAffine3,
+        zs: (f64, f64),
         neck: IntersectionLoop,
         pad: Option<IntersectionLoop>,
     ) -> Self {
         Self {
             host,
             key: key(surface, ext, across),
-            neck,
-            pad,
+            zs,
+            neck: Arc::new(neck),
+            pad: pad.map(Arc::new),
         }
+    }
+
+    /// The reinforcing pad's patch, if the nozzle has a pad: the canonical host
+    /// of `host` moved into the nozzle's frame (`across⁻¹`), trimmed by the
+    /// canonical pad and neck loops, whose host (u, v) are its own. The same
+    /// wherever the nozzle sits along the axis.
+    pub(super) fn pad_cut(
+        &self,
+        host: &Patch,
+        across: &DAffine3,
+    ) -> Result<Option<PadCut>, String> {
+        let Some(outer) = &self.pad else {
+            return Ok(None);
+        };
+        let ext = Extrusion::of(&host.surface)
+            .ok_or_else(|| "pad: the host is not a straight course".to_string())?;
+        let into_nozzle = across.inverse();
+        let surface = canonical_host(&host.surface, &ext, self.zs)?
+            .transformed(&into_nozzle)
+            .map_err(|e| format!("pad: {e}"))?;
+        Ok(Some(PadCut {
+            patch: Patch::new(PAD_PATCH, surface, host.analytic.transformed(&into_nozzle)),
+            outer: outer.clone(),
+            inner: self.neck.clone(),
+        }))
     }
 
     /// The host patch index it was cut in.
@@ -212,7 +251,7 @@ impl AxialCut {
     pub(super) fn place(&self, surface: &NurbsSurface, t: f64) -> Option<super::Cut> {
         let ext = Extrusion::of(surface)?;
         let neck = placed(&self.neck, &ext, t)?;
-        let pad = match &self.pad {
+        let pad = match self.pad.as_deref() {
             Some(p) => Some(placed(p, &ext, t)?),
             None => None,
         };
@@ -223,13 +262,10 @@ impl AxialCut {
         })
     }
 
-    /// Heap bytes held.
-    pub fn heap_bytes(&self) -> usize {
-        let bytes = |l: &IntersectionLoop| {
-            l.points.capacity() * std::mem::size_of::<DVec3>()
-                + (l.neck_uv.capacity() + l.host_uv.capacity()) * std::mem::size_of::<DVec2>()
-        };
-        bytes(&self.neck) + self.pad.as_ref().map_or(0, bytes)
+    /// Its loops on the canonical host (shared with the pad's trim, if any), for
+    /// counting memory.
+    pub fn loops(&self) -> impl Iterator<Item = &Arc<IntersectionLoop>> {
+        std::iter::once(&self.neck).chain(&self.pad)
     }
 }
 
@@ -380,6 +416,21 @@ mod tests {
                     let neck = neck().surface.transformed(&at(z)).unwrap();
                     assert_on_both(&placed.cut.neck, &neck);
                     assert_eq!(placed.cut.pad.is_some(), pad);
+                    // The pad's patch and trim are the same at every elevation,
+                    // and its loops, evaluated on it and moved out of the nozzle's
+                    // frame, land on the placed loops' points.
+                    assert_eq!(placed.pad, first.pad);
+                    assert_eq!(placed.pad, fresh.pad);
+                    if let Some(p) = &placed.pad {
+                        let outer = placed.cut.pad.as_ref().unwrap();
+                        for (trim, placed) in [(&p.outer, outer), (&p.inner, &placed.cut.neck)] {
+                            for (uv, point) in trim.host_uv.iter().zip(&placed.points) {
+                                let on_pad =
+                                    at(z).transform_point3(p.patch.surface.point(uv.x, uv.y));
+                                assert!(on_pad.distance(*point) <= 1e-9 * OD);
+                            }
+                        }
+                    }
                 }
             }
         }

@@ -24,7 +24,7 @@ pub use layout::{
     LayoutError, PatchSides, SEAM_CUTS, closed_in_u, host_region, host_region_with, pad_region,
     patch_region,
 };
-pub use opening::{Cut, PAD_PATCH, ReusableCut, cut_opening, cut_opening_reusing, pad_patch};
+pub use opening::{Cut, PAD_PATCH, PadCut, ReusableCut, cut_opening, cut_opening_reusing};
 pub use options::{OptionsError, TessellationOptions};
 pub use packed::{OctNormal, PackedMesh};
 pub use seams::{HostTrim, Notch};

@@ -84,11 +84,25 @@ pub fn cut_opening(
     .map(|c| c.cut)
 }
 
+/// A reinforcing pad's patch with the loops that trim it, in its own (u, v).
+#[derive(Clone, Debug, PartialEq)]
+pub struct PadCut {
+    /// The pad's patch, in the nozzle's frame: a host surface (the host patch
+    /// itself, or a straight course's canonical copy) moved there.
+    pub patch: Patch,
+    /// The pad's outer loop, host (u, v) on `patch`.
+    pub outer: Arc<IntersectionLoop>,
+    /// The neck's loop, host (u, v) on `patch`.
+    pub inner: Arc<IntersectionLoop>,
+}
+
 /// An opening as [`cut_opening_reusing`] gives it.
 #[derive(Clone, Debug)]
 pub struct ReusableCut {
     /// The opening.
     pub cut: Cut,
+    /// The reinforcing pad's patch and trim, if the nozzle has a pad.
+    pub pad: Option<PadCut>,
     /// Its loops on the canonical host, when it lies in a straight course: keep it
     /// to place the opening again after a move along the course's axis.
     pub axial: Option<Arc<AxialCut>>,
@@ -118,6 +132,7 @@ pub fn cut_opening_reusing(
     {
         return Ok(ReusableCut {
             cut,
+            pad: kept.pad_cut(host, &across)?,
             axial: Some(kept.clone()),
             reused: true,
         });
@@ -172,27 +187,46 @@ pub fn cut_opening_reusing(
                 canonical_host(&patch.surface, &ext, zs)
                     .and_then(|host| loops(n, p.as_ref(), &host, tolerance))
                     .and_then(|(neck_loop, pad_loop)| {
-                        let axial =
-                            AxialCut::new(k, &patch.surface, &ext, &across, neck_loop, pad_loop);
+                        let axial = AxialCut::new(
+                            k,
+                            &patch.surface,
+                            &ext,
+                            &across,
+                            zs,
+                            neck_loop,
+                            pad_loop,
+                        );
                         let cut = axial
                             .place(&patch.surface, t)
                             .ok_or_else(|| "the loop runs past an end of the course".to_string())?;
                         Ok(ReusableCut {
                             cut,
+                            pad: axial.pad_cut(patch, &across)?,
                             axial: Some(Arc::new(axial)),
                             reused: false,
                         })
                     })
             }
-            _ => loops(&neck_placed, pad.as_ref(), &patch.surface, tolerance).map(
-                |(neck_loop, pad_loop)| ReusableCut {
-                    cut: Cut {
-                        hosts: vec![(k, HostTrim::Hole)],
-                        neck: neck_loop,
-                        pad: pad_loop,
-                    },
-                    axial: None,
-                    reused: false,
+            _ => loops(&neck_placed, pad.as_ref(), &patch.surface, tolerance).and_then(
+                |(neck_loop, pad_loop)| {
+                    let pad = match &pad_loop {
+                        Some(outer) => Some(PadCut {
+                            patch: pad_patch(patch, nozzle_frame, host_frame)?,
+                            outer: Arc::new(outer.clone()),
+                            inner: Arc::new(neck_loop.clone()),
+                        }),
+                        None => None,
+                    };
+                    Ok(ReusableCut {
+                        cut: Cut {
+                            hosts: vec![(k, HostTrim::Hole)],
+                            neck: neck_loop,
+                            pad: pad_loop,
+                        },
+                        pad,
+                        axial: None,
+                        reused: false,
+                    })
                 },
             ),
         };
@@ -207,8 +241,10 @@ pub fn cut_opening_reusing(
         }
     }
     match cut_across_seams(&neck_placed, pad.is_some(), host_patches, tolerance)? {
+        // A pad across a seam is refused there.
         Some(cut) => Ok(ReusableCut {
             cut,
+            pad: None,
             axial: None,
             reused: false,
         }),
@@ -419,10 +455,11 @@ fn add_seam_sample(
 /// Name of the reinforcing pad's patch.
 pub const PAD_PATCH: &str = "reinforcing pad";
 
-/// The reinforcing pad's patch: the host patch's surface moved into the nozzle's
-/// frame (its (u, v) unchanged, so the pad's loops trim it directly). The pad lies on
-/// the host's outside surface; its thickness is carried, not modelled.
-pub fn pad_patch(
+/// The reinforcing pad's patch off a straight course: the host patch's surface
+/// moved into the nozzle's frame (its (u, v) unchanged, so the pad's loops trim it
+/// directly). The pad lies on the host's outside surface; its thickness is
+/// carried, not modelled.
+fn pad_patch(
     host: &Patch,
     nozzle_frame: &DAffine3,
     host_frame: &DAffine3,

@@ -87,11 +87,14 @@ pub(crate) fn breakdown(world: &World) -> MemoryBreakdown {
     if let Some(sides) = world.get_resource::<crate::systems::HostSides>() {
         out.regions += sides.heap_bytes();
     }
+    // Loops shared between openings, their pads' trims and the kept canonical
+    // cuts are counted once.
+    let mut seen = HashSet::new();
     if let Some(mut q) = world.try_query::<&Opening>() {
-        let mut seen = HashSet::new();
         for o in q.iter(world) {
             out.openings += size_of::<Opening>();
-            for l in std::iter::once(&o.curve).chain(o.pad.as_ref()) {
+            let trim = o.pad_trim.iter().flat_map(|(a, b)| [a, b]);
+            for l in std::iter::once(&o.curve).chain(o.pad.as_ref()).chain(trim) {
                 if seen.insert(std::sync::Arc::as_ptr(l)) {
                     out.openings += loop_bytes(l);
                 }
@@ -114,6 +117,12 @@ pub(crate) fn breakdown(world: &World) -> MemoryBreakdown {
     if let Some(mut q) = world.try_query::<&crate::systems::OpeningInput>() {
         for input in q.iter(world) {
             out.openings += size_of::<crate::systems::OpeningInput>() + input.heap_bytes();
+            // The canonical loops, shared with the pad's trim when there is one.
+            for l in input.axial().into_iter().flat_map(|a| a.loops()) {
+                if seen.insert(Arc::as_ptr(l)) {
+                    out.openings += loop_bytes(l);
+                }
+            }
         }
     }
     out
