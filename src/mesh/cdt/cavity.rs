@@ -368,31 +368,27 @@ fn by_spade(
         sub = sub.with_hole(hole.clone());
     }
     let mut stats = MeshStats::default();
-    let local = initial::triangulate(info, &sub, &[], &mut stats).ok()?;
-    // Every vertex is a loop vertex (no seeds), kept in loop order.
-    if local.verts.len() != map.len() {
-        return None;
-    }
-    let n_outer = outer.len();
-    Some(
-        local
-            .tris
-            .iter()
-            .zip(&local.fixed)
-            .map(|(tri, fixed)| {
-                let mut fixed = *fixed;
-                for i in 0..3 {
-                    // Only the holes' segments stay fixed; the cavity's boundary
-                    // is interior to the patch (or a side, fixed by the caller).
-                    let (a, b) = (tri[i] as usize, tri[(i + 1) % 3] as usize);
-                    if a < n_outer && b < n_outer {
-                        fixed[i] = false;
-                    }
-                }
-                (tri.map(|k| map[k as usize]), fixed)
-            })
-            .collect(),
-    )
+    // In (u, v) only: the cavity's vertices are the mesh's already.
+    let local = initial::triangulate_uv(info, &sub, &[], &mut stats).ok()?;
+    let n_outer = outer.len() as u32;
+    local
+        .tris
+        .iter()
+        .map(|tri| {
+            // No seeds: every vertex is a loop vertex, in loop order.
+            let mapped = tri.map(|k| map.get(k as usize).copied());
+            let [Some(a), Some(b), Some(c)] = mapped else {
+                return None;
+            };
+            // Only the holes' segments stay fixed; the cavity's boundary is
+            // interior to the patch (or a side, fixed by the caller).
+            let fixed = std::array::from_fn(|i| {
+                let (x, y) = (tri[i], tri[(i + 1) % 3]);
+                local.is_loop_edge(x, y) && !(x < n_outer && y < n_outer)
+            });
+            Some(([a, b, c], fixed))
+        })
+        .collect()
 }
 
 #[cfg(test)]

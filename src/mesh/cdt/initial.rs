@@ -110,6 +110,27 @@ fn chart_metric(info: &PatchInfo, region: &Region) -> Metric {
     }
 }
 
+/// The triangles inside a region, in (u, v) only: nothing evaluated on the
+/// surface yet.
+pub(super) struct Inside {
+    /// Every vertex's (u, v): the loop vertices first, in loop order, then the
+    /// seeds spade kept.
+    uvs: Vec<DVec2>,
+    /// How many of `uvs` are loop vertices.
+    loop_vertices: usize,
+    /// The triangles inside, as indices into `uvs`.
+    pub tris: Vec<[u32; 3]>,
+    /// The loop segments, as (first, second) vertex indices.
+    loop_edges: HashSet<(u32, u32)>,
+}
+
+impl Inside {
+    /// Whether the edge between vertices `a` and `b` is a loop segment.
+    pub fn is_loop_edge(&self, a: u32, b: u32) -> bool {
+        self.loop_edges.contains(&(a, b)) || self.loop_edges.contains(&(b, a))
+    }
+}
+
 /// Triangulates the region with its loop vertices (first, in loop order) and the
 /// seeds; returns the mesh of the triangles inside.
 pub(super) fn triangulate(
@@ -118,6 +139,51 @@ pub(super) fn triangulate(
     seeds: &[DVec2],
     stats: &mut MeshStats,
 ) -> Result<TriMesh, CdtError> {
+    let inside = triangulate_uv(info, region, seeds, stats)?;
+    let Inside {
+        uvs,
+        loop_vertices,
+        tris: inside,
+        loop_edges,
+    } = inside;
+    // Keep the vertices the inside triangles use, loop vertices first.
+    let mut new_index = vec![u32::MAX; uvs.len()];
+    for (k, slot) in new_index.iter_mut().enumerate().take(loop_vertices) {
+        *slot = k as u32;
+    }
+    let mut kept: Vec<u32> = (0..loop_vertices as u32).collect();
+    for tri in &inside {
+        for &v in tri {
+            if new_index[v as usize] == u32::MAX {
+                new_index[v as usize] = kept.len() as u32;
+                kept.push(v);
+            }
+        }
+    }
+    let verts = kept
+        .par_iter()
+        .with_min_len(super::MIN_VERTICES)
+        .map(|&k| info.vertex(uvs[k as usize]))
+        .collect::<Result<Vec<_>, _>>()?;
+    let tris: Vec<[u32; 3]> = inside
+        .iter()
+        .map(|t| t.map(|v| new_index[v as usize]))
+        .collect();
+    // Loop vertices keep their indices, so the loop edges are unchanged.
+    Ok(TriMesh::new(verts, tris, |a, b| {
+        loop_edges.contains(&(a, b)) || loop_edges.contains(&(b, a))
+    }))
+}
+
+/// [`triangulate`] in (u, v) only: the constrained Delaunay triangles inside the
+/// region, without evaluating a vertex on the surface (for a cavity, whose
+/// vertices the mesh already holds).
+pub(super) fn triangulate_uv(
+    info: &PatchInfo,
+    region: &Region,
+    seeds: &[DVec2],
+    stats: &mut MeshStats,
+) -> Result<Inside, CdtError> {
     let mut uvs: Vec<DVec2> = Vec::with_capacity(region.vertex_count() + seeds.len());
     let mut chart_vertices = Vec::with_capacity(uvs.capacity());
     // (loop index, first id) of each loop.
@@ -203,34 +269,13 @@ pub(super) fn triangulate(
             starts.push((loop_index, ha, hb));
         }
     }
-    let inside = flood(&cdt, &starts)?;
-    // Keep the vertices the inside triangles use, loop vertices first.
-    let mut new_index = vec![u32::MAX; uvs.len()];
-    for (k, slot) in new_index.iter_mut().enumerate().take(loop_vertices) {
-        *slot = k as u32;
-    }
-    let mut kept: Vec<u32> = (0..loop_vertices as u32).collect();
-    for tri in &inside {
-        for &v in tri {
-            if new_index[v as usize] == u32::MAX {
-                new_index[v as usize] = kept.len() as u32;
-                kept.push(v);
-            }
-        }
-    }
-    let verts = kept
-        .par_iter()
-        .with_min_len(super::MIN_VERTICES)
-        .map(|&k| info.vertex(uvs[k as usize]))
-        .collect::<Result<Vec<_>, _>>()?;
-    let tris: Vec<[u32; 3]> = inside
-        .iter()
-        .map(|t| t.map(|v| new_index[v as usize]))
-        .collect();
-    // Loop vertices keep their indices, so the loop edges are unchanged.
-    Ok(TriMesh::new(verts, tris, |a, b| {
-        loop_edges.contains(&(a, b)) || loop_edges.contains(&(b, a))
-    }))
+    let tris = flood(&cdt, &starts)?;
+    Ok(Inside {
+        uvs,
+        loop_vertices,
+        tris,
+        loop_edges,
+    })
 }
 
 /// The inner faces reachable from the left side of a loop segment (`starts`: loop
