@@ -24,10 +24,9 @@
 //! is then unchanged too, and the Tessellate stage shares its old mesh.
 
 use std::hash::{BuildHasher, Hasher};
+use std::sync::Arc;
 
 use glam::{DAffine3, DVec2, DVec3, DVec4};
-
-use std::sync::Arc;
 
 use super::opening::{PAD_PATCH, PadCut};
 use super::seams::HostTrim;
