@@ -41,7 +41,7 @@ const ROW_SLACK: f64 = 1e-12;
 /// A host patch swept straight along part-frame Z: degree 1 and two control rows
 /// in v, equal x·w, y·w and w in both rows, each row at one z.
 #[derive(Clone, Copy, Debug, PartialEq)]
-pub(super) struct Extrusion {
+pub(crate) struct Extrusion {
     /// Axial coordinate of the v0 row.
     z0: f64,
     /// Axial coordinate of the v1 row.
@@ -52,7 +52,7 @@ pub(super) struct Extrusion {
 
 impl Extrusion {
     /// The extrusion `surface` is, if it is one.
-    pub(super) fn of(surface: &NurbsSurface) -> Option<Self> {
+    pub(crate) fn of(surface: &NurbsSurface) -> Option<Self> {
         if surface.v_degree() != 1 || surface.v_count() != 2 {
             return None;
         }
@@ -76,6 +76,13 @@ impl Extrusion {
             z1,
             v: surface.v_knots().domain(),
         })
+    }
+
+    /// The axial coordinate at `v` (linear: both rows share weights), so that
+    /// S(u, v) is the v0 row's point at u moved to it.
+    pub(crate) fn z_at(&self, v: f64) -> f64 {
+        let (v0, v1) = self.v;
+        self.z0 + (v - v0) / (v1 - v0) * (self.z1 - self.z0)
     }
 
     /// The v at axial coordinate `z` (v is linear in z: both rows share weights).

@@ -17,6 +17,7 @@ mod packed;
 mod seams;
 
 pub use axial::AxialCut;
+pub(crate) use axial::Extrusion;
 pub use edges::{MAX_EDGE_SEGMENTS, edge_parameters, edge_segments};
 pub use grid::tessellate;
 pub use instances::{MeshInstances, mesh_key};

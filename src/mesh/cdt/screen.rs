@@ -25,7 +25,8 @@ use super::refine::edge_probe_uv;
 use rustc_hash::FxHashMap;
 
 use super::trimesh::TriMesh;
-use crate::mesh::TessellationOptions;
+use crate::mesh::{Extrusion, TessellationOptions};
+use crate::nurbs::SurfaceRow;
 use crate::parts::Analytic;
 
 /// One probe: the slot of the triangle it belongs to (in the list screened), the
@@ -46,6 +47,23 @@ pub(super) struct Screen<'a> {
     info: &'a PatchInfo<'a>,
     analytic: Analytic,
     limits: Limits,
+    /// Whether the surface is swept straight along Z (a course): see [`Swept`].
+    swept: Option<Extrusion>,
+}
+
+/// A surface swept straight along Z (a course, `mesh::axial`): S(u, v) is the
+/// v0 row's point at u moved to the axial coordinate of v, so one row evaluator
+/// serves the probes at every v, with no grouping.
+struct Swept<'a> {
+    row: SurfaceRow<'a>,
+    extrusion: Extrusion,
+}
+
+impl Swept<'_> {
+    fn point(&self, u: f64, v: f64) -> DVec3 {
+        let p = self.row.point(u);
+        DVec3::new(p.x, p.y, self.extrusion.z_at(v))
+    }
 }
 
 impl<'a> Screen<'a> {
@@ -53,9 +71,11 @@ impl<'a> Screen<'a> {
     /// no analytic surface: then every triangle is measured in full.
     pub fn new(info: &'a PatchInfo<'a>, options: &TessellationOptions) -> Option<Self> {
         let analytic = info.analytic?;
+        let swept = Extrusion::of(info.surface);
         Some(Self {
             info,
             analytic,
+            swept,
             limits: Limits {
                 tolerance: options.tolerance,
                 min_cos: options
@@ -85,7 +105,17 @@ impl<'a> Screen<'a> {
     /// [`strip`](Self::strip) of any triangles of `mesh`, in the order given (best
     /// when they share few v values).
     pub fn triangles(&self, mesh: &TriMesh, triangles: &[u32]) -> Vec<bool> {
-        screen_triangles(self.info, &self.analytic, mesh, triangles, &self.limits)
+        screen_triangles(
+            self.info,
+            &self.analytic,
+            self.swept.map(|extrusion| Swept {
+                row: self.info.surface.row(self.info.surface.domain().1.0),
+                extrusion,
+            }),
+            mesh,
+            triangles,
+            &self.limits,
+        )
     }
 }
 
@@ -143,6 +173,7 @@ struct Limits {
 fn screen_triangles(
     info: &PatchInfo,
     analytic: &Analytic,
+    swept: Option<Swept>,
     mesh: &TriMesh,
     triangles: &[u32],
     limits: &Limits,
@@ -155,7 +186,12 @@ fn screen_triangles(
     let mut probes: Vec<Probe> = Vec::with_capacity(4 * count);
     let mut groups = Groups::default();
     let add = |probes: &mut Vec<Probe>, probe: Probe, groups: &mut Groups| {
-        let group = groups.index(probe.uv.y);
+        // A swept surface needs no groups: every probe goes through one row.
+        let group = if swept.is_some() {
+            0
+        } else {
+            groups.index(probe.uv.y)
+        };
         probes.push(Probe { group, ..probe });
         (probes.len() - 1) as u32
     };
@@ -225,6 +261,13 @@ fn screen_triangles(
             previous[i] = (a, b, k);
         }
     }
+    if let Some(swept) = &swept {
+        for q in &probes {
+            let s = swept.point(info.wrap_u(q.uv.x), q.uv.y);
+            judge(q, s, analytic, &planes, tolerance, &mut within);
+        }
+        return within;
+    }
     // Counting sort by group, then one row evaluator per group.
     let mut starts = vec![0usize; groups.values.len() + 1];
     for q in &probes {
@@ -251,18 +294,32 @@ fn screen_triangles(
                 Some(row) => row.point(u),
                 None => info.surface.point(u, v),
             };
-            let distance = analytic.distance(q.point);
-            for slot in [q.triangle, q.other] {
-                let Some(&Some((origin, unit))) = planes.get(slot as usize) else {
-                    continue;
-                };
-                let deviation = distance.max((s - origin).dot(unit).abs());
-                // NaN counts as outside.
-                if deviation.is_nan() || deviation > tolerance {
-                    within[slot as usize] = false;
-                }
-            }
+            judge(q, s, analytic, &planes, tolerance, &mut within);
         }
     }
     within
+}
+
+/// Marks the triangles of probe `q` (one or two) outside when the surface point
+/// `s` at its parameters strays from their planes, or the probe's point on them
+/// from the analytic surface, by more than `tolerance`.
+fn judge(
+    q: &Probe,
+    s: DVec3,
+    analytic: &Analytic,
+    planes: &[Option<(DVec3, DVec3)>],
+    tolerance: f64,
+    within: &mut [bool],
+) {
+    let distance = analytic.distance(q.point);
+    for slot in [q.triangle, q.other] {
+        let Some(&Some((origin, unit))) = planes.get(slot as usize) else {
+            continue;
+        };
+        let deviation = distance.max((s - origin).dot(unit).abs());
+        // NaN counts as outside.
+        if deviation.is_nan() || deviation > tolerance {
+            within[slot as usize] = false;
+        }
+    }
 }
