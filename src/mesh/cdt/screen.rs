@@ -12,7 +12,9 @@
 //! for the diagonals, the thirds for the centroids — so here each strip's probes
 //! are grouped by their exact v and evaluated along one
 //! [`SurfaceRow`](crate::nurbs::SurfaceRow) per group (the v half of the work once,
-//! then a short contraction per probe). Sits between `rings` (which builds the
+//! then a short contraction per probe). On a surface swept along Z (a course) one
+//! row at v0 serves every probe, its axial coordinate read off v: the same surface
+//! points up to rounding, with no grouping. Sits between `rings` (which builds the
 //! mesh) and `mend` (which re-triangulates around the triangles found outside the
 //! limits, and screens its new triangles here again).
 
