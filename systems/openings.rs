@@ -255,9 +255,7 @@ pub fn cut_openings(world: &mut World) {
         .par_iter()
         .map(|job| {
             let hosts: Vec<&Patch> = job.hosts.iter().map(|(_, p)| p.as_ref()).collect();
-            let mut axial = None;
-            let mut reused = false;
-            let result = cut_opening_reusing(
+            let cut = cut_opening_reusing(
                 &job.neck,
                 job.pad_od,
                 &job.frame,
@@ -265,10 +263,11 @@ pub fn cut_openings(world: &mut World) {
                 &hosts,
                 tolerance,
                 job.kept.as_ref(),
-            )
-            .map(|c| {
-                axial = c.axial;
-                reused = c.reused;
+            );
+            let (axial, reused) = cut
+                .as_ref()
+                .map_or((None, false), |c| (c.axial.clone(), c.reused));
+            let result = cut.map(|c| {
                 let trims = c
                     .cut
                     .hosts

@@ -140,19 +140,14 @@ pub(super) fn triangulate(
     stats: &mut MeshStats,
 ) -> Result<TriMesh, CdtError> {
     let inside = triangulate_uv(info, region, seeds, stats)?;
-    let Inside {
-        uvs,
-        loop_vertices,
-        tris: inside,
-        loop_edges,
-    } = inside;
+    let (uvs, loop_vertices) = (&inside.uvs, inside.loop_vertices);
     // Keep the vertices the inside triangles use, loop vertices first.
     let mut new_index = vec![u32::MAX; uvs.len()];
     for (k, slot) in new_index.iter_mut().enumerate().take(loop_vertices) {
         *slot = k as u32;
     }
     let mut kept: Vec<u32> = (0..loop_vertices as u32).collect();
-    for tri in &inside {
+    for tri in &inside.tris {
         for &v in tri {
             if new_index[v as usize] == u32::MAX {
                 new_index[v as usize] = kept.len() as u32;
@@ -166,13 +161,12 @@ pub(super) fn triangulate(
         .map(|&k| info.vertex(uvs[k as usize]))
         .collect::<Result<Vec<_>, _>>()?;
     let tris: Vec<[u32; 3]> = inside
+        .tris
         .iter()
         .map(|t| t.map(|v| new_index[v as usize]))
         .collect();
     // Loop vertices keep their indices, so the loop edges are unchanged.
-    Ok(TriMesh::new(verts, tris, |a, b| {
-        loop_edges.contains(&(a, b)) || loop_edges.contains(&(b, a))
-    }))
+    Ok(TriMesh::new(verts, tris, |a, b| inside.is_loop_edge(a, b)))
 }
 
 /// [`triangulate`] in (u, v) only: the constrained Delaunay triangles inside the
