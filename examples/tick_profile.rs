@@ -4,7 +4,8 @@
 //! stage's share and the work counters. Run under `perf record` to profile edits.
 //!
 //! `cargo run --release --example tick_profile -- [vessels] [edits]`; `ONLY=<kind>`
-//! (e.g. `ONLY="nozzle elevation"`) applies only edits of that kind.
+//! (e.g. `ONLY="nozzle elevation"`) applies only edits of that kind; `SLOWEST=<n>`
+//! lists the n slowest edits, what they changed and the work they did.
 
 use std::collections::BTreeMap;
 use std::time::Instant;
@@ -61,6 +62,8 @@ fn main() {
     let mut rng = SplitMix64::new(7);
     let mut stats: BTreeMap<&'static str, Totals> = BTreeMap::new();
     let only = std::env::var("ONLY").ok();
+    // Every edit's time, with what it was, for the slowest ones' listing.
+    let mut slowest: Vec<(f64, String)> = Vec::new();
     edits_begin();
     for _ in 0..edits {
         let i = rng.int(0, designs.len() as u64 - 1) as usize;
@@ -68,6 +71,7 @@ fn main() {
             continue;
         };
         let what = kind(&designs[i], &edit);
+        let label = describe(&designs[i], &edit);
         if only.as_deref().is_some_and(|o| o != what) {
             continue;
         }
@@ -89,6 +93,13 @@ fn main() {
         t.triangles += c.triangles_meshed;
         t.cuts += c.openings_cut;
         t.placed += c.openings_placed;
+        slowest.push((
+            ms,
+            format!(
+                "{what:18} {label} | meshes {} shared {} tris {} cuts {}",
+                c.meshes_rebuilt, c.meshes_shared, c.triangles_meshed, c.openings_cut
+            ),
+        ));
     }
     let mut all = 0.0;
     let mut count = 0;
@@ -118,12 +129,44 @@ fn main() {
         );
     }
     every.sort_by(f64::total_cmp);
+    slowest.sort_by(|a, b| b.0.total_cmp(&a.0));
+    let listed: usize = std::env::var("SLOWEST")
+        .ok()
+        .and_then(|s| s.parse().ok())
+        .unwrap_or(0);
+    for (ms, what) in slowest.iter().take(listed) {
+        println!("  {ms:7.3} ms  {what}");
+    }
     println!(
         "all                n={count:4} mean {:.3} p50 {:.3} p99 {:.3} ms",
         all / count.max(1) as f64,
         percentile(&every, 0.5),
         percentile(&every, 0.99)
     );
+}
+
+/// The vessel an edit is made to, and the part or nozzle it changes.
+fn describe(old: &VesselDesign, edit: &Edit) -> String {
+    let shape = old
+        .parts
+        .iter()
+        .map(|p| match p {
+            PartDesign::Shell(s) => format!("S{:.0}x{:.0}", s.od, s.length),
+            PartDesign::Head(h) => format!("{:?}", h.shape),
+            other => other.id().to_string(),
+        })
+        .collect::<Vec<_>>()
+        .join(",");
+    let target = match edit {
+        Edit::SetPart { part, .. } => part.id().to_string(),
+        Edit::SetNozzle { nozzle, .. } => format!("{} on {}", nozzle.mark, nozzle.host),
+        _ => String::new(),
+    };
+    format!(
+        "{} {target} [{} nozzles; {shape}]",
+        old.tag,
+        old.nozzles.len()
+    )
 }
 
 /// Marks the end of the build: `valgrind --tool=callgrind

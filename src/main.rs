@@ -93,6 +93,11 @@ fn fail(error: &DesignError) -> ExitCode {
 
 fn main() -> ExitCode {
     let cli = Cli::parse();
+    // A command that runs to completion keeps its freed memory for reuse; a
+    // server gives it back (see `cli::alloc`).
+    if !matches!(cli.command, Command::Serve(_)) {
+        cli::alloc::hold_freed_memory();
+    }
     match cli.command {
         Command::Serve(args) => serve_command(args),
         Command::Drawing(args) => drawing_command::run(args),
