@@ -23,7 +23,7 @@
 use std::alloc::{GlobalAlloc, Layout};
 use std::cell::Cell;
 
-use libmimalloc_sys::{mi_option_get, mi_option_set, mi_option_t};
+use libmimalloc_sys::{mi_option_set, mi_option_t};
 use mimalloc::MiMalloc;
 use std::sync::atomic::{AtomicIsize, Ordering};
 
@@ -118,9 +118,9 @@ pub fn hold_freed_memory() {
 
 /// mimalloc's current purge delay, ms (-1: never).
 #[cfg(test)]
-fn purge_delay() -> i64 {
+fn purge_delay() -> std::ffi::c_long {
     // SAFETY: plain option getter of the linked mimalloc.
-    i64::from(unsafe { mi_option_get(PURGE_DELAY) })
+    unsafe { libmimalloc_sys::mi_option_get(PURGE_DELAY) }
 }
 
 /// Heap bytes allocated and not yet freed: exact to within [`FLUSH`] bytes per
