@@ -5,7 +5,9 @@
 //!
 //! `cargo run --release --example tick_profile -- [vessels] [edits]`; `ONLY=<kind>`
 //! (e.g. `ONLY="nozzle elevation"`) applies only edits of that kind; `SLOWEST=<n>`
-//! lists the n slowest edits, what they changed and the work they did.
+//! lists the n slowest edits, what they changed and the work they did;
+//! `DUMP_SLOW=<ms>` writes the design of each vessel whose edit took longer to
+//! `/tmp/slow-<tag>.json`.
 
 use std::collections::BTreeMap;
 use std::time::Instant;
@@ -51,7 +53,15 @@ fn kind(old: &VesselDesign, edit: &Edit) -> &'static str {
     }
 }
 
+/// The binary's allocator, configured as its batch commands configure it
+/// (`src/cli/alloc.rs`), so that the times are the binary's.
+#[global_allocator]
+static GLOBAL: mimalloc::MiMalloc = mimalloc::MiMalloc;
+
 fn main() {
+    // mimalloc's purge delay (option 15) off, as `vesselcad bench` has it.
+    // SAFETY: plain option setter of the linked mimalloc.
+    unsafe { libmimalloc_sys::mi_option_set(15, -1) };
     let mut args = std::env::args().skip(1);
     let vessels: usize = args.next().and_then(|a| a.parse().ok()).unwrap_or(300);
     let edits: usize = args.next().and_then(|a| a.parse().ok()).unwrap_or(600);
@@ -62,6 +72,7 @@ fn main() {
     let mut rng = SplitMix64::new(7);
     let mut stats: BTreeMap<&'static str, Totals> = BTreeMap::new();
     let only = std::env::var("ONLY").ok();
+    let dump: Option<f64> = std::env::var("DUMP_SLOW").ok().and_then(|s| s.parse().ok());
     // Every edit's time, with what it was, for the slowest ones' listing.
     let mut slowest: Vec<(f64, String)> = Vec::new();
     edits_begin();
@@ -78,7 +89,7 @@ fn main() {
         if model.apply(edit).is_err() {
             continue;
         }
-        designs[i] = after;
+        designs[i] = after.clone();
         let start = Instant::now();
         let c = model.update();
         let ms = start.elapsed().as_secs_f64() * 1e3;
@@ -93,11 +104,28 @@ fn main() {
         t.triangles += c.triangles_meshed;
         t.cuts += c.openings_cut;
         t.placed += c.openings_placed;
+        if dump.is_some_and(|limit| ms > limit) {
+            let path = format!("/tmp/slow-{}.json", after.tag);
+            let one = vesselcad::design::Design {
+                vessels: vec![after],
+                ..design.clone()
+            };
+            if let Ok(text) = serde_json::to_string_pretty(&one) {
+                let _ = std::fs::write(&path, text);
+                eprintln!("{ms:.1} ms: wrote {path}");
+            }
+        }
         slowest.push((
             ms,
             format!(
-                "{what:18} {label} | meshes {} shared {} tris {} cuts {}",
-                c.meshes_rebuilt, c.meshes_shared, c.triangles_meshed, c.openings_cut
+                "{what:18} {label} | meshes {} shared {} tris {} cuts {} | stages {:?} ms",
+                c.meshes_rebuilt,
+                c.meshes_shared,
+                c.triangles_meshed,
+                c.openings_cut,
+                model
+                    .stage_times()
+                    .map(|d| (d.as_secs_f64() * 1e4).round() / 10.0)
             ),
         ));
     }

@@ -264,11 +264,19 @@ pub fn run_bench(
         config.ticks, config.tick_edits
     ));
     let mut ticks = Vec::with_capacity(config.ticks);
+    let mut tick_apply = Duration::ZERO;
+    let mut tick_stages = [Duration::ZERO; STAGES];
     two.install(|| {
         for _ in 0..config.ticks {
-            ticks.push(sim.tick(config.tick_edits, 0).latency);
+            let report = sim.tick(config.tick_edits, 0);
+            ticks.push(report.latency);
+            tick_apply += report.latency.saturating_sub(report.update);
+            for (total, stage) in tick_stages.iter_mut().zip(report.stages) {
+                *total += stage;
+            }
         }
     });
+    let per_tick = |d: Duration| ms(d) / config.ticks.max(1) as f64;
     let tick50 = quantile(&mut ticks, 0.5);
     let tick_max = quantile(&mut ticks, 1.0);
     rows.push(row(
@@ -276,6 +284,21 @@ pub fn run_bench(
         format!("{:.2} ms ({:.2} ms)", ms(tick50), ms(tick_max)),
         "≤ 20 ms",
         Some(ms(tick50) <= 20.0),
+    ));
+    rows.push(row(
+        "  tick, mean: draw+check+write | V | C | G | T | P | E",
+        format!(
+            "{:.1} | {:.1} | {:.1} | {:.1} | {:.1} | {:.1} | {:.1} ms",
+            per_tick(tick_apply),
+            per_tick(tick_stages[0]),
+            per_tick(tick_stages[1]),
+            per_tick(tick_stages[2]),
+            per_tick(tick_stages[3]),
+            per_tick(tick_stages[4]),
+            per_tick(tick_stages[5])
+        ),
+        "",
+        None,
     ));
 
     let memory = sim.model().memory();
