@@ -8,6 +8,10 @@ use bevy_ecs::resource::Resource;
 pub struct WorkCounters {
     /// Vessels resolved (constraint layout recomputed).
     pub vessels_resolved: u64,
+    /// Of the resolved vessels, those whose resolution was the one `Model::apply`
+    /// computed when it checked the edit (see `CheckedResolutions`), not computed
+    /// again.
+    pub resolutions_reused: u64,
     /// Part and nozzle frames that changed.
     pub frames_updated: u64,
     /// Parts and nozzles whose shape changed (their patches were rebuilt).

@@ -31,7 +31,9 @@ pub use operating::update_operating_states;
 pub use project::{Views, entity_input, project_dirty_views, views_kept};
 pub use regions::{HostSides, lay_out_regions};
 pub use tessellate::{Instances, Tessellation, remesh_dirty_patches};
-pub use validate::{EditedVessels, ModelErrors, PendingResolutions, resolve_dirty_vessels};
+pub use validate::{
+    CheckedResolutions, EditedVessels, ModelErrors, PendingResolutions, resolve_dirty_vessels,
+};
 
 use bevy_ecs::schedule::{IntoScheduleConfigs, Schedule, SystemSet};
 

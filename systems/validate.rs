@@ -12,6 +12,7 @@ use bevy_ecs::hierarchy::Children;
 use bevy_ecs::resource::Resource;
 use bevy_ecs::system::{Query, ResMut};
 use rayon::prelude::*;
+use rustc_hash::FxHashMap;
 
 use super::WorkCounters;
 use crate::components::{DesignOrder, NoteSpec, NozzleSpec, PartSpec, VesselSpec};
@@ -21,6 +22,15 @@ use crate::design::{RuleViolation, VesselDesign};
 /// Vessels resolved by the Validate stage, waiting for the Constrain stage.
 #[derive(Resource, Default)]
 pub struct PendingResolutions(pub Vec<(Entity, ResolvedVessel)>);
+
+/// Resolutions `Model::apply` computed when it checked an edit, by vessel, each
+/// with the order and design (operating data left out, as [`read_vessel`] reads
+/// it) it was computed from. [`resolve_dirty_vessels`] takes a dirty vessel's
+/// resolution from here instead of resolving it a second time when the world
+/// still holds exactly that design, and drops the rest: resolving is a pure
+/// function of the design and its order, and the operating data only adds checks.
+#[derive(Resource, Default)]
+pub struct CheckedResolutions(pub FxHashMap<Entity, (u32, VesselDesign, ResolvedVessel)>);
 
 /// Rule violations found in the world by the last run (normally empty: edits are
 /// checked before they are written).
@@ -74,9 +84,11 @@ pub fn resolve_dirty_vessels(
     nozzles: Query<(&NozzleSpec, &DesignOrder)>,
     notes: Query<(&NoteSpec, &DesignOrder)>,
     mut pending: ResMut<PendingResolutions>,
+    mut checked: ResMut<CheckedResolutions>,
     mut errors: ResMut<ModelErrors>,
     mut counters: ResMut<WorkCounters>,
 ) {
+    let mut checked = std::mem::take(&mut checked.0);
     let mut dirty: Vec<Entity> = std::mem::take(&mut edited.0);
     dirty.sort_unstable();
     dirty.dedup();
@@ -92,14 +104,26 @@ pub fn resolve_dirty_vessels(
         })
         .collect();
     counters.vessels_resolved += work.len() as u64;
+    // Each vessel's resolution from the edit's check when it matches the world.
+    let known: Vec<Option<ResolvedVessel>> = work
+        .iter()
+        .map(|(e, order, design)| {
+            checked
+                .remove(e)
+                .filter(|(o, d, _)| o == order && d == design)
+                .map(|(_, _, resolved)| resolved)
+        })
+        .collect();
+    counters.resolutions_reused += known.iter().filter(|k| k.is_some()).count() as u64;
     let results: Vec<_> = work
         .par_iter()
-        .map(|(e, order, design)| {
-            (
-                *e,
-                design.tag.clone(),
-                resolve_vessel(design, *order as usize),
-            )
+        .zip(known)
+        .map(|((e, order, design), known)| {
+            let result = match known {
+                Some(resolved) => Ok(resolved),
+                None => resolve_vessel(design, *order as usize),
+            };
+            (*e, design.tag.clone(), result)
         })
         .collect();
     for (e, tag, result) in results {

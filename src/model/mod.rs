@@ -30,8 +30,8 @@ use crate::export::Scene;
 use crate::mesh::{OptionsError, TessellationOptions};
 pub use crate::systems::Views;
 use crate::systems::{
-    ChangeLog, DirtyParts, DirtyPatches, EditedVessels, Instances, ModelErrors, OpeningHosts,
-    PendingResolutions, StageTimes, Tessellation, WorkCounters, build_schedule,
+    ChangeLog, CheckedResolutions, DirtyParts, DirtyPatches, EditedVessels, Instances, ModelErrors,
+    OpeningHosts, PendingResolutions, StageTimes, Tessellation, WorkCounters, build_schedule,
 };
 
 /// Why an edit or model construction was refused. The model is unchanged.
@@ -89,6 +89,7 @@ impl Model {
         world.init_resource::<Views>();
         world.init_resource::<StageTimes>();
         world.init_resource::<EditedVessels>();
+        world.init_resource::<CheckedResolutions>();
         Ok(Self {
             world,
             schedule: build_schedule(),

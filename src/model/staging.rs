@@ -8,7 +8,7 @@ use bevy_ecs::world::World;
 
 use super::{Edit, ModelError, VesselIndex, read};
 use crate::components::DesignOrder;
-use crate::constraints::resolve_vessel;
+use crate::constraints::{ResolvedVessel, resolve_vessel};
 use crate::design::{DesignError, FORMAT, RuleViolation, VesselDesign, units};
 
 /// One vessel to write or remove.
@@ -20,6 +20,9 @@ pub(crate) enum StagedVessel {
         design: Box<VesselDesign>,
         /// Position in the plant's vessel list.
         order: u32,
+        /// The design resolved by the rules when the edit was checked, handed to
+        /// the Validate stage so that it need not resolve it again.
+        resolved: Box<ResolvedVessel>,
     },
     /// Remove the vessel.
     Remove {
@@ -244,9 +247,10 @@ pub(crate) fn stage(world: &World, edit: Edit) -> Result<Staged, ModelError> {
                     continue;
                 }
                 match resolve_vessel(&design, order as usize) {
-                    Ok(_) => out.push(StagedVessel::Put {
+                    Ok(resolved) => out.push(StagedVessel::Put {
                         design: Box::new(design),
                         order,
+                        resolved: Box::new(resolved),
                     }),
                     Err(mut v) => violations.append(&mut v),
                 }

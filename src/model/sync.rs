@@ -11,7 +11,7 @@ use super::staging::{Staged, StagedVessel};
 use super::{VesselIndex, read};
 use crate::components::{DesignOrder, NoteSpec, NozzleSpec, OperatingSpec, PartSpec, VesselSpec};
 use crate::design::VesselDesign;
-use crate::systems::{ChangeLog, EditedVessels};
+use crate::systems::{ChangeLog, CheckedResolutions, EditedVessels};
 
 /// Sets a component if it differs; returns whether it was written.
 fn put<T: Component<Mutability = Mutable> + PartialEq>(
@@ -64,7 +64,7 @@ fn sync_children<T: Component<Mutability = Mutable> + PartialEq>(
 }
 
 /// Writes one vessel's design into its entities.
-fn put_vessel(world: &mut World, design: VesselDesign, order: u32) {
+fn put_vessel(world: &mut World, design: VesselDesign, order: u32) -> Entity {
     let existing = world.resource::<VesselIndex>().0.get(&design.tag).copied();
     let spec = VesselSpec {
         tag: design.tag.clone(),
@@ -146,13 +146,30 @@ fn put_vessel(world: &mut World, design: VesselDesign, order: u32) {
     if edited || a || b || c || wa || wb || wc {
         world.resource_mut::<EditedVessels>().0.push(entity);
     }
+    entity
 }
 
 /// Applies a checked edit to the world.
 pub(crate) fn commit(world: &mut World, staged: Staged) {
     for s in staged.0 {
         match s {
-            StagedVessel::Put { design, order } => put_vessel(world, *design, order),
+            StagedVessel::Put {
+                design,
+                order,
+                resolved,
+            } => {
+                // What the Validate stage will read back: the design without its
+                // operating data (kept in its own component).
+                let checked = VesselDesign {
+                    operating: None,
+                    ..(*design).clone()
+                };
+                let entity = put_vessel(world, *design, order);
+                world
+                    .resource_mut::<CheckedResolutions>()
+                    .0
+                    .insert(entity, (order, checked, *resolved));
+            }
             StagedVessel::Remove { tag } => {
                 if let Some(e) = world.resource_mut::<VesselIndex>().0.remove(&tag) {
                     let children: Vec<String> = read::parts(world, e)

@@ -366,6 +366,7 @@ fn delta_or_empty(scene: &Scene, changed: &BTreeSet<String>) -> Vec<u8> {
 fn work_json(w: &WorkCounters) -> Value {
     json!({
         "vessels_resolved": w.vessels_resolved,
+        "resolutions_reused": w.resolutions_reused,
         "frames_updated": w.frames_updated,
         "shapes_rebuilt": w.shapes_rebuilt,
         "openings_cut": w.openings_cut,
