@@ -3,7 +3,8 @@
 //! A vessel is dirty when its own parameters changed or any of its parts, nozzles
 //! or notes did (the model also marks it when it adds or removes children). Each
 //! dirty vessel is read back into its design form and resolved by the constraint
-//! rules, in parallel. A vessel that fails (only possible if the world was edited
+//! rules, in parallel, unless `Model::apply` already resolved exactly that design
+//! when it checked the edit ([`CheckedResolutions`]). A vessel that fails (only possible if the world was edited
 //! around `Model::apply`) keeps its derived data and its violations are recorded.
 
 use bevy_ecs::change_detection::Ref;
