@@ -59,9 +59,8 @@ fn kind(old: &VesselDesign, edit: &Edit) -> &'static str {
 static GLOBAL: mimalloc::MiMalloc = mimalloc::MiMalloc;
 
 fn main() {
-    // mimalloc's purge delay (option 15) off, as `vesselcad bench` has it.
-    // SAFETY: plain option setter of the linked mimalloc.
-    unsafe { libmimalloc_sys::mi_option_set(15, -1) };
+    // Freed memory kept, as `vesselcad bench` keeps it.
+    vesselcad::allocator::hold_freed_memory();
     let mut args = std::env::args().skip(1);
     let vessels: usize = args.next().and_then(|a| a.parse().ok()).unwrap_or(300);
     let edits: usize = args.next().and_then(|a| a.parse().ok()).unwrap_or(600);

@@ -25,6 +25,7 @@
 //! used inside the kernel. The modelling tolerance [`MODEL_EPSILON`] (point
 //! coincidence, knot equality) is separate from any meshing tolerance.
 
+pub mod allocator;
 #[path = "../components/mod.rs"]
 pub mod components;
 pub mod constraints;

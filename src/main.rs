@@ -94,9 +94,9 @@ fn fail(error: &DesignError) -> ExitCode {
 fn main() -> ExitCode {
     let cli = Cli::parse();
     // A command that runs to completion keeps its freed memory for reuse; a
-    // server gives it back (see `cli::alloc`).
+    // server gives it back (see `vesselcad::allocator`).
     if !matches!(cli.command, Command::Serve(_)) {
-        cli::alloc::hold_freed_memory();
+        vesselcad::allocator::hold_freed_memory();
     }
     match cli.command {
         Command::Serve(args) => serve_command(args),

@@ -10,7 +10,7 @@
 //! threads do not fight over one counter's cache line on every allocation.
 //!
 //! The batch commands also keep freed memory rather than hand it back to the
-//! system ([`hold_freed_memory`]). mimalloc returns pages unused for a second
+//! system ([`vesselcad::allocator::hold_freed_memory`]). mimalloc returns pages unused for a second
 //! (`madvise`), and a build that frees and reallocates gigabytes of meshing
 //! scratch then faults them in again: about 720 000 minor faults and 30 s of
 //! kernel time in `vesselcad bench` at 10 000 vessels. With purging off that is
@@ -23,7 +23,6 @@
 use std::alloc::{GlobalAlloc, Layout};
 use std::cell::Cell;
 
-use libmimalloc_sys::{mi_option_set, mi_option_t};
 use mimalloc::MiMalloc;
 use std::sync::atomic::{AtomicIsize, Ordering};
 
@@ -103,44 +102,8 @@ unsafe impl GlobalAlloc for Counting {
 #[global_allocator]
 static GLOBAL: Counting = Counting;
 
-/// mimalloc's `mi_option_purge_delay` (`include/mimalloc.h`, v3): how many
-/// milliseconds freed memory waits before it is returned to the system; -1 for
-/// never. `libmimalloc-sys` does not name it.
-const PURGE_DELAY: mi_option_t = 15;
-
-/// Keeps freed memory in the process for reuse instead of returning it to the
-/// system after a delay (see the module doc). For commands that run to
-/// completion; call before the heavy work starts.
-pub fn hold_freed_memory() {
-    // SAFETY: plain option setter of the linked mimalloc; any value is valid.
-    unsafe { mi_option_set(PURGE_DELAY, -1) };
-}
-
-/// mimalloc's current purge delay, ms (-1: never).
-#[cfg(test)]
-fn purge_delay() -> std::ffi::c_long {
-    // SAFETY: plain option getter of the linked mimalloc.
-    unsafe { libmimalloc_sys::mi_option_get(PURGE_DELAY) }
-}
-
 /// Heap bytes allocated and not yet freed: exact to within [`FLUSH`] bytes per
 /// thread that has allocated (the balances not yet moved to the total).
 pub fn live_bytes() -> usize {
     LIVE.load(Ordering::Relaxed).max(0) as usize
-}
-
-#[cfg(test)]
-mod tests {
-    use super::*;
-
-    #[test]
-    fn hold_freed_memory_turns_purging_off() {
-        // Option 15 is the purge delay: it starts at mimalloc v3's default of
-        // 1000 ms (unless the environment set it), and holding sets it to never.
-        if std::env::var_os("MIMALLOC_PURGE_DELAY").is_none() {
-            assert_eq!(purge_delay(), 1000);
-        }
-        hold_freed_memory();
-        assert_eq!(purge_delay(), -1);
-    }
 }

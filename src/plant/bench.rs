@@ -14,7 +14,7 @@ use std::time::{Duration, Instant};
 use rayon::ThreadPoolBuilder;
 
 use super::generate::{GenerateError, generate_plant};
-use super::simulate::{Simulation, quantile};
+use super::simulate::{Simulation, TickReport, quantile};
 use crate::design::Design;
 use crate::export::{ExportError, stream_glb_to};
 use crate::mesh::TessellationOptions;
@@ -92,6 +92,33 @@ fn row(name: &str, value: String, target: &str, met: Option<bool>) -> BenchRow {
         value,
         target: target.to_string(),
         met,
+    }
+}
+
+/// Where ticks' time went, summed over ticks: drawing, checking and writing the
+/// edits, then each stage of the update.
+#[derive(Default)]
+struct StageSums {
+    apply: Duration,
+    stages: [Duration; STAGES],
+}
+
+impl StageSums {
+    fn add(&mut self, report: &TickReport) {
+        self.apply += report.latency.saturating_sub(report.update);
+        for (total, stage) in self.stages.iter_mut().zip(report.stages) {
+            *total += stage;
+        }
+    }
+
+    /// Means over `count` ticks, ms: the edits first, then the stages in order.
+    fn means(&self, count: usize) -> [f64; STAGES + 1] {
+        let n = count.max(1) as f64;
+        let mut out = [ms(self.apply) / n; STAGES + 1];
+        for (m, stage) in out[1..].iter_mut().zip(self.stages) {
+            *m = ms(stage) / n;
+        }
+        out
     }
 }
 
@@ -185,22 +212,16 @@ pub fn run_bench(
     let mut sim = Simulation::new(model, &design, config.seed ^ 0x5EED);
     progress(&format!("{} one-parameter edits", config.edits));
     let mut samples = Vec::with_capacity(config.edits);
-    // Where an edit's time goes: drawing + checking + writing the edit, then
-    // the update's stages (summed over the edits).
-    let mut apply = Duration::ZERO;
-    let mut stages = [Duration::ZERO; STAGES];
+    // Where an edit's time goes (summed over the edits).
+    let mut sums = StageSums::default();
     two.install(|| {
         for _ in 0..config.edits {
             let report = sim.tick(1, 0);
             samples.push(report.latency);
-            apply += report.latency.saturating_sub(report.update);
-            for (total, stage) in stages.iter_mut().zip(report.stages) {
-                *total += stage;
-            }
+            sums.add(&report);
         }
     });
-    let edits = config.edits.max(1) as f64;
-    let mean = |d: Duration| ms(d) / edits;
+    let mean = sums.means(config.edits);
     let p50 = quantile(&mut samples, 0.5);
     let p99 = quantile(&mut samples, 0.99);
     rows.push(row(
@@ -217,12 +238,7 @@ pub fn run_bench(
     ));
     rows.push(row(
         "  edit, mean: draw+check+write | Validate | Constrain",
-        format!(
-            "{:.3} | {:.3} | {:.3} ms",
-            mean(apply),
-            mean(stages[0]),
-            mean(stages[1])
-        ),
+        format!("{:.3} | {:.3} | {:.3} ms", mean[0], mean[1], mean[2]),
         "",
         None,
     ));
@@ -230,10 +246,7 @@ pub fn run_bench(
         "  edit, mean: Geometry | Tessellate | Project | Export",
         format!(
             "{:.3} | {:.3} | {:.3} | {:.3} ms",
-            mean(stages[2]),
-            mean(stages[3]),
-            mean(stages[4]),
-            mean(stages[5])
+            mean[3], mean[4], mean[5], mean[6]
         ),
         "",
         None,
@@ -264,19 +277,14 @@ pub fn run_bench(
         config.ticks, config.tick_edits
     ));
     let mut ticks = Vec::with_capacity(config.ticks);
-    let mut tick_apply = Duration::ZERO;
-    let mut tick_stages = [Duration::ZERO; STAGES];
+    let mut tick_sums = StageSums::default();
     two.install(|| {
         for _ in 0..config.ticks {
             let report = sim.tick(config.tick_edits, 0);
             ticks.push(report.latency);
-            tick_apply += report.latency.saturating_sub(report.update);
-            for (total, stage) in tick_stages.iter_mut().zip(report.stages) {
-                *total += stage;
-            }
+            tick_sums.add(&report);
         }
     });
-    let per_tick = |d: Duration| ms(d) / config.ticks.max(1) as f64;
     let tick50 = quantile(&mut ticks, 0.5);
     let tick_max = quantile(&mut ticks, 1.0);
     rows.push(row(
@@ -287,16 +295,11 @@ pub fn run_bench(
     ));
     rows.push(row(
         "  tick, mean: draw+check+write | V | C | G | T | P | E",
-        format!(
-            "{:.1} | {:.1} | {:.1} | {:.1} | {:.1} | {:.1} | {:.1} ms",
-            per_tick(tick_apply),
-            per_tick(tick_stages[0]),
-            per_tick(tick_stages[1]),
-            per_tick(tick_stages[2]),
-            per_tick(tick_stages[3]),
-            per_tick(tick_stages[4]),
-            per_tick(tick_stages[5])
-        ),
+        tick_sums
+            .means(config.ticks)
+            .map(|m| format!("{m:.1}"))
+            .join(" | ")
+            + " ms",
         "",
         None,
     ));
