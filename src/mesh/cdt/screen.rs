@@ -5,7 +5,10 @@
 //! Refinement's measure (`refine::assess`) probes each triangle at its parametric
 //! centroid and at the midpoint of every edge that is not a loop segment: the
 //! distance from S at those parameters to the triangle's plane, and the closed-form
-//! distance of the 3D probe point to the patch's analytic surface. Pointwise, that
+//! distance of the 3D probe point to the patch's analytic surface (here skipped
+//! when |P − S| is already within the tolerance: S lies on that surface, so
+//! |P − S| bounds the distance from above and the verdict is the same; it spares
+//! the Newton steps of a spheroid). Pointwise, that
 //! is four independent NURBS evaluations per triangle, the bulk of the mesher's
 //! time. In a structured mesh (`rings`) the probes of one strip between two rows
 //! share a handful of v values — the rows' own for edges along them, the middle
@@ -313,7 +316,15 @@ fn judge(
     tolerance: f64,
     within: &mut [bool],
 ) {
-    let distance = analytic.distance(q.point);
+    // S lies on the analytic surface, so |P − S| bounds P's distance to it from
+    // above: within the tolerance, the closed form (Newton steps on a spheroid)
+    // cannot change the verdict and is skipped.
+    let bound = (q.point - s).length();
+    let distance = if bound <= tolerance {
+        bound
+    } else {
+        analytic.distance(q.point)
+    };
     for slot in [q.triangle, q.other] {
         let Some(&Some((origin, unit))) = planes.get(slot as usize) else {
             continue;
