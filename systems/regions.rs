@@ -7,7 +7,9 @@
 //! A host patch is laid out again whenever one of its openings changes, and a
 //! nozzle neck whenever its opening moves, mostly with their own surface
 //! unchanged; their sampled sides ([`PatchSides`], the costly part of a layout)
-//! are kept in [`HostSides`] and reused while the surface is the same.
+//! are kept in [`HostSides`] and reused while the surface is the same. When the
+//! surface changed, a side whose edge curve did not (the bottom of a course whose
+//! length changed) is still taken from the kept sides.
 
 use std::collections::{BTreeSet, HashMap};
 use std::sync::Arc;
@@ -66,6 +68,9 @@ struct Job {
     trim: Trim,
     /// The patch's sides as kept from its last layout, if its surface is the same.
     sides: Option<Arc<PatchSides>>,
+    /// Otherwise, the kept surface and sides of its last layout, from which a v
+    /// side whose edge curve did not change is taken (`PatchSides::of_reusing`).
+    previous: Option<(Arc<Patch>, Arc<PatchSides>)>,
 }
 
 impl Job {
@@ -183,15 +188,17 @@ pub fn lay_out_regions(world: &mut World, all: &mut QueryState<Entity, With<Patc
         .filter_map(|patch| {
             let surface = world.get::<PatchSurface>(patch)?.0.clone();
             let trim = trims(world, patch)?;
-            let sides = kept
-                .get(&patch)
-                .filter(|(from, _)| Arc::ptr_eq(from, &surface))
-                .map(|(_, sides)| sides.clone());
+            let (sides, previous) = match kept.get(&patch) {
+                Some((from, sides)) if Arc::ptr_eq(from, &surface) => (Some(sides.clone()), None),
+                Some((from, sides)) => (None, Some((from.clone(), sides.clone()))),
+                None => (None, None),
+            };
             Some(Job {
                 patch,
                 surface,
                 trim,
                 sides,
+                previous,
             })
         })
         .collect();
@@ -206,10 +213,14 @@ pub fn lay_out_regions(world: &mut World, all: &mut QueryState<Entity, With<Patc
                 } => {
                     let holes: Vec<&IntersectionLoop> = holes.iter().map(|h| h.as_ref()).collect();
                     let notches: Vec<&Notch> = notches.iter().flat_map(|n| n.iter()).collect();
-                    let sides = j
-                        .sides
-                        .clone()
-                        .unwrap_or_else(|| Arc::new(PatchSides::of(&j.surface.surface, &options)));
+                    let sides = j.sides.clone().unwrap_or_else(|| {
+                        let previous = j.previous.as_ref().map(|(p, s)| (&p.surface, s.as_ref()));
+                        Arc::new(PatchSides::of_reusing(
+                            &j.surface.surface,
+                            &options,
+                            previous,
+                        ))
+                    });
                     let region = host_region_with(
                         &j.surface.surface,
                         &sides,

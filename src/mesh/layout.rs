@@ -73,6 +73,29 @@ pub fn closed_in_u(surface: &NurbsSurface) -> bool {
             .all(|(p, q)| (*p - *q).length() <= 1e-9 * s)
 }
 
+/// Whether two curves have the same knots and homogeneous control points, bit for
+/// bit.
+fn same_bits(a: &NurbsCurve, b: &NurbsCurve) -> bool {
+    let (ka, kb) = (a.knots(), b.knots());
+    ka.degree() == kb.degree()
+        && ka.as_slice().len() == kb.as_slice().len()
+        && ka
+            .as_slice()
+            .iter()
+            .zip(kb.as_slice())
+            .all(|(x, y)| x.to_bits() == y.to_bits())
+        && a.homogeneous_points().len() == b.homogeneous_points().len()
+        && a.homogeneous_points()
+            .iter()
+            .zip(b.homogeneous_points())
+            .all(|(p, q)| {
+                p.to_array()
+                    .iter()
+                    .zip(q.to_array())
+                    .all(|(x, y)| x.to_bits() == y.to_bits())
+            })
+}
+
 /// Parameters along a side curve; a pole gives only its ends.
 fn side(curve: &NurbsCurve, options: &TessellationOptions, multiple: usize) -> Vec<f64> {
     if degenerate(curve) {
@@ -273,11 +296,35 @@ pub struct PatchSides {
 impl PatchSides {
     /// The sides of `surface` sampled for `options`.
     pub fn of(surface: &NurbsSurface, options: &TessellationOptions) -> Self {
+        Self::of_reusing(surface, options, None)
+    }
+
+    /// [`of`](Self::of), taking a v side's samples from `previous` (the sides an
+    /// earlier surface of the same patch got with the same options) where that
+    /// side's edge curve is the same to the bit: sampling is a function of the
+    /// curve alone, so the result is what [`of`](Self::of) gives. A course whose
+    /// length changed keeps its bottom side's samples.
+    pub fn of_reusing(
+        surface: &NurbsSurface,
+        options: &TessellationOptions,
+        previous: Option<(&NurbsSurface, &PatchSides)>,
+    ) -> Self {
         let (_, (v0, v1)) = surface.domain();
         let closed = closed_in_u(surface);
         let multiple = if closed { SEAM_CUTS } else { 1 };
-        let params_v0 = side(&surface.boundary(Side::VMin), options, multiple);
-        let params_v1 = side(&surface.boundary(Side::VMax), options, multiple);
+        let previous = previous.filter(|(_, sides)| sides.closed == closed);
+        let sample = |which: Side| {
+            let curve = surface.boundary(which);
+            let kept = previous.and_then(|(before, sides)| {
+                same_bits(&curve, &before.boundary(which)).then(|| match which {
+                    Side::VMin => sides.v0.clone(),
+                    _ => sides.v1.clone(),
+                })
+            });
+            kept.unwrap_or_else(|| side(&curve, options, multiple))
+        };
+        let params_v0 = sample(Side::VMin);
+        let params_v1 = sample(Side::VMax);
         // The seam sides of a closed patch belong to it alone: sample them no
         // coarser than `max_stretch` times the spacing along its v sides, so that the
         // triangles along a straight generator are not needles.
@@ -558,4 +605,54 @@ pub fn pad_region(
         outer_loop.reverse();
     }
     Ok(Region::new(UvLoop::new(outer_loop)))
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::parts::Shell;
+
+    fn course(od: f64, length: f64) -> NurbsSurface {
+        let patches = Shell {
+            outside_diameter: od,
+            length,
+        }
+        .patches()
+        .expect("a valid course");
+        patches[0].surface.clone()
+    }
+
+    /// Bits of a side's samples, so that equality is exact.
+    fn bits(params: &[f64]) -> Vec<u64> {
+        params.iter().map(|x| x.to_bits()).collect()
+    }
+
+    #[test]
+    fn reused_sides_are_the_sides_sampled_afresh() {
+        let options = TessellationOptions::chord(0.3);
+        let short = course(2400.0, 3000.0);
+        let kept = PatchSides::of(&short, &options);
+        // Longer: the bottom circle is the same curve, the top one moved.
+        let long = course(2400.0, 3200.0);
+        let fresh = PatchSides::of(&long, &options);
+        let reused = PatchSides::of_reusing(&long, &options, Some((&short, &kept)));
+        assert_eq!(bits(&reused.v0), bits(&fresh.v0));
+        assert_eq!(bits(&reused.v1), bits(&fresh.v1));
+        assert_eq!(reused, fresh);
+        assert!(same_bits(
+            &short.boundary(Side::VMin),
+            &long.boundary(Side::VMin)
+        ));
+        assert!(!same_bits(
+            &short.boundary(Side::VMax),
+            &long.boundary(Side::VMax)
+        ));
+        // Wider: neither side is the same curve, so neither is taken; a kept side
+        // of another diameter would have too few samples for this one.
+        let wide = course(3600.0, 3000.0);
+        let fresh = PatchSides::of(&wide, &options);
+        let reused = PatchSides::of_reusing(&wide, &options, Some((&short, &kept)));
+        assert_eq!(reused, fresh);
+        assert_ne!(fresh.v0.len(), kept.v0.len());
+    }
 }
