@@ -72,7 +72,12 @@ fn main() {
     let mut stats: BTreeMap<&'static str, Totals> = BTreeMap::new();
     let only = std::env::var("ONLY").ok();
     let dump: Option<f64> = std::env::var("DUMP_SLOW").ok().and_then(|s| s.parse().ok());
-    // Every edit's time, with what it was, for the slowest ones' listing.
+    let listed: usize = std::env::var("SLOWEST")
+        .ok()
+        .and_then(|s| s.parse().ok())
+        .unwrap_or(0);
+    // Every edit's time, with what it was, for the slowest ones' listing (only
+    // when asked for: the labels would count in a profile of the edits).
     let mut slowest: Vec<(f64, String)> = Vec::new();
     edits_begin();
     for _ in 0..edits {
@@ -81,14 +86,13 @@ fn main() {
             continue;
         };
         let what = kind(&designs[i], &edit);
-        let label = describe(&designs[i], &edit);
         if only.as_deref().is_some_and(|o| o != what) {
             continue;
         }
+        let label = (listed > 0).then(|| describe(&designs[i], &edit));
         if model.apply(edit).is_err() {
             continue;
         }
-        designs[i] = after.clone();
         let start = Instant::now();
         let c = model.update();
         let ms = start.elapsed().as_secs_f64() * 1e3;
@@ -106,7 +110,7 @@ fn main() {
         if dump.is_some_and(|limit| ms > limit) {
             let path = format!("/tmp/slow-{}.json", after.tag);
             let one = vesselcad::design::Design {
-                vessels: vec![after],
+                vessels: vec![after.clone()],
                 ..design.clone()
             };
             if let Ok(text) = serde_json::to_string_pretty(&one) {
@@ -114,6 +118,10 @@ fn main() {
                 eprintln!("{ms:.1} ms: wrote {path}");
             }
         }
+        designs[i] = after;
+        let Some(label) = label else {
+            continue;
+        };
         slowest.push((
             ms,
             format!(
@@ -157,10 +165,6 @@ fn main() {
     }
     every.sort_by(f64::total_cmp);
     slowest.sort_by(|a, b| b.0.total_cmp(&a.0));
-    let listed: usize = std::env::var("SLOWEST")
-        .ok()
-        .and_then(|s| s.parse().ok())
-        .unwrap_or(0);
     for (ms, what) in slowest.iter().take(listed) {
         println!("  {ms:7.3} ms  {what}");
     }

@@ -66,11 +66,10 @@ struct Job {
     patch: Entity,
     surface: Arc<Patch>,
     trim: Trim,
-    /// The patch's sides as kept from its last layout, if its surface is the same.
-    sides: Option<Arc<PatchSides>>,
-    /// Otherwise, the kept surface and sides of its last layout, from which a v
-    /// side whose edge curve did not change is taken (`PatchSides::of_reusing`).
-    previous: Option<(Arc<Patch>, Arc<PatchSides>)>,
+    /// The surface and sides kept from the patch's last layout: the sides as
+    /// they are while the surface is the same, else the source of any v side
+    /// whose edge curve did not change (`PatchSides::of_reusing`).
+    kept: Option<(Arc<Patch>, Arc<PatchSides>)>,
 }
 
 impl Job {
@@ -188,17 +187,11 @@ pub fn lay_out_regions(world: &mut World, all: &mut QueryState<Entity, With<Patc
         .filter_map(|patch| {
             let surface = world.get::<PatchSurface>(patch)?.0.clone();
             let trim = trims(world, patch)?;
-            let (sides, previous) = match kept.get(&patch) {
-                Some((from, sides)) if Arc::ptr_eq(from, &surface) => (Some(sides.clone()), None),
-                Some((from, sides)) => (None, Some((from.clone(), sides.clone()))),
-                None => (None, None),
-            };
             Some(Job {
                 patch,
                 surface,
                 trim,
-                sides,
-                previous,
+                kept: kept.get(&patch).cloned(),
             })
         })
         .collect();
@@ -213,14 +206,14 @@ pub fn lay_out_regions(world: &mut World, all: &mut QueryState<Entity, With<Patc
                 } => {
                     let holes: Vec<&IntersectionLoop> = holes.iter().map(|h| h.as_ref()).collect();
                     let notches: Vec<&Notch> = notches.iter().flat_map(|n| n.iter()).collect();
-                    let sides = j.sides.clone().unwrap_or_else(|| {
-                        let previous = j.previous.as_ref().map(|(p, s)| (&p.surface, s.as_ref()));
-                        Arc::new(PatchSides::of_reusing(
+                    let sides = match &j.kept {
+                        Some((from, sides)) if Arc::ptr_eq(from, &j.surface) => sides.clone(),
+                        kept => Arc::new(PatchSides::of_reusing(
                             &j.surface.surface,
                             &options,
-                            previous,
-                        ))
-                    });
+                            kept.as_ref().map(|(p, s)| (&p.surface, s.as_ref())),
+                        )),
+                    };
                     let region = host_region_with(
                         &j.surface.surface,
                         &sides,
