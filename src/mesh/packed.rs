@@ -186,6 +186,89 @@ impl From<&Mesh> for PackedMesh {
     }
 }
 
+/// For each of `count` vertices, whether it is used and on no edge that exactly
+/// one triangle of `indices` uses (an edge is its two vertices, either way round).
+///
+/// Every triangle hands each of its vertices the other two, so the number of
+/// times x appears in v's list is the number of triangles using the edge {v, x};
+/// a vertex is interior when no neighbour appears exactly once. A short sort per
+/// vertex (about a dozen entries) instead of a hash map of all edges. A triangle
+/// naming a vertex twice uses an edge from that vertex to itself, which the lists
+/// do not see: such meshes (never the mesher's) take the map.
+fn interior_vertices(indices: &[u32], count: usize) -> Vec<bool> {
+    let mut start = vec![0u32; count + 1];
+    let mut repeated = false;
+    for t in indices.chunks_exact(3) {
+        repeated |= t[0] == t[1] || t[1] == t[2] || t[2] == t[0];
+        for &i in t {
+            start[i as usize + 1] += 2;
+        }
+    }
+    if repeated {
+        return interior_vertices_by_edges(indices, count);
+    }
+    for k in 0..count {
+        start[k + 1] += start[k];
+    }
+    let mut fill: Vec<u32> = start[..count].to_vec();
+    let mut neighbours = vec![0u32; 2 * indices.len()];
+    for t in indices.chunks_exact(3) {
+        for k in 0..3 {
+            let v = t[k] as usize;
+            let at = fill[v] as usize;
+            neighbours[at] = t[(k + 1) % 3];
+            neighbours[at + 1] = t[(k + 2) % 3];
+            fill[v] += 2;
+        }
+    }
+    (0..count)
+        .map(|v| {
+            let list = &mut neighbours[start[v] as usize..start[v + 1] as usize];
+            if list.is_empty() {
+                return false;
+            }
+            list.sort_unstable();
+            // No run of length one.
+            let mut k = 0;
+            while k < list.len() {
+                let mut end = k + 1;
+                while end < list.len() && list[end] == list[k] {
+                    end += 1;
+                }
+                if end == k + 1 {
+                    return false;
+                }
+                k = end;
+            }
+            true
+        })
+        .collect()
+}
+
+/// [`interior_vertices`] by counting every edge in a hash map: the reference, and
+/// the way for triangles that name a vertex twice.
+fn interior_vertices_by_edges(indices: &[u32], count: usize) -> Vec<bool> {
+    let mut uses: FxHashMap<(u32, u32), u32> = FxHashMap::default();
+    // About 1.5 distinct edges per triangle in a patch mesh.
+    uses.reserve(indices.len() / 2 + 8);
+    for t in indices.chunks_exact(3) {
+        for (a, b) in [(t[0], t[1]), (t[1], t[2]), (t[2], t[0])] {
+            *uses.entry((a.min(b), a.max(b))).or_insert(0) += 1;
+        }
+    }
+    let mut interior = vec![false; count];
+    for &i in indices {
+        interior[i as usize] = true;
+    }
+    for (&(a, b), &n) in &uses {
+        if n == 1 {
+            interior[a as usize] = false;
+            interior[b as usize] = false;
+        }
+    }
+    interior
+}
+
 impl PackedMesh {
     /// Packs `mesh`. Nothing is repaired: counts stay as they are and a bad
     /// normal stays bad, for the exporters' checks.
@@ -207,30 +290,12 @@ impl PackedMesh {
         // Edges used by one triangle bound the patch; their vertices are shared
         // with neighbours (or are opening loops) and stay exact. Unused vertices
         // stay exact too.
-        let mut uses: FxHashMap<(u32, u32), u32> = FxHashMap::default();
-        // About 1.5 distinct edges per triangle in a patch mesh.
-        uses.reserve(mesh.indices.len() / 2 + 8);
-        for t in mesh.indices.chunks_exact(3) {
-            for (a, b) in [(t[0], t[1]), (t[1], t[2]), (t[2], t[0])] {
-                *uses.entry((a.min(b), a.max(b))).or_insert(0) += 1;
-            }
-        }
-        let mut interior = vec![!mesh.indices.is_empty(); count];
-        let mut used = vec![false; count];
-        for &i in &mesh.indices {
-            used[i as usize] = true;
-        }
-        for (&(a, b), &n) in &uses {
-            if n == 1 {
-                interior[a as usize] = false;
-                interior[b as usize] = false;
-            }
-        }
+        let interior = interior_vertices(&mesh.indices, count);
         let order: Vec<usize> = (0..count)
-            .filter(|&i| !(interior[i] && used[i]))
-            .chain((0..count).filter(|&i| interior[i] && used[i]))
+            .filter(|&i| !interior[i])
+            .chain((0..count).filter(|&i| interior[i]))
             .collect();
-        let boundary = count - (0..count).filter(|&i| interior[i] && used[i]).count();
+        let boundary = count - interior.iter().filter(|&&i| i).count();
         let mut new_index = vec![0u32; count];
         for (k, &i) in order.iter().enumerate() {
             new_index[i] = k as u32;
@@ -490,6 +555,44 @@ mod tests {
             }
         }
         assert!(packed.heap_bytes() < mesh.heap_bytes());
+    }
+
+    proptest::proptest! {
+        /// The per-vertex lists name the same interior vertices as counting every
+        /// edge, on any triangles: repeated indices, edges used three times,
+        /// triangles turned either way, vertices used by none.
+        #[test]
+        fn interior_vertices_agree_with_counting_edges(
+            count in 3usize..24,
+            raw in proptest::collection::vec((0u32..24, 0u32..24, 0u32..24), 0..40),
+            degenerate in proptest::bool::weighted(0.2),
+        ) {
+            let n = count as u32;
+            // Without repeats (the mesher's kind) unless `degenerate`.
+            let indices: Vec<u32> = raw
+                .iter()
+                .map(|&(a, b, c)| [a % n, b % n, c % n])
+                .filter(|t| degenerate || (t[0] != t[1] && t[1] != t[2] && t[2] != t[0]))
+                .flatten()
+                .collect();
+            proptest::prop_assert_eq!(
+                super::interior_vertices(&indices, count),
+                super::interior_vertices_by_edges(&indices, count)
+            );
+        }
+    }
+
+    #[test]
+    fn interior_vertices_of_a_closed_fan_and_an_open_one() {
+        // A closed fan of six round vertex 0 (1..=6), then an open one round 7.
+        let mut indices = Vec::new();
+        for k in 0..6u32 {
+            indices.extend([0, 1 + k, 1 + (k + 1) % 6]);
+        }
+        indices.extend([7, 8, 9, 7, 9, 10]);
+        let interior = super::interior_vertices(&indices, 12);
+        assert!(interior[0]);
+        assert!(interior[1..].iter().all(|&i| !i), "{interior:?}");
     }
 
     #[test]

@@ -8,6 +8,9 @@
 //! normal agreeing with the exact normals at its vertices, or the mesh is withheld
 //! with an error.
 
+use std::ops::Range;
+
+use rayon::prelude::*;
 use rustc_hash::FxHashMap as HashMap;
 
 use glam::{DVec2, DVec3};
@@ -82,6 +85,28 @@ fn min_angle(p: [DVec3; 3]) -> (f64, f64) {
     (a.cross(b).length(), a.dot(b))
 }
 
+/// Triangles per chunk of the output's checks.
+const CHUNK: usize = 4096;
+
+/// The checked triangles of one chunk.
+struct Checked {
+    /// Their welded indices, in order.
+    indices: Vec<u32>,
+    /// Triangles dropped because welding collapsed them.
+    dropped: usize,
+    /// The smallest angle, as [`min_angle`] gives it.
+    smallest: (f64, f64),
+}
+
+impl Checked {
+    /// Keeps `angle` when it is smaller than the smallest so far.
+    fn keep_smaller(&mut self, (sin, cos): (f64, f64)) {
+        if sin * self.smallest.1 < self.smallest.0 * cos {
+            self.smallest = (sin, cos);
+        }
+    }
+}
+
 /// Welds `mesh` into the output.
 pub(super) fn finish(
     info: &PatchInfo,
@@ -116,6 +141,11 @@ pub(super) fn finish(
         }
     }
     let mut out = RegionMesh::default();
+    let expected = mesh.verts.len();
+    out.mesh.positions.reserve(expected);
+    out.mesh.normals.reserve(expected);
+    out.uvs.reserve(expected);
+    out.mesh.indices.reserve(3 * mesh.tris.len());
     let mut index = vec![u32::MAX; mesh.verts.len()];
     for (k, v) in mesh.verts.iter().enumerate() {
         if !used[k] {
@@ -158,32 +188,61 @@ pub(super) fn finish(
             }
         };
     }
+    // The triangles, welded and checked a chunk at a time (in parallel on a
+    // large patch: this was a serial tail of every big head's mesh), then joined
+    // in order, so the result is the same for any number of threads.
+    let check = |range: Range<usize>| -> Result<Checked, CdtError> {
+        let mut chunk = Checked {
+            indices: Vec::with_capacity(3 * range.len()),
+            dropped: 0,
+            smallest: (1.0, 0.0),
+        };
+        for t in range {
+            let tri = mesh.tris[t];
+            let welded = tri.map(|k| index[k as usize]);
+            if welded[0] == welded[1] || welded[1] == welded[2] || welded[2] == welded[0] {
+                chunk.dropped += 1;
+                continue;
+            }
+            let p = welded.map(|k| out.mesh.positions[k as usize]);
+            let normal = (p[1] - p[0]).cross(p[2] - p[0]);
+            let longest = (0..3)
+                .map(|i| (p[(i + 1) % 3] - p[i]).length_squared())
+                .fold(0.0, f64::max);
+            let turned = tri
+                .iter()
+                .any(|&k| mesh.verts[k as usize].normal.dot(normal) <= 0.0);
+            let area = normal.length();
+            if area.is_nan() || area <= FLAT * longest || turned {
+                return Err(CdtError::InvalidTriangle { triangle: t });
+            }
+            chunk.keep_smaller(min_angle(p));
+            chunk.indices.extend_from_slice(&welded);
+        }
+        Ok(chunk)
+    };
+    let count = mesh.tris.len();
+    let chunks: Vec<Range<usize>> = (0..count.div_ceil(CHUNK))
+        .map(|c| c * CHUNK..((c + 1) * CHUNK).min(count))
+        .collect();
+    let checked: Vec<Result<Checked, CdtError>> = if chunks.len() > 1 {
+        chunks.into_par_iter().map(check).collect()
+    } else {
+        chunks.into_iter().map(check).collect()
+    };
     // The smallest angle so far as (sine-like, cosine-like); (1, 0) is 90°.
-    let mut smallest = (1.0, 0.0);
-    for (t, tri) in mesh.tris.iter().enumerate() {
-        let welded = tri.map(|k| index[k as usize]);
-        if welded[0] == welded[1] || welded[1] == welded[2] || welded[2] == welded[0] {
-            stats.dropped_degenerate += 1;
-            continue;
-        }
-        let p = welded.map(|k| out.mesh.positions[k as usize]);
-        let normal = (p[1] - p[0]).cross(p[2] - p[0]);
-        let longest = (0..3)
-            .map(|i| (p[(i + 1) % 3] - p[i]).length_squared())
-            .fold(0.0, f64::max);
-        let turned = tri
-            .iter()
-            .any(|&k| mesh.verts[k as usize].normal.dot(normal) <= 0.0);
-        let area = normal.length();
-        if area.is_nan() || area <= FLAT * longest || turned {
-            return Err(CdtError::InvalidTriangle { triangle: t });
-        }
-        let (sin, cos) = min_angle(p);
-        if sin * smallest.1 < smallest.0 * cos {
-            smallest = (sin, cos);
-        }
-        out.mesh.indices.extend_from_slice(&welded);
+    let mut smallest = Checked {
+        indices: Vec::new(),
+        dropped: 0,
+        smallest: (1.0, 0.0),
+    };
+    for chunk in checked {
+        let chunk = chunk?;
+        stats.dropped_degenerate += chunk.dropped;
+        smallest.keep_smaller(chunk.smallest);
+        out.mesh.indices.extend_from_slice(&chunk.indices);
     }
+    let smallest = smallest.smallest;
     stats.triangles = out.mesh.triangle_count();
     stats.min_angle_deg = if out.mesh.indices.is_empty() {
         0.0

@@ -107,6 +107,8 @@ pub(super) fn triangulate(
         .filter_map(|(v, u)| u.as_deref().map(|u| (*v, u)))
         .collect();
     let mut evaluated = evaluate(info, &rows)?.into_iter();
+    mesh.verts
+        .reserve(rows.iter().map(|(_, u)| u.len()).sum::<usize>());
     for (v, u) in &lists {
         let row = match u {
             Some(_) => evaluated.next().unwrap_or_default(),
