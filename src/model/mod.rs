@@ -133,7 +133,12 @@ impl Model {
         *self.world.resource_mut::<WorkCounters>() = WorkCounters::default();
         // Errors describe the last run only, like the counters.
         self.world.resource_mut::<ModelErrors>().0.clear();
-        self.schedule.run(&mut self.world);
+        // The whole run on a worker of rayon's pool: the stages' parallel loops
+        // then start as pushes onto that worker's own queue. Called from outside
+        // the pool, each of them would hand its work over through a lock and
+        // block the calling thread until a worker woke to take it.
+        let (schedule, world) = (&mut self.schedule, &mut self.world);
+        rayon::scope(|_| schedule.run(world));
         // Start the next run's removal messages afresh (the Tessellate stage reads
         // them to find openings that disappeared).
         self.world.clear_trackers();
