@@ -61,30 +61,33 @@ struct Limits {
     tolerance: f64,
     angle: Option<f64>,
     max_edge: Option<f64>,
-    /// Per loop vertex, the longest loop segment at it and the largest angle
-    /// between the normals at the ends of one: an interior edge at the vertex may
-    /// be that long and turn that much, since the caller's loop does (splitting
-    /// interior edges could never make the triangles on that segment comply).
+    /// Per loop vertex, the longest loop segment at it and the smallest cosine
+    /// of the angle between the normals at the ends of one: an interior edge at
+    /// the vertex may be that long and turn that much, since the caller's loop
+    /// does (splitting interior edges could never make the triangles on that
+    /// segment comply). Cosines, so that the angle (an `acos`) is taken only for
+    /// an edge that turns more than the angle limit.
     allowance: Vec<(f64, f64)>,
 }
 
 impl Limits {
-    /// Length and angle an interior edge between `a` and `b` is allowed.
+    /// Length and cosine of the turn an interior edge between `a` and `b` is
+    /// allowed.
     fn edge_allowance(&self, a: u32, b: u32) -> (f64, f64) {
         let at = |k: u32| {
             self.allowance
                 .get(k as usize)
                 .copied()
-                .unwrap_or((0.0, 0.0))
+                .unwrap_or((0.0, 1.0))
         };
         let (x, y) = (at(a), at(b));
-        (x.0.max(y.0), x.1.max(y.1))
+        (x.0.max(y.0), x.1.min(y.1))
     }
 }
 
 /// The allowances of [`Limits::allowance`] from the loop segments of `mesh`.
 fn loop_allowances(info: &PatchInfo, mesh: &TriMesh) -> Vec<(f64, f64)> {
-    let mut out = vec![(0.0f64, 0.0f64); mesh.verts.len()];
+    let mut out = vec![(0.0f64, 1.0f64); mesh.verts.len()];
     for t in 0..mesh.tris.len() as u32 {
         for i in 0..3 {
             if !mesh.fixed[t as usize][i] {
@@ -93,13 +96,12 @@ fn loop_allowances(info: &PatchInfo, mesh: &TriMesh) -> Vec<(f64, f64)> {
             let (a, b) = mesh.edge(t, i);
             let (x, y) = (&mesh.verts[a as usize], &mesh.verts[b as usize]);
             let length = (x.point - y.point).length();
-            let angle = end_normal(info, x, y.uv)
+            let cos = end_normal(info, x, y.uv)
                 .dot(end_normal(info, y, x.uv))
-                .clamp(-1.0, 1.0)
-                .acos();
+                .clamp(-1.0, 1.0);
             for k in [a, b] {
                 let slot = &mut out[k as usize];
-                *slot = (slot.0.max(length), slot.1.max(angle));
+                *slot = (slot.0.max(length), slot.1.min(cos));
             }
         }
     }
@@ -374,13 +376,16 @@ fn edge_badness(
     let mid = edge_probe_uv(x, y);
     let mut badness =
         deviation(info, 0.5 * (x.point + y.point), mid, origin, unit) / limits.tolerance;
-    let (long, turn) = limits.edge_allowance(tri[i], tri[j]);
+    let (long, turn_cos) = limits.edge_allowance(tri[i], tri[j]);
     if let Some(angle) = limits.angle {
-        let limit = angle.max(turn);
         let cos = end_normal(info, x, y.uv).dot(end_normal(info, y, x.uv));
-        // Within the limit the angle cannot make the triangle bad: skip the acos.
-        if cos < limit.cos() {
-            badness = badness.max(cos.clamp(-1.0, 1.0).acos() / limit);
+        // Within the angle limit the edge cannot be bad (the loop's turn only
+        // widens the limit): skip both acos.
+        if cos < angle.cos() {
+            let limit = angle.max(turn_cos.acos());
+            if cos < limit.cos() {
+                badness = badness.max(cos.clamp(-1.0, 1.0).acos() / limit);
+            }
         }
     }
     if let Some(max) = limits.max_edge {
