@@ -18,9 +18,14 @@
 //! incremental model and a direct full build export the same bytes.
 
 use glam::{DVec2, DVec3, IVec3};
+use rayon::prelude::*;
 use rustc_hash::FxHashMap;
 
 use super::Mesh;
+
+/// Vertices per parallel task when packing a big patch (a head of 14 m has
+/// some 8 000; most patches have a few hundred and pack on one thread).
+const PARALLEL_VERTICES: usize = 4096;
 
 /// Largest value of a signed-normalised 16-bit component.
 const SNORM16: f64 = i16::MAX as f64;
@@ -221,28 +226,54 @@ fn interior_vertices(indices: &[u32], count: usize) -> Vec<bool> {
             fill[v] += 2;
         }
     }
-    (0..count)
-        .map(|v| {
-            let list = &mut neighbours[start[v] as usize..start[v + 1] as usize];
-            if list.is_empty() {
-                return false;
-            }
-            list.sort_unstable();
-            // No run of length one.
-            let mut k = 0;
-            while k < list.len() {
-                let mut end = k + 1;
-                while end < list.len() && list[end] == list[k] {
-                    end += 1;
-                }
-                if end == k + 1 {
-                    return false;
-                }
-                k = end;
-            }
-            true
-        })
-        .collect()
+    // Each vertex's list sorted and read on its own: in parallel on a big
+    // patch, in chunks of whole lists.
+    let mut interior = vec![false; count];
+    let mut lists: Vec<(&mut [bool], &mut [u32], &[u32])> = Vec::new();
+    let (mut flags, mut rest) = (&mut interior[..], &mut neighbours[..]);
+    let mut first = 0;
+    while first < count {
+        let last = (first + PARALLEL_VERTICES).min(count);
+        let (f, f_rest) = flags.split_at_mut(last - first);
+        let taken = (start[last] - start[first]) as usize;
+        let (n, n_rest) = rest.split_at_mut(taken);
+        lists.push((f, n, &start[first..=last]));
+        (flags, rest, first) = (f_rest, n_rest, last);
+    }
+    let classify = |(flags, neighbours, start): (&mut [bool], &mut [u32], &[u32])| {
+        let base = start[0];
+        for (v, flag) in flags.iter_mut().enumerate() {
+            let list = &mut neighbours[(start[v] - base) as usize..(start[v + 1] - base) as usize];
+            *flag = single_free(list);
+        }
+    };
+    if lists.len() > 1 {
+        lists.into_par_iter().for_each(classify);
+    } else {
+        lists.into_iter().for_each(classify);
+    }
+    interior
+}
+
+/// Whether the neighbour list of a used vertex (sorted here) names no
+/// neighbour exactly once; false for an empty list (an unused vertex).
+fn single_free(list: &mut [u32]) -> bool {
+    if list.is_empty() {
+        return false;
+    }
+    list.sort_unstable();
+    let mut k = 0;
+    while k < list.len() {
+        let mut end = k + 1;
+        while end < list.len() && list[end] == list[k] {
+            end += 1;
+        }
+        if end == k + 1 {
+            return false;
+        }
+        k = end;
+    }
+    true
 }
 
 /// [`interior_vertices`] by counting every edge in a hash map: the reference, and
@@ -300,24 +331,39 @@ impl PackedMesh {
         for (k, &i) in order.iter().enumerate() {
             new_index[i] = k as u32;
         }
-        let remapped = mesh.indices.iter().map(|&i| new_index[i as usize]);
+        let remap = |&i: &u32| new_index[i as usize];
         let indices = if count <= 1 << 16 {
-            Indices::U16(remapped.map(|i| i as u16).collect())
+            Indices::U16(mesh.indices.iter().map(|i| remap(i) as u16).collect())
         } else {
-            Indices::U32(remapped.collect())
+            Indices::U32(mesh.indices.iter().map(remap).collect())
         };
         let points: Vec<DVec3> = order.iter().map(|&i| mesh.positions[i]).collect();
-        let positions = match FixedPoints::encode(&points, boundary) {
+        let encode_normals = || -> Box<[OctNormal]> {
+            let encode = |&i: &usize| OctNormal::encode(mesh.normals[i]);
+            if count > PARALLEL_VERTICES {
+                order
+                    .par_iter()
+                    .with_min_len(PARALLEL_VERTICES)
+                    .map(encode)
+                    .collect()
+            } else {
+                order.iter().map(encode).collect()
+            }
+        };
+        let encode_points = || match FixedPoints::encode(&points, boundary) {
             Some(fixed) => Positions::Fixed(fixed),
-            None => Positions::AsGiven(points.into_boxed_slice()),
+            None => Positions::AsGiven(points.clone().into_boxed_slice()),
+        };
+        // The normals beside the positions on a big patch.
+        let (positions, normals) = if count > PARALLEL_VERTICES {
+            rayon::join(encode_points, encode_normals)
+        } else {
+            (encode_points(), encode_normals())
         };
         Self {
             positions,
             boundary,
-            normals: order
-                .iter()
-                .map(|&i| OctNormal::encode(mesh.normals[i]))
-                .collect(),
+            normals,
             indices,
         }
     }
@@ -580,6 +626,30 @@ mod tests {
                 super::interior_vertices_by_edges(&indices, count)
             );
         }
+    }
+
+    #[test]
+    fn interior_vertices_of_a_big_patch_agree_with_counting_edges() {
+        // A 120 × 90 grid (more vertices than one parallel task takes) with
+        // every seventh quad left out, so that holes' rims are boundary too.
+        let (nu, nv) = (120u32, 90u32);
+        let mut indices = Vec::new();
+        for j in 0..nv {
+            for i in 0..nu {
+                if (i * 31 + j * 17) % 7 == 0 {
+                    continue;
+                }
+                let a = j * (nu + 1) + i;
+                let (b, c) = (a + 1, a + nu + 1);
+                indices.extend([a, b, c + 1, a, c + 1, c]);
+            }
+        }
+        let count = ((nu + 1) * (nv + 1)) as usize;
+        assert!(count > 2 * super::PARALLEL_VERTICES);
+        let interior = super::interior_vertices(&indices, count);
+        assert_eq!(interior, super::interior_vertices_by_edges(&indices, count));
+        assert!(interior.iter().filter(|&&i| i).count() > count / 3);
+        assert!(interior.iter().filter(|&&i| !i).count() > count / 10);
     }
 
     #[test]
