@@ -226,33 +226,28 @@ fn interior_vertices(indices: &[u32], count: usize) -> Vec<bool> {
             fill[v] += 2;
         }
     }
-    // Each vertex's list sorted and read on its own: in parallel on a big
-    // patch, in chunks of whole lists.
-    let mut interior = vec![false; count];
-    let mut lists: Vec<(&mut [bool], &mut [u32], &[u32])> = Vec::new();
-    let (mut flags, mut rest) = (&mut interior[..], &mut neighbours[..]);
-    let mut first = 0;
-    while first < count {
-        let last = (first + PARALLEL_VERTICES).min(count);
-        let (f, f_rest) = flags.split_at_mut(last - first);
-        let taken = (start[last] - start[first]) as usize;
-        let (n, n_rest) = rest.split_at_mut(taken);
-        lists.push((f, n, &start[first..=last]));
-        (flags, rest, first) = (f_rest, n_rest, last);
-    }
-    let classify = |(flags, neighbours, start): (&mut [bool], &mut [u32], &[u32])| {
-        let base = start[0];
-        for (v, flag) in flags.iter_mut().enumerate() {
-            let list = &mut neighbours[(start[v] - base) as usize..(start[v + 1] - base) as usize];
-            *flag = single_free(list);
+    // Each vertex's list copied, sorted and read on its own: in parallel on a
+    // big patch.
+    let classify = |v: usize| {
+        let list = &neighbours[start[v] as usize..start[v + 1] as usize];
+        let mut buffer = [0u32; 32];
+        match buffer.get_mut(..list.len()) {
+            Some(copy) => {
+                copy.copy_from_slice(list);
+                single_free(copy)
+            }
+            None => single_free(&mut list.to_vec()),
         }
     };
-    if lists.len() > 1 {
-        lists.into_par_iter().for_each(classify);
+    if count > PARALLEL_VERTICES {
+        (0..count)
+            .into_par_iter()
+            .with_min_len(PARALLEL_VERTICES)
+            .map(classify)
+            .collect()
     } else {
-        lists.into_iter().for_each(classify);
+        (0..count).map(classify).collect()
     }
-    interior
 }
 
 /// Whether the neighbour list of a used vertex (sorted here) names no

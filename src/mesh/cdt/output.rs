@@ -98,13 +98,9 @@ struct Checked {
     smallest: (f64, f64),
 }
 
-impl Checked {
-    /// Keeps `angle` when it is smaller than the smallest so far.
-    fn keep_smaller(&mut self, (sin, cos): (f64, f64)) {
-        if sin * self.smallest.1 < self.smallest.0 * cos {
-            self.smallest = (sin, cos);
-        }
-    }
+/// The smaller of two angles as [`min_angle`] gives them (`a` when equal).
+fn smaller(a: (f64, f64), b: (f64, f64)) -> (f64, f64) {
+    if b.0 * a.1 < a.0 * b.1 { b } else { a }
 }
 
 /// Welds `mesh` into the output.
@@ -216,7 +212,7 @@ pub(super) fn finish(
             if area.is_nan() || area <= FLAT * longest || turned {
                 return Err(CdtError::InvalidTriangle { triangle: t });
             }
-            chunk.keep_smaller(min_angle(p));
+            chunk.smallest = smaller(chunk.smallest, min_angle(p));
             chunk.indices.extend_from_slice(&welded);
         }
         Ok(chunk)
@@ -231,18 +227,13 @@ pub(super) fn finish(
         chunks.into_iter().map(check).collect()
     };
     // The smallest angle so far as (sine-like, cosine-like); (1, 0) is 90°.
-    let mut smallest = Checked {
-        indices: Vec::new(),
-        dropped: 0,
-        smallest: (1.0, 0.0),
-    };
+    let mut smallest = (1.0, 0.0);
     for chunk in checked {
         let chunk = chunk?;
         stats.dropped_degenerate += chunk.dropped;
-        smallest.keep_smaller(chunk.smallest);
+        smallest = smaller(smallest, chunk.smallest);
         out.mesh.indices.extend_from_slice(&chunk.indices);
     }
-    let smallest = smallest.smallest;
     stats.triangles = out.mesh.triangle_count();
     stats.min_angle_deg = if out.mesh.indices.is_empty() {
         0.0
