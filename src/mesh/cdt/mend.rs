@@ -215,9 +215,8 @@ pub(super) fn bisect(
             break;
         }
         // The longest interior edge of each failing triangle, by its directed
-        // vertex pair.
-        let mut wanted: rustc_hash::FxHashMap<(u32, u32), (u32, usize)> = Default::default();
-        for &t in &failing {
+        // vertex pair (ranked in parallel: three surface points per triangle).
+        let choose = |&t: &u32| {
             let tri = mesh.tris[t as usize];
             // Each edge by how far its chord's midpoint lies off the surface (the
             // edge that bends most is the one to cut: on a course, the short edge
@@ -236,24 +235,34 @@ pub(super) fn bisect(
                 let bend = (sagitta / (0.01 * screen.tolerance())).floor();
                 (bend, (p.point - q.point).length_squared())
             };
-            let Some(i) = (0..3)
+            let i = (0..3)
                 .filter(|&i| !mesh.fixed[t as usize][i])
                 .map(|i| (i, rank(i)))
                 .max_by(|(_, a), (_, b)| a.0.total_cmp(&b.0).then(a.1.total_cmp(&b.1)))
-                .map(|(i, _)| i)
-            else {
-                continue;
-            };
+                .map(|(i, _)| i)?;
             let (p, q) = (tri[i], tri[(i + 1) % 3]);
-            if mesh.verts[p as usize].pole || mesh.verts[q as usize].pole {
-                continue;
-            }
-            wanted.insert((p, q), (t, i));
+            let pole = mesh.verts[p as usize].pole || mesh.verts[q as usize].pole;
+            (!pole).then_some(((p, q), (t, i)))
+        };
+        let wanted: rustc_hash::FxHashMap<(u32, u32), (u32, usize)> = failing
+            .par_iter()
+            .with_min_len(super::MIN_VERTICES)
+            .filter_map(choose)
+            .collect::<Vec<_>>()
+            .into_iter()
+            .collect();
+        // The triangles across those edges: each holds the wanted edge's first
+        // vertex, so only triangles with a marked vertex are looked up.
+        let mut marked = vec![false; mesh.verts.len()];
+        for &(p, _) in wanted.keys() {
+            marked[p as usize] = true;
         }
-        // The triangles across those edges.
         let mut cuts: Vec<[(u32, usize); 2]> = Vec::new();
         let mut taken = vec![false; mesh.tris.len()];
         for (s, tri) in mesh.tris.iter().enumerate() {
+            if !tri.iter().any(|&k| marked[k as usize]) {
+                continue;
+            }
             for j in 0..3 {
                 let key = (tri[(j + 1) % 3], tri[j]);
                 if let Some(&(t, i)) = wanted.get(&key)
