@@ -248,8 +248,6 @@ pub(super) fn bisect(
             .par_iter()
             .with_min_len(super::MIN_VERTICES)
             .filter_map(choose)
-            .collect::<Vec<_>>()
-            .into_iter()
             .collect();
         // The triangles across those edges: each holds the wanted edge's first
         // vertex, so only triangles with a marked vertex are looked up.
