@@ -14,6 +14,7 @@ mod layout;
 mod opening;
 mod options;
 mod packed;
+mod reach;
 mod seams;
 
 pub use axial::AxialCut;

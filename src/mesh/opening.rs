@@ -21,6 +21,7 @@ use glam::{DAffine3, DVec2, DVec3};
 use crate::nurbs::builders::{line, revolve};
 
 use super::axial::{AxialCut, Extrusion, axial_range, canonical_host, split_placement};
+use super::reach::Reach;
 use super::seams::{HostTrim, Placed, insert_seam_samples, split_at_seams};
 use crate::nurbs::NurbsSurface;
 use crate::nurbs::intersect::{
@@ -124,6 +125,39 @@ pub fn cut_opening_reusing(
     kept: Option<&Arc<AxialCut>>,
 ) -> Result<ReusableCut, String> {
     let relative = host_frame.inverse() * *nozzle_frame;
+    let axial_hosts = host_patches
+        .iter()
+        .any(|p| Extrusion::of(&p.surface).is_some());
+    let reach = Reach::of(neck, &relative, host_patches, axial_hosts);
+    let cut = cut_with(
+        &reach,
+        pad_od,
+        nozzle_frame,
+        host_frame,
+        host_patches,
+        tolerance,
+        kept,
+    )?;
+    Ok(ReusableCut {
+        cut: reach.on_neck(cut.cut),
+        pad: reach.on_pad(cut.pad),
+        ..cut
+    })
+}
+
+/// [`cut_opening_reusing`] with the neck to march on (its (u, v) in the result
+/// are on that neck).
+fn cut_with(
+    reach: &Reach,
+    pad_od: Option<f64>,
+    nozzle_frame: &DAffine3,
+    host_frame: &DAffine3,
+    host_patches: &[&Patch],
+    tolerance: f64,
+    kept: Option<&Arc<AxialCut>>,
+) -> Result<ReusableCut, String> {
+    let neck = reach.surface.as_ref();
+    let relative = host_frame.inverse() * *nozzle_frame;
     let (across, t) = split_placement(&relative);
     if let Some(kept) = kept
         && let Some(host) = host_patches.get(kept.host())
@@ -142,12 +176,7 @@ pub fn cut_opening_reusing(
             .map_err(|e| format!("cannot place the nozzle in its host's frame: {e}"))
     };
     // The pad's outside cylinder spans the neck's height (in the nozzle frame).
-    let top = neck
-        .surface
-        .control_points()
-        .iter()
-        .fold(0.0f64, |m, p| m.max(p.z))
-        .max(1.0);
+    let top = reach.top;
     let pad_cylinder = match pad_od {
         None => None,
         Some(od) => {
@@ -159,7 +188,7 @@ pub fn cut_opening_reusing(
             Some(revolve(&generator, DVec3::ZERO, DVec3::Z, TAU).map_err(|e| e.to_string())?)
         }
     };
-    let neck_placed = place(&neck.surface, &relative)?;
+    let neck_placed = place(neck, &relative)?;
     let pad = pad_cylinder
         .as_ref()
         .map(|c| place(c, &relative))
@@ -174,7 +203,7 @@ pub fn cut_opening_reusing(
             .as_ref()
             .map(|c| place(c, &across))
             .transpose()?;
-        Some((place(&neck.surface, &across)?, p))
+        Some((place(neck, &across)?, p))
     } else {
         None
     };
