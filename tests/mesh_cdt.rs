@@ -390,3 +390,68 @@ fn a_pole_on_a_u_side_is_meshed_like_one_on_a_v_side() {
         original.triangles
     );
 }
+
+/// A nozzle's neck as the Tessellate stage meshes it: its bottom side is the loop
+/// where the host cuts it (its v rising and falling round the turn), its top the
+/// ring at the hub. Small and large nozzles on a small and a large course, at 1
+/// and 0.1 mm, radial and off the axis: each mesh is checked in full, keeps
+/// every loop vertex, has the two loops as its only boundary, and adds no vertex
+/// inside (the neck is straight along its generators: the loop and the ring are
+/// zipped directly).
+#[test]
+fn a_neck_is_meshed_between_the_loop_its_host_cuts_and_its_top_ring() {
+    use glam::{DAffine3, DMat3, DVec3};
+    use vesselcad::mesh::{cut_opening, patch_region};
+    use vesselcad::parts::tables::{FlangeClass, Nps, PipeSchedule};
+    use vesselcad::parts::{Facing, FlangeType, Nozzle};
+
+    for (od, size, offset) in [
+        (1200.0, 2.0, 0.0),
+        (1200.0, 16.0, 0.0),
+        (3000.0, 8.0, 600.0),
+    ] {
+        let host = Shell {
+            outside_diameter: od,
+            length: 3000.0,
+        }
+        .patches()
+        .unwrap()
+        .remove(0);
+        let nozzle = Nozzle {
+            nps: Nps::try_new(size).unwrap(),
+            schedule: PipeSchedule::Std,
+            class: FlangeClass::C150,
+            flange: FlangeType::WeldNeck,
+            facing: Facing::RaisedFace,
+            projection: od / 2.0 + 400.0,
+        };
+        let neck = nozzle.patches().unwrap().remove(0);
+        // Radial along +X at mid-height, moved sideways by `offset` (a hillside
+        // nozzle, whose loop is lopsided).
+        let frame = DAffine3::from_mat3_translation(
+            DMat3::from_cols(DVec3::Z, -DVec3::Y, DVec3::X),
+            DVec3::new(0.0, offset, 1500.0),
+        );
+        for tol in [1.0, 0.1] {
+            let what = format!("neck of {size}\" on OD {od}, offset {offset}, at {tol} mm");
+            let cut = cut_opening(&neck, None, &frame, &DAffine3::IDENTITY, &[&host], tol)
+                .unwrap_or_else(|e| panic!("{what}: {e}"));
+            let region = patch_region(&neck.surface, &options(tol), &[], Some(&cut.neck)).unwrap();
+            let out = mesh_region_with_uvs(&neck.surface, &region, &options(tol)).unwrap();
+            check(&neck.surface, &region, &out, tol, &what);
+            assert_eq!(boundary_loops(&out.mesh), 2, "{what}");
+            // The seam's two copies weld: one vertex per distinct loop vertex.
+            let distinct = region.outer.uv.len() - 2;
+            assert!(
+                out.mesh.positions.len() <= distinct,
+                "{what}: interior vertices"
+            );
+            assert_eq!(
+                out.stats.refinement_insertions, 0,
+                "{what}: {:?}",
+                out.stats
+            );
+            println!("{what}: {:?}", out.stats);
+        }
+    }
+}

@@ -280,18 +280,32 @@ pub fn check(s: &NurbsSurface, region: &Region, out: &RegionMesh, tol: f64, what
 }
 
 /// Whether a parameter point lies strictly inside the seam of a region that spans
-/// the whole period of a closed direction (its two copies of the seam).
+/// the whole period of a closed direction (its two copies of the seam): between
+/// the seam's two ends, the lowest and highest loop vertices on it (the corners
+/// of a rectangle; for a nozzle neck, the end of its bottom loop and the top).
 fn seam_test(s: &NurbsSurface, region: &Region, closed_uv: [bool; 2]) -> impl Fn(DVec2) -> bool {
     let (lo, hi) = region.bounds();
     let ((u0, u1), (v0, v1)) = s.domain();
     let eps = 1e-12 * ((hi - lo).max_element() + (u1 - u0) + (v1 - v0));
     let whole_u = closed_uv[0] && ((hi.x - lo.x) - (u1 - u0)).abs() <= eps;
     let whole_v = closed_uv[1] && ((hi.y - lo.y) - (v1 - v0)).abs() <= eps;
+    let at = move |x: f64, a: f64, b: f64| (x - a).abs() <= eps || (x - b).abs() <= eps;
+    // The ends of each seam: the extreme loop vertices on its copies.
+    let ends = |on: &dyn Fn(DVec2) -> Option<f64>| {
+        region
+            .loops()
+            .flat_map(|l| l.uv.iter().copied())
+            .filter_map(on)
+            .fold((f64::INFINITY, f64::NEG_INFINITY), |(a, b), x| {
+                (a.min(x), b.max(x))
+            })
+    };
+    let u_seam = ends(&|p: DVec2| at(p.x, lo.x, hi.x).then_some(p.y));
+    let v_seam = ends(&|p: DVec2| at(p.y, lo.y, hi.y).then_some(p.x));
     move |uv: DVec2| {
-        let at = |x: f64, a: f64, b: f64| (x - a).abs() <= eps || (x - b).abs() <= eps;
-        let inside = |x: f64, a: f64, b: f64| x > a + eps && x < b - eps;
-        (whole_u && at(uv.x, lo.x, hi.x) && inside(uv.y, lo.y, hi.y))
-            || (whole_v && at(uv.y, lo.y, hi.y) && inside(uv.x, lo.x, hi.x))
+        let inside = |x: f64, (a, b): (f64, f64)| x > a + eps && x < b - eps;
+        (whole_u && at(uv.x, lo.x, hi.x) && inside(uv.y, u_seam))
+            || (whole_v && at(uv.y, lo.y, hi.y) && inside(uv.x, v_seam))
     }
 }
 

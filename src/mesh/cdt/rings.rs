@@ -22,6 +22,7 @@
 
 use std::ops::Range;
 
+use glam::DVec2;
 use rayon::prelude::*;
 
 use super::cavity::{self, Cavity};
@@ -36,9 +37,11 @@ use crate::mesh::TessellationOptions;
 const ON_SIDE: f64 = 1e-12;
 
 /// A v side of the region: its loop vertices' u values (increasing, seam to seam),
-/// or a pole.
+/// a path whose v varies (a nozzle neck's bottom, where its host cuts it: (u, v)
+/// seam to seam, u increasing), or a pole.
 enum Side {
     Ring(Vec<f64>),
+    Path(Vec<DVec2>),
     Pole,
 }
 
@@ -88,14 +91,24 @@ pub(super) fn triangulate(
     options: &TessellationOptions,
     budget: usize,
 ) -> Result<Option<Rings>, CdtError> {
-    let Some((bottom, top)) = sides(info, region) else {
+    let Some((bottom, top)) = sides(info, region, options) else {
         return Ok(None);
     };
     let (lo, hi) = region.bounds();
-    let rows = seed::rows(info, region, budget)?;
+    // A path (on a surface straight along v, see `path_side`) needs no lattice
+    // row: it and the top ring are zipped directly, their triangles straight
+    // along the generators.
+    let rows = match &bottom {
+        Side::Path(_) => Vec::new(),
+        _ => seed::rows(info, region, budget)?,
+    };
     if rows.is_empty() && matches!((&bottom, &top), (Side::Pole, Side::Pole)) {
         return Ok(None);
     }
+    let (bottom, path) = match bottom {
+        Side::Path(path) => (Side::Ring(path.iter().map(|p| p.x).collect()), Some(path)),
+        side => (side, None),
+    };
     let mut lists: Vec<(f64, Option<Vec<f64>>)> = Vec::with_capacity(rows.len() + 2);
     lists.push((lo.y, ring(bottom)));
     lists.extend(rows.into_iter().map(|(v, u)| (v, Some(u))));
@@ -104,15 +117,20 @@ pub(super) fn triangulate(
     let mut chains = Vec::with_capacity(lists.len());
     let rows: Vec<(f64, &[f64])> = lists
         .iter()
+        .skip(usize::from(path.is_some()))
         .filter_map(|(v, u)| u.as_deref().map(|u| (*v, u)))
         .collect();
     let mut evaluated = evaluate(info, &rows)?.into_iter();
     mesh.verts
         .reserve(rows.iter().map(|(_, u)| u.len()).sum::<usize>());
-    for (v, u) in &lists {
-        let row = match u {
-            Some(_) => evaluated.next().unwrap_or_default(),
-            None => Vec::new(),
+    for (k, (v, u)) in lists.iter().enumerate() {
+        let row = match (u, &path) {
+            (Some(_), Some(path)) if k == 0 => path
+                .par_iter()
+                .map(|&uv| info.vertex_lazy(uv))
+                .collect::<Result<Vec<_>, _>>()?,
+            (Some(_), _) => evaluated.next().unwrap_or_default(),
+            (None, _) => Vec::new(),
         };
         let first = mesh.verts.len() as u32;
         let len = row.len();
@@ -157,9 +175,14 @@ pub(super) fn triangulate(
             None => return Ok(None),
         }
     };
-    let Some(mut strips) = build(&mut mesh, &chains, &cavities) else {
+    let Some(mut strips) = build(&mut mesh, &chains, &cavities, path.is_some()) else {
         return Ok(None);
     };
+    // Rows are parallel in (u, v), so their strips cannot fold; a path's strip
+    // folds where the zip's shorter diagonal crosses the path's ups and downs.
+    if path.is_some() && !strips.first().is_some_and(|s| unfolded(&mesh, s.clone())) {
+        return Ok(None);
+    }
     let mut zipped: Vec<bool> = (0..strips.len())
         .map(|k| matches!((chains[k].kind, chains[k + 1].kind), (Kind::Row, Kind::Row)))
         .collect();
@@ -243,7 +266,16 @@ fn evaluate(info: &PatchInfo, rows: &[(f64, &[f64])]) -> Result<Vec<Vec<Vertex>>
 
 /// Zips every pair of consecutive chains into `mesh` (replacing its triangles);
 /// returns each strip's range of triangles, or `None` when two poles meet.
-fn build(mesh: &mut TriMesh, chains: &[Chain], cavities: &[Cavity]) -> Option<Vec<Range<u32>>> {
+///
+/// With `path`, the first chain is a path whose v varies: its strip is zipped by
+/// u alone (the shorter diagonal in u), so that every triangle spans as little of
+/// the turn as the two chains allow, whatever the path's ups and downs.
+fn build(
+    mesh: &mut TriMesh,
+    chains: &[Chain],
+    cavities: &[Cavity],
+    path: bool,
+) -> Option<Vec<Range<u32>>> {
     mesh.tris.clear();
     mesh.adj.clear();
     mesh.fixed.clear();
@@ -275,7 +307,13 @@ fn build(mesh: &mut TriMesh, chains: &[Chain], cavities: &[Cavity]) -> Option<Ve
                     (sa, sb) = (ra, rb);
                 }
                 let (pa, pb) = (a.first + sa as u32, b.first + sb as u32);
-                zip(mesh, (pa, a.len - sa), (pb, b.len - sb));
+                if path && k == 0 {
+                    zip_by(mesh, (pa, a.len - sa), (pb, b.len - sb), |x, y| {
+                        (x.uv.x - y.uv.x).abs()
+                    });
+                } else {
+                    zip(mesh, (pa, a.len - sa), (pb, b.len - sb));
+                }
             }
             (Kind::Pole, Kind::Row) => fan(mesh, (b.first, b.len), a.first, true),
             (Kind::Row, Kind::Pole) => fan(mesh, (a.first, a.len), b.first, false),
@@ -304,7 +342,7 @@ pub(super) fn fix_seam(mesh: &mut TriMesh, seam: &[(u32, usize)]) {
 
 /// The region's v sides, when it is a whole patch closed in u: one outer loop on
 /// the rectangle `lo..hi` spanning one period, every vertex on one of its sides.
-fn sides(info: &PatchInfo, region: &Region) -> Option<(Side, Side)> {
+fn sides(info: &PatchInfo, region: &Region, options: &TessellationOptions) -> Option<(Side, Side)> {
     if !info.closed_u {
         return None;
     }
@@ -320,7 +358,7 @@ fn sides(info: &PatchInfo, region: &Region) -> Option<(Side, Side)> {
         .iter()
         .all(|p| on(p.y, lo.y) || on(p.y, hi.y) || on(p.x, lo.x) || on(p.x, hi.x))
     {
-        return None;
+        return path_side(info, region, options, eps);
     }
     let side = |v: f64, collapsed: bool| -> Option<Side> {
         let mut u: Vec<f64> = pts.iter().filter(|p| on(p.y, v)).map(|p| p.x).collect();
@@ -338,10 +376,93 @@ fn sides(info: &PatchInfo, region: &Region) -> Option<(Side, Side)> {
     Some((bottom, top))
 }
 
+/// The sides of a whole closed patch whose bottom is a path (a nozzle neck cut by
+/// its host) and whose top is a ring: the outer loop runs along the path from the
+/// left copy of the seam to the right one (u strictly increasing, both ends at one
+/// v), up the right copy, back along the top ring and down the left copy.
+///
+/// Only on a surface straight along v (one linear span: a neck's cylinder), where
+/// the zip of the path and the ring deviates from the surface only round the turn,
+/// and without a stretch or edge-length limit (the zip's triangles run the whole
+/// length of the neck). `None` for any other region, or one with holes.
+fn path_side(
+    info: &PatchInfo,
+    region: &Region,
+    options: &TessellationOptions,
+    eps: f64,
+) -> Option<(Side, Side)> {
+    let (lo, hi) = region.bounds();
+    let on = |a: f64, b: f64| (a - b).abs() <= eps;
+    let pts = &region.outer.uv;
+    let n = pts.len();
+    let v_knots = info.surface.v_knots();
+    let straight = v_knots.degree() == 1 && v_knots.as_slice().len() == 4;
+    if !straight
+        || options.max_stretch.is_some()
+        || options.max_edge_length.is_some()
+        || !region.holes.is_empty()
+        || info.collapsed[3] && on(hi.y, info.surface.domain().1.1)
+    {
+        return None;
+    }
+    // The path starts at the left seam's lowest vertex: the one the loop leaves
+    // the seam from.
+    let start = (0..n).find(|&i| on(pts[i].x, lo.x) && !on(pts[(i + 1) % n].x, lo.x))?;
+    let mut path = vec![pts[start]];
+    for k in 1..n {
+        let p = pts[(start + k) % n];
+        // u strictly increasing (NaN refused).
+        if p.x.partial_cmp(&path[path.len() - 1].x) != Some(std::cmp::Ordering::Greater)
+            || on(p.y, hi.y)
+        {
+            return None;
+        }
+        path.push(p);
+        if on(p.x, hi.x) {
+            break;
+        }
+    }
+    let (first, last) = (path[0], path[path.len() - 1]);
+    if path.len() < 3 || !on(last.x, hi.x) || !on(first.y, last.y) {
+        return None;
+    }
+    // The rest: the seam copies and the top ring, strictly above the path.
+    let rest = (path.len()..n).map(|k| pts[(start + k) % n]);
+    let top_of_path = path.iter().fold(f64::NEG_INFINITY, |m, p| m.max(p.y));
+    let mut top = Vec::new();
+    for p in rest {
+        if on(p.y, hi.y) {
+            top.push(p.x);
+        } else if !(on(p.x, lo.x) || on(p.x, hi.x)) || p.y <= top_of_path {
+            return None;
+        }
+    }
+    top.sort_by(f64::total_cmp);
+    if top.len() < 2 || !on(top[0], lo.x) || !on(top[top.len() - 1], hi.x) || hi.y <= top_of_path {
+        return None;
+    }
+    // The path's ends exactly on the seam copies, as rows' ends are.
+    let len = path.len();
+    path[0].x = lo.x;
+    path[len - 1].x = hi.x;
+    Some((Side::Path(path), Side::Ring(top)))
+}
+
+/// Whether every triangle of `range` turns counter-clockwise in (u, v).
+fn unfolded(mesh: &TriMesh, range: Range<u32>) -> bool {
+    mesh.tris[range.start as usize..range.end as usize]
+        .iter()
+        .all(|t| {
+            let [a, b, c] = t.map(|k| mesh.verts[k as usize].uv);
+            (b - a).perp_dot(c - a) > 0.0
+        })
+}
+
 /// A side's u values, `None` for a pole.
 fn ring(side: Side) -> Option<Vec<f64>> {
     match side {
         Side::Ring(u) => Some(u),
+        Side::Path(path) => Some(path.iter().map(|p| p.x).collect()),
         Side::Pole => None,
     }
 }
@@ -358,9 +479,21 @@ fn push(mesh: &mut TriMesh, tri: [u32; 3]) -> u32 {
 /// Zips the chain `a` (lower v) with the chain `b` (upper v), each `(first vertex,
 /// count)` running seam to seam, choosing at each step the shorter diagonal.
 fn zip(mesh: &mut TriMesh, a: (u32, usize), b: (u32, usize)) {
+    zip_by(mesh, a, b, |x, y| (x.point - y.point).length_squared());
+}
+
+/// [`zip`] choosing the diagonal that is shorter by `length`.
+fn zip_by(
+    mesh: &mut TriMesh,
+    a: (u32, usize),
+    b: (u32, usize),
+    length: impl Fn(&Vertex, &Vertex) -> f64,
+) {
     let (mut i, mut j) = (0usize, 0usize);
     let (na, nb) = (a.1 - 1, b.1 - 1);
-    let at = |mesh: &TriMesh, k: u32| mesh.verts[k as usize].point;
+    fn at(mesh: &TriMesh, k: u32) -> &Vertex {
+        &mesh.verts[k as usize]
+    }
     while i < na || j < nb {
         let (ai, bj) = (a.0 + i as u32, b.0 + j as u32);
         let advance_a = if i == na {
@@ -369,8 +502,8 @@ fn zip(mesh: &mut TriMesh, a: (u32, usize), b: (u32, usize)) {
             true
         } else {
             // The shorter diagonal: a[i+1]–b[j] (advance a) or a[i]–b[j+1].
-            let da = (at(mesh, ai + 1) - at(mesh, bj)).length_squared();
-            let db = (at(mesh, ai) - at(mesh, bj + 1)).length_squared();
+            let da = length(at(mesh, ai + 1), at(mesh, bj));
+            let db = length(at(mesh, ai), at(mesh, bj + 1));
             da <= db
         };
         if advance_a {
