@@ -32,6 +32,7 @@ mod refine;
 mod region;
 mod rings;
 mod screen;
+mod sector;
 mod seed;
 mod trimesh;
 

@@ -30,7 +30,7 @@ use super::patch::{PatchInfo, Vertex};
 use super::region::Region;
 use super::screen::Screen;
 use super::trimesh::{NONE, TriMesh};
-use super::{CdtError, mend, seed};
+use super::{CdtError, mend, sector, seed};
 use crate::mesh::TessellationOptions;
 
 /// Relative tolerance (to the region's extent) of "on a side of the rectangle".
@@ -91,7 +91,25 @@ pub(super) fn triangulate(
     options: &TessellationOptions,
     budget: usize,
 ) -> Result<Option<Rings>, CdtError> {
-    let Some((bottom, top)) = sides(info, region, options) else {
+    // A whole surface of revolution: its first quarter, turned round.
+    if let Some(quarter) = sector::quarter(info, region)
+        && let Some(part) = structured(info, &quarter, options, budget, sector::QUARTERS)?
+        && let Some(whole) = sector::whole_turn(info, &quarter, part)?
+    {
+        return Ok(Some(whole));
+    }
+    structured(info, region, options, budget, 1)
+}
+
+/// [`triangulate`] of a region spanning `1 / parts` of the patch's period.
+fn structured(
+    info: &PatchInfo,
+    region: &Region,
+    options: &TessellationOptions,
+    budget: usize,
+    parts: usize,
+) -> Result<Option<Rings>, CdtError> {
+    let Some((bottom, top)) = sides(info, region, options, parts) else {
         return Ok(None);
     };
     let (lo, hi) = region.bounds();
@@ -342,14 +360,19 @@ pub(super) fn fix_seam(mesh: &mut TriMesh, seam: &[(u32, usize)]) {
 
 /// The region's v sides, when it is a whole patch closed in u: one outer loop on
 /// the rectangle `lo..hi` spanning one period, every vertex on one of its sides.
-fn sides(info: &PatchInfo, region: &Region, options: &TessellationOptions) -> Option<(Side, Side)> {
+fn sides(
+    info: &PatchInfo,
+    region: &Region,
+    options: &TessellationOptions,
+    parts: usize,
+) -> Option<(Side, Side)> {
     if !info.closed_u {
         return None;
     }
     let (lo, hi) = region.bounds();
     let ((u0, u1), (v0, v1)) = info.surface.domain();
     let eps = ON_SIDE * ((hi - lo).max_element() + (u1 - u0) + (v1 - v0));
-    if ((hi.x - lo.x) - (u1 - u0)).abs() > eps || hi.y - lo.y <= eps {
+    if ((hi.x - lo.x) - (u1 - u0) / parts as f64).abs() > eps || hi.y - lo.y <= eps {
         return None;
     }
     let on = |a: f64, b: f64| (a - b).abs() <= eps;
