@@ -6,6 +6,7 @@
 //! change-detection scan. The heavy stages (Geometry, Tessellate) collect their
 //! dirty entities and process them in parallel with rayon.
 
+mod biggest_first;
 mod clock;
 mod constrain;
 mod counters;

@@ -15,6 +15,7 @@ use rayon::prelude::*;
 use rustc_hash::FxHashMap;
 
 use super::DirtyPatches;
+use super::biggest_first::map_biggest_first;
 use super::labels::patch_label;
 use super::{ModelErrors, WorkCounters};
 use crate::components::{PatchMesh, PatchSurface};
@@ -75,9 +76,15 @@ pub fn remesh_dirty_patches(world: &mut World, surfaces: &mut QueryState<&PatchS
     let to_mesh: Vec<usize> = (0..work.len())
         .filter(|&i| in_use[i].is_none() && *first.entry(keys[i]).or_insert(i) == i)
         .collect();
-    let meshed: FxHashMap<u128, Result<Arc<PackedMesh>, String>> = to_mesh
-        .par_iter()
-        .map(|&i| {
+    // Biggest first, by the triangles of the patch's mesh before this run (a
+    // new patch counts as small): see `biggest_first`.
+    let previous = |&i: &usize| {
+        world
+            .get::<PatchMesh>(work[i].0)
+            .map_or(0, |m| m.0.triangle_count() as u64)
+    };
+    let meshed: FxHashMap<u128, Result<Arc<PackedMesh>, String>> =
+        map_biggest_first(&to_mesh, previous, |&i| {
             let (_, p, r) = &work[i];
             // Kept for the model's lifetime: packed (exact positions, 4-byte
             // normals, narrow indices, no growth slack).
@@ -86,6 +93,7 @@ pub fn remesh_dirty_patches(world: &mut World, surfaces: &mut QueryState<&PatchS
                 .map_err(|e| e.to_string());
             (keys[i], result)
         })
+        .into_iter()
         .collect();
     let triangles: u64 = meshed
         .values()
