@@ -251,8 +251,11 @@ pub fn cut_openings(world: &mut World) {
             jobs.push(job);
         }
     }
+    // One job per split, so a thread done with its cuts takes another's (cuts
+    // with a pad march two loops).
     let results: Vec<(Entity, Entity, CutResult, OpeningInput, bool)> = jobs
         .par_iter()
+        .with_max_len(1)
         .map(|job| {
             let hosts: Vec<&Patch> = job.hosts.iter().map(|(_, p)| p.as_ref()).collect();
             let cut = cut_opening_reusing(

@@ -195,8 +195,11 @@ pub fn lay_out_regions(world: &mut World, all: &mut QueryState<Entity, With<Patc
             })
         })
         .collect();
+    // One job per split: a host with many openings next to many necks would
+    // otherwise sit in one thread's half of the list (see `biggest_first`).
     let results: Vec<_> = jobs
         .par_iter()
+        .with_max_len(1)
         .map(|j| {
             let region = match &j.trim {
                 Trim::Patch {
