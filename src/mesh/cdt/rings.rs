@@ -91,9 +91,20 @@ pub(super) fn triangulate(
     options: &TessellationOptions,
     budget: usize,
 ) -> Result<Option<Rings>, CdtError> {
-    // A whole surface of revolution: its first quarter, turned round.
+    // A whole surface of revolution: its first quarter, turned round (within a
+    // quarter of the budget, as the whole turn has four times its vertices).
     if let Some(quarter) = sector::quarter(info, region)
-        && let Some(part) = structured(info, &quarter, options, budget, sector::QUARTERS)?
+        && let Some(part) = structured(
+            info,
+            &quarter,
+            options,
+            budget / sector::QUARTERS,
+            sector::QUARTERS,
+        )
+        .map_err(|e| match e {
+            CdtError::BudgetExceeded { .. } => CdtError::BudgetExceeded { limit: budget },
+            e => e,
+        })?
         && let Some(whole) = sector::whole_turn(info, &quarter, part)?
     {
         return Ok(Some(whole));
