@@ -29,10 +29,14 @@
 //!
 //! Cost: about 35 curve evaluations per curved Bézier span (a full circle: ~140,
 //! some 15 µs), plus a short Newton solve on a polynomial per vertex (~0.15 µs).
+//! A full circle of four rational quarter arcs — most edges of a vessel — skips
+//! all of it (`circles`): its length is 2πR, its curvature 1/R, and the
+//! parameter of each angle is known in closed form.
 
 use std::sync::OnceLock;
 
 use super::TessellationOptions;
+use super::circles::Circle;
 use crate::MODEL_EPSILON;
 use crate::nurbs::{GaussLegendre, NurbsCurve};
 
@@ -85,6 +89,10 @@ pub fn edge_parameters(
     multiple_of: usize,
 ) -> Vec<f64> {
     let (a, b) = curve.domain();
+    if let Some(circle) = Circle::of(curve) {
+        let n = segment_count(circle.length(), 1.0 / circle.radius, options, multiple_of);
+        return circle.parameters(n);
+    }
     let Some(profile) = Profile::of(curve) else {
         return vec![a, b];
     };
@@ -114,7 +122,28 @@ pub fn edge_segments(
     options: &TessellationOptions,
     multiple_of: usize,
 ) -> usize {
+    if let Some(circle) = Circle::of(curve) {
+        return segment_count(circle.length(), 1.0 / circle.radius, options, multiple_of);
+    }
     Profile::of(curve).map_or(1, |p| p.segments(options, multiple_of))
+}
+
+/// Segments for a curve of `length` whose largest curvature is `max_curvature`,
+/// rounded up to a multiple of `multiple_of`.
+fn segment_count(
+    length: f64,
+    max_curvature: f64,
+    options: &TessellationOptions,
+    multiple_of: usize,
+) -> usize {
+    let raw = length * density(max_curvature, options);
+    let n = if raw.is_finite() && raw < MAX_EDGE_SEGMENTS as f64 {
+        ((raw * (1.0 - COUNT_MARGIN)).ceil() as usize).max(1)
+    } else {
+        MAX_EDGE_SEGMENTS
+    };
+    let m = multiple_of.clamp(1, MAX_EDGE_SEGMENTS);
+    n.div_ceil(m) * m
 }
 
 /// Arc length per segment allowed at curvature `kappa` (1/mm), as its inverse:
@@ -371,14 +400,7 @@ impl Profile {
 
     /// Segment count for `options`, rounded up to a multiple of `multiple_of`.
     fn segments(&self, options: &TessellationOptions, multiple_of: usize) -> usize {
-        let raw = self.length * density(self.max_curvature, options);
-        let n = if raw.is_finite() && raw < MAX_EDGE_SEGMENTS as f64 {
-            ((raw * (1.0 - COUNT_MARGIN)).ceil() as usize).max(1)
-        } else {
-            MAX_EDGE_SEGMENTS
-        };
-        let m = multiple_of.clamp(1, MAX_EDGE_SEGMENTS);
-        n.div_ceil(m) * m
+        segment_count(self.length, self.max_curvature, options, multiple_of)
     }
 }
 
@@ -483,6 +505,65 @@ mod tests {
 
     use super::*;
     use crate::nurbs::builders::circular_arc;
+
+    /// A full circle takes the closed form: the same segment count as the
+    /// general sampler, its vertices uniform in angle on the circle, and the
+    /// general sampler's parameters to within its own accuracy.
+    #[test]
+    fn a_full_circle_is_sampled_in_closed_form() {
+        use crate::nurbs::builders::{line, revolve};
+        // A circle as `circular_arc` builds it, and one as a course's end edge.
+        let arc = circular_arc(DVec3::ZERO, DVec3::X, DVec3::Y, 1000.0, 0.0, TAU).unwrap();
+        let generator = line(
+            DVec3::new(1700.0, 0.0, 0.0),
+            DVec3::new(1700.0, 0.0, 3000.0),
+        )
+        .unwrap();
+        let course = revolve(&generator, DVec3::ZERO, DVec3::Z, TAU).unwrap();
+        let end = course.boundary(crate::nurbs::Side::VMax);
+        for (curve, radius, centre) in [
+            (arc, 1000.0, DVec3::ZERO),
+            (end, 1700.0, DVec3::new(0.0, 0.0, 3000.0)),
+        ] {
+            assert!(super::super::circles::Circle::of(&curve).is_some());
+            for (tol, multiple) in [(1.0, 8), (0.1, 8), (0.5, 1)] {
+                let options = TessellationOptions::chord(tol);
+                let params = edge_parameters(&curve, &options, multiple);
+                let profile = Profile::of(&curve).unwrap();
+                let n = profile.segments(&options, multiple);
+                assert_eq!(params.len(), n + 1, "segment count");
+                let step = TAU / n as f64;
+                let start = curve.point(0.0) - centre;
+                for (k, &u) in params.iter().enumerate() {
+                    let p = curve.point(u) - centre;
+                    assert!((p.length() - radius).abs() < 1e-9 * radius);
+                    let angle = start.angle_between(p);
+                    let expected = (k as f64 * step).min(TAU - k as f64 * step);
+                    assert!(
+                        (angle - expected).abs() < 1e-9,
+                        "vertex {k}: {angle} vs {expected}"
+                    );
+                    // The general sampler's parameter for the same arc length.
+                    if k > 0 && k < n {
+                        let target = profile.length * k as f64 / n as f64;
+                        let piece = profile
+                            .pieces
+                            .iter()
+                            .find(|p| p.offset + p.length >= target)
+                            .unwrap();
+                        let general = piece.invert(target - piece.offset);
+                        assert!((general - u).abs() < 1e-9, "vertex {k}: {general} vs {u}");
+                    }
+                }
+            }
+        }
+        // Not a circle: an ellipse-like quarter net is refused.
+        let squashed = course
+            .transformed(&glam::DAffine3::from_scale(DVec3::new(1.0, 0.5, 1.0)))
+            .unwrap();
+        let edge = squashed.boundary(crate::nurbs::Side::VMax);
+        assert!(super::super::circles::Circle::of(&edge).is_none());
+    }
 
     #[test]
     fn series_lengths_match_the_adaptive_arc_length() {

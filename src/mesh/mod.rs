@@ -7,6 +7,7 @@
 
 mod axial;
 pub mod cdt;
+mod circles;
 mod edges;
 mod grid;
 mod instances;
