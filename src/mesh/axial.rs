@@ -303,43 +303,19 @@ fn placed(canonical: &IntersectionLoop, ext: &Extrusion, t: f64) -> Option<Inter
 mod tests {
     use std::sync::Arc;
 
-    use glam::{DAffine3, DMat3, DVec3};
+    use glam::{DAffine3, DVec3};
 
     use super::Extrusion;
     use crate::mesh::opening::{ReusableCut, cut_opening_reusing};
+    use crate::mesh::test_parts::{OD, course, frame};
     use crate::nurbs::intersect::IntersectionLoop;
+    use crate::parts::Patch;
     use crate::parts::heads::{Head, HeadKind};
-    use crate::parts::tables::{FlangeClass, Nps, PipeSchedule};
-    use crate::parts::{Facing, FlangeType, Nozzle, Patch, Shell};
 
     const TOLERANCE: f64 = 1.0;
-    const OD: f64 = 2000.0;
-
-    fn course() -> Patch {
-        let s = Shell {
-            outside_diameter: OD,
-            length: 3000.0,
-        };
-        s.patches().unwrap().remove(0)
-    }
 
     fn neck() -> Patch {
-        let n = Nozzle {
-            nps: Nps::try_new(8.0).unwrap(),
-            schedule: PipeSchedule::Std,
-            class: FlangeClass::C150,
-            flange: FlangeType::WeldNeck,
-            facing: Facing::RaisedFace,
-            projection: 1400.0,
-        };
-        n.patches().unwrap().remove(0)
-    }
-
-    /// A frame at `origin` whose +Z is `axis` (its +X made orthogonal from Z).
-    fn frame(origin: DVec3, axis: DVec3) -> DAffine3 {
-        let z = axis.normalize();
-        let x = (DVec3::Z - z * DVec3::Z.dot(z)).normalize();
-        DAffine3::from_mat3_translation(DMat3::from_cols(x, z.cross(x), z), origin)
+        crate::mesh::test_parts::neck(1400.0)
     }
 
     fn cut(

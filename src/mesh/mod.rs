@@ -17,6 +17,8 @@ mod options;
 mod packed;
 mod reach;
 mod seams;
+#[cfg(test)]
+mod test_parts;
 
 pub use axial::AxialCut;
 pub(crate) use axial::Extrusion;

@@ -140,42 +140,13 @@ fn cylinder(radius: f64, height: f64) -> Option<NurbsSurface> {
 
 #[cfg(test)]
 mod tests {
-    use glam::{DAffine3, DMat3, DVec3};
+    use glam::{DAffine3, DVec3};
 
     use super::Reach;
     use crate::mesh::opening::cut_opening;
+    use crate::mesh::test_parts::{OD, course, frame, neck, nozzle};
+    use crate::parts::Patch;
     use crate::parts::heads::{Head, HeadKind};
-    use crate::parts::tables::{FlangeClass, Nps, PipeSchedule};
-    use crate::parts::{Facing, FlangeType, Nozzle, Patch, Shell};
-
-    const OD: f64 = 2000.0;
-
-    fn course() -> Patch {
-        let s = Shell {
-            outside_diameter: OD,
-            length: 3000.0,
-        };
-        s.patches().unwrap().remove(0)
-    }
-
-    fn neck(projection: f64) -> Patch {
-        let n = Nozzle {
-            nps: Nps::try_new(8.0).unwrap(),
-            schedule: PipeSchedule::Std,
-            class: FlangeClass::C150,
-            flange: FlangeType::WeldNeck,
-            facing: Facing::RaisedFace,
-            projection,
-        };
-        n.patches().unwrap().remove(0)
-    }
-
-    /// A frame at `origin` whose +Z is `axis`.
-    fn frame(origin: DVec3, axis: DVec3) -> DAffine3 {
-        let z = axis.normalize();
-        let x = (DVec3::Z - z * DVec3::Z.dot(z)).normalize();
-        DAffine3::from_mat3_translation(DMat3::from_cols(x, z.cross(x), z), origin)
-    }
 
     #[test]
     fn a_radial_opening_is_the_same_on_the_host_for_any_projection() {
@@ -236,15 +207,7 @@ mod tests {
         let reach = Reach::of(&plain, &up, &hosts, false);
         assert!(reach.surface.as_ref() != &plain.surface);
         // Another patch of the nozzle (the hub, a cone) is not a plain neck.
-        let n = Nozzle {
-            nps: Nps::try_new(8.0).unwrap(),
-            schedule: PipeSchedule::Std,
-            class: FlangeClass::C150,
-            flange: FlangeType::WeldNeck,
-            facing: Facing::RaisedFace,
-            projection: 1400.0,
-        };
-        let hub = n.patches().unwrap().remove(1);
+        let hub = nozzle(1400.0).patches().unwrap().remove(1);
         let reach = Reach::of(&hub, &radial, &[&host], true);
         assert!(reach.surface.as_ref() == &hub.surface);
     }
