@@ -17,6 +17,7 @@ use std::f64::consts::{FRAC_PI_2, TAU};
 
 use glam::DVec3;
 
+use crate::MODEL_EPSILON;
 use crate::nurbs::NurbsCurve;
 
 /// Largest relative departure of the control net from a circle's.
@@ -44,7 +45,9 @@ impl Circle {
         let euclid = |k: usize| points[k].truncate() / points[k].w;
         let centre = (euclid(0) + euclid(2) + euclid(4) + euclid(6)) / 4.0;
         let radius = (euclid(0) - centre).length();
-        if !(radius.is_finite() && radius > 0.0) {
+        // A circle shorter than the model's resolution is a point to the
+        // general sampler (its two end parameters): left to it.
+        if !(radius.is_finite() && TAU * radius > MODEL_EPSILON) {
             return None;
         }
         let eps = CIRCLE * radius;
