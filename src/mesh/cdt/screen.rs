@@ -25,7 +25,7 @@ use std::ops::Range;
 
 use glam::{DVec2, DVec3};
 
-use super::patch::PatchInfo;
+use super::patch::{PatchInfo, Vertex};
 use super::refine::edge_probe_uv;
 use rustc_hash::FxHashMap;
 
@@ -215,7 +215,9 @@ fn screen_triangles(
             continue;
         }
         let normal = (p[1] - p[0]).cross(p[2] - p[0]);
-        let turned = v.iter().any(|x| x.pole || x.normal.dot(normal) <= 0.0);
+        // A pole vertex's normal is the limit along its own meridian, inside its
+        // fan triangle's sector: the one the full measure takes there.
+        let turned = v.iter().any(|x| x.normal.dot(normal) <= 0.0);
         let area = normal.length();
         if area.is_nan() || area <= 0.0 || turned {
             within[slot] = false;
@@ -223,8 +225,9 @@ fn screen_triangles(
             continue;
         }
         planes.push(Some((p[0], normal / area)));
-        // No pole vertex here (those triangles were turned away above): the
-        // parameters are the vertices' own.
+        // The vertices' own parameters: a pole vertex of the structured path
+        // stands under the middle of its ring segment, where the full measure
+        // puts it too.
         let centroid = (v[0].uv + v[1].uv + v[2].uv) / 3.0;
         add(
             &mut probes,
@@ -242,7 +245,16 @@ fn screen_triangles(
                 continue;
             }
             let (x, y) = (v[i], v[(i + 1) % 3]);
-            if x.normal.dot(y.normal) < limits.min_cos
+            // Towards a pole the normal that counts is the limit along the
+            // other end's meridian (as the full measure takes it).
+            let at = |w: &Vertex, other: &Vertex| {
+                if w.pole {
+                    info.normal(DVec2::new(other.uv.x, w.uv.y))
+                } else {
+                    w.normal
+                }
+            };
+            if at(x, y).dot(at(y, x)) < limits.min_cos
                 || (x.point - y.point).length_squared() > limits.max_edge * limits.max_edge
             {
                 within[slot] = false;
