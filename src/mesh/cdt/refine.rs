@@ -110,7 +110,7 @@ fn loop_allowances(info: &PatchInfo, mesh: &TriMesh) -> Vec<(f64, f64)> {
 
 /// The normal at vertex `w` of an edge whose other end is at `other`: at a pole,
 /// the limit along the edge's meridian.
-fn end_normal(info: &PatchInfo, w: &Vertex, other: DVec2) -> DVec3 {
+pub(super) fn end_normal(info: &PatchInfo, w: &Vertex, other: DVec2) -> DVec3 {
     if w.pole {
         info.normal(DVec2::new(other.x, w.uv.y))
     } else {

@@ -25,8 +25,8 @@ use std::ops::Range;
 
 use glam::{DVec2, DVec3};
 
-use super::patch::{PatchInfo, Vertex};
-use super::refine::edge_probe_uv;
+use super::patch::PatchInfo;
+use super::refine::{edge_probe_uv, end_normal};
 use rustc_hash::FxHashMap;
 
 use super::trimesh::TriMesh;
@@ -247,14 +247,7 @@ fn screen_triangles(
             let (x, y) = (v[i], v[(i + 1) % 3]);
             // Towards a pole the normal that counts is the limit along the
             // other end's meridian (as the full measure takes it).
-            let at = |w: &Vertex, other: &Vertex| {
-                if w.pole {
-                    info.normal(DVec2::new(other.uv.x, w.uv.y))
-                } else {
-                    w.normal
-                }
-            };
-            if at(x, y).dot(at(y, x)) < limits.min_cos
+            if end_normal(info, x, y.uv).dot(end_normal(info, y, x.uv)) < limits.min_cos
                 || (x.point - y.point).length_squared() > limits.max_edge * limits.max_edge
             {
                 within[slot] = false;
