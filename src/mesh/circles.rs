@@ -19,6 +19,7 @@ use glam::DVec3;
 
 use crate::MODEL_EPSILON;
 use crate::nurbs::NurbsCurve;
+use crate::nurbs::builders::FULL_TURN_KNOTS;
 
 /// Largest relative departure of the control net from a circle's.
 const CIRCLE: f64 = 1e-12;
@@ -35,11 +36,8 @@ impl Circle {
     /// ends' tangents, weighted cos 45° relative to them); `None` otherwise.
     pub fn of(curve: &NurbsCurve) -> Option<Self> {
         let knots = curve.knots().as_slice();
-        let expected = [
-            0.0, 0.0, 0.0, 0.25, 0.25, 0.5, 0.5, 0.75, 0.75, 1.0, 1.0, 1.0,
-        ];
         let points = curve.homogeneous_points();
-        if curve.degree() != 2 || knots != expected || points.len() != 9 {
+        if curve.degree() != 2 || knots != FULL_TURN_KNOTS || points.len() != 9 {
             return None;
         }
         let euclid = |k: usize| points[k].truncate() / points[k].w;

@@ -22,6 +22,7 @@ use super::patch::PatchInfo;
 use super::region::{Region, UvLoop};
 use super::rings::Rings;
 use super::trimesh::{NONE, TriMesh};
+use crate::nurbs::builders::FULL_TURN_KNOTS;
 
 /// Quarters of the turn.
 pub(super) const QUARTERS: usize = 4;
@@ -92,10 +93,7 @@ pub(super) fn quarter(info: &PatchInfo, region: &Region) -> Option<Region> {
 fn quarter_turned(info: &PatchInfo) -> bool {
     let s = info.surface;
     let knots = s.u_knots();
-    let expected = [
-        0.0, 0.0, 0.0, 0.25, 0.25, 0.5, 0.5, 0.75, 0.75, 1.0, 1.0, 1.0,
-    ];
-    if knots.degree() != 2 || knots.as_slice() != expected {
+    if knots.degree() != 2 || knots.as_slice() != FULL_TURN_KNOTS {
         return false;
     }
     let points = s.homogeneous_points();
@@ -110,15 +108,12 @@ fn quarter_turned(info: &PatchInfo) -> bool {
         .fold(0.0f64, f64::max)
         .max(1.0);
     let eps = SYMMETRY * size;
-    (1..=QUARTERS).all(|q| {
-        (0..=2).all(|i| {
-            (0..nv).all(|j| {
-                let a = points[i * nv + j];
-                let b = points[(2 * q + i).min(nu - 1) * nv + j];
-                let turned = turn_h(a, q);
-                // The last column closes the turn: only its first point repeats.
-                (2 * q + i >= nu) || ((turned - b).abs().max_element() <= eps)
-            })
+    // Column c is column c mod 2 of the first quarter turned c / 2 times (the
+    // last, c = 8, closes the turn onto the first).
+    (2..nu).all(|c| {
+        (0..nv).all(|j| {
+            let turned = turn_h(points[(c % 2) * nv + j], c / 2);
+            (turned - points[c * nv + j]).abs().max_element() <= eps
         })
     })
 }
@@ -181,25 +176,21 @@ pub(super) fn whole_turn(
         across[k] = right[at].1 as u32;
     }
     let ring = |uv: DVec2| uv.y == lo.y || uv.y == hi.y;
+    // Every quarter has the first one's triangles, flags and screen verdicts;
+    // no neighbour links (as every structured mesh): refinement builds them.
+    let count = QUARTERS * mesh.tris.len();
     let mut out = TriMesh {
         verts: Vec::with_capacity(QUARTERS * n),
-        tris: Vec::with_capacity(QUARTERS * mesh.tris.len()),
-        adj: Vec::with_capacity(QUARTERS * mesh.tris.len()),
-        fixed: Vec::with_capacity(QUARTERS * mesh.tris.len()),
-        touched: Vec::with_capacity(QUARTERS * mesh.tris.len()),
+        tris: Vec::with_capacity(count),
+        adj: vec![[NONE; 3]; count],
+        fixed: mesh.fixed.repeat(QUARTERS),
+        touched: mesh.touched.repeat(QUARTERS),
         pass: mesh.pass,
     };
     out.verts.extend_from_slice(&mesh.verts);
+    out.tris.extend_from_slice(&mesh.tris);
     // `index[k]`: where vertex k of the quarter went in the current quarter.
     let mut previous: Vec<u32> = (0..n as u32).collect();
-    let mut within_all = within.as_ref().map(|w| {
-        let mut all = Vec::with_capacity(QUARTERS * w.len());
-        all.extend_from_slice(w);
-        all
-    });
-    out.tris.extend_from_slice(&mesh.tris);
-    out.fixed.extend_from_slice(&mesh.fixed);
-    out.touched.extend_from_slice(&mesh.touched);
     let mut seam_all: Vec<(u32, usize)> = seam
         .iter()
         .copied()
@@ -236,11 +227,6 @@ pub(super) fn whole_turn(
         let base = out.tris.len() as u32;
         out.tris
             .extend(mesh.tris.iter().map(|t| t.map(|k| index[k as usize])));
-        out.fixed.extend_from_slice(&mesh.fixed);
-        out.touched.extend_from_slice(&mesh.touched);
-        if let (Some(all), Some(w)) = (within_all.as_mut(), within.as_ref()) {
-            all.extend_from_slice(w);
-        }
         if q + 1 == QUARTERS {
             seam_all.extend(seam.iter().copied().filter_map(|(t, i)| {
                 let tri = mesh.tris[t as usize];
@@ -249,12 +235,10 @@ pub(super) fn whole_turn(
         }
         previous = index;
     }
-    // No neighbour links (as every structured mesh): refinement builds them.
-    out.adj = vec![[NONE; 3]; out.tris.len()];
     Ok(Some(Rings {
         mesh: out,
         seam: seam_all,
-        within: within_all,
+        within: within.map(|w| w.repeat(QUARTERS)),
         insertions: QUARTERS * insertions,
     }))
 }

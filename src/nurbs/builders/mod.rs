@@ -16,7 +16,7 @@ mod ruled;
 pub use arc::{circle, circular_arc, elliptical_arc};
 pub use line::line;
 pub use planar::{annulus, disk, planar_quad};
-pub use revolve::revolve;
+pub use revolve::{FULL_TURN_KNOTS, revolve};
 pub use ruled::{extrude, ruled};
 
 use super::NurbsError;

@@ -17,6 +17,13 @@ use crate::nurbs::{KnotVector, NurbsCurve, NurbsError, NurbsSurface, euclidean, 
 /// to the profile's size.
 const ON_AXIS: f64 = 1e-14;
 
+/// The u knots of a full turn (four quarter arcs), as [`revolve`] gives them for
+/// an angle of 2π: what the meshers check before treating a curve or surface
+/// as a full circle of turned quarters.
+pub const FULL_TURN_KNOTS: [f64; 12] = [
+    0.0, 0.0, 0.0, 0.25, 0.25, 0.5, 0.5, 0.75, 0.75, 1.0, 1.0, 1.0,
+];
+
 /// The surface swept by `profile` turning by `angle` radians (0 < |angle| ≤ 2π)
 /// about the axis through `axis_point` along `axis_direction` (right-handed).
 pub fn revolve(
