@@ -10,31 +10,23 @@
 //! least half a point step clear). The chains' strips are zipped round the
 //! cavities; the cavity's boundary (its bottom chain's vertices left to right, its
 //! right ends upwards, its top chain's vertices right to left, its left ends
-//! downwards) is zipped to the hole's loop, choosing at each step the shorter
-//! diagonal among the steps that make a strictly counter-clockwise triangle in
-//! (u, v). With every triangle counter-clockwise and the two loops as the zip's
-//! boundary, the triangles cover the ring between them exactly once, so that check
-//! is the whole validity test. Cavities that overlap are merged; a merged cavity
-//! with several holes, or a zip that gets stuck (a hole too far from convex), is
-//! triangulated by spade (`initial`) instead. A cavity that would reach the seam
-//! or a pole is not handled here: the caller then meshes the whole region by the
-//! general path, which also reports any fault of the loops.
+//! downwards) and its holes are triangulated by `ring` (zipped to a single hole,
+//! ear-clipped round several, flipped to Delaunay). Cavities that overlap are
+//! merged; a cavity `ring` cannot cover is triangulated by spade (`initial`)
+//! instead. A cavity that would reach the seam or a pole is not handled here:
+//! the caller then meshes the whole region by the general path, which also
+//! reports any fault of the loops.
 
 use glam::DVec2;
 use rayon::prelude::*;
 
-use super::flip::{incircle, strictly_ccw};
 use super::initial;
-use super::metric::Metric;
 use super::patch::{PatchInfo, Vertex};
 use super::region::{Region, UvLoop, bounds_of};
+use super::ring::{Loops, Triangle};
 use super::rings::{Chain, Kind};
 use super::trimesh::{NONE, TriMesh};
 use super::{CdtError, MeshStats};
-
-/// A triangle of a cavity: its vertices (counter-clockwise in (u, v)) and which of
-/// its edges are loop segments.
-type Triangle = ([u32; 3], [bool; 3]);
 
 /// The cavity of one or more holes.
 #[derive(Clone, Debug)]
@@ -184,9 +176,10 @@ fn boundary(chains: &[Chain], cavity: &Cavity) -> Vec<u32> {
     out
 }
 
-/// Triangulates every cavity into `mesh`: appends the holes' vertices and the
-/// cavities' triangles (hole segments fixed) and returns the range of triangles
-/// added. `None` when a cavity cannot be triangulated here (the caller falls back
+/// Triangulates every cavity into `mesh` (see `ring`: a zip for one hole, ear
+/// clipping for several, spade when neither gives a valid cover): appends the
+/// holes' vertices and the cavities' triangles (hole segments fixed) and
+/// returns the range of triangles added. `None` when a cavity cannot be triangulated here (the caller falls back
 /// to the general path, which reports what is wrong).
 pub(super) fn fill(
     info: &PatchInfo,
@@ -216,17 +209,16 @@ pub(super) fn fill(
         .par_iter()
         .map(|cavity| {
             let outer = boundary(chains, cavity);
-            if let [h] = cavity.holes[..] {
-                let n = region.holes[h].uv.len() as u32;
-                // The hole counter-clockwise: its loop reversed.
-                let inner: Vec<u32> = (0..n).rev().map(|j| hole_first[h] + j).collect();
-                let centre = 0.5 * (cavity.bounds.0 + cavity.bounds.1);
-                let metric = info.metric_at(centre);
-                if let Some(mut tris) = zip_ring(mesh, &metric, &outer, &inner) {
-                    let chart = |k: u32| metric.chart(mesh.verts[k as usize].uv);
-                    delaunay_flips(&mut tris, chart);
-                    return Some(tris);
-                }
+            let centre = 0.5 * (cavity.bounds.0 + cavity.bounds.1);
+            let holes = cavity.holes.iter().map(|&h| {
+                let first = hole_first[h];
+                first..first + region.holes[h].uv.len() as u32
+            });
+            if let Some(loops) = Loops::new(mesh, &outer, holes, &info.metric_at(centre))
+                && let Some(tris) = loops.zip(mesh).or_else(|| loops.ears(mesh))
+                && let Some(tris) = loops.finish(mesh, tris)
+            {
+                return Some(tris);
             }
             by_spade(info, mesh, &outer, cavity, region, &hole_first)
         })
@@ -243,108 +235,6 @@ pub(super) fn fill(
         }
     }
     Ok(Some(start..mesh.tris.len() as u32))
-}
-
-/// Zips the cavity's boundary `outer` (counter-clockwise) with the hole `inner`
-/// (counter-clockwise, inside it): triangles with their fixed flags (the hole's
-/// segments), or `None` when no strictly counter-clockwise step is left.
-///
-/// Diagonals are compared in the size `metric` at the cavity, not in 3D: on a
-/// course, whose triangles may run far along the axis but only a step round it,
-/// that pairs each hole vertex with the chain vertices above or below it, as the
-/// chordal tolerance wants.
-fn zip_ring(
-    mesh: &TriMesh,
-    metric: &Metric,
-    outer: &[u32],
-    inner: &[u32],
-) -> Option<Vec<Triangle>> {
-    let (np, nq) = (outer.len(), inner.len());
-    if np < 3 || nq < 3 {
-        return None;
-    }
-    let uv = |k: u32| mesh.verts[k as usize].uv;
-    let distance = |a: u32, b: u32| metric.length_sq(uv(a) - uv(b));
-    // Start at the outer loop's first vertex and the hole vertex nearest to it.
-    let q0 = (0..nq)
-        .min_by(|&a, &b| distance(inner[a], outer[0]).total_cmp(&distance(inner[b], outer[0])))?;
-    let p = |i: usize| outer[i % np];
-    let q = |j: usize| inner[(q0 + j) % nq];
-    let mut out = Vec::with_capacity(np + nq);
-    let (mut i, mut j) = (0usize, 0usize);
-    while i < np || j < nq {
-        let can_p = i < np && strictly_ccw(uv(p(i)), uv(p(i + 1)), uv(q(j)));
-        let can_q = j < nq && strictly_ccw(uv(p(i)), uv(q(j + 1)), uv(q(j)));
-        let advance_p = match (can_p, can_q) {
-            (true, true) => distance(p(i + 1), q(j)) <= distance(p(i), q(j + 1)),
-            (true, false) => true,
-            (false, true) => false,
-            (false, false) => return None,
-        };
-        if advance_p {
-            out.push(([p(i), p(i + 1), q(j)], [false; 3]));
-            i += 1;
-        } else {
-            // Edge 1 (q(j + 1) → q(j)) is a hole segment.
-            out.push(([p(i), q(j + 1), q(j)], [false, true, false]));
-            j += 1;
-        }
-    }
-    Some(out)
-}
-
-/// Lawson's flips on a zipped cavity until its triangles are Delaunay in `chart`
-/// (the size metric at the cavity) with its fixed edges and its boundary kept:
-/// the zip's greedy choices leave needles where a boundary vertex fans to many
-/// hole vertices; after the flips the cavity is the constrained Delaunay
-/// triangulation of its vertices, as spade would make it. An edge is flipped only
-/// when both new triangles are strictly counter-clockwise in (u, v).
-fn delaunay_flips(tris: &mut [Triangle], chart: impl Fn(u32) -> DVec2) {
-    let mut edges: rustc_hash::FxHashMap<(u32, u32), (usize, usize)> =
-        rustc_hash::FxHashMap::default();
-    edges.reserve(3 * tris.len());
-    for (t, (tri, _)) in tris.iter().enumerate() {
-        for i in 0..3 {
-            edges.insert((tri[i], tri[(i + 1) % 3]), (t, i));
-        }
-    }
-    let mut stack: Vec<(u32, u32)> = edges.keys().copied().collect();
-    stack.sort_unstable();
-    // Each flip lowers the triangulation's lifted volume, so this ends; the cap
-    // only guards against rounding cycles.
-    let mut budget = 8 * tris.len() + 64;
-    while let Some((a, b)) = stack.pop() {
-        let (Some(&(t, i)), Some(&(s, j))) = (edges.get(&(a, b)), edges.get(&(b, a))) else {
-            continue;
-        };
-        if tris[t].1[i] || tris[s].1[j] {
-            continue;
-        }
-        let c = tris[t].0[(i + 2) % 3];
-        let d = tris[s].0[(j + 2) % 3];
-        let [pa, pb, pc, pd] = [a, b, c, d].map(&chart);
-        if !incircle(pa, pb, pc, pd) {
-            continue;
-        }
-        if !(strictly_ccw(pc, pa, pd) && strictly_ccw(pd, pb, pc)) {
-            continue;
-        }
-        if budget == 0 {
-            break;
-        }
-        budget -= 1;
-        let (ft, fs) = (tris[t].1, tris[s].1);
-        tris[t] = ([c, a, d], [ft[(i + 2) % 3], fs[(j + 1) % 3], false]);
-        tris[s] = ([d, b, c], [fs[(j + 2) % 3], ft[(i + 1) % 3], false]);
-        edges.remove(&(a, b));
-        edges.remove(&(b, a));
-        for (k, tri) in [(t, [c, a, d]), (s, [d, b, c])] {
-            for e in 0..3 {
-                edges.insert((tri[e], tri[(e + 1) % 3]), (k, e));
-            }
-        }
-        stack.extend([(c, a), (a, d), (d, b), (b, c)]);
-    }
 }
 
 /// The cavity triangulated by spade: the boundary as the outer loop, its holes as
@@ -394,6 +284,8 @@ fn by_spade(
 #[cfg(test)]
 mod tests {
     use super::*;
+    use crate::mesh::cdt::flip::{incircle, orient, strictly_ccw};
+    use crate::mesh::cdt::metric::Metric;
     use glam::DVec3;
 
     /// A flat lattice: `rows` chains of `n` vertices over the unit square, u
@@ -439,26 +331,84 @@ mod tests {
         )
     }
 
-    fn area(mesh: &TriMesh, tris: &[Triangle]) -> f64 {
-        tris.iter()
-            .map(|(t, _)| {
-                let [a, b, c] = t.map(|k| mesh.verts[k as usize].uv);
-                0.5 * (b - a).perp_dot(c - a)
+    /// The unit square with `holes`.
+    fn square(holes: impl IntoIterator<Item = UvLoop>) -> Region {
+        let outer = UvLoop::new(vec![DVec2::ZERO, DVec2::X, DVec2::ONE, DVec2::Y]);
+        holes
+            .into_iter()
+            .fold(Region::new(outer), Region::with_hole)
+    }
+
+    /// The region's hole vertices appended to `mesh`, and each hole's range.
+    fn add_holes(mesh: &mut TriMesh, region: &Region) -> Vec<std::ops::Range<u32>> {
+        region
+            .holes
+            .iter()
+            .map(|hole| {
+                let first = mesh.verts.len() as u32;
+                mesh.verts.extend(hole.uv.iter().map(|&uv| vertex(uv)));
+                first..mesh.verts.len() as u32
             })
-            .sum()
+            .collect()
+    }
+
+    const ISOTROPIC: Metric = Metric {
+        uu: 1.0,
+        uv: 0.0,
+        vv: 1.0,
+    };
+
+    /// The area of the cavity's boundary rectangle less its holes.
+    fn cavity_area(mesh: &TriMesh, chains: &[Chain], cavity: &Cavity, holes: &[&UvLoop]) -> f64 {
+        let u = |k: usize, i: usize| mesh.verts[chains[k].first as usize + i].uv.x;
+        let (l, r) = cavity.cuts[0];
+        let width = u(cavity.lo, r) - u(cavity.lo, l);
+        let height = chains[cavity.hi].v - chains[cavity.lo].v;
+        width * height + 0.5 * holes.iter().map(|h| h.signed_double_area()).sum::<f64>()
+    }
+
+    /// Asserts that `tris` cover the cavity less its holes once: every triangle
+    /// strictly counter-clockwise, the area the cavity's (`expected`), every hole
+    /// segment (`segments` of them) an edge once and fixed, no other edge fixed,
+    /// every interior edge locally Delaunay in `metric`.
+    fn assert_delaunay_cover(
+        mesh: &TriMesh,
+        tris: &[Triangle],
+        expected: f64,
+        segments: usize,
+        metric: &Metric,
+    ) {
+        let uv = |k: u32| mesh.verts[k as usize].uv;
+        let area: f64 = tris
+            .iter()
+            .map(|(t, _)| 0.5 * orient(uv(t[0]), uv(t[1]), uv(t[2])))
+            .sum();
+        assert!((area - expected).abs() < 1e-12, "{area} against {expected}");
+        let mut edges = std::collections::HashMap::new();
+        for (t, (tri, fixed)) in tris.iter().enumerate() {
+            assert!(strictly_ccw(uv(tri[0]), uv(tri[1]), uv(tri[2])));
+            for i in 0..3 {
+                let old = edges.insert((tri[i], tri[(i + 1) % 3]), (t, i, fixed[i]));
+                assert!(old.is_none(), "an edge twice");
+            }
+        }
+        assert_eq!(edges.values().filter(|e| e.2).count(), segments);
+        let chart = |k: u32| metric.chart(uv(k));
+        for (&(a, b), &(t, i, fixed)) in &edges {
+            if let Some(&(s, j, _)) = edges.get(&(b, a)) {
+                assert!(!fixed, "a fixed edge inside the cavity");
+                let c = tris[t].0[(i + 2) % 3];
+                let d = tris[s].0[(j + 2) % 3];
+                assert!(!incircle(chart(a), chart(b), chart(c), chart(d)));
+            }
+        }
     }
 
     #[test]
     fn a_hole_gets_a_cavity_clear_of_it_and_a_valid_delaunay_ring() {
         let (mut mesh, chains) = lattice(9, 21);
         let hole = circle(DVec2::new(0.5, 0.5), 0.16, 40);
-        let region = Region::new(UvLoop::new(vec![
-            DVec2::ZERO,
-            DVec2::X,
-            DVec2::ONE,
-            DVec2::Y,
-        ]))
-        .with_hole(hole.clone());
+        let region = square([hole.clone()]);
         let cavities = plan(&mesh, &chains, &region).expect("a cavity");
         assert_eq!(cavities.len(), 1);
         let cavity = &cavities[0];
@@ -470,59 +420,65 @@ mod tests {
             "{:?}",
             cavity.cuts
         );
-        let first = mesh.verts.len() as u32;
-        mesh.verts.extend(hole.uv.iter().map(|&uv| vertex(uv)));
+        let ranges = add_holes(&mut mesh, &region);
         let outer = boundary(&chains, cavity);
-        let inner: Vec<u32> = (0..40).rev().map(|j| first + j).collect();
+        let loops = Loops::new(&mesh, &outer, ranges, &ISOTROPIC).expect("loops");
+        let expected = cavity_area(&mesh, &chains, cavity, &[&hole]);
+        assert!((expected - (0.4 * 0.5 + 0.5 * hole.signed_double_area())).abs() < 1e-12);
+        // Zipped, and ear-clipped: both valid, Delaunay once flipped.
+        for tris in [loops.zip(&mesh), loops.ears(&mesh)] {
+            let tris = loops
+                .finish(&mesh, tris.expect("a cover"))
+                .expect("flipped");
+            assert_delaunay_cover(&mesh, &tris, expected, 40, &ISOTROPIC);
+        }
+    }
+
+    #[test]
+    fn holes_sharing_a_cavity_are_ear_clipped_with_every_row_vertex_kept() {
+        // Three rows; a large opening low down and a small one just under the
+        // middle row, whose cavity therefore reaches the top row and takes in
+        // the large one's (as on a long course with a small nozzle above a
+        // manway). Ear clipping drops the rows' collinear vertices; fans bring
+        // them back.
+        let (mut mesh, chains) = lattice(3, 41);
+        let big = circle(DVec2::new(0.5, 0.14), 0.1, 48);
+        let small = circle(DVec2::new(0.5, 0.47), 0.01, 16);
+        let region = square([big.clone(), small.clone()]);
+        let cavities = plan(&mesh, &chains, &region).expect("cavities");
+        assert_eq!(cavities.len(), 1);
+        let cavity = &cavities[0];
+        assert_eq!(cavity.holes, vec![0, 1]);
+        assert_eq!((cavity.lo, cavity.hi), (0, 2));
+        let ranges = add_holes(&mut mesh, &region);
+        let outer = boundary(&chains, cavity);
         let metric = Metric {
-            uu: 1.0,
+            uu: 40.0,
             uv: 0.0,
             vv: 1.0,
         };
-        let mut tris = zip_ring(&mesh, &metric, &outer, &inner).expect("the zip");
-        let expected = 0.4 * 0.5 + 0.5 * hole.signed_double_area();
-        assert!((area(&mesh, &tris) - expected).abs() < 1e-12);
-        let uv = |k: u32| mesh.verts[k as usize].uv;
-        delaunay_flips(&mut tris, |k| metric.chart(uv(k)));
-        assert!((area(&mesh, &tris) - expected).abs() < 1e-12);
-        // Every triangle counter-clockwise, each hole segment kept once, fixed;
-        // every interior edge locally Delaunay.
-        let mut edges = std::collections::HashMap::new();
-        for (t, (tri, fixed)) in tris.iter().enumerate() {
-            assert!(strictly_ccw(uv(tri[0]), uv(tri[1]), uv(tri[2])));
-            for i in 0..3 {
-                edges.insert((tri[i], tri[(i + 1) % 3]), (t, i, fixed[i]));
-            }
-        }
-        let fixed = edges.values().filter(|e| e.2).count();
-        assert_eq!(fixed, 40);
-        for (&(a, b), &(t, i, _)) in &edges {
-            if let Some(&(s, j, _)) = edges.get(&(b, a)) {
-                let c = tris[t].0[(i + 2) % 3];
-                let d = tris[s].0[(j + 2) % 3];
-                assert!(!incircle(uv(a), uv(b), uv(c), uv(d)));
-            }
-        }
+        let loops = Loops::new(&mesh, &outer, ranges, &metric).expect("loops");
+        assert!(loops.zip(&mesh).is_none(), "a zip takes one hole");
+        let tris = loops.ears(&mesh).expect("ear clipping covers the cavity");
+        let tris = loops.finish(&mesh, tris).expect("flipped");
+        let used: std::collections::HashSet<u32> = tris.iter().flat_map(|t| t.0).collect();
+        assert!(outer.iter().all(|k| used.contains(k)), "a row vertex lost");
+        let expected = cavity_area(&mesh, &chains, cavity, &[&big, &small]);
+        assert_delaunay_cover(&mesh, &tris, expected, 64, &metric);
     }
 
     #[test]
     fn close_holes_share_a_cavity_and_the_seam_is_left_alone() {
         let (mesh, chains) = lattice(9, 21);
-        let square = Region::new(UvLoop::new(vec![
-            DVec2::ZERO,
-            DVec2::X,
-            DVec2::ONE,
-            DVec2::Y,
-        ]));
-        let two = square
-            .clone()
-            .with_hole(circle(DVec2::new(0.3, 0.3), 0.05, 12))
-            .with_hole(circle(DVec2::new(0.36, 0.45), 0.05, 12))
-            .with_hole(circle(DVec2::new(0.8, 0.5), 0.05, 12));
+        let two = square([
+            circle(DVec2::new(0.3, 0.3), 0.05, 12),
+            circle(DVec2::new(0.36, 0.45), 0.05, 12),
+            circle(DVec2::new(0.8, 0.5), 0.05, 12),
+        ]);
         let cavities = plan(&mesh, &chains, &two).expect("cavities");
         let holes: Vec<Vec<usize>> = cavities.iter().map(|c| c.holes.clone()).collect();
         assert_eq!(holes, vec![vec![0, 1], vec![2]]);
-        let seam = square.with_hole(circle(DVec2::new(0.04, 0.5), 0.02, 12));
+        let seam = square([circle(DVec2::new(0.04, 0.5), 0.02, 12)]);
         assert!(plan(&mesh, &chains, &seam).is_none());
     }
 }

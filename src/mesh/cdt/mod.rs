@@ -8,8 +8,8 @@
 //!
 //! Pipeline: `region` (validate) → for a whole patch closed in u, `rings` (the
 //! lattice's rows zipped seam to seam round the `cavity` of each opening, each
-//! cavity zipped to its hole and flipped to Delaunay, checked, refined only if
-//! needed); otherwise
+//! cavity zipped to its hole or ear-clipped round its holes and flipped to
+//! Delaunay (`ring`), checked, refined only if needed); otherwise
 //! `seed` (curvature-sized lattice clipped to the
 //! region, in the size `metric` of the surface) → `initial` (spade's constrained
 //! Delaunay triangulation of loop vertices and seeds, inside found by flood fill) →
@@ -30,6 +30,7 @@ mod output;
 mod patch;
 mod refine;
 mod region;
+mod ring;
 mod rings;
 mod screen;
 mod sector;

@@ -1,0 +1,557 @@
+//! One cavity of a structured mesh triangulated to its holes, without a
+//! triangulation search: a zip for one hole, ear clipping for several, then
+//! Lawson's flips to the constrained Delaunay triangulation.
+//!
+//! Sits inside `cavity::fill`, which cuts the cavities out of the rings' lattice
+//! and hands each one here as its boundary (chain vertices, counter-clockwise)
+//! and its holes (loop vertices, clockwise, as the region holds them). The
+//! cavity's vertices all exist already; no vertex is added. Every result is
+//! checked to cover the cavity less its holes exactly once: each triangle
+//! strictly counter-clockwise in (u, v) and the loops as the triangles'
+//! boundary. The caller falls back to spade when neither way gives one.
+
+use glam::DVec2;
+
+use super::flip::{orient, strictly_ccw};
+use super::metric::Metric;
+use super::trimesh::TriMesh;
+
+/// A cavity triangle: its mesh vertices (counter-clockwise in (u, v)) and which
+/// of its edges are hole segments.
+pub(super) type Triangle = ([u32; 3], [bool; 3]);
+
+/// A cavity's loops in one local numbering: its boundary first, then each hole;
+/// `next` follows every loop in the direction that keeps the cavity on its left
+/// (the boundary counter-clockwise, the holes clockwise).
+pub(super) struct Loops {
+    /// Local index → mesh vertex index.
+    map: Vec<u32>,
+    /// Local index → the next vertex of its loop.
+    next: Vec<u32>,
+    /// First local index of each hole.
+    starts: Vec<u32>,
+    /// Vertex positions in the cavity's size metric (the chart).
+    chart: Vec<[f64; 2]>,
+}
+
+impl Loops {
+    /// The loops of a cavity with boundary `outer` and holes `holes` (each a run
+    /// of consecutive mesh vertices, clockwise); `chart` maps (u, v) to the
+    /// cavity's size metric. `None` when a loop has fewer than three vertices.
+    pub fn new(
+        mesh: &TriMesh,
+        outer: &[u32],
+        holes: impl IntoIterator<Item = std::ops::Range<u32>>,
+        metric: &Metric,
+    ) -> Option<Self> {
+        let mut map: Vec<u32> = outer.to_vec();
+        let mut starts = Vec::new();
+        for hole in holes {
+            starts.push(map.len() as u32);
+            map.extend(hole);
+        }
+        let n = map.len() as u32;
+        let mut next: Vec<u32> = (1..=n).collect();
+        let mut first = 0u32;
+        for &end in starts.iter().chain([&n]) {
+            if end < first + 3 {
+                return None;
+            }
+            next[end as usize - 1] = first;
+            first = end;
+        }
+        let chart = map
+            .iter()
+            .map(|&k| metric.chart(mesh.verts[k as usize].uv).to_array())
+            .collect();
+        Some(Self {
+            map,
+            next,
+            starts,
+            chart,
+        })
+    }
+
+    /// Whether `a → b` is a loop segment, in its loop's direction.
+    fn segment(&self, a: u32, b: u32) -> bool {
+        self.next[a as usize] == b
+    }
+
+    /// Whether local vertex `a` is a hole's.
+    fn on_hole(&self, a: u32) -> bool {
+        self.starts.first().is_some_and(|&s| a >= s)
+    }
+
+    /// The (u, v) of local vertex `k`.
+    fn uv(&self, mesh: &TriMesh, k: u32) -> DVec2 {
+        mesh.verts[self.map[k as usize] as usize].uv
+    }
+
+    /// The one hole zipped to the boundary, or `None` when the cavity has not
+    /// exactly one hole or no zip has all its triangles strictly
+    /// counter-clockwise: [`Self::zip_greedy`], or when that gets stuck (a hole
+    /// far from convex) the zip with the least total diagonal length among all
+    /// valid ones, by dynamic programming over the walk's positions.
+    pub fn zip(&self, mesh: &TriMesh) -> Option<Vec<[u32; 3]>> {
+        let walk = Walk::new(self, mesh)?;
+        walk.greedy().or_else(|| walk.least())
+    }
+
+    /// The one hole zipped to the boundary greedily: both loops walked
+    /// counter-clockwise from the boundary's first vertex and the hole vertex
+    /// nearest it (in the size metric, not in 3D: on a course, whose triangles
+    /// may run far along the axis but only a step round it, that pairs each hole
+    /// vertex with the chain vertices above or below it, as the chordal
+    /// tolerance wants), taking at each step the shorter diagonal among the
+    /// strictly counter-clockwise triangles. With every triangle
+    /// counter-clockwise and the two loops as the zip's boundary, the triangles
+    /// cover the ring between them exactly once. `None` when it gets stuck.
+    #[cfg(test)]
+    pub fn zip_greedy(&self, mesh: &TriMesh) -> Option<Vec<[u32; 3]>> {
+        Walk::new(self, mesh)?.greedy()
+    }
+
+    /// The cavity triangulated by ear clipping (the `earcut` crate) in the chart,
+    /// the boundary as the polygon and the holes as its holes; `None` unless the
+    /// result covers the cavity less its holes exactly once (see [`Self::cover`]).
+    ///
+    /// Ear clipping drops a loop vertex lying exactly on the line through its
+    /// neighbours (a row's vertices along the cavity's bottom and top); the
+    /// triangle on the chord that skips such vertices is fanned back to them from
+    /// its third vertex.
+    pub fn ears(&self, mesh: &TriMesh) -> Option<Vec<[u32; 3]>> {
+        let n = self.map.len();
+        let mut local: Vec<u32> = Vec::with_capacity(3 * (n + 2 * self.starts.len()));
+        earcut::Earcut::new().earcut(self.chart.iter().copied(), &self.starts, &mut local);
+        let mut used = vec![false; n];
+        for &k in &local {
+            used[k as usize] = true;
+        }
+        let uv = |k: u32| self.uv(mesh, k);
+        let mut tris: Vec<[u32; 3]> = Vec::with_capacity(n + 2 * self.starts.len());
+        for t in local.chunks_exact(3) {
+            let mut tri = [t[0], t[1], t[2]];
+            if orient(uv(tri[0]), uv(tri[1]), uv(tri[2])) < 0.0 {
+                tri.swap(1, 2);
+            }
+            let skipped = (0..3).find_map(|i| {
+                let (a, b) = (tri[i], tri[(i + 1) % 3]);
+                let mut between = Vec::new();
+                let mut k = self.next[a as usize];
+                while k != b && !used[k as usize] && between.len() < n {
+                    between.push(k);
+                    k = self.next[k as usize];
+                }
+                (k == b && !between.is_empty()).then_some((i, between))
+            });
+            match skipped {
+                Some((i, between)) => {
+                    let (a, b, c) = (tri[i], tri[(i + 1) % 3], tri[(i + 2) % 3]);
+                    let chain: Vec<u32> = [a].into_iter().chain(between).chain([b]).collect();
+                    tris.extend(chain.windows(2).map(|w| [w[0], w[1], c]));
+                }
+                None => tris.push(tri),
+            }
+        }
+        self.cover(mesh, &tris).then_some(tris)
+    }
+
+    /// Whether `tris` cover the cavity less its holes exactly once: every
+    /// triangle strictly counter-clockwise in (u, v), every loop segment an edge
+    /// of one triangle in its loop's direction and every other edge shared by
+    /// two in opposite directions. The triangles' boundary is then the loops, and
+    /// a chain of positively oriented triangles with that boundary covers what
+    /// the loops enclose once, whatever ear clipping did with near-degenerate
+    /// input.
+    fn cover(&self, mesh: &TriMesh, tris: &[[u32; 3]]) -> bool {
+        let uv = |k: u32| self.uv(mesh, k);
+        let mut edges: rustc_hash::FxHashSet<(u32, u32)> = rustc_hash::FxHashSet::default();
+        edges.reserve(3 * tris.len());
+        for tri in tris {
+            if !strictly_ccw(uv(tri[0]), uv(tri[1]), uv(tri[2])) {
+                return false;
+            }
+            for i in 0..3 {
+                if !edges.insert((tri[i], tri[(i + 1) % 3])) {
+                    return false;
+                }
+            }
+        }
+        let paired = edges
+            .iter()
+            .all(|&(a, b)| self.segment(a, b) != edges.contains(&(b, a)));
+        paired && (0..self.map.len() as u32).all(|a| edges.contains(&(a, self.next[a as usize])))
+    }
+
+    /// `tris` (a valid cover) flipped to Delaunay in the chart by Lawson's flips
+    /// (the loop segments, which no other cavity triangle shares, stay), as mesh
+    /// triangles with their hole segments fixed. `None` when a flip left a
+    /// triangle not strictly counter-clockwise in (u, v).
+    pub fn finish(&self, mesh: &TriMesh, tris: Vec<[u32; 3]>) -> Option<Vec<Triangle>> {
+        let mut flat: Vec<u32> = tris.into_iter().flatten().collect();
+        earcut::Refiner::new().refine(&mut flat, &self.chart);
+        let uv = |k: u32| self.uv(mesh, k);
+        flat.chunks_exact(3)
+            .map(|t| {
+                let tri = [t[0], t[1], t[2]];
+                strictly_ccw(uv(tri[0]), uv(tri[1]), uv(tri[2])).then(|| {
+                    // Only the holes' segments stay fixed: the cavity's boundary
+                    // is interior to the patch (or a side, fixed by the caller).
+                    let fixed = std::array::from_fn(|i| {
+                        let (a, b) = (tri[i], tri[(i + 1) % 3]);
+                        self.segment(a, b) && self.on_hole(a)
+                    });
+                    (tri.map(|k| self.map[k as usize]), fixed)
+                })
+            })
+            .collect()
+    }
+}
+
+/// The zip's walk round a cavity with one hole: position `i` on the boundary,
+/// `j` on the hole (counter-clockwise from the vertex nearest the boundary's
+/// first), each step one triangle.
+struct Walk<'a> {
+    loops: &'a Loops,
+    mesh: &'a TriMesh,
+    /// Boundary and hole vertex counts.
+    np: usize,
+    nq: usize,
+    /// The hole's first local index and the walk's first hole vertex (an
+    /// offset in the hole's own, clockwise, order).
+    start: u32,
+    q0: usize,
+}
+
+impl<'a> Walk<'a> {
+    fn new(loops: &'a Loops, mesh: &'a TriMesh) -> Option<Self> {
+        let &[start] = &loops.starts[..] else {
+            return None;
+        };
+        let np = start as usize;
+        let nq = loops.map.len() - np;
+        let mut walk = Self {
+            loops,
+            mesh,
+            np,
+            nq,
+            start,
+            q0: 0,
+        };
+        walk.q0 = (0..nq).min_by(|&a, &b| {
+            let (a, b) = (start + a as u32, start + b as u32);
+            walk.distance(a, 0).total_cmp(&walk.distance(b, 0))
+        })?;
+        Some(walk)
+    }
+
+    fn distance(&self, a: u32, b: u32) -> f64 {
+        let chart = |k: u32| DVec2::from_array(self.loops.chart[k as usize]);
+        chart(a).distance(chart(b))
+    }
+
+    fn uv(&self, k: u32) -> DVec2 {
+        self.loops.uv(self.mesh, k)
+    }
+
+    /// The boundary's `i`-th vertex.
+    fn p(&self, i: usize) -> u32 {
+        (i % self.np) as u32
+    }
+
+    /// The hole's `j`-th vertex counter-clockwise: its loop walked backwards.
+    fn q(&self, j: usize) -> u32 {
+        self.start + ((self.q0 + self.nq - j % self.nq) % self.nq) as u32
+    }
+
+    /// Whether the walk may advance on the boundary, or on the hole, from (i, j).
+    fn can_p(&self, i: usize, j: usize) -> bool {
+        i < self.np
+            && strictly_ccw(
+                self.uv(self.p(i)),
+                self.uv(self.p(i + 1)),
+                self.uv(self.q(j)),
+            )
+    }
+
+    fn can_q(&self, i: usize, j: usize) -> bool {
+        j < self.nq
+            && strictly_ccw(
+                self.uv(self.p(i)),
+                self.uv(self.q(j + 1)),
+                self.uv(self.q(j)),
+            )
+    }
+
+    /// The step's triangle and its new diagonal's length.
+    fn step(&self, i: usize, j: usize, advance_p: bool) -> ([u32; 3], f64) {
+        if advance_p {
+            let tri = [self.p(i), self.p(i + 1), self.q(j)];
+            (tri, self.distance(tri[1], tri[2]))
+        } else {
+            let tri = [self.p(i), self.q(j + 1), self.q(j)];
+            (tri, self.distance(tri[0], tri[1]))
+        }
+    }
+
+    fn greedy(&self) -> Option<Vec<[u32; 3]>> {
+        let mut out = Vec::with_capacity(self.np + self.nq);
+        let (mut i, mut j) = (0usize, 0usize);
+        while i < self.np || j < self.nq {
+            let advance_p = match (self.can_p(i, j), self.can_q(i, j)) {
+                (true, true) => self.step(i, j, true).1 <= self.step(i, j, false).1,
+                (true, false) => true,
+                (false, true) => false,
+                (false, false) => return None,
+            };
+            out.push(self.step(i, j, advance_p).0);
+            if advance_p {
+                i += 1;
+            } else {
+                j += 1;
+            }
+        }
+        Some(out)
+    }
+
+    fn least(&self) -> Option<Vec<[u32; 3]>> {
+        let (np, nq) = (self.np, self.nq);
+        let width = nq + 1;
+        let mut cost = vec![f64::INFINITY; (np + 1) * width];
+        // Whether (i, j) was reached by advancing on the boundary (else the hole).
+        let mut from_p = vec![false; (np + 1) * width];
+        cost[0] = 0.0;
+        for i in 0..=np {
+            for j in 0..=nq {
+                let c = cost[i * width + j];
+                if !c.is_finite() {
+                    continue;
+                }
+                for (advance_p, at) in [(true, (i + 1) * width + j), (false, i * width + j + 1)] {
+                    let can = if advance_p {
+                        self.can_p(i, j)
+                    } else {
+                        self.can_q(i, j)
+                    };
+                    if !can {
+                        continue;
+                    }
+                    let next = c + self.step(i, j, advance_p).1;
+                    if next < cost[at] {
+                        (cost[at], from_p[at]) = (next, advance_p);
+                    }
+                }
+            }
+        }
+        if !cost[np * width + nq].is_finite() {
+            return None;
+        }
+        let mut out = Vec::with_capacity(np + nq);
+        let (mut i, mut j) = (np, nq);
+        while i > 0 || j > 0 {
+            let advance_p = from_p[i * width + j];
+            if advance_p {
+                i -= 1;
+            } else {
+                j -= 1;
+            }
+            out.push(self.step(i, j, advance_p).0);
+        }
+        out.reverse();
+        Some(out)
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::mesh::cdt::patch::Vertex;
+    use glam::DVec3;
+
+    /// A mesh of bare (u, v) vertices.
+    fn mesh_of(uvs: impl IntoIterator<Item = DVec2>) -> TriMesh {
+        let mut mesh = TriMesh::default();
+        mesh.verts.extend(uvs.into_iter().map(|uv| Vertex {
+            uv,
+            point: DVec3::new(uv.x, uv.y, 0.0),
+            normal: DVec3::Z,
+            metric: Metric::UNSET,
+            pole: false,
+        }));
+        mesh
+    }
+
+    /// Twice the area the triangles cover, in (u, v).
+    fn double_area(mesh: &TriMesh, tris: &[[u32; 3]]) -> f64 {
+        let uv = |k: u32| mesh.verts[k as usize].uv;
+        tris.iter()
+            .map(|t| orient(uv(t[0]), uv(t[1]), uv(t[2])))
+            .sum()
+    }
+
+    fn double_area_of(pts: &[DVec2]) -> f64 {
+        (0..pts.len())
+            .map(|k| pts[k].perp_dot(pts[(k + 1) % pts.len()]))
+            .sum()
+    }
+
+    #[test]
+    fn a_zip_the_greedy_walk_cannot_finish_is_found_by_the_least_diagonals() {
+        // A cavity of a generated plant's course (its boundary, then its hole,
+        // clockwise) and the size metric there: a convex opening close to the
+        // bottom row, where the greedy walk pairs the hole with the wrong row.
+        let outer = [
+            [0.614222018, 0.0],
+            [0.625, 0.0],
+            [0.635777982, 0.0],
+            [0.639439295, 0.5],
+            [0.629813098, 0.5],
+            [0.620186902, 0.5],
+            [0.610560705, 0.5],
+        ];
+        let hole = [
+            [0.625871739, 0.06249439],
+            [0.626763493, 0.062177212],
+            [0.627621718, 0.06162726],
+            [0.628387967, 0.060857453],
+            [0.629010507, 0.059909796],
+            [0.629455312, 0.058848241],
+            [0.629711874, 0.057745101],
+            [0.629791913, 0.056666667],
+            [0.629711874, 0.055588232],
+            [0.629455312, 0.054485092],
+            [0.629010507, 0.053423537],
+            [0.628387967, 0.05247588],
+            [0.627621718, 0.051706073],
+            [0.626763493, 0.051156121],
+            [0.625871739, 0.050838944],
+            [0.625, 0.05074],
+            [0.624128261, 0.050838944],
+            [0.623236507, 0.051156121],
+            [0.622378282, 0.051706073],
+            [0.621612033, 0.05247588],
+            [0.620989493, 0.053423537],
+            [0.620544688, 0.054485092],
+            [0.620288126, 0.055588232],
+            [0.620208087, 0.056666667],
+            [0.620288126, 0.057745101],
+            [0.620544688, 0.058848241],
+            [0.620989493, 0.059909796],
+            [0.621612033, 0.060857453],
+            [0.622378282, 0.06162726],
+            [0.623236507, 0.062177212],
+            [0.624128261, 0.06249439],
+            [0.625, 0.062593333],
+        ];
+        let pts: Vec<DVec2> = outer
+            .iter()
+            .chain(&hole)
+            .map(|&p| DVec2::from_array(p))
+            .collect();
+        let mesh = mesh_of(pts.iter().copied());
+        let (np, n) = (outer.len() as u32, pts.len() as u32);
+        let metric = Metric {
+            uu: 11124.125563292135,
+            uv: 0.0,
+            vv: 0.7763158295853231,
+        };
+        let loops = Loops::new(
+            &mesh,
+            &(0..np).collect::<Vec<_>>(),
+            std::iter::once(np..n),
+            &metric,
+        )
+        .expect("loops");
+        assert!(
+            loops.zip_greedy(&mesh).is_none(),
+            "the greedy walk gets stuck"
+        );
+        let tris = loops.zip(&mesh).expect("a zip");
+        assert!(loops.cover(&mesh, &tris));
+        let expected = double_area_of(&pts[..np as usize]) + double_area_of(&pts[np as usize..]);
+        assert!((double_area(&mesh, &tris) - expected).abs() < 1e-12);
+        let tris = loops.finish(&mesh, tris).expect("flipped");
+        assert_eq!(
+            tris.iter().flat_map(|t| t.1).filter(|&f| f).count(),
+            hole.len()
+        );
+    }
+
+    #[test]
+    fn ear_clipping_loses_no_collinear_vertex() {
+        // A rectangle with many vertices along its bottom and top (collinear,
+        // which ear clipping drops) round two holes one above the other.
+        let mut pts: Vec<DVec2> = (0..=10).map(|i| DVec2::new(0.1 * i as f64, 0.0)).collect();
+        pts.extend((0..=10).rev().map(|i| DVec2::new(0.1 * i as f64, 2.0)));
+        let np = pts.len() as u32;
+        let circle = |c: DVec2, r: f64, n: usize| -> Vec<DVec2> {
+            (0..n)
+                .map(|k| {
+                    let a = -std::f64::consts::TAU * k as f64 / n as f64;
+                    c + r * DVec2::new(a.cos(), a.sin())
+                })
+                .collect()
+        };
+        let (a, b) = (
+            circle(DVec2::new(0.5, 0.5), 0.3, 20),
+            circle(DVec2::new(0.5, 1.5), 0.2, 12),
+        );
+        pts.extend(&a);
+        pts.extend(&b);
+        let mesh = mesh_of(pts.iter().copied());
+        let (na, n) = (np + a.len() as u32, pts.len() as u32);
+        let metric = Metric {
+            uu: 1.0,
+            uv: 0.0,
+            vv: 1.0,
+        };
+        let loops = Loops::new(
+            &mesh,
+            &(0..np).collect::<Vec<_>>(),
+            [np..na, na..n],
+            &metric,
+        )
+        .expect("loops");
+        // Ear clipping alone leaves row vertices out.
+        let mut raw: Vec<u32> = Vec::new();
+        earcut::Earcut::new().earcut(loops.chart.iter().copied(), &loops.starts, &mut raw);
+        assert!((0..np).any(|k| !raw.contains(&k)));
+        let tris = loops.ears(&mesh).expect("a cover");
+        assert!((0..n).all(|k| tris.iter().flatten().any(|&x| x == k)));
+        let expected =
+            double_area_of(&pts[..np as usize]) + double_area_of(&a) + double_area_of(&b);
+        assert!((double_area(&mesh, &tris) - expected).abs() < 1e-12);
+        let tris = loops.finish(&mesh, tris).expect("flipped");
+        assert_eq!(tris.iter().flat_map(|t| t.1).filter(|&f| f).count(), 32);
+    }
+
+    #[test]
+    fn a_bad_triangulation_is_not_taken_for_a_cover() {
+        let pts = [
+            DVec2::ZERO,
+            DVec2::X,
+            DVec2::ONE,
+            DVec2::Y,
+            DVec2::new(0.4, 0.4),
+            DVec2::new(0.4, 0.6),
+            DVec2::new(0.6, 0.5),
+        ];
+        let mesh = mesh_of(pts);
+        let metric = Metric {
+            uu: 1.0,
+            uv: 0.0,
+            vv: 1.0,
+        };
+        let loops =
+            Loops::new(&mesh, &[0, 1, 2, 3], std::iter::once(4..7), &metric).expect("loops");
+        let good = loops.ears(&mesh).expect("a cover");
+        assert!(loops.cover(&mesh, &good));
+        // The square's two triangles ignore the hole; one triangle dropped
+        // leaves a segment out; a triangle turned round is clockwise.
+        assert!(!loops.cover(&mesh, &[[0, 1, 2], [0, 2, 3]]));
+        assert!(!loops.cover(&mesh, &good[1..]));
+        let mut turned = good.clone();
+        turned[0].swap(1, 2);
+        assert!(!loops.cover(&mesh, &turned));
+    }
+}
