@@ -119,7 +119,7 @@ fn mesh_oriented(
         stats.refinement_insertions += rings.insertions;
         let assessment = refine::assess_all(&info, &rings.mesh, options, rings.within.as_deref());
         if assessment.all_good() {
-            return finish(&info, &rings.mesh, stats);
+            return finish(&info, &rings.mesh, rings.copies.as_ref(), stats);
         }
         // Give the rings metrics and neighbour links and refine what is left.
         let mut mesh = rings.mesh;
@@ -138,10 +138,78 @@ fn mesh_oriented(
             fixed.contains(&(a, b)) || fixed.contains(&(b, a))
         });
         refine::refine_assessed(&info, &mut mesh, VERTEX_BUDGET, &mut stats, assessment)?;
-        return finish(&info, &mesh, stats);
+        return finish(&info, &mesh, None, stats);
     }
     let seeds = seed::seeds(&info, region, budget)?;
     let mut mesh = initial::triangulate(&info, region, &seeds, &mut stats)?;
     refine::refine(&info, &mut mesh, options, VERTEX_BUDGET, &mut stats)?;
-    finish(&info, &mesh, stats)
+    finish(&info, &mesh, None, stats)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::mesh::cdt::sector::turn;
+    use crate::parts::heads::{Head, HeadKind};
+
+    /// The whole turns of every head shape's patches: each triangle flagged as an
+    /// exact copy is, bit for bit, the quarter turn of the first quarter's
+    /// triangle it copies, and the output is the same as with every triangle
+    /// checked. Pure rotations give the checks the same numbers, so only the
+    /// first quarter's copies need checking.
+    #[test]
+    fn a_whole_turn_is_checked_once_per_copied_triangle() {
+        let options = TessellationOptions::chord(1.0);
+        let (mut copied, mut total) = (0, 0);
+        let kinds = [
+            HeadKind::Hemispherical,
+            HeadKind::TWO_TO_ONE,
+            HeadKind::asme_fd(2400.0),
+        ];
+        for kind in kinds {
+            for patch in Head::new(2400.0, kind).patches().expect("a head") {
+                let region = crate::mesh::patch_region(&patch.surface, &options, &[], None)
+                    .expect("a region");
+                let (surface, region) = if wants_transpose(&patch.surface) {
+                    (patch.surface.transposed(), region.transposed())
+                } else {
+                    (patch.surface.clone(), region)
+                };
+                let (lo, hi) = region.bounds();
+                let info = PatchInfo::new(&surface, lo, hi, |cap| {
+                    Sizing::new(&options, SEED_SHARE * SEED_SHARE, cap)
+                })
+                .with_analytic(Some(&patch.analytic));
+                let Some(rings) =
+                    rings::triangulate(&info, &region, &options, VERTEX_BUDGET).expect("meshed")
+                else {
+                    continue;
+                };
+                let Some(copies) = &rings.copies else {
+                    continue;
+                };
+                let mesh = &rings.mesh;
+                let m = copies.per_quarter;
+                for t in m..mesh.tris.len() {
+                    if !copies.exact[t % m] {
+                        continue;
+                    }
+                    copied += 1;
+                    for i in 0..3 {
+                        let p = mesh.verts[mesh.tris[t][i] as usize].point;
+                        let first = mesh.verts[mesh.tris[t % m][i] as usize].point;
+                        assert_eq!(p.to_array(), turn(first, t / m).to_array());
+                    }
+                }
+                total += mesh.tris.len() - m;
+                let once = finish(&info, mesh, Some(copies), MeshStats::default()).expect("once");
+                let every = finish(&info, mesh, None, MeshStats::default()).expect("every");
+                assert_eq!(once.mesh, every.mesh);
+                assert_eq!(once.uvs, every.uvs);
+                assert_eq!(once.stats, every.stats);
+            }
+        }
+        // Most of the later quarters' triangles are copies.
+        assert!(4 * copied > 3 * total, "{copied} of {total}");
+    }
 }

@@ -17,6 +17,7 @@ use glam::{DVec2, DVec3};
 
 use super::CdtError;
 use super::patch::PatchInfo;
+use super::rings::Copies;
 use super::trimesh::TriMesh;
 use crate::mesh::Mesh;
 
@@ -103,10 +104,14 @@ fn smaller(a: (f64, f64), b: (f64, f64)) -> (f64, f64) {
     if b.0 * a.1 < a.0 * b.1 { b } else { a }
 }
 
-/// Welds `mesh` into the output.
+/// Welds `mesh` into the output, checking every triangle (flat, collapsed or
+/// turned against the surface normals is an error); with `copies`, a triangle
+/// that is an exact quarter turn of one checked already (see
+/// [`Copies`]) is only checked for collapse by welding.
 pub(super) fn finish(
     info: &PatchInfo,
     mesh: &TriMesh,
+    copies: Option<&Copies>,
     mut stats: MeshStats,
 ) -> Result<RegionMesh, CdtError> {
     let tol = info.weld_tolerance;
@@ -198,6 +203,10 @@ pub(super) fn finish(
             let welded = tri.map(|k| index[k as usize]);
             if welded[0] == welded[1] || welded[1] == welded[2] || welded[2] == welded[0] {
                 chunk.dropped += 1;
+                continue;
+            }
+            if copies.is_some_and(|c| t >= c.per_quarter && c.exact[t % c.per_quarter]) {
+                chunk.indices.extend_from_slice(&welded);
                 continue;
             }
             let p = welded.map(|k| out.mesh.positions[k as usize]);

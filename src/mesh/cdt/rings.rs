@@ -57,6 +57,18 @@ pub(super) struct Rings {
     pub within: Option<Vec<bool>>,
     /// Vertices added by mending (counted as refinement insertions).
     pub insertions: usize,
+    /// For a whole turn of quarters (`sector`): which triangles of the later
+    /// quarters are exact turned copies of the first quarter's.
+    pub copies: Option<Copies>,
+}
+
+/// The triangles of a whole turn that are exact quarter turns of the first
+/// quarter's: triangle `t` (past the first quarter) is one when
+/// `exact[t % per_quarter]`, so the output's checks, which give a triangle and
+/// its exact quarter turn the same verdict, need only the first quarter's.
+pub(super) struct Copies {
+    pub per_quarter: usize,
+    pub exact: Vec<bool>,
 }
 
 /// What a chain of the structured mesh is: a row of vertices at constant v running
@@ -243,10 +255,15 @@ fn structured(
             seam,
             within: None,
             insertions: 0,
+            copies: None,
         }));
     };
+    // One task per strip: strips differ in size by as much as their rows do
+    // (a head's next to its pole against its widest), and rayon's even split of
+    // the list left one thread idle for much of a big head's screen.
     let flags: Vec<Vec<bool>> = strips
         .par_iter()
+        .with_max_len(1)
         .map(|range| screen.strip(&mesh, range.clone()))
         .collect();
     let (mut within, mended) = mend::mend(info, &screen, &mut mesh, &strips, &zipped, flags)?;
@@ -257,6 +274,7 @@ fn structured(
         seam,
         within: Some(within),
         insertions: mended + bisected,
+        copies: None,
     }))
 }
 

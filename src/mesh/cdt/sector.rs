@@ -20,7 +20,7 @@ use glam::{DVec2, DVec3, DVec4};
 use super::CdtError;
 use super::patch::PatchInfo;
 use super::region::{Region, UvLoop};
-use super::rings::Rings;
+use super::rings::{Copies, Rings};
 use super::trimesh::{NONE, TriMesh};
 use crate::nurbs::builders::FULL_TURN_KNOTS;
 
@@ -119,7 +119,7 @@ fn quarter_turned(info: &PatchInfo) -> bool {
 }
 
 /// `p` turned by `q` quarter turns about Z, exactly.
-fn turn(p: DVec3, q: usize) -> DVec3 {
+pub(super) fn turn(p: DVec3, q: usize) -> DVec3 {
     // Adding 0.0 turns a −0.0 into 0.0, so that points on the axis stay bitwise
     // the same.
     match q % QUARTERS {
@@ -153,6 +153,7 @@ pub(super) fn whole_turn(
         seam,
         within,
         insertions,
+        ..
     } = part;
     let n = mesh.verts.len();
     // Each left-meridian vertex and the right-meridian vertex at its v.
@@ -176,6 +177,20 @@ pub(super) fn whole_turn(
         across[k] = right[at].1 as u32;
     }
     let ring = |uv: DVec2| uv.y == lo.y || uv.y == hi.y;
+    // A later quarter's copy of vertex k is its exact quarter turn unless it is
+    // evaluated in place (a ring vertex), on a meridian (the left one is the
+    // previous quarter's right one; the last quarter's right one welds to the
+    // first quarter's left one) or at a pole (welded).
+    let turned_exactly: Vec<bool> = mesh
+        .verts
+        .iter()
+        .map(|v| v.uv.x != lo.x && v.uv.x != hi.x && !ring(v.uv) && !v.pole)
+        .collect();
+    let exact: Vec<bool> = mesh
+        .tris
+        .iter()
+        .map(|t| t.iter().all(|&k| turned_exactly[k as usize]))
+        .collect();
     // Every quarter has the first one's triangles, flags and screen verdicts;
     // no neighbour links (as every structured mesh): refinement builds them.
     let count = QUARTERS * mesh.tris.len();
@@ -240,5 +255,9 @@ pub(super) fn whole_turn(
         seam: seam_all,
         within: within.map(|w| w.repeat(QUARTERS)),
         insertions: QUARTERS * insertions,
+        copies: Some(Copies {
+            per_quarter: mesh.tris.len(),
+            exact,
+        }),
     }))
 }
