@@ -506,22 +506,29 @@ pub fn host_region_with(
     let top_end_v = top_path.last().map_or(v1, |p| p.y);
     // Right side up, from the bottom to the top (interior samples of the meridian).
     let meridian = surface.isocurve_u(crate::mesh::cdt::wrap_u(surface, right_u_end));
-    for v in side(&meridian, &meridian_options, 1) {
+    let right = side(&meridian, &meridian_options, 1);
+    for &v in &right {
         if v > bottom_start_v.max(v0) + SAME && v < top_v - SAME {
             outer.push(DVec2::new(right_u_end, v));
         }
     }
     let top_left_u = outer.first().map_or(left_u, |p| p.x);
     outer.extend(top_path);
-    // Left side down, interior samples only.
-    let mut left: Vec<f64> = side(
-        &surface.isocurve_u(crate::mesh::cdt::wrap_u(surface, top_left_u)),
-        &meridian_options,
-        1,
-    )
-    .into_iter()
-    .filter(|&v| v > bottom_start_v.max(v0) + SAME && v < top_end_v - SAME)
-    .collect();
+    // Left side down, interior samples only. On a closed patch it is the same
+    // meridian a period to the left (the seam): the right side's samples serve.
+    let left_side = if closed {
+        right
+    } else {
+        side(
+            &surface.isocurve_u(crate::mesh::cdt::wrap_u(surface, top_left_u)),
+            &meridian_options,
+            1,
+        )
+    };
+    let mut left: Vec<f64> = left_side
+        .into_iter()
+        .filter(|&v| v > bottom_start_v.max(v0) + SAME && v < top_end_v - SAME)
+        .collect();
     left.reverse();
     outer.extend(left.into_iter().map(|v| DVec2::new(top_left_u, v)));
     outer.dedup_by(|a, b| (*a - *b).length() <= SAME);
