@@ -9,7 +9,7 @@ use std::process::Command;
 use vesselcad::design::{HeadShape, PartDesign, VesselKind, load, to_canonical_json, validate};
 use vesselcad::export::{build_scene, stream_glb, write_glb};
 use vesselcad::mesh::TessellationOptions;
-use vesselcad::model::Model;
+use vesselcad::model::{Edit, Model};
 use vesselcad::plant::{PLOT_PITCH, Simulation, build_plant, generate_plant};
 
 fn options() -> TessellationOptions {
@@ -135,6 +135,52 @@ fn an_update_with_nothing_to_do_does_no_work() {
     let mut model = Model::from_design(&design, options()).unwrap();
     let c = model.update();
     assert_eq!(c, Default::default());
+}
+
+#[test]
+fn an_edit_to_the_values_a_vessel_has_writes_nothing() {
+    let design = generate_plant(5, 2).unwrap();
+    let mut model = Model::from_design(&design, options()).unwrap();
+    model.update();
+    // Each part and nozzle of the first vessel set to what it is, in one batch
+    // and one by one: staged as unchanged, nothing to resolve or mesh.
+    let v = &design.vessels[0];
+    let edits: Vec<Edit> = v
+        .parts
+        .iter()
+        .map(|p| Edit::SetPart {
+            vessel: v.tag.clone(),
+            part: p.clone(),
+        })
+        .chain(v.nozzles.iter().map(|n| Edit::SetNozzle {
+            vessel: v.tag.clone(),
+            nozzle: n.clone(),
+        }))
+        .collect();
+    model.apply(Edit::Batch(edits.clone())).unwrap();
+    for edit in edits {
+        model.apply(edit).unwrap();
+    }
+    assert_eq!(model.update(), Default::default());
+    // A real change is still staged after a read of the same vessel.
+    let i = (v.parts.iter())
+        .position(|p| matches!(p, PartDesign::Shell(_)))
+        .expect("a course");
+    let mut part = v.parts[i].clone();
+    let same = Edit::SetPart {
+        vessel: v.tag.clone(),
+        part: part.clone(),
+    };
+    if let PartDesign::Shell(s) = &mut part {
+        s.length += 100.0;
+    }
+    let changed = Edit::SetPart {
+        vessel: v.tag.clone(),
+        part: part.clone(),
+    };
+    model.apply(Edit::Batch(vec![same, changed])).unwrap();
+    assert!(model.update().shapes_rebuilt > 0);
+    assert_eq!(model.design().vessels[0].parts[i], part);
 }
 
 fn vesselcad(args: &[&str]) -> std::process::Output {

@@ -39,20 +39,27 @@ struct Work<'w> {
     world: &'w World,
     /// tag → new state (`None` = removed), with its order.
     touched: BTreeMap<String, Option<(VesselDesign, u32)>>,
+    /// tag → the vessel as the world holds it, for those read from it.
+    originals: HashMap<String, (VesselDesign, u32)>,
     next_order: u32,
 }
 
 impl Work<'_> {
-    fn current(&self, tag: &str) -> Option<(VesselDesign, u32)> {
+    fn current(&mut self, tag: &str) -> Option<(VesselDesign, u32)> {
         if let Some(state) = self.touched.get(tag) {
             return state.clone();
         }
+        if let Some(original) = self.originals.get(tag) {
+            return Some(original.clone());
+        }
         let entity = *self.world.resource::<VesselIndex>().0.get(tag)?;
         let order = self.world.get::<DesignOrder>(entity).map_or(0, |o| o.0);
-        Some((read::vessel(self.world, entity)?, order))
+        let original = (read::vessel(self.world, entity)?, order);
+        self.originals.insert(tag.to_string(), original.clone());
+        Some(original)
     }
 
-    fn vessel(&self, tag: &str) -> Result<(VesselDesign, u32), ModelError> {
+    fn vessel(&mut self, tag: &str) -> Result<(VesselDesign, u32), ModelError> {
         self.current(tag).ok_or_else(|| ModelError::UnknownVessel {
             tag: tag.to_string(),
         })
@@ -225,12 +232,16 @@ pub(crate) fn stage(world: &World, edit: Edit) -> Result<Staged, ModelError> {
     let mut work = Work {
         world,
         touched: BTreeMap::new(),
+        originals: HashMap::new(),
         next_order,
     };
     work.apply(edit)?;
+    let Work {
+        touched, originals, ..
+    } = work;
     let mut out = Vec::new();
     let mut violations = Vec::new();
-    for (tag, state) in work.touched {
+    for (tag, state) in touched {
         let entity = world.resource::<VesselIndex>().0.get(&tag).copied();
         match state {
             None => {
@@ -239,9 +250,14 @@ pub(crate) fn stage(world: &World, edit: Edit) -> Result<Staged, ModelError> {
                 }
             }
             Some((design, order)) => {
-                let unchanged = entity.is_some_and(|e| {
-                    world.get::<DesignOrder>(e).map(|o| o.0) == Some(order)
-                        && read::vessel(world, e).as_ref() == Some(&design)
+                // Compared with the world's copy read while staging, when there
+                // is one (the world is not written until the edit is checked).
+                let unchanged = entity.is_some_and(|e| match originals.get(&tag) {
+                    Some((original, o)) => *o == order && *original == design,
+                    None => {
+                        world.get::<DesignOrder>(e).map(|o| o.0) == Some(order)
+                            && read::vessel(world, e).as_ref() == Some(&design)
+                    }
                 });
                 if unchanged {
                     continue;
