@@ -179,8 +179,9 @@ fn boundary(chains: &[Chain], cavity: &Cavity) -> Vec<u32> {
 /// Triangulates every cavity into `mesh` (see `ring`: a zip for one hole, ear
 /// clipping for several, spade when neither gives a valid cover): appends the
 /// holes' vertices and the cavities' triangles (hole segments fixed) and
-/// returns the range of triangles added. `None` when a cavity cannot be triangulated here (the caller falls back
-/// to the general path, which reports what is wrong).
+/// returns the range of triangles added. `None` when a cavity cannot be
+/// triangulated here (the caller falls back to the general path, which reports
+/// what is wrong).
 pub(super) fn fill(
     info: &PatchInfo,
     mesh: &mut TriMesh,

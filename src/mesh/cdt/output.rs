@@ -205,7 +205,9 @@ pub(super) fn finish(
                 chunk.dropped += 1;
                 continue;
             }
-            if copies.is_some_and(|c| t >= c.per_quarter && c.exact[t % c.per_quarter]) {
+            if copies.is_some_and(|c| {
+                c.per_quarter > 0 && t >= c.per_quarter && c.exact[t % c.per_quarter]
+            }) {
                 chunk.indices.extend_from_slice(&welded);
                 continue;
             }

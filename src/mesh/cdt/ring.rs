@@ -381,6 +381,23 @@ mod tests {
         mesh
     }
 
+    const ISOTROPIC: Metric = Metric {
+        uu: 1.0,
+        uv: 0.0,
+        vv: 1.0,
+    };
+
+    /// The loops of a cavity whose boundary is the mesh's first `np` vertices
+    /// and whose holes are `holes`.
+    fn loops_of(
+        mesh: &TriMesh,
+        np: u32,
+        holes: impl IntoIterator<Item = std::ops::Range<u32>>,
+        metric: &Metric,
+    ) -> Loops {
+        Loops::new(mesh, &(0..np).collect::<Vec<_>>(), holes, metric).expect("loops")
+    }
+
     /// Twice the area the triangles cover, in (u, v).
     fn double_area(mesh: &TriMesh, tris: &[[u32; 3]]) -> f64 {
         let uv = |k: u32| mesh.verts[k as usize].uv;
@@ -455,13 +472,7 @@ mod tests {
             uv: 0.0,
             vv: 0.7763158295853231,
         };
-        let loops = Loops::new(
-            &mesh,
-            &(0..np).collect::<Vec<_>>(),
-            std::iter::once(np..n),
-            &metric,
-        )
-        .expect("loops");
+        let loops = loops_of(&mesh, np, std::iter::once(np..n), &metric);
         assert!(
             loops.zip_greedy(&mesh).is_none(),
             "the greedy walk gets stuck"
@@ -500,18 +511,7 @@ mod tests {
         pts.extend(&b);
         let mesh = mesh_of(pts.iter().copied());
         let (na, n) = (np + a.len() as u32, pts.len() as u32);
-        let metric = Metric {
-            uu: 1.0,
-            uv: 0.0,
-            vv: 1.0,
-        };
-        let loops = Loops::new(
-            &mesh,
-            &(0..np).collect::<Vec<_>>(),
-            [np..na, na..n],
-            &metric,
-        )
-        .expect("loops");
+        let loops = loops_of(&mesh, np, [np..na, na..n], &ISOTROPIC);
         // Ear clipping alone leaves row vertices out.
         let mut raw: Vec<u32> = Vec::new();
         earcut::Earcut::new().earcut(loops.chart.iter().copied(), &loops.starts, &mut raw);
@@ -537,13 +537,7 @@ mod tests {
             DVec2::new(0.6, 0.5),
         ];
         let mesh = mesh_of(pts);
-        let metric = Metric {
-            uu: 1.0,
-            uv: 0.0,
-            vv: 1.0,
-        };
-        let loops =
-            Loops::new(&mesh, &[0, 1, 2, 3], std::iter::once(4..7), &metric).expect("loops");
+        let loops = loops_of(&mesh, 4, std::iter::once(4..7), &ISOTROPIC);
         let good = loops.ears(&mesh).expect("a cover");
         assert!(loops.cover(&mesh, &good));
         // The square's two triangles ignore the hole; one triangle dropped
