@@ -70,14 +70,17 @@ impl OpeningInput {
         }
     }
 
-    /// The kept canonical cut, if the opening is cut again with the same neck,
-    /// pad and tolerance (it then applies wherever the nozzle moved along the
-    /// course's axis).
+    /// The kept canonical cut, if the opening is cut again with the same pad
+    /// and tolerance, and the same neck or a kept cut marched on a canonical
+    /// neck (which the cut compares with the new neck's: a projection edit keeps
+    /// it). It then applies wherever the nozzle moved along the course's axis.
     fn kept_for(&self, job: &Job, tolerance: f64) -> Option<Arc<AxialCut>> {
-        let same = Arc::ptr_eq(&self.neck, &job.neck)
+        let axial = self.axial.as_ref()?;
+        let neck = Arc::ptr_eq(&self.neck, &job.neck) || axial.reach().is_some();
+        let same = neck
             && self.pad_od.map(f64::to_bits) == job.pad_od.map(f64::to_bits)
             && self.tolerance.to_bits() == tolerance.to_bits();
-        same.then(|| self.axial.clone()).flatten()
+        same.then(|| axial.clone())
     }
 
     /// Heap bytes held besides the kept canonical cut's loops (the patches are

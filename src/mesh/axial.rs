@@ -191,6 +191,9 @@ pub struct AxialCut {
     neck: Arc<IntersectionLoop>,
     /// The pad's outer loop on the canonical host.
     pad: Option<Arc<IntersectionLoop>>,
+    /// The key of the neck it was marched on ([`Reach::key`](super::reach::Reach::key)):
+    /// a nozzle whose plain neck only changed length is marched on the same one.
+    reach: Option<(u64, u64)>,
 }
 
 impl AxialCut {
@@ -202,8 +205,8 @@ impl AxialCut {
         ext: &Extrusion,
         across: &DAffine3,
         zs: (f64, f64),
-        neck: IntersectionLoop,
-        pad: Option<IntersectionLoop>,
+        (neck, pad): (IntersectionLoop, Option<IntersectionLoop>),
+        reach: Option<(u64, u64)>,
     ) -> Self {
         Self {
             host,
@@ -211,7 +214,14 @@ impl AxialCut {
             zs,
             neck: Arc::new(neck),
             pad: pad.map(Arc::new),
+            reach,
         }
+    }
+
+    /// The key of the neck it was marched on, when that was a canonical neck
+    /// (see [`Reach::key`](super::reach::Reach::key)).
+    pub fn reach(&self) -> Option<(u64, u64)> {
+        self.reach
     }
 
     /// The reinforcing pad's patch, if the nozzle has a pad: the canonical host

@@ -113,8 +113,11 @@ pub struct ReusableCut {
 
 /// [`cut_opening`], placing the opening from `kept` without marching when the
 /// nozzle only moved along the axis of the straight course `kept` was cut in (see
-/// [`axial`](super::axial)). `kept` must come from a cut of the same neck, pad and
-/// tolerance; the result is bit for bit the one a fresh cut gives.
+/// [`axial`](super::axial)). `kept` must come from a cut with the same pad and
+/// tolerance, and of the same neck unless it was marched on a canonical neck
+/// (`mesh::reach`): then it applies when this neck's canonical neck is the same
+/// (a projection edit), which is checked here. The result is bit for bit the
+/// one a fresh cut gives.
 pub fn cut_opening_reusing(
     neck: &Patch,
     pad_od: Option<f64>,
@@ -160,6 +163,7 @@ fn cut_with(
     let relative = host_frame.inverse() * *nozzle_frame;
     let (across, t) = split_placement(&relative);
     if let Some(kept) = kept
+        && kept.reach() == reach.key()
         && let Some(host) = host_patches.get(kept.host())
         && kept.fits(&host.surface, &across)
         && let Some(cut) = kept.place(&host.surface, t)
@@ -215,15 +219,15 @@ fn cut_with(
                 let zs = axial_range(std::iter::once(n).chain(p));
                 canonical_host(&patch.surface, &ext, zs)
                     .and_then(|host| loops(n, p.as_ref(), &host, tolerance))
-                    .and_then(|(neck_loop, pad_loop)| {
+                    .and_then(|marched| {
                         let axial = AxialCut::new(
                             k,
                             &patch.surface,
                             &ext,
                             &across,
                             zs,
-                            neck_loop,
-                            pad_loop,
+                            marched,
+                            reach.key(),
                         );
                         let cut = axial
                             .place(&patch.surface, t)

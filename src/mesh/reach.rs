@@ -36,6 +36,9 @@ pub(super) struct Reach<'a> {
     pub top: f64,
     /// v on the real neck per v on `surface` (1 for the neck itself).
     scale: f64,
+    /// The canonical neck's radius and height, bit for bit; `None` for the
+    /// neck itself.
+    key: Option<(u64, u64)>,
 }
 
 impl<'a> Reach<'a> {
@@ -62,6 +65,7 @@ impl<'a> Reach<'a> {
             surface: Cow::Borrowed(&neck.surface),
             top,
             scale: 1.0,
+            key: None,
         };
         if axial_hosts && relative.transform_vector3(DVec3::Z).z != 0.0 {
             return own;
@@ -86,9 +90,18 @@ impl<'a> Reach<'a> {
                 surface: Cow::Owned(surface),
                 top: reach,
                 scale: reach / top,
+                key: Some((radius.to_bits(), reach.to_bits())),
             },
             None => own,
         }
+    }
+
+    /// What the canonical neck is made from (its radius and height, bit for
+    /// bit), when the neck was replaced by one: two necks with the same key are
+    /// the same surface, whatever the real necks' lengths. `None` when the neck
+    /// is cut as it is.
+    pub fn key(&self) -> Option<(u64, u64)> {
+        self.key
     }
 
     /// `cut`, marched on [`Reach::surface`], with its neck (u, v) on the real neck.
