@@ -40,9 +40,10 @@ type CutResult = Result<(Vec<(Entity, HostTrim)>, Cut, Option<PadCut>), String>;
 /// relative placements the cut and the pad patch are computed with. When all are
 /// the same — bit for bit, as when a course below moves both the host and the
 /// nozzle by a whole number of millimetres — cutting again would give the same
-/// opening, so it is skipped. With the same neck, pad and tolerance, an opening
-/// in a straight course that only moved along the course's axis is placed again
-/// from the kept [`AxialCut`] without marching.
+/// opening, so it is skipped. With the same neck (or, for a plain neck, the same
+/// canonical neck: a projection edit), pad and tolerance, an opening in a
+/// straight course that only moved along the course's axis is placed again from
+/// the kept [`AxialCut`] without marching.
 #[derive(Component, Clone, Debug)]
 pub struct OpeningInput {
     neck: Arc<Patch>,

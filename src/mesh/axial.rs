@@ -17,7 +17,8 @@
 //! the course keeps its mesh.
 //!
 //! The canonical march depends only on the cross-section, the nozzle's
-//! placement across the axis, its neck, its pad and the tolerance. So the Geometry stage keeps
+//! placement across the axis, its neck (for a plain neck, only the canonical neck
+//! of `mesh::reach`, whatever the projection), its pad and the tolerance. So the Geometry stage keeps
 //! the [`AxialCut`] and, for an opening that only moved along the axis, places
 //! it again without marching. The result has the very bits a fresh cut gives, so
 //! the incremental model stays byte-identical to a full build. The neck's region
