@@ -192,8 +192,8 @@ pub struct AxialCut {
     neck: Arc<IntersectionLoop>,
     /// The pad's outer loop on the canonical host.
     pad: Option<Arc<IntersectionLoop>>,
-    /// The key of the neck it was marched on ([`Reach::key`](super::reach::Reach::key)):
-    /// a nozzle whose plain neck only changed length is marched on the same one.
+    /// The key of the canonical neck it was marched on (`mesh::reach`): a
+    /// nozzle whose plain neck only changed length is marched on the same one.
     reach: Option<(u64, u64)>,
 }
 
@@ -219,8 +219,8 @@ impl AxialCut {
         }
     }
 
-    /// The key of the neck it was marched on, when that was a canonical neck
-    /// (see [`Reach::key`](super::reach::Reach::key)).
+    /// The key of the neck it was marched on (its radius and height, bit for
+    /// bit), when that was a canonical neck (see `mesh::reach`).
     pub fn reach(&self) -> Option<(u64, u64)> {
         self.reach
     }
