@@ -264,41 +264,39 @@ impl<'a> Walk<'a> {
         self.start + ((self.q0 + self.nq - j % self.nq) % self.nq) as u32
     }
 
-    /// Whether the walk may advance on the boundary, or on the hole, from (i, j).
-    fn can_p(&self, i: usize, j: usize) -> bool {
-        i < self.np
-            && strictly_ccw(
-                self.uv(self.p(i)),
-                self.uv(self.p(i + 1)),
-                self.uv(self.q(j)),
-            )
-    }
-
-    fn can_q(&self, i: usize, j: usize) -> bool {
-        j < self.nq
-            && strictly_ccw(
-                self.uv(self.p(i)),
-                self.uv(self.q(j + 1)),
-                self.uv(self.q(j)),
-            )
-    }
-
-    /// The step's triangle and its new diagonal's length.
-    fn step(&self, i: usize, j: usize, advance_p: bool) -> ([u32; 3], f64) {
+    /// The triangle of the step from (i, j) along the boundary (`advance_p`) or
+    /// the hole.
+    fn triangle(&self, i: usize, j: usize, advance_p: bool) -> [u32; 3] {
         if advance_p {
-            let tri = [self.p(i), self.p(i + 1), self.q(j)];
-            (tri, self.distance(tri[1], tri[2]))
+            [self.p(i), self.p(i + 1), self.q(j)]
         } else {
-            let tri = [self.p(i), self.q(j + 1), self.q(j)];
-            (tri, self.distance(tri[0], tri[1]))
+            [self.p(i), self.q(j + 1), self.q(j)]
         }
+    }
+
+    /// Whether the walk may take that step: a loop left to walk and the
+    /// triangle strictly counter-clockwise.
+    fn can(&self, i: usize, j: usize, advance_p: bool) -> bool {
+        let left = if advance_p { i < self.np } else { j < self.nq };
+        left && {
+            let [a, b, c] = self.triangle(i, j, advance_p).map(|k| self.uv(k));
+            strictly_ccw(a, b, c)
+        }
+    }
+
+    /// The step's triangle and its new diagonal's length (the edge from the
+    /// vertex it advanced to).
+    fn step(&self, i: usize, j: usize, advance_p: bool) -> ([u32; 3], f64) {
+        let tri = self.triangle(i, j, advance_p);
+        let (a, b) = if advance_p { (1, 2) } else { (0, 1) };
+        (tri, self.distance(tri[a], tri[b]))
     }
 
     fn greedy(&self) -> Option<Vec<[u32; 3]>> {
         let mut out = Vec::with_capacity(self.np + self.nq);
         let (mut i, mut j) = (0usize, 0usize);
         while i < self.np || j < self.nq {
-            let advance_p = match (self.can_p(i, j), self.can_q(i, j)) {
+            let advance_p = match (self.can(i, j, true), self.can(i, j, false)) {
                 (true, true) => self.step(i, j, true).1 <= self.step(i, j, false).1,
                 (true, false) => true,
                 (false, true) => false,
@@ -328,12 +326,7 @@ impl<'a> Walk<'a> {
                     continue;
                 }
                 for (advance_p, at) in [(true, (i + 1) * width + j), (false, i * width + j + 1)] {
-                    let can = if advance_p {
-                        self.can_p(i, j)
-                    } else {
-                        self.can_q(i, j)
-                    };
-                    if !can {
+                    if !self.can(i, j, advance_p) {
                         continue;
                     }
                     let next = c + self.step(i, j, advance_p).1;
