@@ -16,7 +16,7 @@ use vesselcad::design::{PartDesign, VesselDesign};
 use vesselcad::mesh::TessellationOptions;
 use vesselcad::model::{Edit, Model, Views};
 use vesselcad::plant::rng::SplitMix64;
-use vesselcad::plant::{draw_edit, generate_plant};
+use vesselcad::plant::{after_edit, draw_edit, generate_plant};
 
 /// Totals for one kind of edit.
 #[derive(Default)]
@@ -82,9 +82,11 @@ fn main() {
     edits_begin();
     for _ in 0..edits {
         let i = rng.int(0, designs.len() as u64 - 1) as usize;
-        let Some((edit, after)) = draw_edit(&mut rng, &designs[i]) else {
+        let Some(edit) = draw_edit(&mut rng, &designs[i]) else {
             continue;
         };
+        let mut after = designs[i].clone();
+        after_edit(&mut after, &edit);
         let what = kind(&designs[i], &edit);
         if only.as_deref().is_some_and(|o| o != what) {
             continue;

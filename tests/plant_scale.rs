@@ -10,7 +10,8 @@ use vesselcad::design::{HeadShape, PartDesign, VesselKind, load, to_canonical_js
 use vesselcad::export::{build_scene, stream_glb, write_glb};
 use vesselcad::mesh::TessellationOptions;
 use vesselcad::model::{Edit, Model};
-use vesselcad::plant::{PLOT_PITCH, Simulation, build_plant, generate_plant};
+use vesselcad::plant::rng::SplitMix64;
+use vesselcad::plant::{PLOT_PITCH, Simulation, build_plant, draw_edit, generate_plant};
 
 fn options() -> TessellationOptions {
     TessellationOptions::chord(5.0)
@@ -181,6 +182,73 @@ fn an_edit_to_the_values_a_vessel_has_writes_nothing() {
     model.apply(Edit::Batch(vec![same, changed])).unwrap();
     assert!(model.update().shapes_rebuilt > 0);
     assert_eq!(model.design().vessels[0].parts[i], part);
+}
+
+#[test]
+fn edits_applied_together_match_edits_applied_one_by_one() {
+    let design = generate_plant(6, 3).unwrap();
+    let mut rng = SplitMix64::new(9);
+    let mut edits: Vec<Edit> = (0..40)
+        .filter_map(|_| {
+            let i = rng.int(0, design.vessels.len() as u64 - 1) as usize;
+            draw_edit(&mut rng, &design.vessels[i])
+        })
+        .collect();
+    let v = &design.vessels[1];
+    // Refused edits among them (a course of negative length, a nozzle that is
+    // not there), a move, and edits that do not name one vessel (which end a
+    // run checked together).
+    let mut bad = (v.parts.iter())
+        .find(|p| matches!(p, PartDesign::Shell(_)))
+        .expect("a course")
+        .clone();
+    if let PartDesign::Shell(s) = &mut bad {
+        s.length = -5.0;
+    }
+    edits.insert(
+        3,
+        Edit::SetPart {
+            vessel: v.tag.clone(),
+            part: bad,
+        },
+    );
+    edits.insert(
+        9,
+        Edit::RemoveNozzle {
+            vessel: v.tag.clone(),
+            mark: "no such nozzle".into(),
+        },
+    );
+    let mut moved = design.vessels[2].placement;
+    moved.position[0] += 1000.0;
+    edits.insert(
+        14,
+        Edit::MoveVessel {
+            tag: design.vessels[2].tag.clone(),
+            placement: moved,
+        },
+    );
+    let mut renamed = design.vessels[4].clone();
+    renamed.drawing.title = Some("Set whole".into());
+    edits.insert(20, Edit::SetVessel(renamed));
+    edits.insert(26, Edit::Batch(edits[0..2].to_vec()));
+    let mut together = Model::from_design(&design, options()).unwrap();
+    let mut one_by_one = Model::from_design(&design, options()).unwrap();
+    let a: Vec<bool> = together
+        .apply_each(edits.clone())
+        .iter()
+        .map(Result::is_ok)
+        .collect();
+    let b: Vec<bool> = edits
+        .into_iter()
+        .map(|e| one_by_one.apply(e).is_ok())
+        .collect();
+    assert_eq!(a, b);
+    assert!(a.iter().filter(|ok| !**ok).count() >= 2, "{a:?}");
+    assert!(a.iter().filter(|ok| **ok).count() >= 30, "{a:?}");
+    assert_eq!(together.design(), one_by_one.design());
+    assert_eq!(together.update(), one_by_one.update());
+    assert!(write_glb(&together.scene()).unwrap() == write_glb(&one_by_one.scene()).unwrap());
 }
 
 fn vesselcad(args: &[&str]) -> std::process::Output {

@@ -98,50 +98,63 @@ pub(super) fn checked_vessel_frame(vessel: &VesselDesign, report: &mut Report) -
 /// Ids of parts, nozzles and notes share one namespace in a vessel (notes can target
 /// any of them) and must be unique and non-empty.
 pub(super) fn check_unique_ids(vessel: &VesselDesign, report: &mut Report) {
-    let mut seen: HashMap<&str, String> = HashMap::new();
+    /// Where an id sits: its list and index (its JSON path is only written
+    /// for a violation).
+    #[derive(Clone, Copy)]
+    enum At<'a> {
+        Part(usize, &'a str),
+        Nozzle(usize),
+        Note(usize),
+    }
+    let path = |at: At| match at {
+        At::Part(i, kind) => format!("parts[{i}].{kind}.id"),
+        At::Nozzle(i) => format!("nozzles[{i}].mark"),
+        At::Note(i) => format!("notes[{i}].id"),
+    };
+    let mut seen: HashMap<&str, At> = HashMap::new();
     let ids = vessel
         .parts
         .iter()
         .enumerate()
-        .map(|(i, p)| (p.id(), format!("parts[{i}].{}.id", p.kind()), "id"))
+        .map(|(i, p)| (p.id(), At::Part(i, p.kind()), "id"))
         .chain(
             vessel
                 .nozzles
                 .iter()
                 .enumerate()
-                .map(|(i, n)| (n.mark.as_str(), format!("nozzles[{i}].mark"), "mark")),
+                .map(|(i, n)| (n.mark.as_str(), At::Nozzle(i), "mark")),
         )
         .chain(
             vessel
                 .notes
                 .iter()
                 .enumerate()
-                .map(|(i, n)| (n.id.as_str(), format!("notes[{i}].id"), "id")),
+                .map(|(i, n)| (n.id.as_str(), At::Note(i), "id")),
         );
-    for (id, path, field) in ids {
+    for (id, at, field) in ids {
         if id.trim().is_empty() {
-            report.push(&path, None, field, "\"\"", "must not be empty");
+            report.push(path(at), None, field, "\"\"", "must not be empty");
             continue;
         }
         if id == vessel.tag {
             report.push(
-                &path,
+                path(at),
                 Some(id),
                 field,
                 id,
                 "must differ from the vessel tag",
             );
         }
-        if let Some(first) = seen.get(id) {
+        if let Some(&first) = seen.get(id) {
             report.push(
-                &path,
+                path(at),
                 Some(id),
                 field,
                 id,
-                format!("duplicate id: already used at {first}"),
+                format!("duplicate id: already used at {}", path(first)),
             );
         } else {
-            seen.insert(id, path);
+            seen.insert(id, at);
         }
     }
 }

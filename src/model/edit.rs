@@ -87,3 +87,26 @@ pub enum Edit {
     /// Several edits applied together: all or none.
     Batch(Vec<Edit>),
 }
+
+impl Edit {
+    /// The tag of the one existing vessel the edit changes, for the edits that
+    /// name one (a move, a part, nozzle, note or operating edit); `None` for a
+    /// whole design, a vessel set or removed, and a batch.
+    pub fn vessel_tag(&self) -> Option<&str> {
+        match self {
+            Edit::MoveVessel { tag: vessel, .. }
+            | Edit::SetPart { vessel, .. }
+            | Edit::InsertPart { vessel, .. }
+            | Edit::RemovePart { vessel, .. }
+            | Edit::SetNozzle { vessel, .. }
+            | Edit::RemoveNozzle { vessel, .. }
+            | Edit::SetNote { vessel, .. }
+            | Edit::RemoveNote { vessel, .. }
+            | Edit::SetOperating { vessel, .. } => Some(vessel),
+            Edit::ReplaceDesign(_)
+            | Edit::SetVessel(_)
+            | Edit::RemoveVessel { .. }
+            | Edit::Batch(_) => None,
+        }
+    }
+}

@@ -16,13 +16,14 @@ mod sync;
 pub use edit::Edit;
 pub use memory::MemoryBreakdown;
 
-use std::collections::HashMap;
+use std::collections::{HashMap, HashSet};
 
 use bevy_ecs::change_detection::DetectChangesMut;
 use bevy_ecs::entity::Entity;
 use bevy_ecs::resource::Resource;
 use bevy_ecs::schedule::Schedule;
 use bevy_ecs::world::World;
+use rayon::prelude::*;
 use thiserror::Error;
 
 use crate::design::{Design, DesignError};
@@ -126,6 +127,43 @@ impl Model {
         let staged = staging::stage(&self.world, edit)?;
         sync::commit(&mut self.world, staged);
         Ok(())
+    }
+
+    /// Applies `edits` in order, each as [`apply`](Self::apply) would after the
+    /// ones before it, and returns each one's outcome: a refused edit leaves the
+    /// world as it was and the next ones go on. Derived data follows on the next
+    /// [`update`](Self::update).
+    ///
+    /// Runs of edits that each change one existing vessel, no two the same
+    /// ([`Edit::vessel_tag`]), are checked in parallel and then written in
+    /// order. Checking one reads only its own vessel, which the others do not
+    /// write, so the outcome is that of applying them one by one.
+    pub fn apply_each(&mut self, edits: Vec<Edit>) -> Vec<Result<(), ModelError>> {
+        let mut out = Vec::with_capacity(edits.len());
+        let mut edits = edits.into_iter().peekable();
+        while edits.peek().is_some() {
+            let mut run = Vec::new();
+            let mut tags = HashSet::new();
+            while let Some(tag) = edits.peek().and_then(Edit::vessel_tag) {
+                if !tags.insert(tag.to_string()) {
+                    break;
+                }
+                run.extend(edits.next());
+            }
+            if run.is_empty() {
+                out.extend(edits.next().map(|edit| self.apply(edit)));
+                continue;
+            }
+            let world = &self.world;
+            let staged: Vec<_> = run
+                .into_par_iter()
+                .map(|edit| staging::stage(world, edit))
+                .collect();
+            for staged in staged {
+                out.push(staged.map(|staged| sync::commit(&mut self.world, staged)));
+            }
+        }
+        out
     }
 
     /// Runs the schedule once and returns the work it did.

@@ -36,6 +36,25 @@ fn ordered<T: bevy_ecs::component::Component + Clone>(
     out.into_iter().map(|(_, e, t)| (e, t)).collect()
 }
 
+/// Children of `vessel` that carry component `T`, in design order (nothing
+/// is cloned).
+pub(crate) fn children_with<T: bevy_ecs::component::Component>(
+    world: &World,
+    vessel: Entity,
+) -> Vec<Entity> {
+    let mut out: Vec<(DesignOrder, Entity)> = world
+        .get::<Children>(vessel)
+        .map(|c| {
+            c.iter()
+                .filter(|&&e| world.get::<T>(e).is_some())
+                .filter_map(|&e| Some((*world.get::<DesignOrder>(e)?, e)))
+                .collect()
+        })
+        .unwrap_or_default();
+    out.sort_by_key(|(o, _)| *o);
+    out.into_iter().map(|(_, e)| e).collect()
+}
+
 /// Part entities of a vessel in design order.
 pub(crate) fn parts(world: &World, vessel: Entity) -> Vec<(Entity, PartSpec)> {
     ordered(world, vessel)
@@ -68,6 +87,46 @@ pub(crate) fn vessel(world: &World, entity: Entity) -> Option<VesselDesign> {
         notes: notes(world, entity).into_iter().map(|(_, n)| n.0).collect(),
         operating: world.get::<OperatingSpec>(entity).and_then(|o| o.0),
     })
+}
+
+/// Whether `entity` holds exactly `design`: what [`vessel`] would read back
+/// equals it, compared in place (nothing is cloned).
+pub(crate) fn holds(world: &World, entity: Entity, design: &VesselDesign) -> bool {
+    let Some(spec) = world.get::<VesselSpec>(entity) else {
+        return false;
+    };
+    spec.tag == design.tag
+        && spec.kind == design.kind
+        && spec.placement == design.placement
+        && spec.design == design.design
+        && spec.drawing == design.drawing
+        && world.get::<OperatingSpec>(entity).and_then(|o| o.0) == design.operating
+        && same_children(world, entity, &design.parts, |p: &PartSpec| &p.0)
+        && same_children(world, entity, &design.nozzles, |n: &NozzleSpec| &n.0)
+        && same_children(world, entity, &design.notes, |n: &NoteSpec| &n.0)
+}
+
+/// Whether the children of `vessel` carrying `T`, in design order, hold
+/// exactly `wanted` (as `inner` reads them).
+fn same_children<T: bevy_ecs::component::Component, D: PartialEq>(
+    world: &World,
+    vessel: Entity,
+    wanted: &[D],
+    inner: impl Fn(&T) -> &D,
+) -> bool {
+    let mut have: Vec<(DesignOrder, &D)> = world
+        .get::<Children>(vessel)
+        .map(|c| {
+            c.iter()
+                .filter_map(|&e| Some((*world.get::<DesignOrder>(e)?, inner(world.get::<T>(e)?))))
+                .collect()
+        })
+        .unwrap_or_default();
+    if have.len() != wanted.len() {
+        return false;
+    }
+    have.sort_by_key(|(o, _)| *o);
+    have.iter().zip(wanted).all(|((_, h), w)| *h == w)
 }
 
 /// Vessel entities in design order.

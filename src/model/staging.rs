@@ -39,8 +39,6 @@ struct Work<'w> {
     world: &'w World,
     /// tag → new state (`None` = removed), with its order.
     touched: BTreeMap<String, Option<(VesselDesign, u32)>>,
-    /// tag → the vessel as the world holds it, for those read from it.
-    originals: HashMap<String, (VesselDesign, u32)>,
     next_order: u32,
 }
 
@@ -49,14 +47,9 @@ impl Work<'_> {
         if let Some(state) = self.touched.get(tag) {
             return state.clone();
         }
-        if let Some(original) = self.originals.get(tag) {
-            return Some(original.clone());
-        }
         let entity = *self.world.resource::<VesselIndex>().0.get(tag)?;
         let order = self.world.get::<DesignOrder>(entity).map_or(0, |o| o.0);
-        let original = (read::vessel(self.world, entity)?, order);
-        self.originals.insert(tag.to_string(), original.clone());
-        Some(original)
+        Some((read::vessel(self.world, entity)?, order))
     }
 
     fn vessel(&mut self, tag: &str) -> Result<(VesselDesign, u32), ModelError> {
@@ -232,13 +225,10 @@ pub(crate) fn stage(world: &World, edit: Edit) -> Result<Staged, ModelError> {
     let mut work = Work {
         world,
         touched: BTreeMap::new(),
-        originals: HashMap::new(),
         next_order,
     };
     work.apply(edit)?;
-    let Work {
-        touched, originals, ..
-    } = work;
+    let Work { touched, .. } = work;
     let mut out = Vec::new();
     let mut violations = Vec::new();
     for (tag, state) in touched {
@@ -250,14 +240,11 @@ pub(crate) fn stage(world: &World, edit: Edit) -> Result<Staged, ModelError> {
                 }
             }
             Some((design, order)) => {
-                // Compared with the world's copy read while staging, when there
-                // is one (the world is not written until the edit is checked).
-                let unchanged = entity.is_some_and(|e| match originals.get(&tag) {
-                    Some((original, o)) => *o == order && *original == design,
-                    None => {
-                        world.get::<DesignOrder>(e).map(|o| o.0) == Some(order)
-                            && read::vessel(world, e).as_ref() == Some(&design)
-                    }
+                // Compared with the world in place (it is not written until
+                // the edit is checked).
+                let unchanged = entity.is_some_and(|e| {
+                    world.get::<DesignOrder>(e).map(|o| o.0) == Some(order)
+                        && read::holds(world, e, &design)
                 });
                 if unchanged {
                     continue;

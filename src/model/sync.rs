@@ -10,52 +10,101 @@ use bevy_ecs::world::World;
 use super::staging::{Staged, StagedVessel};
 use super::{VesselIndex, read};
 use crate::components::{DesignOrder, NoteSpec, NozzleSpec, OperatingSpec, PartSpec, VesselSpec};
-use crate::design::VesselDesign;
+use crate::design::{PartDesign, VesselDesign};
 use crate::systems::{ChangeLog, CheckedResolutions, EditedVessels};
 
-/// Sets a component if it differs; returns whether it was written.
-fn put<T: Component<Mutability = Mutable> + PartialEq>(
+/// Sets a component to `value` if it differs (cloning it only then); returns
+/// whether it was written.
+fn put<T: Component<Mutability = Mutable> + PartialEq + Clone>(
     world: &mut World,
     entity: Entity,
-    value: T,
+    value: &T,
 ) -> bool {
     match world.get_mut::<T>(entity) {
-        Some(mut current) => current.set_if_neq(value),
+        Some(mut current) => {
+            if *current != *value {
+                *current = value.clone();
+                true
+            } else {
+                false
+            }
+        }
         None => {
-            world.entity_mut(entity).insert(value);
+            world.entity_mut(entity).insert(value.clone());
             true
         }
     }
 }
 
-/// Matches `wanted` children (by id) to `existing` ones, updating, spawning and
-/// despawning; returns whether the set of children changed, the removed ids, and
-/// whether any child's parameters were written.
-fn sync_children<T: Component<Mutability = Mutable> + PartialEq>(
+/// Matches the `wanted` children's designs (by `id`) to the child entities
+/// of `vessel` carrying `T`, updating (a design cloned only where it differs
+/// from what `inner` reads off the entity's component), spawning (`wrap`) and
+/// despawning; returns whether the set of children changed, the removed ids,
+/// and whether any child's parameters were written.
+fn sync_children<T, D>(
     world: &mut World,
     vessel: Entity,
-    existing: Vec<(Entity, String)>,
-    wanted: Vec<(String, T)>,
-) -> (bool, Vec<String>, bool) {
-    let mut pool = existing;
+    wanted: &[D],
+    id: impl Fn(&D) -> &str,
+    inner: impl Fn(&T) -> &D,
+    wrap: impl Fn(D) -> T,
+) -> (bool, Vec<String>, bool)
+where
+    T: Component<Mutability = Mutable>,
+    D: PartialEq + Clone,
+{
+    let existing = read::children_with::<T>(world, vessel);
+    // Read first: each wanted child's entity (most often the one at its own
+    // place) and whether it already holds the design.
+    let mut taken = vec![false; existing.len()];
+    let mut plan: Vec<Option<(Entity, bool)>> = Vec::with_capacity(wanted.len());
+    {
+        let world = &*world;
+        let held = |j: usize| world.get::<T>(existing[j]).map(&inner);
+        for (k, design) in wanted.iter().enumerate() {
+            let matches = |j: usize| !taken[j] && held(j).is_some_and(|h| id(h) == id(design));
+            let at = if k < existing.len() && matches(k) {
+                Some(k)
+            } else {
+                (0..existing.len()).find(|&j| matches(j))
+            };
+            plan.push(at.map(|j| {
+                taken[j] = true;
+                (existing[j], held(j) == Some(design))
+            }));
+        }
+    }
+    let gone: Vec<(Entity, String)> = existing
+        .iter()
+        .zip(&taken)
+        .filter(|(_, taken)| !**taken)
+        .map(|(&e, _)| {
+            let id = world
+                .get::<T>(e)
+                .map_or(String::new(), |t| id(inner(t)).to_string());
+            (e, id)
+        })
+        .collect();
     let mut structure = false;
     let mut written = false;
-    for (k, (id, spec)) in wanted.into_iter().enumerate() {
+    for (k, (design, at)) in wanted.iter().zip(plan).enumerate() {
         let order = DesignOrder(k as u32);
-        match pool.iter().position(|(_, i)| *i == id) {
-            Some(at) => {
-                let (e, _) = pool.swap_remove(at);
-                written |= put(world, e, spec);
-                put(world, e, order);
+        match at {
+            Some((e, same)) => {
+                if !same && let Some(mut held) = world.get_mut::<T>(e) {
+                    *held = wrap(design.clone());
+                    written = true;
+                }
+                put(world, e, &order);
             }
             None => {
-                world.spawn((spec, order, ChildOf(vessel)));
+                world.spawn((wrap(design.clone()), order, ChildOf(vessel)));
                 structure = true;
             }
         }
     }
     let mut removed = Vec::new();
-    for (e, id) in pool {
+    for (e, id) in gone {
         world.despawn(e);
         removed.push(id);
         structure = true;
@@ -63,23 +112,24 @@ fn sync_children<T: Component<Mutability = Mutable> + PartialEq>(
     (structure, removed, written)
 }
 
-/// Writes one vessel's design into its entities.
-fn put_vessel(world: &mut World, design: VesselDesign, order: u32) -> Entity {
+/// Writes one vessel's design into its entities, cloning only what differs
+/// from what they hold.
+fn put_vessel(world: &mut World, design: &VesselDesign, order: u32) -> Entity {
     let existing = world.resource::<VesselIndex>().0.get(&design.tag).copied();
     let spec = VesselSpec {
         tag: design.tag.clone(),
         kind: design.kind,
         placement: design.placement,
-        design: design.design,
-        drawing: design.drawing,
+        design: design.design.clone(),
+        drawing: design.drawing.clone(),
     };
     let operating = OperatingSpec(design.operating);
     let mut edited = existing.is_none();
     let entity = match existing {
         Some(e) => {
-            edited |= put(world, e, spec);
-            put(world, e, DesignOrder(order));
-            put(world, e, operating);
+            edited |= put(world, e, &spec);
+            put(world, e, &DesignOrder(order));
+            put(world, e, &operating);
             e
         }
         None => {
@@ -91,47 +141,29 @@ fn put_vessel(world: &mut World, design: VesselDesign, order: u32) -> Entity {
             e
         }
     };
-    let parts = read::parts(world, entity)
-        .into_iter()
-        .map(|(e, p)| (e, p.0.id().to_string()))
-        .collect();
-    let nozzles = read::nozzles(world, entity)
-        .into_iter()
-        .map(|(e, n)| (e, n.0.mark))
-        .collect();
-    let notes = read::notes(world, entity)
-        .into_iter()
-        .map(|(e, n)| (e, n.0.id))
-        .collect();
     let (a, ra, wa) = sync_children(
         world,
         entity,
-        parts,
-        design
-            .parts
-            .into_iter()
-            .map(|p| (p.id().to_string(), PartSpec(p)))
-            .collect(),
+        &design.parts,
+        PartDesign::id,
+        |p: &PartSpec| &p.0,
+        PartSpec,
     );
     let (b, rb, wb) = sync_children(
         world,
         entity,
-        nozzles,
-        design
-            .nozzles
-            .into_iter()
-            .map(|n| (n.mark.clone(), NozzleSpec(n)))
-            .collect(),
+        &design.nozzles,
+        |n| n.mark.as_str(),
+        |n: &NozzleSpec| &n.0,
+        NozzleSpec,
     );
     let (c, rc, wc) = sync_children(
         world,
         entity,
-        notes,
-        design
-            .notes
-            .into_iter()
-            .map(|n| (n.id.clone(), NoteSpec(n)))
-            .collect(),
+        &design.notes,
+        |n| n.id.as_str(),
+        |n: &NoteSpec| &n.0,
+        NoteSpec,
     );
     let mut log = world.resource_mut::<ChangeLog>();
     for id in ra.into_iter().chain(rb).chain(rc) {
@@ -158,13 +190,13 @@ pub(crate) fn commit(world: &mut World, staged: Staged) {
                 order,
                 resolved,
             } => {
+                let entity = put_vessel(world, &design, order);
                 // What the Validate stage will read back: the design without its
                 // operating data (kept in its own component).
                 let checked = VesselDesign {
                     operating: None,
-                    ..(*design).clone()
+                    ..*design
                 };
-                let entity = put_vessel(world, *design, order);
                 world
                     .resource_mut::<CheckedResolutions>()
                     .0

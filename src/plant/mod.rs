@@ -12,7 +12,7 @@ pub use build::build_plant;
 pub use generate::{GenerateError, PLOT_PITCH, generate_plant};
 mod simulate;
 
-pub use simulate::{Simulation, TickReport, draw_edit, quantile};
+pub use simulate::{Simulation, TickReport, after_edit, draw_edit, quantile};
 mod bench;
 
 pub use bench::{BenchConfig, BenchError, BenchRow, format_table, run_bench};

@@ -3,10 +3,11 @@
 //! by one incremental update of the model.
 //!
 //! Drives [`Model`] from outside the data flow, like a user or a process
-//! historian would. A drawn edit goes through [`Model::apply`]'s checks; one the
-//! rules refuse is counted and replaced by another draw, so every applied edit is
-//! valid. The simulation keeps its own copy of each vessel's design to draw edits
-//! from, updated only when an edit is accepted; with the same seed, the same plant
+//! historian would. A tick's edits are drawn in rounds on distinct vessels and
+//! go through [`Model::apply_each`]'s checks (in parallel); one the rules refuse
+//! is counted and replaced by another draw, so every applied edit is valid. The
+//! simulation keeps its own copy of each vessel's design to draw edits from,
+//! updated only when an edit is accepted; with the same seed, the same plant
 //! sees the same edits.
 
 use std::collections::HashMap;
@@ -89,11 +90,7 @@ impl Simulation {
     pub fn tick(&mut self, edits: usize, levels: usize) -> TickReport {
         let start = Instant::now();
         let mut report = TickReport::default();
-        for _ in 0..edits {
-            let (applied, refused) = self.apply_random_edit();
-            report.edits += usize::from(applied);
-            report.refused += refused;
-        }
+        (report.edits, report.refused) = self.apply_random_edits(edits);
         for _ in 0..levels {
             report.levels += usize::from(self.change_level());
         }
@@ -105,20 +102,41 @@ impl Simulation {
         report
     }
 
-    /// Draws edits until the rules accept one (at most [`MAX_TRIES`]); returns
-    /// whether one was applied and how many were refused.
-    pub fn apply_random_edit(&mut self) -> (bool, usize) {
-        for tried in 0..MAX_TRIES {
-            let i = self.rng.int(0, self.vessels.len() as u64 - 1) as usize;
-            let Some((edit, vessel)) = draw_edit(&mut self.rng, &self.vessels[i]) else {
-                continue;
-            };
-            if self.model.apply(edit).is_ok() {
-                self.vessels[i] = vessel;
-                return (true, tried);
+    /// Draws and applies `count` random valid edits; returns how many were
+    /// applied and how many drawn edits the rules refused (each redrawn, within
+    /// [`MAX_TRIES`] draws per edit in all).
+    ///
+    /// Edits are drawn in rounds, each on vessels no other edit of the round
+    /// touches (a vessel drawn twice ends the round: its next edit is drawn from
+    /// the design the first one leaves), and each round is checked in parallel
+    /// by [`Model::apply_each`].
+    pub fn apply_random_edits(&mut self, count: usize) -> (usize, usize) {
+        let (mut applied, mut refused) = (0, 0);
+        let mut draws = count * MAX_TRIES;
+        while applied < count && draws > 0 {
+            let mut round: Vec<(usize, Edit)> = Vec::new();
+            let mut edits = Vec::new();
+            while applied + round.len() < count && draws > 0 {
+                draws -= 1;
+                let i = self.rng.int(0, self.vessels.len() as u64 - 1) as usize;
+                if round.iter().any(|(j, _)| *j == i) {
+                    break;
+                }
+                if let Some(edit) = draw_edit(&mut self.rng, &self.vessels[i]) {
+                    round.push((i, edit.clone()));
+                    edits.push(edit);
+                }
+            }
+            for ((i, edit), outcome) in round.into_iter().zip(self.model.apply_each(edits)) {
+                if outcome.is_ok() {
+                    after_edit(&mut self.vessels[i], &edit);
+                    applied += 1;
+                } else {
+                    refused += 1;
+                }
             }
         }
-        (false, MAX_TRIES)
+        (applied, refused)
     }
 
     /// Moves one random vessel's liquid level by up to ±10 % of its interior's
@@ -164,11 +182,13 @@ impl Simulation {
     }
 }
 
-/// A random edit of `vessel` and the vessel as it would be after it: a course's
-/// length or diameter, a nozzle's elevation, orientation or projection, or a
-/// head's shape. `None` when the vessel has nothing of the drawn kind.
-pub fn draw_edit(rng: &mut SplitMix64, vessel: &VesselDesign) -> Option<(Edit, VesselDesign)> {
-    let mut v = vessel.clone();
+/// A random edit of `vessel`: a course's length or diameter, a nozzle's
+/// elevation, orientation or projection, or a head's shape. `None` when the
+/// vessel has nothing of the drawn kind. Only the edited part or nozzle is
+/// copied; [`after_edit`] brings a copy of the design up to date once the edit
+/// is accepted.
+pub fn draw_edit(rng: &mut SplitMix64, vessel: &VesselDesign) -> Option<Edit> {
+    let v = vessel;
     let roll = rng.unit();
     if roll < 0.35 {
         // A dimension: a course's length (mostly) or diameter.
@@ -176,7 +196,8 @@ pub fn draw_edit(rng: &mut SplitMix64, vessel: &VesselDesign) -> Option<(Edit, V
             .filter(|&i| matches!(v.parts[i], PartDesign::Shell(_)))
             .collect();
         let i = *rng.pick(&shells);
-        let PartDesign::Shell(s) = &mut v.parts[i] else {
+        let mut part = v.parts[i].clone();
+        let PartDesign::Shell(s) = &mut part else {
             return None;
         };
         if rng.chance(0.8) {
@@ -184,14 +205,10 @@ pub fn draw_edit(rng: &mut SplitMix64, vessel: &VesselDesign) -> Option<(Edit, V
         } else {
             s.od += rng.pick(&[-100.0, 100.0]);
         }
-        let part = v.parts[i].clone();
-        Some((
-            Edit::SetPart {
-                vessel: v.tag.clone(),
-                part,
-            },
-            v,
-        ))
+        Some(Edit::SetPart {
+            vessel: v.tag.clone(),
+            part,
+        })
     } else if roll < 0.85 {
         // A shell nozzle's move (a head nozzle on the pole is left alone: turning
         // it there moves its opening across the head's seam, which the opening
@@ -203,20 +220,16 @@ pub fn draw_edit(rng: &mut SplitMix64, vessel: &VesselDesign) -> Option<(Edit, V
             return None;
         }
         let i = *rng.pick(&shell);
-        let n = &mut v.nozzles[i];
+        let mut n = v.nozzles[i].clone();
         match (rng.int(0, 2), n.elevation) {
             (0, Some(z)) => n.elevation = Some(z + rng.pick(&[-100.0, 100.0])),
             (1, _) => n.orientation = (n.orientation + rng.pick(&[-15.0, 15.0])).rem_euclid(360.0),
             _ => n.projection += rng.pick(&[-50.0, 50.0]),
         }
-        let nozzle = n.clone();
-        Some((
-            Edit::SetNozzle {
-                vessel: v.tag.clone(),
-                nozzle,
-            },
-            v,
-        ))
+        Some(Edit::SetNozzle {
+            vessel: v.tag.clone(),
+            nozzle: n,
+        })
     } else {
         // A head swap, on a head no nozzle is mounted on (a nozzle's opening may
         // not fit every head shape, e.g. across a conical head's apex).
@@ -228,7 +241,8 @@ pub fn draw_edit(rng: &mut SplitMix64, vessel: &VesselDesign) -> Option<(Edit, V
             return None;
         }
         let i = *rng.pick(&heads);
-        let PartDesign::Head(h) = &mut v.parts[i] else {
+        let mut part = v.parts[i].clone();
+        let PartDesign::Head(h) = &mut part else {
             return None;
         };
         let shape = *rng.pick(&super::generate::SHAPES);
@@ -241,14 +255,28 @@ pub fn draw_edit(rng: &mut SplitMix64, vessel: &VesselDesign) -> Option<(Edit, V
         h.knuckle_radius = None;
         h.half_angle = None;
         h.small_od = None;
-        let part = v.parts[i].clone();
-        Some((
-            Edit::SetPart {
-                vessel: v.tag.clone(),
-                part,
-            },
-            v,
-        ))
+        Some(Edit::SetPart {
+            vessel: v.tag.clone(),
+            part,
+        })
+    }
+}
+
+/// Brings `vessel` up to date with an accepted edit of a part or a nozzle
+/// (as [`draw_edit`] draws): the one with the same id or mark replaced.
+pub fn after_edit(vessel: &mut VesselDesign, edit: &Edit) {
+    match edit {
+        Edit::SetPart { part, .. } => {
+            if let Some(slot) = vessel.parts.iter_mut().find(|p| p.id() == part.id()) {
+                *slot = part.clone();
+            }
+        }
+        Edit::SetNozzle { nozzle, .. } => {
+            if let Some(slot) = vessel.nozzles.iter_mut().find(|n| n.mark == nozzle.mark) {
+                *slot = nozzle.clone();
+            }
+        }
+        _ => {}
     }
 }
 
