@@ -67,6 +67,44 @@ pub(crate) fn read_vessel(
     }
 }
 
+/// Whether the vessel entity (its spec and children) holds exactly `design`
+/// (operating data aside, as [`read_vessel`] reads it), compared in place.
+fn holds(
+    spec: &VesselSpec,
+    children: Option<&Children>,
+    parts: &Query<(&PartSpec, &DesignOrder)>,
+    nozzles: &Query<(&NozzleSpec, &DesignOrder)>,
+    notes: &Query<(&NoteSpec, &DesignOrder)>,
+    design: &VesselDesign,
+) -> bool {
+    let kids: &[Entity] = children.map_or(&[], |c| c);
+    spec.tag == design.tag
+        && spec.kind == design.kind
+        && spec.placement == design.placement
+        && spec.design == design.design
+        && spec.drawing == design.drawing
+        && design.operating.is_none()
+        && same(kids, parts, |p| &p.0, &design.parts)
+        && same(kids, nozzles, |n| &n.0, &design.nozzles)
+        && same(kids, notes, |n| &n.0, &design.notes)
+}
+
+/// Whether the children `kids` carrying `T`, in design order, hold exactly
+/// `wanted` (as `inner` reads them).
+fn same<T: bevy_ecs::component::Component, D: PartialEq>(
+    kids: &[Entity],
+    query: &Query<(&T, &DesignOrder)>,
+    inner: impl Fn(&T) -> &D,
+    wanted: &[D],
+) -> bool {
+    let mut have: Vec<_> = kids.iter().filter_map(|&e| query.get(e).ok()).collect();
+    if have.len() != wanted.len() {
+        return false;
+    }
+    have.sort_by_key(|(_, o)| **o);
+    have.iter().zip(wanted).all(|((h, _), w)| inner(h) == w)
+}
+
 /// Vessels whose own or whose children's parameters were written (or whose
 /// children were added or removed) since the last update: pushed by the model's
 /// edit commit, the only writer of parameter components, and drained by
@@ -93,44 +131,39 @@ pub fn resolve_dirty_vessels(
     let mut dirty: Vec<Entity> = std::mem::take(&mut edited.0);
     dirty.sort_unstable();
     dirty.dedup();
-    let work: Vec<(Entity, u32, VesselDesign)> = dirty
-        .iter()
-        .filter_map(|&e| vessels.get(e).ok())
+    let vessels_found: Vec<_> = dirty.iter().filter_map(|&e| vessels.get(e).ok()).collect();
+    counters.vessels_resolved += vessels_found.len() as u64;
+    // Each vessel's resolution from the edit's check when the world holds the
+    // design it was checked on (compared in place); the others read back to be
+    // resolved here.
+    let work: Vec<(Entity, u32, Result<ResolvedVessel, VesselDesign>)> = vessels_found
+        .into_iter()
         .map(|(e, spec, order, kids)| {
-            (
-                e,
-                order.0,
-                read_vessel(&spec, kids, &parts, &nozzles, &notes),
-            )
-        })
-        .collect();
-    counters.vessels_resolved += work.len() as u64;
-    // Each vessel's resolution from the edit's check when it matches the world.
-    let known: Vec<Option<ResolvedVessel>> = work
-        .iter()
-        .map(|(e, order, design)| {
-            checked
-                .remove(e)
-                .filter(|(o, d, _)| o == order && d == design)
-                .map(|(_, _, resolved)| resolved)
-        })
-        .collect();
-    counters.resolutions_reused += known.iter().filter(|k| k.is_some()).count() as u64;
-    let results: Vec<_> = work
-        .par_iter()
-        .zip(known)
-        .map(|((e, order, design), known)| {
-            let result = match known {
-                Some(resolved) => Ok(resolved),
-                None => resolve_vessel(design, *order as usize),
+            let known = checked.remove(&e).filter(|(o, d, _)| {
+                *o == order.0 && holds(&spec, kids, &parts, &nozzles, &notes, d)
+            });
+            let job = match known {
+                Some((_, _, resolved)) => Ok(resolved),
+                None => Err(read_vessel(&spec, kids, &parts, &nozzles, &notes)),
             };
-            (*e, design.tag.clone(), result)
+            (e, order.0, job)
+        })
+        .collect();
+    counters.resolutions_reused += work.iter().filter(|w| w.2.is_ok()).count() as u64;
+    let results: Vec<_> = work
+        .into_par_iter()
+        .map(|(e, order, job)| match job {
+            Ok(resolved) => (e, None, Ok(resolved)),
+            Err(design) => {
+                let result = resolve_vessel(&design, order as usize);
+                (e, Some(design.tag), result)
+            }
         })
         .collect();
     for (e, tag, result) in results {
         match result {
             Ok(resolved) => pending.0.push((e, resolved)),
-            Err(violations) => errors.0.push((tag, violations)),
+            Err(violations) => errors.0.push((tag.unwrap_or_default(), violations)),
         }
     }
 }
