@@ -9,7 +9,7 @@ use glam::{DAffine3, DVec3};
 use bevy_ecs::entity::Entity;
 
 use crate::constraints::PartGeometry;
-use crate::mesh::cdt::Region;
+use crate::mesh::cdt::{KeptCavities, Region};
 use crate::mesh::{HostTrim, PackedMesh};
 use crate::nurbs::intersect::IntersectionLoop;
 use crate::parts::{Nozzle, Patch};
@@ -65,6 +65,13 @@ pub struct PatchSurface(pub Arc<Patch>);
 /// positions, octahedral normals, narrow indices).
 #[derive(Component, Clone, Debug, PartialEq)]
 pub struct PatchMesh(pub Arc<PackedMesh>);
+
+/// The cavities round a patch's openings as its last meshing triangulated them
+/// (see [`KeptCavities`]): handed to its next meshing, which takes those that
+/// come out the same instead of triangulating them again. Absent on a patch
+/// without openings.
+#[derive(Component, Clone, Debug)]
+pub struct PatchCavities(pub Arc<KeptCavities>);
 
 /// A nozzle's (or a boot's) opening: where its neck (the boot's shell) meets its
 /// host, computed once and used to trim both (the host patch gets a hole, the neck

@@ -12,8 +12,8 @@ mod relations;
 mod views;
 
 pub use derived::{
-    NoteAnchor, Opening, PartFrame, PartSpan, PatchMesh, PatchRegion, PatchSurface, Shape,
-    VesselFrame, VesselSummary,
+    NoteAnchor, Opening, PartFrame, PartSpan, PatchCavities, PatchMesh, PatchRegion, PatchSurface,
+    Shape, VesselFrame, VesselSummary,
 };
 pub use params::{DesignOrder, NoteSpec, NozzleSpec, OperatingSpec, PartSpec, VesselSpec};
 pub use relations::{AnnotatedBy, Annotates, MountedOn, Mounts, PadOf, PadPatch, PatchOf, Patches};

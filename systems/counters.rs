@@ -38,6 +38,9 @@ pub struct WorkCounters {
     pub meshes_shared: u64,
     /// Triangles the mesher produced (shared meshes not counted).
     pub triangles_meshed: u64,
+    /// Cavities round openings whose triangles a meshing took from its patch's
+    /// last meshing instead of triangulating them (see `PatchCavities`).
+    pub cavities_reused: u64,
     /// Entity views (one part or nozzle in one view) rebuilt by the Project stage.
     pub views_rebuilt: u64,
     /// Vessels whose operating figures (liquid, weight, centre of gravity) were

@@ -2,7 +2,9 @@
 //! patch when the tessellation options changed) with the error-bounded
 //! constrained-Delaunay mesher, in parallel with rayon. A patch equal to one
 //! whose mesh is in use (same surface, region and options, by content) shares
-//! that mesh instead of being meshed again.
+//! that mesh instead of being meshed again. A patch with openings keeps the
+//! cavities its meshing triangulated round them ([`PatchCavities`]), and its next
+//! meshing takes those whose inputs come out the same.
 
 use std::collections::HashMap;
 use std::sync::Arc;
@@ -18,9 +20,9 @@ use super::DirtyPatches;
 use super::biggest_first::map_biggest_first;
 use super::labels::patch_label;
 use super::{ModelErrors, WorkCounters};
-use crate::components::{PatchMesh, PatchSurface};
+use crate::components::{PatchCavities, PatchMesh, PatchSurface};
 use crate::design::RuleViolation;
-use crate::mesh::cdt::{Region, mesh_patch_region};
+use crate::mesh::cdt::{KeptCavities, Region, mesh_patch_region_keeping};
 use crate::mesh::{MeshInstances, PackedMesh, TessellationOptions, mesh_key};
 use crate::parts::Patch;
 
@@ -28,6 +30,14 @@ use crate::parts::Patch;
 /// memory of what it has meshed.
 #[derive(Resource, Debug, Default)]
 pub struct Instances(pub MeshInstances);
+
+/// One patch meshed: its mesh, the cavities it met (none: `None`) and how many
+/// of them it took from its last meshing.
+struct Meshed {
+    mesh: Arc<PackedMesh>,
+    cavities: Option<Arc<KeptCavities>>,
+    reused: u64,
+}
 
 /// The tessellation options every patch is meshed with.
 #[derive(Resource, Clone, Copy, Debug, PartialEq)]
@@ -61,6 +71,11 @@ pub fn remesh_dirty_patches(world: &mut World, surfaces: &mut QueryState<&PatchS
             Some((e, surfaces.get(world, e).ok()?.0.clone(), region))
         })
         .collect();
+    // The cavities each patch's last meshing met.
+    let kept: Vec<Option<Arc<KeptCavities>>> = work
+        .iter()
+        .map(|(e, ..)| world.get::<PatchCavities>(*e).map(|c| c.0.clone()))
+        .collect();
     if work.is_empty() {
         return;
     }
@@ -83,44 +98,58 @@ pub fn remesh_dirty_patches(world: &mut World, surfaces: &mut QueryState<&PatchS
             .get::<PatchMesh>(work[i].0)
             .map_or(0, |m| m.0.triangle_count() as u64)
     };
-    let meshed: FxHashMap<u128, Result<Arc<PackedMesh>, String>> =
+    let meshed: FxHashMap<u128, Result<Meshed, String>> =
         map_biggest_first(&to_mesh, previous, |&i| {
             let (_, p, r) = &work[i];
             // Kept for the model's lifetime: packed (exact positions, 4-byte
             // normals, narrow indices, no growth slack).
-            let result = mesh_patch_region(p, r, &options)
-                .map(|(mesh, _stats)| Arc::new(PackedMesh::pack(&mesh)))
+            let result = mesh_patch_region_keeping(p, r, &options, kept[i].as_deref())
+                .map(|(mesh, stats, cavities)| Meshed {
+                    mesh: Arc::new(PackedMesh::pack(&mesh)),
+                    cavities: (!cavities.is_empty()).then(|| Arc::new(cavities)),
+                    reused: stats.cavities_reused as u64,
+                })
                 .map_err(|e| e.to_string());
             (keys[i], result)
         })
         .into_iter()
         .collect();
-    let triangles: u64 = meshed
-        .values()
-        .filter_map(|m| m.as_ref().ok())
-        .map(|m| m.triangle_count() as u64)
-        .sum();
+    let ok = || meshed.values().filter_map(|m| m.as_ref().ok());
+    let triangles: u64 = ok().map(|m| m.mesh.triangle_count() as u64).sum();
+    let cavities_reused: u64 = ok().map(|m| m.reused).sum();
     {
         let mut instances = world.resource_mut::<Instances>();
-        for (&key, mesh) in &meshed {
-            if let Ok(mesh) = mesh {
-                instances.0.insert(key, mesh);
+        for (&key, meshed) in &meshed {
+            if let Ok(meshed) = meshed {
+                instances.0.insert(key, &meshed.mesh);
             }
         }
     }
     let mut failures = 0u64;
     for (((e, _, _), key), held) in work.iter().zip(&keys).zip(in_use) {
         let e = *e;
+        // A mesh in use elsewhere is shared with its cavities left as they were.
         let result = match held {
-            Some(mesh) => Ok(mesh),
-            None => meshed
-                .get(key)
-                .cloned()
-                .unwrap_or_else(|| Err("the mesh of an equal patch is missing".into())),
+            Some(mesh) => Ok((mesh, None)),
+            None => match meshed.get(key) {
+                Some(Ok(m)) => Ok((m.mesh.clone(), Some(m.cavities.clone()))),
+                Some(Err(e)) => Err(e.clone()),
+                None => Err("the mesh of an equal patch is missing".into()),
+            },
         };
         match result {
-            Ok(mesh) => {
-                world.entity_mut(e).insert(PatchMesh(mesh));
+            Ok((mesh, cavities)) => {
+                let mut entity = world.entity_mut(e);
+                entity.insert(PatchMesh(mesh));
+                match cavities {
+                    Some(Some(c)) => {
+                        entity.insert(PatchCavities(c));
+                    }
+                    Some(None) => {
+                        entity.remove::<PatchCavities>();
+                    }
+                    None => {}
+                }
                 world.resource_mut::<DirtyPatches>().meshes.push(e);
             }
             Err(rule) => {
@@ -143,5 +172,6 @@ pub fn remesh_dirty_patches(world: &mut World, surfaces: &mut QueryState<&PatchS
     counters.meshes_rebuilt += work.len() as u64;
     counters.meshes_shared += (work.len() - to_mesh.len()) as u64;
     counters.triangles_meshed += triangles;
+    counters.cavities_reused += cavities_reused;
     counters.failures += failures;
 }

@@ -94,6 +94,9 @@ fn nozzle_elevation_places_its_opening_without_marching_and_keeps_neck_and_pad_m
     // Turning it (below) re-meshes all three.
     assert_eq!((c.openings_cut, c.openings_placed), (1, 1), "{c:?}");
     assert_eq!(c.meshes_rebuilt, 1, "{c:?}");
+    // The course's other openings keep their cavities, whose triangles are
+    // taken from its last meshing; the mesh is a fresh one's all the same.
+    assert!(c.cavities_reused >= 1, "{c:?}");
     assert_matches_full_build(&m);
     // Turning it is not a move along the axis: marched again.
     let mut n = m.design().vessels[0].nozzles[0].clone();

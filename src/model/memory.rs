@@ -13,7 +13,7 @@ use std::sync::Arc;
 use bevy_ecs::world::World;
 use glam::{DVec2, DVec3};
 
-use crate::components::{Opening, PatchMesh, PatchRegion, PatchSurface};
+use crate::components::{Opening, PatchCavities, PatchMesh, PatchRegion, PatchSurface};
 use crate::mesh::HostTrim;
 use crate::nurbs::intersect::IntersectionLoop;
 
@@ -36,6 +36,9 @@ pub struct MemoryBreakdown {
     /// notches, and the inputs each was cut from (with the canonical loops kept
     /// for openings in straight courses).
     pub openings: usize,
+    /// Cavities kept from the last meshing of patches with openings
+    /// (`PatchCavities`: their loops' (u, v) and triangles).
+    pub cavities: usize,
     /// Patch entities.
     pub patches: usize,
     /// Distinct meshes the patches hold (equal patches share one).
@@ -82,6 +85,15 @@ pub(crate) fn breakdown(world: &World) -> MemoryBreakdown {
                         size_of::<crate::mesh::cdt::UvLoop>() + l.uv.capacity() * size_of::<DVec2>()
                     })
                     .sum::<usize>();
+        }
+    }
+    if let Some(mut q) = world.try_query::<&PatchCavities>() {
+        // Equal patches share one.
+        let mut seen = HashSet::new();
+        for c in q.iter(world) {
+            if seen.insert(Arc::as_ptr(&c.0)) {
+                out.cavities += c.0.heap_bytes();
+            }
         }
     }
     if let Some(sides) = world.get_resource::<crate::systems::HostSides>() {

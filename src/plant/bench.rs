@@ -352,12 +352,13 @@ pub fn run_bench(
         None,
     ));
     rows.push(row(
-        "  of which surfaces, regions, openings",
+        "  of which surfaces, regions, openings, cavities",
         format!(
-            "{}, {}, {} ({:.0} patches/vessel)",
+            "{}, {}, {}, {} ({:.0} patches/vessel)",
             kb(memory.surfaces),
             kb(memory.regions),
             kb(memory.openings),
+            kb(memory.cavities),
             memory.patches as f64 / n
         ),
         "",

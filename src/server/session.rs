@@ -376,6 +376,7 @@ fn work_json(w: &WorkCounters) -> Value {
         "meshes_rebuilt": w.meshes_rebuilt,
         "meshes_shared": w.meshes_shared,
         "triangles_meshed": w.triangles_meshed,
+        "cavities_reused": w.cavities_reused,
         "failures": w.failures,
     })
 }

@@ -17,10 +17,13 @@
 //! the caller then meshes the whole region by the general path, which also
 //! reports any fault of the loops.
 
+use std::sync::Arc;
+
 use glam::DVec2;
 use rayon::prelude::*;
 
 use super::initial;
+use super::kept::{CavityInput, Kept, Memo};
 use super::patch::{PatchInfo, Vertex};
 use super::region::{Region, UvLoop, bounds_of};
 use super::ring::{Loops, Triangle};
@@ -177,17 +180,19 @@ fn boundary(chains: &[Chain], cavity: &Cavity) -> Vec<u32> {
 }
 
 /// Triangulates every cavity into `mesh` (see `ring`: a zip for one hole, ear
-/// clipping for several, spade when neither gives a valid cover): appends the
-/// holes' vertices and the cavities' triangles (hole segments fixed) and
-/// returns the range of triangles added. `None` when a cavity cannot be
-/// triangulated here (the caller falls back to the general path, which reports
-/// what is wrong).
+/// clipping for several, spade when neither gives a valid cover; or the
+/// triangles `memo` kept for a cavity with the same inputs, see `kept`):
+/// appends the holes' vertices and the cavities' triangles (hole segments
+/// fixed), records the cavities `ring` triangulated in `memo`, and returns the
+/// range of triangles added. `None` when a cavity cannot be triangulated here
+/// (the caller falls back to the general path, which reports what is wrong).
 pub(super) fn fill(
     info: &PatchInfo,
     mesh: &mut TriMesh,
     chains: &[Chain],
     cavities: &[Cavity],
     region: &Region,
+    memo: &mut Memo,
 ) -> Result<Option<std::ops::Range<u32>>, CdtError> {
     // Every hole's vertices, evaluated once, in hole order.
     let mut hole_first = Vec::with_capacity(region.holes.len());
@@ -206,29 +211,73 @@ pub(super) fn fill(
         .collect::<Result<_, _>>()?;
     mesh.verts.extend(verts);
     let start = mesh.tris.len() as u32;
-    let pieces: Vec<Option<Vec<Triangle>>> = cavities
+    let kept = memo.kept;
+    let pieces: Vec<Option<Piece>> = cavities
         .par_iter()
         .map(|cavity| {
             let outer = boundary(chains, cavity);
             let centre = 0.5 * (cavity.bounds.0 + cavity.bounds.1);
-            let holes = cavity.holes.iter().map(|&h| {
-                let first = hole_first[h];
-                first..first + region.holes[h].uv.len() as u32
-            });
-            if let Some(loops) = Loops::new(mesh, &outer, holes, &info.metric_at(centre))
-                && let Some(tris) = loops.zip(mesh).or_else(|| loops.ears(mesh))
-                && let Some(tris) = loops.finish(mesh, tris)
-            {
-                return Some(tris);
+            let holes: Vec<std::ops::Range<u32>> = (cavity.holes.iter())
+                .map(|&h| hole_first[h]..hole_first[h] + region.holes[h].uv.len() as u32)
+                .collect();
+            let metric = info.metric_at(centre);
+            // Local numbering: the boundary's vertices, then each hole's.
+            let mut map: Vec<u32> = outer.clone();
+            let mut starts = Vec::with_capacity(holes.len());
+            for hole in &holes {
+                starts.push(map.len() as u32);
+                map.extend(hole.clone());
             }
-            by_spade(info, mesh, &outer, cavity, region, &hole_first)
+            let input = CavityInput::new(
+                map.iter().map(|&k| mesh.verts[k as usize].uv).collect(),
+                starts,
+                &metric,
+            );
+            // `None` for a local index past the cavity's vertices (none is:
+            // kept triangles come with inputs of the same length).
+            let to_mesh = |tris: &[Triangle]| -> Option<Vec<Triangle>> {
+                tris.iter()
+                    .map(|&(t, f)| {
+                        let [a, b, c] = t.map(|k| map.get(k as usize).copied());
+                        Some(([a?, b?, c?], f))
+                    })
+                    .collect()
+            };
+            if let Some(same) = kept.and_then(|k| k.find(&input))
+                && let Some(triangles) = to_mesh(same.triangles())
+            {
+                // Kept again for the next meshing.
+                return Some(Piece {
+                    triangles,
+                    found: Some(same.clone()),
+                    reused: true,
+                });
+            }
+            if let Some(loops) = Loops::new(mesh, &outer, holes, &metric)
+                && let Some(tris) = loops.zip(mesh).or_else(|| loops.ears(mesh))
+                && let Some(local) = loops.finish_local(mesh, tris)
+            {
+                return Some(Piece {
+                    triangles: to_mesh(&local)?,
+                    found: Some(Kept::new(input, local)),
+                    reused: false,
+                });
+            }
+            let triangles = by_spade(info, mesh, &outer, cavity, region, &hole_first)?;
+            Some(Piece {
+                triangles,
+                found: None,
+                reused: false,
+            })
         })
         .collect();
     for piece in pieces {
-        let Some(tris) = piece else {
+        let Some(piece) = piece else {
             return Ok(None);
         };
-        for (tri, fixed) in tris {
+        memo.reused += usize::from(piece.reused);
+        memo.found.extend(piece.found);
+        for (tri, fixed) in piece.triangles {
             mesh.tris.push(tri);
             mesh.fixed.push(fixed);
             mesh.adj.push([NONE; 3]);
@@ -236,6 +285,15 @@ pub(super) fn fill(
         }
     }
     Ok(Some(start..mesh.tris.len() as u32))
+}
+
+/// One cavity's triangles (mesh vertices), with its inputs and local triangles
+/// to keep (unless spade triangulated it), and whether they were taken from
+/// the kept ones.
+struct Piece {
+    triangles: Vec<Triangle>,
+    found: Option<Arc<Kept>>,
+    reused: bool,
 }
 
 /// The cavity triangulated by spade: the boundary as the outer loop, its holes as

@@ -4,6 +4,7 @@
 
 use rayon::prelude::*;
 
+use super::kept::{KeptCavities, Memo};
 use super::output::{RegionMesh, finish};
 use super::patch::{PatchInfo, wants_transpose};
 use super::trimesh::TriMesh;
@@ -61,8 +62,22 @@ pub fn mesh_region_on(
     region: &Region,
     options: &TessellationOptions,
 ) -> Result<(Mesh, MeshStats), CdtError> {
-    let out = mesh_with(surface, Some(analytic), region, options)?;
+    let (out, _) = mesh_with(surface, Some(analytic), region, options, None)?;
     Ok((out.mesh, out.stats))
+}
+
+/// [`mesh_patch_region`] of a patch meshed before: the cavities `kept` from
+/// that meshing whose inputs come out the same bit for bit are taken instead of
+/// triangulated again (the mesh is the same as without them, see `kept`).
+/// Returns the cavities this meshing met, to keep for the next one.
+pub fn mesh_patch_region_keeping(
+    patch: &Patch,
+    region: &Region,
+    options: &TessellationOptions,
+    kept: Option<&KeptCavities>,
+) -> Result<(Mesh, MeshStats, KeptCavities), CdtError> {
+    let (out, kept) = mesh_with(&patch.surface, Some(&patch.analytic), region, options, kept)?;
+    Ok((out.mesh, out.stats, kept))
 }
 
 /// [`mesh_region`] that also returns the (u, v) of every output vertex.
@@ -71,7 +86,7 @@ pub fn mesh_region_with_uvs(
     region: &Region,
     options: &TessellationOptions,
 ) -> Result<RegionMesh, CdtError> {
-    mesh_with(surface, None, region, options)
+    Ok(mesh_with(surface, None, region, options, None)?.0)
 }
 
 /// Validates, transposes when the surface wants it, and meshes.
@@ -80,19 +95,23 @@ fn mesh_with(
     analytic: Option<&Analytic>,
     region: &Region,
     options: &TessellationOptions,
-) -> Result<RegionMesh, CdtError> {
+    kept: Option<&KeptCavities>,
+) -> Result<(RegionMesh, KeptCavities), CdtError> {
     options.validate()?;
     region.validate()?;
+    let mut memo = Memo::new(kept);
     if wants_transpose(surface) {
         let out = mesh_oriented(
             &surface.transposed(),
             analytic,
             &region.transposed(),
             options,
+            &mut memo,
         )?;
-        return Ok(out.transposed());
+        return Ok((out.transposed(), memo.into_kept()));
     }
-    mesh_oriented(surface, analytic, region, options)
+    let out = mesh_oriented(surface, analytic, region, options, &mut memo)?;
+    Ok((out, memo.into_kept()))
 }
 
 /// Meshes a validated region of a surface whose rows run along u.
@@ -101,6 +120,7 @@ fn mesh_oriented(
     analytic: Option<&Analytic>,
     region: &Region,
     options: &TessellationOptions,
+    memo: &mut Memo,
 ) -> Result<RegionMesh, CdtError> {
     let (lo, hi) = region.bounds();
     let info = PatchInfo::new(surface, lo, hi, |cap| {
@@ -109,7 +129,7 @@ fn mesh_oriented(
     .with_analytic(analytic);
     let mut stats = MeshStats::default();
     let budget = VERTEX_BUDGET.saturating_sub(region.vertex_count());
-    if let Some(mut rings) = rings::triangulate(&info, region, options, budget)?
+    if let Some(mut rings) = rings::triangulate(&info, region, options, budget, memo)?
         && rings
             .seam
             .iter()
@@ -117,6 +137,7 @@ fn mesh_oriented(
     {
         rings::fix_seam(&mut rings.mesh, &rings.seam);
         stats.refinement_insertions += rings.insertions;
+        stats.cavities_reused += memo.reused;
         let assessment = refine::assess_all(&info, &rings.mesh, options, rings.within.as_deref());
         if assessment.all_good() {
             return finish(&info, &rings.mesh, rings.copies.as_ref(), stats);
@@ -140,6 +161,8 @@ fn mesh_oriented(
         refine::refine_assessed(&info, &mut mesh, VERTEX_BUDGET, &mut stats, assessment)?;
         return finish(&info, &mesh, None, stats);
     }
+    // The general path: no cavity of the structured attempt is in this mesh.
+    memo.restart();
     let seeds = seed::seeds(&info, region, budget)?;
     let mut mesh = initial::triangulate(&info, region, &seeds, &mut stats)?;
     refine::refine(&info, &mut mesh, options, VERTEX_BUDGET, &mut stats)?;
@@ -180,9 +203,14 @@ mod tests {
                     Sizing::new(&options, SEED_SHARE * SEED_SHARE, cap)
                 })
                 .with_analytic(Some(&patch.analytic));
-                let Some(rings) =
-                    rings::triangulate(&info, &region, &options, VERTEX_BUDGET).expect("meshed")
-                else {
+                let Some(rings) = rings::triangulate(
+                    &info,
+                    &region,
+                    &options,
+                    VERTEX_BUDGET,
+                    &mut Memo::new(None),
+                )
+                .expect("meshed") else {
                     continue;
                 };
                 let Some(copies) = &rings.copies else {

@@ -22,6 +22,7 @@ mod cavity;
 mod error;
 mod flip;
 mod initial;
+mod kept;
 mod measure;
 mod mend;
 mod mesher;
@@ -44,8 +45,10 @@ mod trimesh;
 const MIN_VERTICES: usize = 64;
 
 pub use error::CdtError;
+pub use kept::KeptCavities;
 pub use mesher::{
-    VERTEX_BUDGET, mesh_patch_region, mesh_region, mesh_region_on, mesh_region_with_uvs,
+    VERTEX_BUDGET, mesh_patch_region, mesh_patch_region_keeping, mesh_region, mesh_region_on,
+    mesh_region_with_uvs,
 };
 pub use output::{MeshStats, RegionMesh};
 pub use patch::wrap_u;

@@ -41,6 +41,9 @@ pub struct MeshStats {
     pub dropped_degenerate: usize,
     /// Smallest interior angle of an output triangle, degrees (in 3D).
     pub min_angle_deg: f64,
+    /// Cavities round openings whose triangles were taken from the patch's
+    /// previous meshing (see [`mesh_patch_region_keeping`](super::mesh_patch_region_keeping)).
+    pub cavities_reused: usize,
 }
 
 /// A meshed region: the mesh, the parameters of its vertices and the statistics.

@@ -187,7 +187,20 @@ impl Loops {
     /// (the loop segments, which no other cavity triangle shares, stay), as mesh
     /// triangles with their hole segments fixed. `None` when a flip left a
     /// triangle not strictly counter-clockwise in (u, v).
+    #[cfg(test)]
     pub fn finish(&self, mesh: &TriMesh, tris: Vec<[u32; 3]>) -> Option<Vec<Triangle>> {
+        let local = self.finish_local(mesh, tris)?;
+        Some(
+            local
+                .iter()
+                .map(|&(t, f)| (t.map(|k| self.map[k as usize]), f))
+                .collect(),
+        )
+    }
+
+    /// [`finish`](Self::finish) in the cavity's local numbering (its boundary's
+    /// vertices, then each hole's, as [`new`](Self::new) takes them).
+    pub fn finish_local(&self, mesh: &TriMesh, tris: Vec<[u32; 3]>) -> Option<Vec<Triangle>> {
         let mut flat: Vec<u32> = tris.into_iter().flatten().collect();
         earcut::Refiner::new().refine(&mut flat, &self.chart);
         let uv = |k: u32| self.uv(mesh, k);
@@ -201,7 +214,7 @@ impl Loops {
                         let (a, b) = (tri[i], tri[(i + 1) % 3]);
                         self.segment(a, b) && self.on_hole(a)
                     });
-                    (tri.map(|k| self.map[k as usize]), fixed)
+                    (tri, fixed)
                 })
             })
             .collect()

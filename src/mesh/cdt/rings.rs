@@ -26,6 +26,7 @@ use glam::DVec2;
 use rayon::prelude::*;
 
 use super::cavity::{self, Cavity};
+use super::kept::Memo;
 use super::patch::{PatchInfo, Vertex};
 use super::region::Region;
 use super::screen::Screen;
@@ -102,6 +103,7 @@ pub(super) fn triangulate(
     region: &Region,
     options: &TessellationOptions,
     budget: usize,
+    memo: &mut Memo,
 ) -> Result<Option<Rings>, CdtError> {
     // A whole surface of revolution: its first quarter, turned round (within a
     // quarter of the budget, as the whole turn has four times its vertices).
@@ -112,6 +114,7 @@ pub(super) fn triangulate(
             options,
             budget / sector::QUARTERS,
             sector::QUARTERS,
+            memo,
         )
         .map_err(|e| match e {
             CdtError::BudgetExceeded { .. } => CdtError::BudgetExceeded { limit: budget },
@@ -121,7 +124,7 @@ pub(super) fn triangulate(
     {
         return Ok(Some(whole));
     }
-    structured(info, region, options, budget, 1)
+    structured(info, region, options, budget, 1, memo)
 }
 
 /// [`triangulate`] of a region spanning `1 / parts` of the patch's period.
@@ -131,7 +134,9 @@ fn structured(
     options: &TessellationOptions,
     budget: usize,
     parts: usize,
+    memo: &mut Memo,
 ) -> Result<Option<Rings>, CdtError> {
+    memo.restart();
     let Some((bottom, top)) = sides(info, region, options, parts) else {
         return Ok(None);
     };
@@ -228,7 +233,7 @@ fn structured(
         .map(|k| matches!((chains[k].kind, chains[k + 1].kind), (Kind::Row, Kind::Row)))
         .collect();
     if !cavities.is_empty() {
-        let Some(range) = cavity::fill(info, &mut mesh, &chains, &cavities, region)? else {
+        let Some(range) = cavity::fill(info, &mut mesh, &chains, &cavities, region, memo)? else {
             return Ok(None);
         };
         // The cavities' edges along the v sides are loop segments too.

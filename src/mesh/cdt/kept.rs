@@ -1,0 +1,215 @@
+//! Cavity triangulations kept from one meshing of a patch for the next.
+//!
+//! An edit that moves one opening of a course meshes the whole course again,
+//! yet every other opening's cavity comes out with the very same loops: the
+//! lattice's rows do not depend on the holes, and an opening that did not move
+//! keeps its cut bit for bit. `cavity::fill` looks each cavity up here by its
+//! exact inputs — the (u, v) of its boundary and hole vertices, where each hole
+//! starts, and the size metric at its centre, all bit for bit — and takes the
+//! triangles found for them last time instead of zipping or ear-clipping again.
+//! Those triangles are a deterministic function of exactly these inputs, so the
+//! mesh is the one a fresh meshing gives. The Tessellate stage keeps each
+//! patch's [`KeptCavities`] beside its mesh and hands it to the next meshing of
+//! that patch, which returns the cavities it met.
+
+use std::hash::{Hash, Hasher};
+use std::sync::Arc;
+
+use glam::DVec2;
+use rustc_hash::{FxHashMap, FxHasher};
+
+use super::metric::Metric;
+use super::ring::Triangle;
+
+/// The cavities met by one meshing of a patch (shared with the meshings that
+/// met them before).
+#[derive(Debug, Default)]
+pub struct KeptCavities {
+    cavities: Vec<Arc<Kept>>,
+    /// Hash of the inputs → index into `cavities` (of the first with that hash).
+    by_hash: FxHashMap<u64, u32>,
+}
+
+/// One cavity's inputs and its triangles in the cavity's local numbering (its
+/// boundary's vertices, then each hole's).
+#[derive(Debug)]
+pub(super) struct Kept {
+    input: CavityInput,
+    triangles: Box<[Triangle]>,
+}
+
+impl Kept {
+    pub fn new(input: CavityInput, triangles: Vec<Triangle>) -> Arc<Self> {
+        Arc::new(Self {
+            input,
+            triangles: triangles.into_boxed_slice(),
+        })
+    }
+
+    pub fn triangles(&self) -> &[Triangle] {
+        &self.triangles
+    }
+}
+
+/// What a cavity's triangulation is a function of: its loops' (u, v), boundary
+/// first, where each hole starts in that list, and the size metric at its
+/// centre.
+#[derive(Debug, PartialEq)]
+pub(super) struct CavityInput {
+    uvs: Box<[DVec2]>,
+    starts: Box<[u32]>,
+    metric: [f64; 3],
+    hash: u64,
+}
+
+impl CavityInput {
+    pub fn new(uvs: Vec<DVec2>, starts: Vec<u32>, metric: &Metric) -> Self {
+        let metric = [metric.uu, metric.uv, metric.vv];
+        let mut h = FxHasher::default();
+        for p in &uvs {
+            p.x.to_bits().hash(&mut h);
+            p.y.to_bits().hash(&mut h);
+        }
+        starts.hash(&mut h);
+        metric.map(f64::to_bits).hash(&mut h);
+        Self {
+            uvs: uvs.into_boxed_slice(),
+            starts: starts.into_boxed_slice(),
+            metric,
+            hash: h.finish(),
+        }
+    }
+
+    /// Whether the two are the same bit for bit (`==` on the floats would also
+    /// match 0.0 with -0.0).
+    fn same(&self, other: &CavityInput) -> bool {
+        let bits = |p: &DVec2| (p.x.to_bits(), p.y.to_bits());
+        self.hash == other.hash
+            && self.starts == other.starts
+            && self.metric.map(f64::to_bits) == other.metric.map(f64::to_bits)
+            && self.uvs.len() == other.uvs.len()
+            && self
+                .uvs
+                .iter()
+                .zip(&*other.uvs)
+                .all(|(a, b)| bits(a) == bits(b))
+    }
+}
+
+impl KeptCavities {
+    /// The cavities `found`.
+    pub(super) fn new(cavities: Vec<Arc<Kept>>) -> Self {
+        let mut by_hash = FxHashMap::default();
+        for (i, kept) in cavities.iter().enumerate() {
+            by_hash.entry(kept.input.hash).or_insert(i as u32);
+        }
+        Self { cavities, by_hash }
+    }
+
+    /// The cavity kept with exactly these inputs.
+    pub(super) fn find(&self, input: &CavityInput) -> Option<&Arc<Kept>> {
+        let kept = &self.cavities[*self.by_hash.get(&input.hash)? as usize];
+        kept.input.same(input).then_some(kept)
+    }
+
+    /// Cavities kept.
+    pub fn len(&self) -> usize {
+        self.cavities.len()
+    }
+
+    /// Whether none is kept.
+    pub fn is_empty(&self) -> bool {
+        self.cavities.is_empty()
+    }
+
+    /// Heap bytes held (for the model's memory report; a cavity shared with
+    /// another patch's memo counts in both).
+    pub fn heap_bytes(&self) -> usize {
+        let each = |k: &Arc<Kept>| {
+            std::mem::size_of::<Kept>()
+                + k.input.uvs.len() * std::mem::size_of::<DVec2>()
+                + k.input.starts.len() * 4
+                + k.triangles.len() * std::mem::size_of::<Triangle>()
+        };
+        self.cavities.iter().map(each).sum::<usize>() + self.by_hash.capacity() * 16
+    }
+}
+
+/// The kept cavities a meshing may take from and the ones it meets, handed
+/// down to `cavity::fill`.
+#[derive(Default)]
+pub(super) struct Memo<'k> {
+    pub kept: Option<&'k KeptCavities>,
+    pub found: Vec<Arc<Kept>>,
+    /// Cavities whose triangles were taken from `kept`.
+    pub reused: usize,
+}
+
+impl<'k> Memo<'k> {
+    pub fn new(kept: Option<&'k KeptCavities>) -> Self {
+        Self {
+            kept,
+            found: Vec::new(),
+            reused: 0,
+        }
+    }
+
+    /// The cavities met, to keep.
+    pub fn into_kept(self) -> KeptCavities {
+        KeptCavities::new(self.found)
+    }
+
+    /// Forgets what a meshing attempt met (its result was not taken).
+    pub fn restart(&mut self) {
+        self.found.clear();
+        self.reused = 0;
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    const METRIC: Metric = Metric {
+        uu: 4.0,
+        uv: 0.0,
+        vv: 1.0,
+    };
+
+    fn input(shift: f64) -> CavityInput {
+        let uvs = (0..8)
+            .map(|k| DVec2::new(0.1 * k as f64 + shift, 0.5))
+            .collect();
+        CavityInput::new(uvs, vec![4], &METRIC)
+    }
+
+    #[test]
+    fn a_cavity_is_found_only_with_inputs_equal_bit_for_bit() {
+        let tris: Vec<Triangle> = vec![([0, 1, 4], [false, false, true])];
+        let kept = KeptCavities::new(vec![Kept::new(input(0.0), tris.clone())]);
+        assert_eq!(
+            kept.find(&input(0.0)).map(|k| k.triangles()),
+            Some(&tris[..])
+        );
+        // The smallest change of one coordinate, of the metric or of where the
+        // hole starts misses.
+        assert!(kept.find(&input(1e-300)).is_none());
+        let mut uvs: Vec<DVec2> = input(0.0).uvs.into_vec();
+        uvs[3].y = f64::from_bits(uvs[3].y.to_bits() + 1);
+        assert!(
+            kept.find(&CavityInput::new(uvs, vec![4], &METRIC))
+                .is_none()
+        );
+        let other = Metric { uv: -0.0, ..METRIC };
+        let same_uvs = input(0.0).uvs.into_vec();
+        assert!(
+            kept.find(&CavityInput::new(same_uvs.clone(), vec![4], &other))
+                .is_none()
+        );
+        assert!(
+            kept.find(&CavityInput::new(same_uvs, vec![5], &METRIC))
+                .is_none()
+        );
+        assert!(kept.heap_bytes() > 8 * 16);
+    }
+}
