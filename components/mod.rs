@@ -15,6 +15,8 @@ pub use derived::{
     NoteAnchor, Opening, PartFrame, PartSpan, PatchCavities, PatchMesh, PatchRegion, PatchSurface,
     Shape, VesselFrame, VesselSummary,
 };
-pub use params::{DesignOrder, NoteSpec, NozzleSpec, OperatingSpec, PartSpec, VesselSpec};
+pub use params::{
+    DesignOrder, NoteSpec, NozzleSpec, OperatingSpec, PartSpec, VesselSpec, same_in_order,
+};
 pub use relations::{AnnotatedBy, Annotates, MountedOn, Mounts, PadOf, PadPatch, PatchOf, Patches};
 pub use views::{EntityViews, Footprint, VesselViews};

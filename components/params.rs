@@ -5,7 +5,7 @@ use bevy_ecs::component::Component;
 
 use crate::design::{
     DesignConditions, DrawingInfo, NoteDesign, NozzleDesign, OperatingDesign, PartDesign,
-    Placement, VesselKind,
+    Placement, VesselDesign, VesselKind,
 };
 
 /// A vessel's own parameters (its parts, nozzles and notes are child entities).
@@ -21,6 +21,32 @@ pub struct VesselSpec {
     pub design: DesignConditions,
     /// Title-block data of its drawing.
     pub drawing: DrawingInfo,
+}
+
+impl VesselSpec {
+    /// Whether these are `design`'s own parameters (its children and operating
+    /// data aside), compared in place.
+    pub fn holds(&self, design: &VesselDesign) -> bool {
+        self.tag == design.tag
+            && self.kind == design.kind
+            && self.placement == design.placement
+            && self.design == design.design
+            && self.drawing == design.drawing
+    }
+}
+
+/// Whether `children` (each child's parameters with its design order), taken in
+/// design order, are exactly `wanted`.
+pub fn same_in_order<'a, D: PartialEq + 'a>(
+    children: impl Iterator<Item = (&'a D, DesignOrder)>,
+    wanted: &[D],
+) -> bool {
+    let mut have: Vec<(&D, DesignOrder)> = children.collect();
+    if have.len() != wanted.len() {
+        return false;
+    }
+    have.sort_by_key(|(_, o)| *o);
+    have.iter().zip(wanted).all(|((h, _), w)| *h == w)
 }
 
 /// A vessel's operating state (liquid level and density), its own component so

@@ -16,7 +16,7 @@ use rayon::prelude::*;
 use rustc_hash::FxHashMap;
 
 use super::WorkCounters;
-use crate::components::{DesignOrder, NoteSpec, NozzleSpec, PartSpec, VesselSpec};
+use crate::components::{DesignOrder, NoteSpec, NozzleSpec, PartSpec, VesselSpec, same_in_order};
 use crate::constraints::{ResolvedVessel, resolve_vessel};
 use crate::design::{RuleViolation, VesselDesign};
 
@@ -78,11 +78,7 @@ fn holds(
     design: &VesselDesign,
 ) -> bool {
     let kids: &[Entity] = children.map_or(&[], |c| c);
-    spec.tag == design.tag
-        && spec.kind == design.kind
-        && spec.placement == design.placement
-        && spec.design == design.design
-        && spec.drawing == design.drawing
+    spec.holds(design)
         && design.operating.is_none()
         && same(kids, parts, |p| &p.0, &design.parts)
         && same(kids, nozzles, |n| &n.0, &design.nozzles)
@@ -97,12 +93,8 @@ fn same<T: bevy_ecs::component::Component, D: PartialEq>(
     inner: impl Fn(&T) -> &D,
     wanted: &[D],
 ) -> bool {
-    let mut have: Vec<_> = kids.iter().filter_map(|&e| query.get(e).ok()).collect();
-    if have.len() != wanted.len() {
-        return false;
-    }
-    have.sort_by_key(|(_, o)| **o);
-    have.iter().zip(wanted).all(|((h, _), w)| inner(h) == w)
+    let found = kids.iter().filter_map(|&e| query.get(e).ok());
+    same_in_order(found.map(|(t, o)| (inner(t), *o)), wanted)
 }
 
 /// Vessels whose own or whose children's parameters were written (or whose

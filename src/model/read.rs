@@ -9,6 +9,7 @@ use super::VesselIndex;
 use crate::components::{
     DesignOrder, MountedOn, NoteSpec, NozzleSpec, OperatingSpec, PadPatch, PartFrame, PartSpan,
     PartSpec, PatchMesh, PatchSurface, Patches, Shape, VesselFrame, VesselSpec, VesselSummary,
+    same_in_order,
 };
 use crate::constraints::{ResolvedNozzle, ResolvedPart, ResolvedVessel};
 use crate::design::{Design, FORMAT, Units, VesselDesign};
@@ -92,14 +93,9 @@ pub(crate) fn vessel(world: &World, entity: Entity) -> Option<VesselDesign> {
 /// Whether `entity` holds exactly `design`: what [`vessel`] would read back
 /// equals it, compared in place (nothing is cloned).
 pub(crate) fn holds(world: &World, entity: Entity, design: &VesselDesign) -> bool {
-    let Some(spec) = world.get::<VesselSpec>(entity) else {
-        return false;
-    };
-    spec.tag == design.tag
-        && spec.kind == design.kind
-        && spec.placement == design.placement
-        && spec.design == design.design
-        && spec.drawing == design.drawing
+    world
+        .get::<VesselSpec>(entity)
+        .is_some_and(|spec| spec.holds(design))
         && world.get::<OperatingSpec>(entity).and_then(|o| o.0) == design.operating
         && same_children(world, entity, &design.parts, |p: &PartSpec| &p.0)
         && same_children(world, entity, &design.nozzles, |n: &NozzleSpec| &n.0)
@@ -114,19 +110,11 @@ fn same_children<T: bevy_ecs::component::Component, D: PartialEq>(
     wanted: &[D],
     inner: impl Fn(&T) -> &D,
 ) -> bool {
-    let mut have: Vec<(DesignOrder, &D)> = world
-        .get::<Children>(vessel)
-        .map(|c| {
-            c.iter()
-                .filter_map(|&e| Some((*world.get::<DesignOrder>(e)?, inner(world.get::<T>(e)?))))
-                .collect()
-        })
-        .unwrap_or_default();
-    if have.len() != wanted.len() {
-        return false;
-    }
-    have.sort_by_key(|(o, _)| *o);
-    have.iter().zip(wanted).all(|((_, h), w)| *h == w)
+    let kids: &[Entity] = world.get::<Children>(vessel).map_or(&[], |c| c);
+    let found = kids
+        .iter()
+        .filter_map(|&e| Some((inner(world.get::<T>(e)?), *world.get::<DesignOrder>(e)?)));
+    same_in_order(found, wanted)
 }
 
 /// Vessel entities in design order.
