@@ -294,15 +294,11 @@ fn placed(canonical: &IntersectionLoop, ext: &Extrusion, t: f64) -> Option<Inter
         .iter()
         .map(|p| DVec3::new(p.x, p.y, p.z + t))
         .collect();
-    let host_uv = canonical
-        .host_uv
-        .iter()
-        .zip(&points)
-        .map(|(uv, p)| {
-            let v = ext.v_at(p.z);
-            ext.holds(v).then_some(DVec2::new(uv.x, v))
-        })
-        .collect::<Option<Vec<_>>>()?;
+    let mut host_uv = Vec::with_capacity(points.len());
+    for (uv, p) in canonical.host_uv.iter().zip(&points) {
+        let v = ext.v_at(p.z);
+        host_uv.push(ext.holds(v).then_some(DVec2::new(uv.x, v))?);
+    }
     Some(IntersectionLoop {
         points,
         neck_uv: canonical.neck_uv.clone(),

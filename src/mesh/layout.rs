@@ -145,23 +145,19 @@ fn other_cut(sides: &PatchSides, u0: f64, period: f64, spans: &[(f64, f64)]) -> 
 /// from `c` to `c + period` inclusive.
 fn rotated(params: &[f64], u0: f64, period: f64, c: f64) -> Vec<f64> {
     let eps = SAME * period.max(1.0) * 1e3;
-    let mut out: Vec<f64> = params
-        .iter()
-        .copied()
+    let mut rest = (params.iter().copied())
         .filter(|&t| t >= c - eps && t < u0 + period - eps)
-        .collect();
-    out.extend(
-        params
-            .iter()
-            .copied()
-            .filter(|&t| t < c - eps)
-            .map(|t| t + period),
-    );
-    if out.first().is_none_or(|&t| (t - c).abs() > eps) {
-        out.insert(0, c);
-    } else {
-        out[0] = c;
-    }
+        .chain(
+            (params.iter().copied())
+                .filter(|&t| t < c - eps)
+                .map(|t| t + period),
+        )
+        .peekable();
+    // `c` first, in place of a parameter within `eps` of it.
+    let mut out = Vec::with_capacity(params.len() + 2);
+    out.push(c);
+    rest.next_if(|&t| (t - c).abs() <= eps);
+    out.extend(rest);
     out.push(c + period);
     out
 }

@@ -222,7 +222,9 @@ pub(super) fn fill(
                 .collect();
             let metric = info.metric_at(centre);
             // Local numbering: the boundary's vertices, then each hole's.
-            let mut map: Vec<u32> = outer.clone();
+            let mut map: Vec<u32> =
+                Vec::with_capacity(outer.len() + holes.iter().map(|h| h.len()).sum::<usize>());
+            map.extend_from_slice(&outer);
             let mut starts = Vec::with_capacity(holes.len());
             for hole in &holes {
                 starts.push(map.len() as u32);

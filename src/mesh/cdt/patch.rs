@@ -290,20 +290,20 @@ impl<'a> PatchInfo<'a> {
     /// [`fill_metric`](Self::fill_metric).
     pub fn row_vertices(&self, v: f64, us: &[f64]) -> Result<Vec<Vertex>, CdtError> {
         let row = self.surface.row(v);
-        us.iter()
-            .map(|&u| {
-                let (point, du, dv) = row.first_derivatives(self.wrap_u(u));
-                let d = SurfaceDerivatives {
-                    point,
-                    du,
-                    dv,
-                    duu: DVec3::NAN,
-                    duv: DVec3::NAN,
-                    dvv: DVec3::NAN,
-                };
-                self.vertex_from(DVec2::new(u, v), &d)
-            })
-            .collect()
+        let mut out = Vec::with_capacity(us.len());
+        for &u in us {
+            let (point, du, dv) = row.first_derivatives(self.wrap_u(u));
+            let d = SurfaceDerivatives {
+                point,
+                du,
+                dv,
+                duu: DVec3::NAN,
+                duv: DVec3::NAN,
+                dvv: DVec3::NAN,
+            };
+            out.push(self.vertex_from(DVec2::new(u, v), &d)?);
+        }
+        Ok(out)
     }
 
     /// The metrics at `us` along the row of constant `v` ([`metric_at`](Self::metric_at)
