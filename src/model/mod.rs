@@ -3,9 +3,10 @@
 //!
 //! This is the engine's front door. `Model::from_design` spawns the entities of a
 //! design; [`Model::apply`] checks an [`Edit`] against every rule before writing
-//! anything (a rejected edit leaves the world exactly as it was); [`Model::update`]
-//! runs the schedule, which redoes only the work that depends on what changed, and
-//! returns the [`WorkCounters`] of that run.
+//! anything (a rejected edit leaves the world exactly as it was), and
+//! [`Model::apply_each`] applies many, checking those on distinct vessels in
+//! parallel; [`Model::update`] runs the schedule, which redoes only the work that
+//! depends on what changed, and returns the [`WorkCounters`] of that run.
 
 mod edit;
 mod memory;

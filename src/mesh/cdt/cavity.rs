@@ -11,9 +11,11 @@
 //! cavities; the cavity's boundary (its bottom chain's vertices left to right, its
 //! right ends upwards, its top chain's vertices right to left, its left ends
 //! downwards) and its holes are triangulated by `ring` (zipped to a single hole,
-//! ear-clipped round several, flipped to Delaunay). Cavities that overlap are
-//! merged; a cavity `ring` cannot cover is triangulated by spade (`initial`)
-//! instead. A cavity that would reach the seam or a pole is not handled here:
+//! ear-clipped round several, flipped to Delaunay), unless the patch's last
+//! meshing kept a cavity with the very same inputs (`kept`), whose triangles are
+//! then taken. Cavities that overlap are merged; a cavity `ring` cannot cover is
+//! triangulated by spade (`initial`) instead. A cavity that would reach the seam
+//! or a pole is not handled here:
 //! the caller then meshes the whole region by the general path, which also
 //! reports any fault of the loops.
 
