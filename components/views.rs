@@ -14,7 +14,7 @@ use crate::project::{EntityView, Projection, ViewSettings};
 /// Bounds `(min, max)` of an entity's meshes in one view, view coordinates.
 pub type Footprint = Option<(DVec2, DVec2)>;
 
-/// A part's or nozzle's lines in each view, in [`ViewKind::ALL`] order
+/// A part's or nozzle's lines in each view, in [`ViewKind::ALL`](crate::project::ViewKind::ALL) order
 /// (`crate::project::ViewKind`).
 #[derive(Component, Clone, Debug)]
 pub struct EntityViews(pub [Arc<EntityView>; 4]);

@@ -25,7 +25,7 @@ use crate::design::{RuleViolation, VesselDesign};
 pub struct PendingResolutions(pub Vec<(Entity, ResolvedVessel)>);
 
 /// Resolutions `Model::apply` computed when it checked an edit, by vessel, each
-/// with the order and design (operating data left out, as [`read_vessel`] reads
+/// with the order and design (operating data left out, as `read_vessel` reads
 /// it) it was computed from. [`resolve_dirty_vessels`] takes a dirty vessel's
 /// resolution from here instead of resolving it a second time when the world
 /// still holds exactly that design, and drops the rest: resolving is a pure
@@ -68,7 +68,7 @@ pub(crate) fn read_vessel(
 }
 
 /// Whether the vessel entity (its spec and children) holds exactly `design`
-/// (operating data aside, as [`read_vessel`] reads it), compared in place.
+/// (operating data aside, as `read_vessel` reads it), compared in place.
 fn holds(
     spec: &VesselSpec,
     children: Option<&Children>,

@@ -73,7 +73,7 @@ pub struct VesselData {
     pub nozzles: Vec<NozzleData>,
     /// Notes in design order.
     pub notes: Vec<NoteData>,
-    /// The four views, in [`ViewKind::ALL`] order.
+    /// The four views, in [`ViewKind::ALL`](crate::project::ViewKind::ALL) order.
     pub views: [View; 4],
 }
 

@@ -74,7 +74,7 @@ pub enum HiddenLines {
 pub struct SheetOptions {
     /// Sheet size.
     pub size: SheetSize,
-    /// Hidden lines per view, in [`ViewKind::ALL`] order.
+    /// Hidden lines per view, in [`ViewKind::ALL`](crate::project::ViewKind::ALL) order.
     pub hidden: [HiddenLines; 4],
 }
 
@@ -278,7 +278,7 @@ pub struct Sheet {
     pub scale: f64,
     /// Everything drawn, in drawing order.
     pub items: Vec<Item>,
-    /// Where each view's lines lie on the sheet, in [`ViewKind::ALL`] order.
+    /// Where each view's lines lie on the sheet, in [`ViewKind::ALL`](crate::project::ViewKind::ALL) order.
     pub view_boxes: [Rect; 4],
     /// The dimensions placed.
     pub dimensions: Vec<PlacedDimension>,

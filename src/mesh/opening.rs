@@ -113,7 +113,7 @@ pub struct ReusableCut {
 
 /// [`cut_opening`], placing the opening from `kept` without marching when the
 /// nozzle only moved along the axis of the straight course `kept` was cut in (see
-/// [`axial`](super::axial)). `kept` must come from a cut with the same pad and
+/// `mesh::axial`). `kept` must come from a cut with the same pad and
 /// tolerance, and of the same neck unless it was marched on a canonical neck
 /// (`mesh::reach`): then it applies when this neck's canonical neck is the same
 /// (a projection edit), which is checked here. The result is bit for bit the

@@ -104,7 +104,7 @@ impl Simulation {
 
     /// Draws and applies `count` random valid edits; returns how many were
     /// applied and how many drawn edits the rules refused (each redrawn, within
-    /// [`MAX_TRIES`] draws per edit in all).
+    /// `MAX_TRIES` draws per edit in all).
     ///
     /// Edits are drawn in rounds, each on vessels no other edit of the round
     /// touches (a vessel drawn twice ends the round: its next edit is drawn from

@@ -36,7 +36,7 @@ fn projection(kind: ViewKind, right: DVec3, up: DVec3) -> Projection {
 }
 
 /// The four projections of a vessel of `kind` placed by `frame` (vessel → plant),
-/// in [`ViewKind::ALL`] order.
+/// in [`ViewKind::ALL`](crate::project::ViewKind::ALL) order.
 pub fn projections(kind: VesselKind, frame: &DAffine3) -> [Projection; 4] {
     let (right, up) = front_axes(kind, frame);
     let toward = right.cross(up);
