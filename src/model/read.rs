@@ -18,25 +18,6 @@ use crate::export::{
     patch_name, vessel_extras,
 };
 
-/// Children of `vessel` that carry component `T`, in design order.
-fn ordered<T: bevy_ecs::component::Component + Clone>(
-    world: &World,
-    vessel: Entity,
-) -> Vec<(Entity, T)> {
-    let mut out: Vec<(DesignOrder, Entity, T)> = world
-        .get::<Children>(vessel)
-        .map(|c| {
-            c.iter()
-                .filter_map(|&e| {
-                    Some((*world.get::<DesignOrder>(e)?, e, world.get::<T>(e)?.clone()))
-                })
-                .collect()
-        })
-        .unwrap_or_default();
-    out.sort_by_key(|(o, ..)| *o);
-    out.into_iter().map(|(_, e, t)| (e, t)).collect()
-}
-
 /// Children of `vessel` that carry component `T`, in design order (nothing
 /// is cloned).
 pub(crate) fn children_with<T: bevy_ecs::component::Component>(
@@ -54,6 +35,17 @@ pub(crate) fn children_with<T: bevy_ecs::component::Component>(
         .unwrap_or_default();
     out.sort_by_key(|(o, _)| *o);
     out.into_iter().map(|(_, e)| e).collect()
+}
+
+/// Children of `vessel` that carry component `T`, in design order, with it.
+fn ordered<T: bevy_ecs::component::Component + Clone>(
+    world: &World,
+    vessel: Entity,
+) -> Vec<(Entity, T)> {
+    children_with::<T>(world, vessel)
+        .into_iter()
+        .filter_map(|e| Some((e, world.get::<T>(e)?.clone())))
+        .collect()
 }
 
 /// Part entities of a vessel in design order.

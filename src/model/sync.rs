@@ -13,24 +13,16 @@ use crate::components::{DesignOrder, NoteSpec, NozzleSpec, OperatingSpec, PartSp
 use crate::design::{PartDesign, VesselDesign};
 use crate::systems::{ChangeLog, CheckedResolutions, EditedVessels};
 
-/// Sets a component to `value` if it differs (cloning it only then); returns
-/// whether it was written.
-fn put<T: Component<Mutability = Mutable> + PartialEq + Clone>(
+/// Sets a component if it differs; returns whether it was written.
+fn put<T: Component<Mutability = Mutable> + PartialEq>(
     world: &mut World,
     entity: Entity,
-    value: &T,
+    value: T,
 ) -> bool {
     match world.get_mut::<T>(entity) {
-        Some(mut current) => {
-            if *current != *value {
-                *current = value.clone();
-                true
-            } else {
-                false
-            }
-        }
+        Some(mut current) => current.set_if_neq(value),
         None => {
-            world.entity_mut(entity).insert(value.clone());
+            world.entity_mut(entity).insert(value);
             true
         }
     }
@@ -95,7 +87,7 @@ where
                     *held = wrap(design.clone());
                     written = true;
                 }
-                put(world, e, &order);
+                put(world, e, order);
             }
             None => {
                 world.spawn((wrap(design.clone()), order, ChildOf(vessel)));
@@ -116,7 +108,7 @@ where
 /// from what they hold.
 fn put_vessel(world: &mut World, design: &VesselDesign, order: u32) -> Entity {
     let existing = world.resource::<VesselIndex>().0.get(&design.tag).copied();
-    let spec = VesselSpec {
+    let spec = || VesselSpec {
         tag: design.tag.clone(),
         kind: design.kind,
         placement: design.placement,
@@ -127,13 +119,16 @@ fn put_vessel(world: &mut World, design: &VesselDesign, order: u32) -> Entity {
     let mut edited = existing.is_none();
     let entity = match existing {
         Some(e) => {
-            edited |= put(world, e, &spec);
-            put(world, e, &DesignOrder(order));
-            put(world, e, &operating);
+            // Built and written only when it differs.
+            if !world.get::<VesselSpec>(e).is_some_and(|s| s.holds(design)) {
+                edited |= put(world, e, spec());
+            }
+            put(world, e, DesignOrder(order));
+            put(world, e, operating);
             e
         }
         None => {
-            let e = world.spawn((spec, DesignOrder(order), operating)).id();
+            let e = world.spawn((spec(), DesignOrder(order), operating)).id();
             world
                 .resource_mut::<VesselIndex>()
                 .0

@@ -213,7 +213,7 @@ pub(super) fn fill(
         .collect::<Result<_, _>>()?;
     mesh.verts.extend(verts);
     let start = mesh.tris.len() as u32;
-    let kept = memo.kept;
+    let (kept, record) = (memo.kept, memo.record);
     let pieces: Vec<Option<Piece>> = cavities
         .par_iter()
         .map(|cavity| {
@@ -232,11 +232,14 @@ pub(super) fn fill(
                 starts.push(map.len() as u32);
                 map.extend(hole.clone());
             }
-            let input = CavityInput::new(
-                map.iter().map(|&k| mesh.verts[k as usize].uv).collect(),
-                starts,
-                &metric,
-            );
+            // Only when a cavity is looked up or kept.
+            let input = (kept.is_some() || record).then(|| {
+                CavityInput::new(
+                    map.iter().map(|&k| mesh.verts[k as usize].uv).collect(),
+                    starts,
+                    &metric,
+                )
+            });
             // `None` for a local index past the cavity's vertices (none is:
             // kept triangles come with inputs of the same length).
             let to_mesh = |tris: &[Triangle]| -> Option<Vec<Triangle>> {
@@ -247,7 +250,8 @@ pub(super) fn fill(
                     })
                     .collect()
             };
-            if let Some(same) = kept.and_then(|k| k.find(&input))
+            if let (Some(kept), Some(input)) = (kept, &input)
+                && let Some(same) = kept.find(input)
                 && let Some(triangles) = to_mesh(same.triangles())
             {
                 // Kept again for the next meshing.
@@ -263,7 +267,9 @@ pub(super) fn fill(
             {
                 return Some(Piece {
                     triangles: to_mesh(&local)?,
-                    found: Some(Kept::new(input, local)),
+                    found: input
+                        .filter(|_| record)
+                        .map(|input| Kept::new(input, local)),
                     reused: false,
                 });
             }
@@ -280,7 +286,7 @@ pub(super) fn fill(
             return Ok(None);
         };
         memo.reused += usize::from(piece.reused);
-        memo.found.extend(piece.found);
+        memo.found.extend(piece.found.filter(|_| record));
         for (tri, fixed) in piece.triangles {
             mesh.tris.push(tri);
             mesh.fixed.push(fixed);

@@ -140,15 +140,19 @@ impl KeptCavities {
 #[derive(Default)]
 pub(super) struct Memo<'k> {
     pub kept: Option<&'k KeptCavities>,
+    /// Whether the cavities met are wanted (a caller that keeps none does not
+    /// pay for recording them).
+    pub record: bool,
     pub found: Vec<Arc<Kept>>,
     /// Cavities whose triangles were taken from `kept`.
     pub reused: usize,
 }
 
 impl<'k> Memo<'k> {
-    pub fn new(kept: Option<&'k KeptCavities>) -> Self {
+    pub fn new(kept: Option<&'k KeptCavities>, record: bool) -> Self {
         Self {
             kept,
+            record,
             found: Vec::new(),
             reused: 0,
         }

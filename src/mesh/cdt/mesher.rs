@@ -62,7 +62,7 @@ pub fn mesh_region_on(
     region: &Region,
     options: &TessellationOptions,
 ) -> Result<(Mesh, MeshStats), CdtError> {
-    let (out, _) = mesh_with(surface, Some(analytic), region, options, None)?;
+    let (out, _) = mesh_with(surface, Some(analytic), region, options, Memo::default())?;
     Ok((out.mesh, out.stats))
 }
 
@@ -76,7 +76,8 @@ pub fn mesh_patch_region_keeping(
     options: &TessellationOptions,
     kept: Option<&KeptCavities>,
 ) -> Result<(Mesh, MeshStats, KeptCavities), CdtError> {
-    let (out, kept) = mesh_with(&patch.surface, Some(&patch.analytic), region, options, kept)?;
+    let memo = Memo::new(kept, true);
+    let (out, kept) = mesh_with(&patch.surface, Some(&patch.analytic), region, options, memo)?;
     Ok((out.mesh, out.stats, kept))
 }
 
@@ -86,7 +87,7 @@ pub fn mesh_region_with_uvs(
     region: &Region,
     options: &TessellationOptions,
 ) -> Result<RegionMesh, CdtError> {
-    Ok(mesh_with(surface, None, region, options, None)?.0)
+    Ok(mesh_with(surface, None, region, options, Memo::default())?.0)
 }
 
 /// Validates, transposes when the surface wants it, and meshes.
@@ -95,11 +96,10 @@ fn mesh_with(
     analytic: Option<&Analytic>,
     region: &Region,
     options: &TessellationOptions,
-    kept: Option<&KeptCavities>,
+    mut memo: Memo,
 ) -> Result<(RegionMesh, KeptCavities), CdtError> {
     options.validate()?;
     region.validate()?;
-    let mut memo = Memo::new(kept);
     if wants_transpose(surface) {
         let out = mesh_oriented(
             &surface.transposed(),
@@ -208,7 +208,7 @@ mod tests {
                     &region,
                     &options,
                     VERTEX_BUDGET,
-                    &mut Memo::new(None),
+                    &mut Memo::default(),
                 )
                 .expect("meshed") else {
                     continue;
