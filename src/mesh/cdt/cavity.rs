@@ -28,7 +28,7 @@ use super::initial;
 use super::kept::{CavityInput, Kept, Memo};
 use super::patch::{PatchInfo, Vertex};
 use super::region::{Region, UvLoop, bounds_of};
-use super::ring::{Loops, Triangle};
+use super::ring::{Loops, Triangle, numbering};
 use super::rings::{Chain, Kind};
 use super::trimesh::{NONE, TriMesh};
 use super::{CdtError, MeshStats};
@@ -223,36 +223,18 @@ pub(super) fn fill(
                 .map(|&h| hole_first[h]..hole_first[h] + region.holes[h].uv.len() as u32)
                 .collect();
             let metric = info.metric_at(centre);
-            // Local numbering: the boundary's vertices, then each hole's.
-            let mut map: Vec<u32> =
-                Vec::with_capacity(outer.len() + holes.iter().map(|h| h.len()).sum::<usize>());
-            map.extend_from_slice(&outer);
-            let mut starts = Vec::with_capacity(holes.len());
-            for hole in &holes {
-                starts.push(map.len() as u32);
-                map.extend(hole.clone());
-            }
+            let (map, starts) = numbering(&outer, &holes);
             // Only when a cavity is looked up or kept.
             let input = (kept.is_some() || record).then(|| {
                 CavityInput::new(
                     map.iter().map(|&k| mesh.verts[k as usize].uv).collect(),
-                    starts,
+                    starts.clone(),
                     &metric,
                 )
             });
-            // `None` for a local index past the cavity's vertices (none is:
-            // kept triangles come with inputs of the same length).
-            let to_mesh = |tris: &[Triangle]| -> Option<Vec<Triangle>> {
-                tris.iter()
-                    .map(|&(t, f)| {
-                        let [a, b, c] = t.map(|k| map.get(k as usize).copied());
-                        Some(([a?, b?, c?], f))
-                    })
-                    .collect()
-            };
             if let (Some(kept), Some(input)) = (kept, &input)
                 && let Some(same) = kept.find(input)
-                && let Some(triangles) = to_mesh(same.triangles())
+                && let Some(triangles) = to_mesh(&map, same.triangles())
             {
                 // Kept again for the next meshing.
                 return Some(Piece {
@@ -261,15 +243,13 @@ pub(super) fn fill(
                     reused: true,
                 });
             }
-            if let Some(loops) = Loops::new(mesh, &outer, holes, &metric)
+            if let Some(loops) = Loops::numbered(mesh, map, starts, &metric)
                 && let Some(tris) = loops.zip(mesh).or_else(|| loops.ears(mesh))
                 && let Some(local) = loops.finish_local(mesh, tris)
             {
                 return Some(Piece {
-                    triangles: to_mesh(&local)?,
-                    found: input
-                        .filter(|_| record)
-                        .map(|input| Kept::new(input, local)),
+                    triangles: to_mesh(loops.map(), &local)?,
+                    found: input.map(|input| Kept::new(input, local)),
                     reused: false,
                 });
             }
@@ -295,6 +275,18 @@ pub(super) fn fill(
         }
     }
     Ok(Some(start..mesh.tris.len() as u32))
+}
+
+/// `tris` in a cavity's local numbering as mesh triangles (`map`: local index →
+/// mesh vertex); `None` for an index past the cavity's vertices (none is: kept
+/// triangles come with inputs of the same length).
+fn to_mesh(map: &[u32], tris: &[Triangle]) -> Option<Vec<Triangle>> {
+    tris.iter()
+        .map(|&(t, f)| {
+            let [a, b, c] = t.map(|k| map.get(k as usize).copied());
+            Some(([a?, b?, c?], f))
+        })
+        .collect()
 }
 
 /// One cavity's triangles (mesh vertices), with its inputs and local triangles

@@ -38,18 +38,25 @@ impl Loops {
     /// The loops of a cavity with boundary `outer` and holes `holes` (each a run
     /// of consecutive mesh vertices, clockwise); `chart` maps (u, v) to the
     /// cavity's size metric. `None` when a loop has fewer than three vertices.
+    #[cfg(test)]
     pub fn new(
         mesh: &TriMesh,
         outer: &[u32],
         holes: impl IntoIterator<Item = std::ops::Range<u32>>,
         metric: &Metric,
     ) -> Option<Self> {
-        let mut map: Vec<u32> = outer.to_vec();
-        let mut starts = Vec::new();
-        for hole in holes {
-            starts.push(map.len() as u32);
-            map.extend(hole);
-        }
+        let holes: Vec<_> = holes.into_iter().collect();
+        let (map, starts) = numbering(outer, &holes);
+        Self::numbered(mesh, map, starts, metric)
+    }
+
+    /// [`new`](Self::new) from the cavity's local numbering ([`numbering`]).
+    pub fn numbered(
+        mesh: &TriMesh,
+        map: Vec<u32>,
+        starts: Vec<u32>,
+        metric: &Metric,
+    ) -> Option<Self> {
         let n = map.len() as u32;
         let mut next: Vec<u32> = (1..=n).collect();
         let mut first = 0u32;
@@ -70,6 +77,11 @@ impl Loops {
             starts,
             chart,
         })
+    }
+
+    /// The mesh vertex of each local index.
+    pub fn map(&self) -> &[u32] {
+        &self.map
     }
 
     /// Whether `a → b` is a loop segment, in its loop's direction.
@@ -219,6 +231,20 @@ impl Loops {
             })
             .collect()
     }
+}
+
+/// A cavity's local numbering: local index → mesh vertex (the boundary's
+/// vertices `outer`, then each hole's run), and where each hole starts in it.
+pub(super) fn numbering(outer: &[u32], holes: &[std::ops::Range<u32>]) -> (Vec<u32>, Vec<u32>) {
+    let mut map: Vec<u32> =
+        Vec::with_capacity(outer.len() + holes.iter().map(|h| h.len()).sum::<usize>());
+    map.extend_from_slice(outer);
+    let mut starts = Vec::with_capacity(holes.len());
+    for hole in holes {
+        starts.push(map.len() as u32);
+        map.extend(hole.clone());
+    }
+    (map, starts)
 }
 
 /// The zip's walk round a cavity with one hole: position `i` on the boundary,
