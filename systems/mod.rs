@@ -27,7 +27,7 @@ pub use counters::WorkCounters;
 pub use dirty::{DirtyParts, DirtyPatches};
 pub use export::{ChangeLog, collect_changes};
 pub use geometry::rebuild_dirty_patches;
-pub use openings::{OpeningHosts, OpeningInput, cut_openings};
+pub use openings::{CutTable, OpeningHosts, OpeningInput, cut_openings};
 pub use operating::update_operating_states;
 pub use project::{Views, entity_input, project_dirty_views, views_kept};
 pub use regions::{HostSides, lay_out_regions};

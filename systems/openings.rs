@@ -22,7 +22,7 @@ use crate::components::{
     MountedOn, Mounts, Opening, PadOf, PadPatch, PartFrame, PatchSurface, Patches, Shape,
 };
 use crate::design::RuleViolation;
-use crate::mesh::{AxialCut, Cut, HostTrim, PadCut, cut_opening_reusing};
+use crate::mesh::{AxialCut, Cut, HostTrim, OpeningPlan, PadCut, SharedCuts};
 use crate::nurbs::intersect::IntersectionLoop;
 use crate::parts::Patch;
 
@@ -30,6 +30,11 @@ use crate::parts::Patch;
 /// patch whose opening moved away or disappeared).
 #[derive(Resource, Default, Debug)]
 pub struct OpeningHosts(pub HashMap<Entity, Vec<Entity>>);
+
+/// The canonical cuts the model's openings keep, shared by every opening cut
+/// from the same march (see `mesh::shared_cuts`).
+#[derive(Resource, Default, Debug)]
+pub struct CutTable(pub SharedCuts);
 
 /// A cut opening: the host patch entities with their trims, the loops and the pad
 /// patch with its trim, or why not.
@@ -84,14 +89,10 @@ impl OpeningInput {
         same.then(|| axial.clone())
     }
 
-    /// Heap bytes held besides the kept canonical cut's loops (the patches are
-    /// the model's).
+    /// Heap bytes held besides the kept canonical cut (shared between openings;
+    /// the patches are the model's).
     pub fn heap_bytes(&self) -> usize {
         self.hosts.capacity() * std::mem::size_of::<Arc<Patch>>()
-            + self
-                .axial
-                .as_ref()
-                .map_or(0, |_| std::mem::size_of::<AxialCut>())
     }
 
     /// The kept canonical cut, if any.
@@ -130,8 +131,6 @@ struct Job {
     frame: DAffine3,
     host_frame: DAffine3,
     hosts: Vec<(Entity, Arc<Patch>)>,
-    /// The canonical cut kept from the last cut, if it may apply.
-    kept: Option<Arc<AxialCut>>,
 }
 
 /// The error of an opening that cannot be cut: the nozzle (or boot), and as value
@@ -152,6 +151,49 @@ fn violation(world: &World, entity: Entity, rule: String) -> (String, Vec<RuleVi
             rule,
         }],
     )
+}
+
+/// One opening cut: the nozzle, its neck patch, the cut, its inputs and
+/// whether it was placed from a kept cut.
+type Cutting = (Entity, Entity, CutResult, OpeningInput, bool);
+
+/// Cuts the openings of `jobs[ids]` by their `plans`, each placing its `kept`
+/// cut where that applies, in parallel, in that order.
+fn run(
+    jobs: &[Job],
+    plans: &[OpeningPlan],
+    kept: &[Option<Arc<AxialCut>>],
+    ids: &[usize],
+    tolerance: f64,
+) -> Vec<Cutting> {
+    // One job per split, so a thread done with its cuts takes another's (cuts
+    // with a pad march two loops).
+    ids.par_iter()
+        .with_max_len(1)
+        .map(|&i| {
+            let job = &jobs[i];
+            let cut = plans[i].cut(kept[i].as_ref());
+            let (axial, reused) = cut
+                .as_ref()
+                .map_or((None, false), |c| (c.axial.clone(), c.reused));
+            let result = cut.map(|c| {
+                let trims = c
+                    .cut
+                    .hosts
+                    .iter()
+                    .map(|(k, trim)| (job.hosts[*k].0, trim.clone()))
+                    .collect();
+                (trims, c.cut, c.pad)
+            });
+            (
+                job.nozzle,
+                job.neck_patch,
+                result,
+                OpeningInput::of(job, tolerance, axial),
+                reused,
+            )
+        })
+        .collect()
 }
 
 /// Creates, updates (only if it differs) or removes a nozzle's pad patch.
@@ -199,6 +241,8 @@ pub fn cut_openings(world: &mut World) {
     }
     let tolerance = world.resource::<Tessellation>().0.tolerance;
     let mut jobs = Vec::new();
+    // The canonical cut each job's last cut kept, if it may apply.
+    let mut kept: Vec<Option<Arc<AxialCut>>> = Vec::new();
     let mut skipped = 0u64;
     for &nozzle in &dirty {
         let (Some(host), Some(frame)) = (
@@ -232,7 +276,7 @@ pub fn cut_openings(world: &mut World) {
             Some(Shape::Nozzle(_, pad)) => pad.map(|p| p.0),
             _ => None,
         };
-        let mut job = Job {
+        let job = Job {
             nozzle,
             pad_od,
             neck_patch,
@@ -240,7 +284,6 @@ pub fn cut_openings(world: &mut World) {
             frame,
             host_frame,
             hosts,
-            kept: None,
         };
         let last = world
             .get::<OpeningInput>(nozzle)
@@ -251,47 +294,69 @@ pub fn cut_openings(world: &mut World) {
         if unchanged {
             skipped += 1;
         } else {
-            job.kept = last.and_then(|input| input.kept_for(&job, tolerance));
+            kept.push(last.and_then(|input| input.kept_for(&job, tolerance)));
             jobs.push(job);
         }
     }
-    // One job per split, so a thread done with its cuts takes another's (cuts
-    // with a pad march two loops).
-    let results: Vec<(Entity, Entity, CutResult, OpeningInput, bool)> = jobs
+    // Openings cut from one canonical march share it: each distinct march is
+    // looked up among the cuts in use, else made once (by the first opening
+    // that needs it) and placed for the others.
+    let plans: Vec<OpeningPlan> = jobs
         .par_iter()
-        .with_max_len(1)
         .map(|job| {
             let hosts: Vec<&Patch> = job.hosts.iter().map(|(_, p)| p.as_ref()).collect();
-            let cut = cut_opening_reusing(
-                &job.neck,
-                job.pad_od,
-                &job.frame,
-                &job.host_frame,
-                &hosts,
-                tolerance,
-                job.kept.as_ref(),
-            );
-            let (axial, reused) = cut
-                .as_ref()
-                .map_or((None, false), |c| (c.axial.clone(), c.reused));
-            let result = cut.map(|c| {
-                let trims = c
-                    .cut
-                    .hosts
-                    .iter()
-                    .map(|(k, trim)| (job.hosts[*k].0, trim.clone()))
-                    .collect();
-                (trims, c.cut, c.pad)
-            });
-            (
-                job.nozzle,
-                job.neck_patch,
-                result,
-                OpeningInput::of(job, tolerance, axial),
-                reused,
-            )
+            let (neck, frames) = (&job.neck, (&job.frame, &job.host_frame));
+            OpeningPlan::new(neck, job.pad_od, frames.0, frames.1, hosts, tolerance)
         })
         .collect();
+    let keys: Vec<Option<u128>> = plans.iter().map(OpeningPlan::shared_key).collect();
+    let mut first = Vec::with_capacity(jobs.len());
+    let mut later: Vec<(usize, usize)> = Vec::new();
+    {
+        let table = &world.resource::<CutTable>().0;
+        let mut leaders: HashMap<u128, usize> = HashMap::new();
+        for (i, key) in keys.iter().enumerate() {
+            match key {
+                Some(k) => {
+                    if let Some(cut) = table.get(*k) {
+                        kept[i] = Some(cut);
+                        first.push(i);
+                    } else if let Some(&leader) = leaders.get(k) {
+                        later.push((i, leader));
+                    } else {
+                        leaders.insert(*k, i);
+                        first.push(i);
+                    }
+                }
+                None => first.push(i),
+            }
+        }
+    }
+    let mut done: Vec<Option<Cutting>> = (0..jobs.len()).map(|_| None).collect();
+    for (i, r) in first
+        .iter()
+        .zip(run(&jobs, &plans, &kept, &first, tolerance))
+    {
+        done[*i] = Some(r);
+    }
+    if !later.is_empty() {
+        for &(i, leader) in &later {
+            kept[i] = done[leader].as_ref().and_then(|r| r.3.axial.clone());
+        }
+        let ids: Vec<usize> = later.iter().map(|&(i, _)| i).collect();
+        for (i, r) in ids.iter().zip(run(&jobs, &plans, &kept, &ids, tolerance)) {
+            done[*i] = Some(r);
+        }
+    }
+    {
+        let table = &mut world.resource_mut::<CutTable>().0;
+        for (key, r) in keys.iter().zip(&done) {
+            if let (Some(k), Some(Some(cut))) = (key, r.as_ref().map(|r| &r.3.axial)) {
+                table.insert(*k, cut);
+            }
+        }
+    }
+    let results = done.into_iter().flatten();
     let mut cut_count = 0;
     let mut placed = 0;
     let mut failures = 0;

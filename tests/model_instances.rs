@@ -119,3 +119,80 @@ fn an_edit_that_repeats_a_patch_in_use_meshes_nothing() {
     assert!(model.errors().0.is_empty());
     assert_matches_full_build(&model);
 }
+
+/// The canonical cut each nozzle of vessel `tag` was placed from, by mark.
+fn cuts_of(model: &mut Model, tag: &str) -> Vec<(String, *const vesselcad::mesh::AxialCut)> {
+    use bevy_ecs::hierarchy::ChildOf;
+    use vesselcad::components::{NozzleSpec, VesselSpec};
+    use vesselcad::systems::OpeningInput;
+    let world = model.world_mut();
+    let mut q = world.query::<(&NozzleSpec, &ChildOf, &OpeningInput)>();
+    let mut out: Vec<_> = q
+        .iter(world)
+        .filter(|(_, parent, _)| {
+            world
+                .get::<VesselSpec>(parent.parent())
+                .is_some_and(|v| v.tag == tag)
+        })
+        .filter_map(|(n, _, input)| {
+            let cut = input.axial()? as *const vesselcad::mesh::AxialCut;
+            Some((n.0.mark.clone(), cut))
+        })
+        .collect();
+    out.sort();
+    out
+}
+
+#[test]
+fn openings_of_one_size_in_one_course_diameter_share_one_march() {
+    let design = small_plant();
+    let mut m = Model::from_design(&design, options()).unwrap();
+    // V-101's 2" nozzles on its course face three ways at four elevations:
+    // all four are placed from one canonical march; the 3", 6" and 8" (with a
+    // pad) each have their own.
+    let cuts = cuts_of(&mut m, "V-101");
+    let of = |mark: &str| cuts.iter().find(|(m, _)| m == mark).map(|c| c.1);
+    let two = of("N3").expect("N3 is cut in a straight course");
+    for mark in ["N4", "N6", "N7"] {
+        assert_eq!(of(mark), Some(two), "{mark}");
+    }
+    for mark in ["N1", "N2", "N5"] {
+        assert_ne!(of(mark), Some(two), "{mark}");
+    }
+    // A second vessel like V-101, its nozzles turned and its course longer,
+    // shares V-101's marches; its first update places every opening.
+    let v101 = design.vessels[0].clone();
+    let mut twin = v101.clone();
+    twin.tag = "V-109".into();
+    twin.placement.position[0] += 20_000.0;
+    for n in &mut twin.nozzles {
+        n.orientation = (n.orientation + 45.0) % 360.0;
+    }
+    for p in &mut twin.parts {
+        if let PartDesign::Shell(s) = p {
+            s.length += 500.0;
+        }
+    }
+    let c = m.edit(Edit::SetVessel(twin)).unwrap();
+    let course_nozzles = v101.nozzles.iter().filter(|n| n.host == "S1").count() as u64;
+    assert!(c.openings_placed >= course_nozzles, "{c:?}");
+    let twins = cuts_of(&mut m, "V-109");
+    for (mark, cut) in cuts_of(&mut m, "V-101") {
+        if v101
+            .nozzles
+            .iter()
+            .any(|n| n.mark == mark && n.host == "S1")
+        {
+            assert_eq!(
+                twins.iter().find(|t| t.0 == mark).map(|t| t.1),
+                Some(cut),
+                "{mark}"
+            );
+        }
+    }
+    assert_eq!(
+        write_glb(&m.scene()).unwrap(),
+        write_glb(&build_scene(&m.design(), &options()).unwrap()).unwrap(),
+        "the model holds what a full build gives"
+    );
+}

@@ -31,6 +31,7 @@ use glam::{DAffine3, DVec2, DVec3, DVec4};
 
 use super::opening::{PAD_PATCH, PadCut};
 use super::seams::HostTrim;
+use super::turn::{Turn, is_round, round_u, split_turn};
 use crate::nurbs::intersect::IntersectionLoop;
 use crate::nurbs::{KnotVector, NurbsSurface};
 use crate::parts::Patch;
@@ -104,7 +105,7 @@ impl Extrusion {
 /// all by their exact bits. Two independent 64-bit hashes, like
 /// [`mesh_key`](crate::mesh::mesh_key): different inputs collide with
 /// probability about 2⁻¹²⁸.
-fn key(surface: &NurbsSurface, ext: &Extrusion, across: &DAffine3) -> u128 {
+fn key(surface: &NurbsSurface, ext: &Extrusion, across: &DAffine3, turned: bool) -> u128 {
     let mut fx = rustc_hash::FxBuildHasher.build_hasher();
     let mut sip = std::collections::hash_map::DefaultHasher::new();
     let mut write = |x: u64| {
@@ -121,6 +122,7 @@ fn key(surface: &NurbsSurface, ext: &Extrusion, across: &DAffine3) -> u128 {
         }
     }
     write(u64::from(ext.z1 > ext.z0));
+    write(u64::from(turned));
     for x in across.to_cols_array() {
         write(x.to_bits());
     }
@@ -130,11 +132,68 @@ fn key(surface: &NurbsSurface, ext: &Extrusion, across: &DAffine3) -> u128 {
 /// The nozzle's placement in the host split into its part along the axis (`t`)
 /// and the rest (`across`, the placement with its axial translation zeroed):
 /// `relative = translate(t·Z) · across`, exactly.
-pub(super) fn split_placement(relative: &DAffine3) -> (DAffine3, f64) {
+fn split_placement(relative: &DAffine3) -> (DAffine3, f64) {
     let t = relative.translation.z;
     let mut across = *relative;
     across.translation.z = 0.0;
     (across, t)
+}
+
+/// A nozzle's placement in its host part (`host_frame⁻¹ · nozzle_frame`) as a
+/// cut in a straight course takes it: a canonical placement across the axis,
+/// turned about the axis (in a round course, see `mesh::turn`) and moved `t`
+/// along it.
+#[derive(Clone, Copy, Debug)]
+pub(super) struct Placement {
+    /// The placement the loops are marched with: across the axis, turned to
+    /// face −X and snapped in a round course.
+    pub canonical: DAffine3,
+    /// The turn from the canonical placement to the nozzle's, in a round course.
+    pub turn: Option<Turn>,
+    /// The move along the axis.
+    pub t: f64,
+}
+
+impl Placement {
+    /// The placement `relative` in a host part of `host_patches`: turned when
+    /// every one is a round course (a turn about the axis maps the whole host
+    /// onto itself) and the nozzle's axis does not run along the course's.
+    pub fn of(relative: &DAffine3, host_patches: &[&Patch]) -> Self {
+        let (across, t) = split_placement(relative);
+        let round = !host_patches.is_empty()
+            && host_patches
+                .iter()
+                .all(|p| Extrusion::of(&p.surface).is_some() && is_round(&p.surface));
+        match round.then(|| split_turn(&across)).flatten() {
+            Some((canonical, turn)) => Self {
+                canonical,
+                turn: Some(turn),
+                t,
+            },
+            None => Self {
+                canonical: across,
+                turn: None,
+                t,
+            },
+        }
+    }
+
+    /// The placement the canonical neck's reach is sized at (`mesh::reach`):
+    /// the nozzle's own (`relative`), or turned, the canonical one the loops
+    /// are marched at (its reach is the same whatever way the nozzle faces).
+    pub fn sized_at(&self, relative: &DAffine3) -> DAffine3 {
+        if self.turn.is_some() {
+            self.canonical
+        } else {
+            *relative
+        }
+    }
+}
+
+/// The key of the canonical march of an opening at `placement` in the course
+/// `surface` (an extrusion `ext`), besides the neck, pad and tolerance.
+pub(super) fn cut_key(surface: &NurbsSurface, ext: &Extrusion, placement: &Placement) -> u128 {
+    key(surface, ext, &placement.canonical, placement.turn.is_some())
 }
 
 /// The canonical host for a nozzle whose placed neck (and pad) span the axial
@@ -199,19 +258,20 @@ pub struct AxialCut {
 
 impl AxialCut {
     /// A cut of host patch `host` (an extrusion `ext`) from loops marched on its
-    /// canonical host (sized by `zs`) with the nozzle placed at `across`.
+    /// canonical host (sized by `zs`) with the nozzle placed at
+    /// `placement.canonical`.
     pub(super) fn new(
         host: usize,
         surface: &NurbsSurface,
         ext: &Extrusion,
-        across: &DAffine3,
+        placement: &Placement,
         zs: (f64, f64),
         (neck, pad): (IntersectionLoop, Option<IntersectionLoop>),
         reach: Option<(u64, u64)>,
     ) -> Self {
         Self {
             host,
-            key: key(surface, ext, across),
+            key: cut_key(surface, ext, placement),
             zs,
             neck: Arc::new(neck),
             pad: pad.map(Arc::new),
@@ -226,20 +286,21 @@ impl AxialCut {
     }
 
     /// The reinforcing pad's patch, if the nozzle has a pad: the canonical host
-    /// of `host` moved into the nozzle's frame (`across⁻¹`), trimmed by the
+    /// of `host` moved into the nozzle's frame (`canonical⁻¹`), trimmed by the
     /// canonical pad and neck loops, whose host (u, v) are its own. The same
-    /// wherever the nozzle sits along the axis.
+    /// wherever the nozzle sits along the axis (and, in a round course, whatever
+    /// way it faces).
     pub(super) fn pad_cut(
         &self,
         host: &Patch,
-        across: &DAffine3,
+        placement: &Placement,
     ) -> Result<Option<PadCut>, String> {
         let Some(outer) = &self.pad else {
             return Ok(None);
         };
         let ext = Extrusion::of(&host.surface)
             .ok_or_else(|| "pad: the host is not a straight course".to_string())?;
-        let into_nozzle = across.inverse();
+        let into_nozzle = placement.canonical.inverse();
         let surface = canonical_host(&host.surface, &ext, self.zs)?
             .transformed(&into_nozzle)
             .map_err(|e| format!("pad: {e}"))?;
@@ -255,21 +316,26 @@ impl AxialCut {
         self.host
     }
 
-    /// Whether this cut applies to a nozzle placed at `across` in host patch
-    /// `surface` (same cross-section, same placement across the axis, bit for
-    /// bit, by [`key`]).
-    pub(super) fn fits(&self, surface: &NurbsSurface, across: &DAffine3) -> bool {
-        Extrusion::of(surface).is_some_and(|ext| key(surface, &ext, across) == self.key)
+    /// Whether this cut applies to a nozzle at `placement` in host patch
+    /// `surface` (same cross-section, same canonical placement, bit for bit, by
+    /// [`key`]).
+    pub(super) fn fits(&self, surface: &NurbsSurface, placement: &Placement) -> bool {
+        Extrusion::of(surface).is_some_and(|ext| cut_key(surface, &ext, placement) == self.key)
     }
 
-    /// The opening in host patch `surface` with the nozzle `t` along the axis from
-    /// the canonical placement: `None` when a loop does not lie strictly within the
-    /// patch's v-domain (it crosses an end of the course).
-    pub(super) fn place(&self, surface: &NurbsSurface, t: f64) -> Option<super::Cut> {
+    /// The opening in host patch `surface` with the nozzle at `placement`
+    /// (turned and moved from the canonical one): `None` when a loop does not
+    /// lie strictly within the patch's v-domain (it crosses an end of the
+    /// course).
+    pub(super) fn place(
+        &self,
+        surface: &NurbsSurface,
+        placement: &Placement,
+    ) -> Option<super::Cut> {
         let ext = Extrusion::of(surface)?;
-        let neck = placed(&self.neck, &ext, t)?;
+        let neck = placed(&self.neck, &ext, placement)?;
         let pad = match self.pad.as_deref() {
-            Some(p) => Some(placed(p, &ext, t)?),
+            Some(p) => Some(placed(p, &ext, placement)?),
             None => None,
         };
         Some(super::Cut {
@@ -286,18 +352,43 @@ impl AxialCut {
     }
 }
 
-/// `canonical` moved `t` along the axis onto the extrusion `ext`, or `None` if a
-/// point falls outside its v-domain.
-fn placed(canonical: &IntersectionLoop, ext: &Extrusion, t: f64) -> Option<IntersectionLoop> {
-    let points: Vec<DVec3> = canonical
-        .points
-        .iter()
-        .map(|p| DVec3::new(p.x, p.y, p.z + t))
-        .collect();
+/// `canonical` turned and moved along the axis as `placement` says onto the
+/// extrusion `ext`, or `None` if a point falls outside its v-domain.
+///
+/// Turned, a point's host u is its new angle's (the first in the domain, each
+/// later one unwrapped next to the one before, as the marcher keeps them).
+fn placed(
+    canonical: &IntersectionLoop,
+    ext: &Extrusion,
+    placement: &Placement,
+) -> Option<IntersectionLoop> {
+    let t = placement.t;
+    let points: Vec<DVec3> = match placement.turn {
+        Some(turn) => canonical
+            .points
+            .iter()
+            .map(|&p| turn.point(p) + DVec3::new(0.0, 0.0, t))
+            .collect(),
+        None => canonical
+            .points
+            .iter()
+            .map(|p| DVec3::new(p.x, p.y, p.z + t))
+            .collect(),
+    };
     let mut host_uv = Vec::with_capacity(points.len());
+    let mut last: Option<f64> = None;
     for (uv, p) in canonical.host_uv.iter().zip(&points) {
         let v = ext.v_at(p.z);
-        host_uv.push(ext.holds(v).then_some(DVec2::new(uv.x, v))?);
+        let u = match placement.turn {
+            Some(_) => {
+                let u = round_u(*p);
+                let u = last.map_or(u, |l| u + (l - u).round());
+                last = Some(u);
+                u
+            }
+            None => uv.x,
+        };
+        host_uv.push(ext.holds(v).then_some(DVec2::new(u, v))?);
     }
     Some(IntersectionLoop {
         points,
@@ -457,7 +548,9 @@ mod tests {
         let kept = first.axial.unwrap();
         // The 8 in neck (pad 450 mm) at 150 mm runs past the course's bottom.
         let low = frame(DVec3::new(0.0, 0.0, 150.0), axis);
-        assert!(kept.place(&course().surface, 150.0).is_none());
+        let course = course();
+        let placement = super::Placement::of(&low, &[&course]);
+        assert!(kept.place(&course.surface, &placement).is_none());
         let fresh = cut(&low, true, None);
         let reusing = cut(&low, true, Some(&kept));
         assert!(
@@ -468,17 +561,44 @@ mod tests {
     }
 
     #[test]
-    fn a_turned_nozzle_is_marched_again() {
-        let first = cut(
-            &frame(DVec3::new(0.0, 0.0, 1500.0), DVec3::new(1.0, 0.0, 0.0)),
-            false,
-            None,
-        )
-        .unwrap();
-        let kept = first.axial.unwrap();
-        let turned = frame(DVec3::new(0.0, 0.0, 1500.0), DVec3::new(0.0, 1.0, 0.0));
-        let again = cut(&turned, false, Some(&kept)).unwrap();
-        assert!(!again.reused);
-        assert_eq!(again.cut, cut(&turned, false, None).unwrap().cut);
+    fn a_turned_nozzle_is_placed_bit_for_bit() {
+        // Radial, and off-centre and inclined (a hillside nozzle leaning up).
+        let placements = [
+            (DVec3::ZERO, DVec3::new(1.0, 0.0, 0.0)),
+            (DVec3::new(-120.0, 90.0, 0.0), DVec3::new(0.8, -0.6, 0.3)),
+        ];
+        for (offset, axis) in placements {
+            for pad in [false, true] {
+                let at = |angle: f64, z: f64| {
+                    let (s, c) = angle.sin_cos();
+                    let turn = |v: DVec3| DVec3::new(c * v.x - s * v.y, s * v.x + c * v.y, v.z);
+                    frame(turn(offset) + DVec3::new(0.0, 0.0, z), turn(axis))
+                };
+                let first = cut(&at(0.0, 1500.0), pad, None).unwrap();
+                let kept = first.axial.clone().unwrap();
+                // Every way round, the seam's side included.
+                for (angle, z) in [(0.3, 1500.0), (2.0, 1200.0), (3.1, 1500.0), (-1.4, 1700.0)] {
+                    let fresh = cut(&at(angle, z), pad, None).unwrap();
+                    let placed = cut(&at(angle, z), pad, Some(&kept)).unwrap();
+                    assert!(placed.reused, "turned {angle}: placed, not marched");
+                    assert_eq!(placed.cut, fresh.cut, "turned {angle}, pad {pad}");
+                    let neck = neck().surface.transformed(&at(angle, z)).unwrap();
+                    assert_on_both(&placed.cut.neck, &neck);
+                    // The neck's (u, v) and the pad's patch and trim do not turn.
+                    assert_eq!(placed.cut.neck.neck_uv, first.cut.neck.neck_uv);
+                    assert_eq!(placed.pad, first.pad);
+                    if let Some(p) = &placed.pad {
+                        let outer = placed.cut.pad.as_ref().unwrap();
+                        for (trim, placed) in [(&p.outer, outer), (&p.inner, &placed.cut.neck)] {
+                            for (uv, point) in trim.host_uv.iter().zip(&placed.points) {
+                                let on_pad = at(angle, z)
+                                    .transform_point3(p.patch.surface.point(uv.x, uv.y));
+                                assert!(on_pad.distance(*point) <= 1e-9 * OD);
+                            }
+                        }
+                    }
+                }
+            }
+        }
     }
 }

@@ -17,8 +17,10 @@ mod options;
 mod packed;
 mod reach;
 mod seams;
+mod shared_cuts;
 #[cfg(test)]
 mod test_parts;
+mod turn;
 
 pub use axial::AxialCut;
 pub(crate) use axial::Extrusion;
@@ -29,10 +31,13 @@ pub use layout::{
     LayoutError, PatchSides, SEAM_CUTS, closed_in_u, host_region, host_region_with, pad_region,
     patch_region,
 };
-pub use opening::{Cut, PAD_PATCH, PadCut, ReusableCut, cut_opening, cut_opening_reusing};
+pub use opening::{
+    Cut, OpeningPlan, PAD_PATCH, PadCut, ReusableCut, cut_opening, cut_opening_reusing,
+};
 pub use options::{OptionsError, TessellationOptions};
 pub use packed::{OctNormal, PackedMesh};
 pub use seams::{HostTrim, Notch};
+pub use shared_cuts::SharedCuts;
 
 use glam::DVec3;
 

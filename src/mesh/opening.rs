@@ -20,9 +20,10 @@ use glam::{DAffine3, DVec2, DVec3};
 
 use crate::nurbs::builders::{line, revolve};
 
-use super::axial::{AxialCut, Extrusion, axial_range, canonical_host, split_placement};
+use super::axial::{AxialCut, Extrusion, Placement, axial_range, canonical_host, cut_key};
 use super::reach::Reach;
 use super::seams::{HostTrim, Placed, insert_seam_samples, split_at_seams};
+use super::shared_cuts::shared_key;
 use crate::nurbs::NurbsSurface;
 use crate::nurbs::intersect::{
     HostIsoline, IntersectionLoop, LoopSample, intersect_generator, loop_crossing,
@@ -113,11 +114,11 @@ pub struct ReusableCut {
 
 /// [`cut_opening`], placing the opening from `kept` without marching when the
 /// nozzle only moved along the axis of the straight course `kept` was cut in (see
-/// `mesh::axial`). `kept` must come from a cut with the same pad and
-/// tolerance, and of the same neck unless it was marched on a canonical neck
-/// (`mesh::reach`): then it applies when this neck's canonical neck is the same
-/// (a projection edit), which is checked here. The result is bit for bit the
-/// one a fresh cut gives.
+/// `mesh::axial`), or in a round course turned about it (`mesh::turn`). `kept`
+/// must come from a cut with the same pad and tolerance, and of the same neck
+/// unless it was marched on a canonical neck (`mesh::reach`): then it applies
+/// when this neck's canonical neck is the same (a projection edit), which is
+/// checked here. The result is bit for bit the one a fresh cut gives.
 pub fn cut_opening_reusing(
     neck: &Patch,
     pad_od: Option<f64>,
@@ -127,50 +128,122 @@ pub fn cut_opening_reusing(
     tolerance: f64,
     kept: Option<&Arc<AxialCut>>,
 ) -> Result<ReusableCut, String> {
-    let relative = host_frame.inverse() * *nozzle_frame;
-    let axial_hosts = host_patches
-        .iter()
-        .any(|p| Extrusion::of(&p.surface).is_some());
-    let reach = Reach::of(neck, &relative, host_patches, axial_hosts);
-    let cut = cut_with(
-        &reach,
+    OpeningPlan::new(
+        neck,
+        pad_od,
+        nozzle_frame,
+        host_frame,
+        host_patches.to_vec(),
+        tolerance,
+    )
+    .cut(kept)
+}
+
+/// An opening to cut, with what is settled before any marching: the nozzle's
+/// placement in its host (turned and moved from a canonical one in a straight
+/// course) and the neck the loops are marched on. Its [`shared_key`](Self::shared_key)
+/// names the canonical march it would be placed from, so that openings cut
+/// from one march find each other first (see `mesh::shared_cuts`).
+pub struct OpeningPlan<'a> {
+    pad_od: Option<f64>,
+    nozzle_frame: DAffine3,
+    host_frame: DAffine3,
+    host_patches: Vec<&'a Patch>,
+    tolerance: f64,
+    placement: Placement,
+    reach: Reach<'a>,
+}
+
+impl<'a> OpeningPlan<'a> {
+    /// The plan of the opening `neck` (with a pad of `pad_od`, in the nozzle's
+    /// frame `nozzle_frame`) cuts in the host part of `host_patches` (in
+    /// `host_frame`), to `tolerance` mm.
+    pub fn new(
+        neck: &'a Patch,
+        pad_od: Option<f64>,
+        nozzle_frame: &DAffine3,
+        host_frame: &DAffine3,
+        host_patches: Vec<&'a Patch>,
+        tolerance: f64,
+    ) -> Self {
+        let relative = host_frame.inverse() * *nozzle_frame;
+        let axial_hosts = host_patches
+            .iter()
+            .any(|p| Extrusion::of(&p.surface).is_some());
+        let placement = Placement::of(&relative, &host_patches);
+        let reach = Reach::of(
+            neck,
+            &placement.sized_at(&relative),
+            &host_patches,
+            axial_hosts,
+        );
+        Self {
+            pad_od,
+            nozzle_frame: *nozzle_frame,
+            host_frame: *host_frame,
+            host_patches,
+            tolerance,
+            placement,
+            reach,
+        }
+    }
+
+    /// The key of the canonical march the opening would be placed from, when it
+    /// lies in a one-patch straight course and its neck is plain (a canonical
+    /// neck of its radius: then openings of any projection share the march); see
+    /// `mesh::shared_cuts`.
+    pub fn shared_key(&self) -> Option<u128> {
+        let [host] = self.host_patches.as_slice() else {
+            return None;
+        };
+        let ext = Extrusion::of(&host.surface)?;
+        let course = cut_key(&host.surface, &ext, &self.placement);
+        Some(shared_key(
+            course,
+            self.reach.key()?,
+            self.pad_od,
+            self.tolerance,
+        ))
+    }
+
+    /// The opening (see [`cut_opening_reusing`]).
+    pub fn cut(&self, kept: Option<&Arc<AxialCut>>) -> Result<ReusableCut, String> {
+        let reach = &self.reach;
+        let cut = cut_with(self, kept)?;
+        Ok(ReusableCut {
+            cut: reach.on_neck(cut.cut),
+            pad: reach.on_pad(cut.pad),
+            ..cut
+        })
+    }
+}
+
+/// [`OpeningPlan::cut`] on the plan's neck to march on (its (u, v) in the
+/// result are on that neck).
+fn cut_with(plan: &OpeningPlan, kept: Option<&Arc<AxialCut>>) -> Result<ReusableCut, String> {
+    let OpeningPlan {
         pad_od,
         nozzle_frame,
         host_frame,
         host_patches,
         tolerance,
-        kept,
-    )?;
-    Ok(ReusableCut {
-        cut: reach.on_neck(cut.cut),
-        pad: reach.on_pad(cut.pad),
-        ..cut
-    })
-}
-
-/// [`cut_opening_reusing`] with the neck to march on (its (u, v) in the result
-/// are on that neck).
-fn cut_with(
-    reach: &Reach,
-    pad_od: Option<f64>,
-    nozzle_frame: &DAffine3,
-    host_frame: &DAffine3,
-    host_patches: &[&Patch],
-    tolerance: f64,
-    kept: Option<&Arc<AxialCut>>,
-) -> Result<ReusableCut, String> {
+        placement,
+        reach,
+    } = plan;
+    let (pad_od, tolerance) = (*pad_od, *tolerance);
+    let host_patches: &[&Patch] = host_patches;
     let neck = reach.surface.as_ref();
     let relative = host_frame.inverse() * *nozzle_frame;
-    let (across, t) = split_placement(&relative);
+    let across = placement.canonical;
     if let Some(kept) = kept
         && kept.reach() == reach.key()
         && let Some(host) = host_patches.get(kept.host())
-        && kept.fits(&host.surface, &across)
-        && let Some(cut) = kept.place(&host.surface, t)
+        && kept.fits(&host.surface, placement)
+        && let Some(cut) = kept.place(&host.surface, placement)
     {
         return Ok(ReusableCut {
             cut,
-            pad: kept.pad_cut(host, &across)?,
+            pad: kept.pad_cut(host, placement)?,
             axial: Some(kept.clone()),
             reused: true,
         });
@@ -224,17 +297,17 @@ fn cut_with(
                             k,
                             &patch.surface,
                             &ext,
-                            &across,
+                            placement,
                             zs,
                             marched,
                             reach.key(),
                         );
                         let cut = axial
-                            .place(&patch.surface, t)
+                            .place(&patch.surface, placement)
                             .ok_or_else(|| "the loop runs past an end of the course".to_string())?;
                         Ok(ReusableCut {
                             cut,
-                            pad: axial.pad_cut(patch, &across)?,
+                            pad: axial.pad_cut(patch, placement)?,
                             axial: Some(Arc::new(axial)),
                             reused: false,
                         })

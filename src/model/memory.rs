@@ -127,10 +127,19 @@ pub(crate) fn breakdown(world: &World) -> MemoryBreakdown {
     // The inputs each opening was cut from, with the canonical cuts kept for
     // straight courses.
     if let Some(mut q) = world.try_query::<&crate::systems::OpeningInput>() {
+        // Canonical cuts are shared by every opening cut from the same march.
+        let mut cuts = std::collections::HashSet::new();
         for input in q.iter(world) {
             out.openings += size_of::<crate::systems::OpeningInput>() + input.heap_bytes();
+            let Some(cut) = input.axial() else {
+                continue;
+            };
+            if !cuts.insert(cut as *const crate::mesh::AxialCut) {
+                continue;
+            }
+            out.openings += size_of::<crate::mesh::AxialCut>();
             // The canonical loops, shared with the pad's trim when there is one.
-            for l in input.axial().into_iter().flat_map(|a| a.loops()) {
+            for l in cut.loops() {
                 if seen.insert(Arc::as_ptr(l)) {
                     out.openings += loop_bytes(l);
                 }

@@ -32,8 +32,9 @@ use crate::export::Scene;
 use crate::mesh::{OptionsError, TessellationOptions};
 pub use crate::systems::Views;
 use crate::systems::{
-    ChangeLog, CheckedResolutions, DirtyParts, DirtyPatches, EditedVessels, Instances, ModelErrors,
-    OpeningHosts, PendingResolutions, StageTimes, Tessellation, WorkCounters, build_schedule,
+    ChangeLog, CheckedResolutions, CutTable, DirtyParts, DirtyPatches, EditedVessels, Instances,
+    ModelErrors, OpeningHosts, PendingResolutions, StageTimes, Tessellation, WorkCounters,
+    build_schedule,
 };
 
 /// Why an edit or model construction was refused. The model is unchanged.
@@ -86,6 +87,7 @@ impl Model {
         world.init_resource::<ChangeLog>();
         world.init_resource::<VesselIndex>();
         world.init_resource::<OpeningHosts>();
+        world.init_resource::<CutTable>();
         world.init_resource::<DirtyPatches>();
         world.init_resource::<DirtyParts>();
         world.init_resource::<Views>();
