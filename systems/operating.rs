@@ -57,10 +57,20 @@ pub fn update_operating_states(
             .unwrap_or(0.0)
     };
     let mut jobs: Vec<Job> = Vec::new();
+    // Figures worked out while the vessel was checked, from the very inputs a
+    // job would take.
+    let mut known: Vec<(Entity, OperatingState)> = Vec::new();
     for (entity, resolved) in &pending.0 {
         let Ok((_, spec, operating, _, children)) = vessels.get(*entity) else {
             continue;
         };
+        if let Some(k) = resolved.operating
+            && k.data == operating.0
+            && k.metal_density.to_bits() == metal_density(&spec.design).to_bits()
+        {
+            known.push((*entity, k.state));
+            continue;
+        }
         jobs.push(Job {
             entity: *entity,
             spec: spec.clone(),
@@ -104,7 +114,7 @@ pub fn update_operating_states(
             parts: stack,
         });
     }
-    counters.operating_updated += jobs.len() as u64;
+    counters.operating_updated += (jobs.len() + known.len()) as u64;
     let results: Vec<_> = jobs
         .par_iter()
         .map(|job| {
@@ -130,7 +140,8 @@ pub fn update_operating_states(
             )
         })
         .collect();
-    for (entity, result) in results {
+    let known = known.into_iter().map(|(e, state)| (e, Ok(state)));
+    for (entity, result) in known.chain(results) {
         let Ok((state, problem)) = current.get(entity) else {
             continue;
         };

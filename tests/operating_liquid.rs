@@ -350,3 +350,42 @@ fn model_recomputes_only_the_vessel_whose_level_changed() {
     );
     assert_eq!(*model.world().get::<OperatingState>(e).unwrap(), after);
 }
+
+#[test]
+fn a_level_changed_after_a_resolving_edit_in_one_update_counts() {
+    // The figures worked out while checking the course edit are for the old
+    // level: the level changed after it must be the one the model shows.
+    let plant = vessel("vertical", TWO_TO_ONE, TWO_TO_ONE, 500.0);
+    let mut model = Model::from_design(&plant, TessellationOptions::chord(5.0)).unwrap();
+    let mut course = plant.vessels[0].parts[1].clone();
+    if let vesselcad::design::PartDesign::Shell(s) = &mut course {
+        s.length += 400.0;
+    }
+    model
+        .apply(Edit::SetPart {
+            vessel: "V-1".into(),
+            part: course,
+        })
+        .unwrap();
+    model
+        .apply(Edit::SetOperating {
+            vessel: "V-1".into(),
+            operating: Some(OperatingDesign {
+                liquid_level: 1800.0,
+                liquid_density: None,
+            }),
+        })
+        .unwrap();
+    let counters = model.update();
+    assert_eq!(counters.vessels_resolved, 1, "{counters:?}");
+    let world = model.world();
+    let mut q = world
+        .try_query::<&OperatingState>()
+        .expect("operating states exist");
+    let shown = *q.iter(world).next().expect("one vessel");
+    assert_eq!(shown, state(&model.design()));
+    assert_eq!(
+        model.design().vessels[0].operating.unwrap().liquid_level,
+        1800.0
+    );
+}

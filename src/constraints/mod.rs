@@ -118,6 +118,22 @@ pub struct ResolvedVessel {
     pub extent: (f64, f64),
     /// Largest course outside diameter, mm.
     pub max_diameter: f64,
+    /// The operating figures, when the vessel carries operating data (worked
+    /// out while checking it; the model takes them rather than working them
+    /// out again). `None` otherwise, or when not known.
+    pub operating: Option<KnownOperating>,
+}
+
+/// Operating figures worked out while a vessel was checked, with the inputs
+/// besides its resolved stack they were worked out from.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct KnownOperating {
+    /// The vessel's operating data.
+    pub data: Option<crate::design::OperatingDesign>,
+    /// The metal density, kg/m³.
+    pub metal_density: f64,
+    /// The figures.
+    pub state: crate::operating::OperatingState,
 }
 
 /// Collects violations with a common path prefix and entity naming.
@@ -235,7 +251,7 @@ pub fn resolve_vessel(
         &mut report,
     );
     conditions::check(vessel, &parts, &mut report);
-    operating::check(vessel, frame, &parts, &mut report);
+    let operating = operating::check(vessel, frame, &parts, &mut report);
     let nozzles = nozzles::place(vessel, &parts, &stack.courses, &mut report);
     let notes = notes::place(vessel, &parts, &nozzles, &mut report);
     if !report.violations.is_empty() {
@@ -261,5 +277,6 @@ pub fn resolve_vessel(
             .iter()
             .map(|c| c.diameter_max())
             .fold(0.0, f64::max),
+        operating,
     })
 }

@@ -8,24 +8,26 @@
 
 use glam::DAffine3;
 
-use super::{Report, ResolvedPart};
+use super::{KnownOperating, Report, ResolvedPart};
 use crate::design::VesselDesign;
 use crate::operating::{
     OperatingError, metal_density, operating_state, profile::StackPart, thickness,
 };
 
-/// Checks the operating data of `vessel` against its resolved stack.
+/// Checks the operating data of `vessel` against its resolved stack; returns
+/// the operating figures worked out on the way (none when it has no operating
+/// data, breaks a rule or broke one before).
 pub(crate) fn check(
     vessel: &VesselDesign,
     frame: DAffine3,
     parts: &[Option<ResolvedPart>],
     report: &mut Report,
-) {
+) -> Option<KnownOperating> {
     if vessel.operating.is_none() && vessel.design.metal_density.is_none() {
-        return;
+        return None;
     }
     if !report.violations.is_empty() || parts.iter().any(Option::is_none) {
-        return;
+        return None;
     }
     let stack: Vec<StackPart> = parts
         .iter()
@@ -42,14 +44,21 @@ pub(crate) fn check(
                 .unwrap_or(0.0),
         })
         .collect();
-    let Err(error) = operating_state(
+    let error = match operating_state(
         vessel.kind,
         frame,
         &stack,
         metal_density(&vessel.design),
         vessel.operating,
-    ) else {
-        return;
+    ) {
+        Ok(state) => {
+            return Some(KnownOperating {
+                data: vessel.operating,
+                metal_density: metal_density(&vessel.design),
+                state,
+            });
+        }
+        Err(error) => error,
     };
     let part_path = |id: &str| {
         let i = vessel.parts.iter().position(|p| p.id() == id).unwrap_or(0);
@@ -88,4 +97,5 @@ pub(crate) fn check(
             error.to_string(),
         ),
     }
+    None
 }

@@ -232,7 +232,6 @@ fn cut_with(plan: &OpeningPlan, kept: Option<&Arc<AxialCut>>) -> Result<Reusable
     } = plan;
     let (pad_od, tolerance) = (*pad_od, *tolerance);
     let host_patches: &[&Patch] = host_patches;
-    let neck = reach.surface.as_ref();
     let relative = host_frame.inverse() * *nozzle_frame;
     let across = placement.canonical;
     if let Some(kept) = kept
@@ -248,6 +247,8 @@ fn cut_with(plan: &OpeningPlan, kept: Option<&Arc<AxialCut>>) -> Result<Reusable
             reused: true,
         });
     }
+    let neck = reach.surface();
+    let neck = neck.as_ref();
     let place = |s: &NurbsSurface, at: &DAffine3| {
         s.transformed(at)
             .map_err(|e| format!("cannot place the nozzle in its host's frame: {e}"))

@@ -29,9 +29,11 @@ use crate::parts::Patch;
 
 /// The neck to cut with.
 pub(super) struct Reach<'a> {
-    /// The surface the loops are marched on: the canonical neck, or the neck
-    /// itself when it is not a plain cylinder from z = 0.
-    pub surface: Cow<'a, NurbsSurface>,
+    /// The neck itself.
+    own: &'a NurbsSurface,
+    /// The canonical neck's radius and height, when the neck is replaced by one
+    /// (built only when a loop is marched: see [`Reach::surface`]).
+    canonical: Option<(f64, f64)>,
     /// The height the pad's outside cylinder spans (in the nozzle frame).
     pub top: f64,
     /// v on the real neck per v on `surface` (1 for the neck itself).
@@ -62,7 +64,8 @@ impl<'a> Reach<'a> {
             .fold(0.0f64, |m, p| m.max(p.z))
             .max(1.0);
         let own = Self {
-            surface: Cow::Borrowed(&neck.surface),
+            own: &neck.surface,
+            canonical: None,
             top,
             scale: 1.0,
             key: None,
@@ -85,14 +88,25 @@ impl<'a> Reach<'a> {
         if !(reach.is_finite() && reach > 0.0) {
             return own;
         }
-        match cylinder(radius, reach) {
-            Some(surface) => Self {
-                surface: Cow::Owned(surface),
-                top: reach,
-                scale: reach / top,
-                key: Some((radius.to_bits(), reach.to_bits())),
-            },
-            None => own,
+        Self {
+            canonical: Some((radius, reach)),
+            top: reach,
+            scale: reach / top,
+            key: Some((radius.to_bits(), reach.to_bits())),
+            ..own
+        }
+    }
+
+    /// The surface the loops are marched on: the canonical neck, or the neck
+    /// itself when it is not a plain cylinder from z = 0.
+    pub fn surface(&self) -> Cow<'a, NurbsSurface> {
+        // A radius > 0 and a finite height > 0 always make a cylinder.
+        match self
+            .canonical
+            .and_then(|(radius, height)| cylinder(radius, height))
+        {
+            Some(surface) => Cow::Owned(surface),
+            None => Cow::Borrowed(self.own),
         }
     }
 
@@ -207,21 +221,21 @@ mod tests {
         let plain = neck(1400.0);
         let radial = frame(DVec3::new(0.0, 0.0, 1500.0), DVec3::X);
         let reach = Reach::of(&plain, &radial, &[&host], true);
-        assert!(reach.surface.as_ref() != &plain.surface);
+        assert!(reach.surface().as_ref() != &plain.surface);
         // A leaning neck in a course: moved along the axis, its reach would
         // change, so it is cut as it is.
         let leaning = frame(DVec3::new(0.0, 0.0, 1500.0), DVec3::new(0.8, 0.0, 0.6));
         let reach = Reach::of(&plain, &leaning, &[&host], true);
-        assert!(reach.surface.as_ref() == &plain.surface);
+        assert!(reach.surface().as_ref() == &plain.surface);
         // On a head (no straight course), any neck of the nozzle's form is.
         let head = Head::new(OD, HeadKind::TWO_TO_ONE).patches().unwrap();
         let hosts: Vec<&Patch> = head.iter().collect();
         let up = DAffine3::from_translation(DVec3::new(300.0, 0.0, 0.0));
         let reach = Reach::of(&plain, &up, &hosts, false);
-        assert!(reach.surface.as_ref() != &plain.surface);
+        assert!(reach.surface().as_ref() != &plain.surface);
         // Another patch of the nozzle (the hub, a cone) is not a plain neck.
         let hub = nozzle(1400.0).patches().unwrap().remove(1);
         let reach = Reach::of(&hub, &radial, &[&host], true);
-        assert!(reach.surface.as_ref() == &hub.surface);
+        assert!(reach.surface().as_ref() == &hub.surface);
     }
 }

@@ -186,6 +186,7 @@ fn resolved(world: &World, entity: Entity) -> Option<(VesselDesign, ResolvedVess
         tangent_length: summary.tangent_length,
         extent: summary.extent,
         max_diameter: summary.max_diameter,
+        operating: None,
     };
     Some((design, resolved))
 }

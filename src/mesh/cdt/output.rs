@@ -79,14 +79,17 @@ impl RegionMesh {
 /// Smallest interior angle of a triangle, as `(|a × b|, a · b)` of its two edges
 /// at the vertex opposite its shortest side: the angle is their `atan2`, at most
 /// 60°, so the pairs compare by `sin·cos'` against `sin'·cos` with no
-/// trigonometry per triangle.
-fn min_angle(p: [DVec3; 3]) -> (f64, f64) {
-    let opposite = |i: usize| (p[(i + 2) % 3] - p[(i + 1) % 3]).length_squared();
-    let i = (0..3)
-        .min_by(|&a, &b| opposite(a).total_cmp(&opposite(b)))
+/// trigonometry per triangle. `sides` are the squared lengths of the sides
+/// (side i from vertex i to vertex i + 1) and `cross` is |a × b| (the same at
+/// every vertex: twice the area), both computed already by the caller.
+fn min_angle(p: [DVec3; 3], sides: [f64; 3], cross: f64) -> (f64, f64) {
+    // The shortest side k is opposite vertex k + 2.
+    let k = (0..3)
+        .min_by(|&a, &b| sides[a].total_cmp(&sides[b]))
         .unwrap_or(0);
+    let i = (k + 2) % 3;
     let (a, b) = (p[(i + 1) % 3] - p[i], p[(i + 2) % 3] - p[i]);
-    (a.cross(b).length(), a.dot(b))
+    (cross, a.dot(b))
 }
 
 /// Triangles per chunk of the output's checks.
@@ -216,9 +219,9 @@ pub(super) fn finish(
             }
             let p = welded.map(|k| out.mesh.positions[k as usize]);
             let normal = (p[1] - p[0]).cross(p[2] - p[0]);
-            let longest = (0..3)
-                .map(|i| (p[(i + 1) % 3] - p[i]).length_squared())
-                .fold(0.0, f64::max);
+            // Side i runs from vertex i to vertex i + 1.
+            let sides = [0, 1, 2].map(|i| (p[(i + 1) % 3] - p[i]).length_squared());
+            let longest = sides.into_iter().fold(0.0, f64::max);
             let turned = tri
                 .iter()
                 .any(|&k| mesh.verts[k as usize].normal.dot(normal) <= 0.0);
@@ -226,7 +229,7 @@ pub(super) fn finish(
             if area.is_nan() || area <= FLAT * longest || turned {
                 return Err(CdtError::InvalidTriangle { triangle: t });
             }
-            chunk.smallest = smaller(chunk.smallest, min_angle(p));
+            chunk.smallest = smaller(chunk.smallest, min_angle(p, sides, area));
             chunk.indices.extend_from_slice(&welded);
         }
         Ok(chunk)
