@@ -127,14 +127,20 @@ fn plan(info: &PatchInfo, region: &Region, budget: usize) -> Result<Plan, CdtErr
     let (lo, hi) = region.bounds();
     let (us, v_spans) = sample_grid(info, lo, hi);
     let grid_us = u_samples(info, lo, hi, GRID_SAMPLES_PER_U_SPAN);
+    // On a surface swept straight along Z (a course) every row is the same
+    // cross-section: its metrics are the first row's, evaluated once.
+    let swept = crate::mesh::Extrusion::of(info.surface).is_some();
     // Row density across v (max over u) and an estimate of the lattice size.
     let mut rows: Vec<f64> = Vec::new();
     let mut estimate = 0.0;
     for vs in &v_spans {
-        let metrics: Vec<Vec<Metric>> = vs
-            .par_iter()
-            .map(|&v| info.row_metrics(v, &grid_us))
-            .collect();
+        let metrics: Vec<Vec<Metric>> = if swept {
+            vec![info.row_metrics(vs[0], &grid_us); vs.len()]
+        } else {
+            vs.par_iter()
+                .map(|&v| info.row_metrics(v, &grid_us))
+                .collect()
+        };
         let density: Vec<f64> = metrics
             .iter()
             .map(|row| row.iter().map(Metric::across_v).fold(0.0, f64::max) / ROW_HEIGHT)
@@ -168,10 +174,21 @@ fn plan(info: &PatchInfo, region: &Region, budget: usize) -> Result<Plan, CdtErr
             }
         }
     }
-    let profiles: Vec<RowProfile> = rows
-        .par_iter()
-        .map(|&v| RowProfile::new(info, &us, v))
-        .collect();
+    let profiles: Vec<RowProfile> = match rows.first() {
+        Some(&first) if swept => {
+            let profile = RowProfile::new(info, &us, first);
+            rows.iter()
+                .map(|&v| RowProfile {
+                    v,
+                    ..profile.clone()
+                })
+                .collect()
+        }
+        _ => rows
+            .par_iter()
+            .map(|&v| RowProfile::new(info, &us, v))
+            .collect(),
+    };
     let counts = row_counts(&profiles);
     let total: usize = counts.iter().sum();
     if total > budget {
@@ -269,6 +286,7 @@ fn row_counts(profiles: &[RowProfile]) -> Vec<usize> {
 }
 
 /// The metric along one row and the integral of its spacing.
+#[derive(Clone)]
 struct RowProfile {
     v: f64,
     metrics: Vec<Metric>,
