@@ -190,6 +190,26 @@ fn bench(c: &mut Criterion) {
         })
     });
 
+    // The same cut turned 70° about the course's axis (an orientation edit):
+    // placed from the kept canonical cut too, host u in closed form.
+    let turned = DAffine3::from_rotation_z(70f64.to_radians()) * frame;
+    group.bench_function("cut: 8in with pad turned about the shell's axis", |b| {
+        b.iter(|| {
+            let cut = cut_opening_reusing(
+                &neck,
+                pad_od,
+                &turned,
+                &DAffine3::IDENTITY,
+                &[&course],
+                TOLERANCE,
+                Some(&kept),
+            )
+            .expect("a cut");
+            assert!(cut.reused);
+            black_box(cut)
+        })
+    });
+
     // Region layout of a course with six openings at two elevations.
     let loops: Vec<_> = (0..6)
         .map(|k| {
