@@ -360,6 +360,10 @@ pub fn cut_openings(world: &mut World) {
     let mut cut_count = 0;
     let mut placed = 0;
     let mut failures = 0;
+    // Components new to their nozzle are inserted in batches after the loop
+    // (see `remesh_dirty_patches`).
+    let mut new_openings: Vec<(Entity, Opening)> = Vec::new();
+    let mut new_inputs: Vec<(Entity, OpeningInput)> = Vec::new();
     for (nozzle, neck_patch, result, input, reused) in results {
         match result {
             Ok((hosts, cut, pad)) => {
@@ -393,7 +397,7 @@ pub fn cut_openings(world: &mut World) {
                         }
                     }
                     None => {
-                        world.entity_mut(nozzle).insert(opening);
+                        new_openings.push((nozzle, opening));
                         true
                     }
                 };
@@ -403,7 +407,10 @@ pub fn cut_openings(world: &mut World) {
                     world.resource_mut::<DirtyParts>().openings.push(nozzle);
                 }
                 set_pad(world, nozzle, pad.map(|p| p.patch));
-                world.entity_mut(nozzle).insert(input);
+                match world.get_mut::<OpeningInput>(nozzle) {
+                    Some(mut held) => *held = input,
+                    None => new_inputs.push((nozzle, input)),
+                }
             }
             Err(rule) => {
                 failures += 1;
@@ -413,6 +420,8 @@ pub fn cut_openings(world: &mut World) {
             }
         }
     }
+    world.insert_batch(new_openings);
+    world.insert_batch(new_inputs);
     let mut counters = world.resource_mut::<WorkCounters>();
     counters.openings_cut += cut_count;
     counters.openings_unchanged += skipped;

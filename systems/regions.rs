@@ -249,6 +249,11 @@ pub fn lay_out_regions(world: &mut World, all: &mut QueryState<Entity, With<Patc
     world.resource_mut::<HostSides>().0 = kept;
     let mut laid = 0;
     let mut failures = 0;
+    // New components are inserted in one batch (see `remesh_dirty_patches`);
+    // the dirty lists are extended once.
+    let mut new_regions: Vec<(Entity, PatchRegion)> = Vec::new();
+    let mut laid_out = Vec::with_capacity(results.len());
+    let mut changed_regions = Vec::with_capacity(results.len());
     for (patch, (result, _)) in results {
         match result {
             Ok((region, fingerprint)) => {
@@ -256,10 +261,7 @@ pub fn lay_out_regions(world: &mut World, all: &mut QueryState<Entity, With<Patc
                     fingerprint,
                     region: keep.then(|| region.clone()),
                 };
-                world
-                    .resource_mut::<DirtyPatches>()
-                    .laid_out
-                    .push((patch, region));
+                laid_out.push((patch, region));
                 let changed = match world.get_mut::<PatchRegion>(patch) {
                     Some(mut current) => {
                         let differs = current.fingerprint != component.fingerprint;
@@ -269,12 +271,12 @@ pub fn lay_out_regions(world: &mut World, all: &mut QueryState<Entity, With<Patc
                         differs
                     }
                     None => {
-                        world.entity_mut(patch).insert(component);
+                        new_regions.push((patch, component));
                         true
                     }
                 };
                 if changed {
-                    world.resource_mut::<DirtyPatches>().regions.push(patch);
+                    changed_regions.push(patch);
                 }
                 laid += u64::from(changed);
             }
@@ -294,6 +296,10 @@ pub fn lay_out_regions(world: &mut World, all: &mut QueryState<Entity, With<Patc
             }
         }
     }
+    world.insert_batch(new_regions);
+    let mut dirty = world.resource_mut::<DirtyPatches>();
+    dirty.laid_out.extend(laid_out);
+    dirty.regions.extend(changed_regions);
     let mut counters = world.resource_mut::<WorkCounters>();
     counters.regions_laid_out += laid;
     counters.failures += failures;

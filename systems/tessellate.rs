@@ -6,7 +6,6 @@
 //! cavities its meshing triangulated round them ([`PatchCavities`]), and its next
 //! meshing takes those whose inputs come out the same.
 
-use std::collections::HashMap;
 use std::sync::Arc;
 
 use bevy_ecs::entity::Entity;
@@ -49,7 +48,9 @@ pub struct Tessellation(pub TessellationOptions);
 pub fn remesh_dirty_patches(world: &mut World, surfaces: &mut QueryState<&PatchSurface>) {
     let options = world.resource::<Tessellation>().0;
     let lists = world.resource::<DirtyPatches>();
-    let laid: HashMap<Entity, &Arc<Region>> = lists.laid_out.iter().map(|(e, r)| (*e, r)).collect();
+    let mut laid: FxHashMap<Entity, &Arc<Region>> = FxHashMap::default();
+    laid.reserve(lists.laid_out.len());
+    laid.extend(lists.laid_out.iter().map(|(e, r)| (*e, r)));
     let mut dirty: Vec<Entity> = if world.is_resource_changed::<Tessellation>() {
         laid.keys().copied().collect()
     } else {
@@ -63,17 +64,22 @@ pub fn remesh_dirty_patches(world: &mut World, surfaces: &mut QueryState<&PatchS
     };
     dirty.sort_unstable();
     dirty.dedup();
+    // Read in parallel: after a full build's layout these lists hold every
+    // patch of the plant, and a serial pass over them was a good part of the
+    // stage's wall time on two threads.
+    surfaces.update_archetypes(world);
+    let surfaces = &*surfaces;
     let work: Vec<(Entity, Arc<Patch>, Arc<Region>)> = dirty
-        .into_iter()
-        .filter_map(|e| {
+        .par_iter()
+        .filter_map(|&e| {
             // A patch whose region could not be laid out has its error already.
             let region = (*laid.get(&e)?).clone();
-            Some((e, surfaces.get(world, e).ok()?.0.clone(), region))
+            Some((e, surfaces.get_manual(world, e).ok()?.0.clone(), region))
         })
         .collect();
     // The cavities each patch's last meshing met.
     let kept: Vec<Option<Arc<KeptCavities>>> = work
-        .iter()
+        .par_iter()
         .map(|(e, ..)| world.get::<PatchCavities>(*e).map(|c| c.0.clone()))
         .collect();
     if work.is_empty() {
@@ -86,7 +92,7 @@ pub fn remesh_dirty_patches(world: &mut World, surfaces: &mut QueryState<&PatchS
         .map(|(_, p, r)| mesh_key(p, r.fingerprint(), &options))
         .collect();
     let instances = &world.resource::<Instances>().0;
-    let in_use: Vec<Option<Arc<PackedMesh>>> = keys.iter().map(|&k| instances.get(k)).collect();
+    let in_use: Vec<Option<Arc<PackedMesh>>> = keys.par_iter().map(|&k| instances.get(k)).collect();
     let mut first: FxHashMap<u128, usize> = FxHashMap::default();
     let to_mesh: Vec<usize> = (0..work.len())
         .filter(|&i| in_use[i].is_none() && *first.entry(keys[i]).or_insert(i) == i)
@@ -126,6 +132,12 @@ pub fn remesh_dirty_patches(world: &mut World, surfaces: &mut QueryState<&PatchS
         }
     }
     let mut failures = 0u64;
+    // Components new to their entity are inserted in batches (one archetype
+    // lookup per run of entities alike, not one per entity: a full build's
+    // patches all get their first mesh here); existing ones are overwritten.
+    let mut new_meshes: Vec<(Entity, PatchMesh)> = Vec::new();
+    let mut new_cavities: Vec<(Entity, PatchCavities)> = Vec::new();
+    let mut written = Vec::with_capacity(work.len());
     for (((e, _, _), key), held) in work.iter().zip(&keys).zip(in_use) {
         let e = *e;
         // A mesh in use elsewhere is shared with its cavities left as they were.
@@ -139,18 +151,21 @@ pub fn remesh_dirty_patches(world: &mut World, surfaces: &mut QueryState<&PatchS
         };
         match result {
             Ok((mesh, cavities)) => {
-                let mut entity = world.entity_mut(e);
-                entity.insert(PatchMesh(mesh));
-                match cavities {
-                    Some(Some(c)) => {
-                        entity.insert(PatchCavities(c));
-                    }
-                    Some(None) => {
-                        entity.remove::<PatchCavities>();
-                    }
-                    None => {}
+                match world.get_mut::<PatchMesh>(e) {
+                    Some(mut held) => held.0 = mesh,
+                    None => new_meshes.push((e, PatchMesh(mesh))),
                 }
-                world.resource_mut::<DirtyPatches>().meshes.push(e);
+                match cavities {
+                    Some(Some(c)) => match world.get_mut::<PatchCavities>(e) {
+                        Some(mut held) => held.0 = c,
+                        None => new_cavities.push((e, PatchCavities(c))),
+                    },
+                    Some(None) if world.get::<PatchCavities>(e).is_some() => {
+                        world.entity_mut(e).remove::<PatchCavities>();
+                    }
+                    Some(None) | None => {}
+                }
+                written.push(e);
             }
             Err(rule) => {
                 failures += 1;
@@ -168,6 +183,9 @@ pub fn remesh_dirty_patches(world: &mut World, surfaces: &mut QueryState<&PatchS
             }
         }
     }
+    world.insert_batch(new_meshes);
+    world.insert_batch(new_cavities);
+    world.resource_mut::<DirtyPatches>().meshes.extend(written);
     let mut counters = world.resource_mut::<WorkCounters>();
     counters.meshes_rebuilt += work.len() as u64;
     counters.meshes_shared += (work.len() - to_mesh.len()) as u64;
