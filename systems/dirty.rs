@@ -22,6 +22,9 @@ use bevy_ecs::resource::Resource;
 
 use crate::mesh::cdt::Region;
 
+/// Regions laid out beyond which [`DirtyPatches::clear`] drops them in parallel.
+const PARALLEL_DROP: usize = 4096;
+
 /// Patches written in the current run of the schedule.
 #[derive(Resource, Default, Debug)]
 pub struct DirtyPatches {
@@ -38,12 +41,19 @@ pub struct DirtyPatches {
 }
 
 impl DirtyPatches {
-    /// Empties every list (keeping their capacity).
+    /// Empties every list (keeping their capacity). The regions laid out are
+    /// dropped in parallel when there are many (after a full build, every
+    /// patch's: most of them held only here).
     pub fn clear(&mut self) {
         self.surfaces.clear();
         self.regions.clear();
         self.meshes.clear();
-        self.laid_out.clear();
+        if self.laid_out.len() >= PARALLEL_DROP {
+            use rayon::prelude::*;
+            self.laid_out.par_drain(..).for_each(drop);
+        } else {
+            self.laid_out.clear();
+        }
     }
 }
 

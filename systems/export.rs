@@ -48,20 +48,20 @@ pub fn collect_changes(
                 .or_else(|| nozzle.map(|n| n.0.mark.clone()))?;
             Some(format!("{tag}/{id}"))
         };
-    for moved in parts.moved_or_reshaped() {
-        if let Ok((c, p, n)) = owners.get(moved)
-            && let Some(id) = id_of(c, p, n)
-        {
-            log.changed.insert(id);
-        }
-    }
+    // Parts and nozzles that moved or changed shape, and the owners of the
+    // patches meshed again: each named once (a full build meshes some twenty
+    // patches per owner).
+    let mut owner_ids: Vec<Entity> = parts.moved_or_reshaped();
     parts.clear();
-    let owner_ids: Vec<Entity> = dirty
-        .meshes
-        .iter()
-        .filter_map(|&e| patches.get(e).ok())
-        .filter_map(|(patch, pad)| patch.map(|p| p.0).or(pad.map(|p| p.0)))
-        .collect();
+    owner_ids.extend(
+        dirty
+            .meshes
+            .iter()
+            .filter_map(|&e| patches.get(e).ok())
+            .filter_map(|(patch, pad)| patch.map(|p| p.0).or(pad.map(|p| p.0))),
+    );
+    owner_ids.sort_unstable();
+    owner_ids.dedup();
     dirty.clear();
     for owner in owner_ids {
         if let Ok((c, p, n)) = owners.get(owner)
