@@ -138,6 +138,11 @@ fn mesh_oriented(
         rings::fix_seam(&mut rings.mesh, &rings.seam);
         stats.refinement_insertions += rings.insertions;
         stats.cavities_reused += memo.reused;
+        // Every triangle screened within: nothing to measure (nor the loops'
+        // allowances to work out).
+        if rings.within.as_deref().is_some_and(|w| w.iter().all(|&x| x)) {
+            return finish(&info, &rings.mesh, rings.copies.as_ref(), stats);
+        }
         let assessment = refine::assess_all(&info, &rings.mesh, options, rings.within.as_deref());
         if assessment.all_good() {
             return finish(&info, &rings.mesh, rings.copies.as_ref(), stats);

@@ -19,6 +19,7 @@
 //! the facts about the surface every stage uses.
 
 mod cavity;
+mod certify;
 mod error;
 mod flip;
 mod initial;

@@ -25,6 +25,7 @@ use std::ops::Range;
 
 use glam::{DVec2, DVec3};
 
+use super::certify::{Bound, MARGIN};
 use super::patch::PatchInfo;
 use super::refine::{edge_probe_uv, end_normal};
 use rustc_hash::FxHashMap;
@@ -51,6 +52,8 @@ struct Probe {
 pub(super) struct Screen<'a> {
     info: &'a PatchInfo<'a>,
     analytic: Analytic,
+    /// The closed-form bound of a plane or cylinder (`certify`).
+    bound: Option<Bound>,
     limits: Limits,
     /// Whether the surface is swept straight along Z (a course): see [`Swept`].
     swept: Option<Extrusion>,
@@ -80,6 +83,7 @@ impl<'a> Screen<'a> {
         Some(Self {
             info,
             analytic,
+            bound: Bound::of(&analytic),
             swept,
             limits: Limits {
                 tolerance: options.tolerance,
@@ -113,6 +117,7 @@ impl<'a> Screen<'a> {
         screen_triangles(
             self.info,
             &self.analytic,
+            self.bound.as_ref(),
             self.swept.map(|extrusion| Swept {
                 row: self.info.surface.row(self.info.surface.domain().1.0),
                 extrusion,
@@ -178,6 +183,7 @@ struct Limits {
 fn screen_triangles(
     info: &PatchInfo,
     analytic: &Analytic,
+    bound: Option<&Bound>,
     swept: Option<Swept>,
     mesh: &TriMesh,
     triangles: &[u32],
@@ -225,21 +231,25 @@ fn screen_triangles(
             continue;
         }
         planes.push(Some((p[0], normal / area)));
+        // Within by the closed form: no probes (the limits below still apply).
+        let certified = bound.is_some_and(|b| b.deviation(p) <= MARGIN * tolerance);
         // The vertices' own parameters: a pole vertex of the structured path
         // stands under the middle of its ring segment, where the full measure
         // puts it too.
         let centroid = (v[0].uv + v[1].uv + v[2].uv) / 3.0;
-        add(
-            &mut probes,
-            Probe {
-                triangle: slot as u32,
-                other: u32::MAX,
-                group: 0,
-                point: (p[0] + p[1] + p[2]) / 3.0,
-                uv: centroid,
-            },
-            &mut groups,
-        );
+        if !certified {
+            add(
+                &mut probes,
+                Probe {
+                    triangle: slot as u32,
+                    other: u32::MAX,
+                    group: 0,
+                    point: (p[0] + p[1] + p[2]) / 3.0,
+                    uv: centroid,
+                },
+                &mut groups,
+            );
+        }
         for i in 0..3 {
             if mesh.fixed[t as usize][i] {
                 continue;
@@ -251,6 +261,9 @@ fn screen_triangles(
                 || (x.point - y.point).length_squared() > limits.max_edge * limits.max_edge
             {
                 within[slot] = false;
+            }
+            if certified {
+                continue;
             }
             let (a, b) = (tri[i], tri[(i + 1) % 3]);
             if let Some(&(_, _, k)) = last.iter().find(|e| e.0 == b && e.1 == a) {
