@@ -106,6 +106,16 @@ impl<'a> Screen<'a> {
         self.triangles(mesh, &triangles)
     }
 
+    /// This screen with every triangle probed (no closed-form bound): the
+    /// reference the bound must agree with.
+    #[cfg(test)]
+    pub fn probes_only(self) -> Self {
+        Self {
+            bound: None,
+            ..self
+        }
+    }
+
     /// The chordal tolerance screened against, mm.
     pub fn tolerance(&self) -> f64 {
         self.limits.tolerance
