@@ -88,6 +88,20 @@ pub fn edge_parameters(
     options: &TessellationOptions,
     multiple_of: usize,
 ) -> Vec<f64> {
+    if one_straight_segment(curve, options, multiple_of) {
+        let (a, b) = curve.domain();
+        return vec![a, b];
+    }
+    measured_parameters(curve, options, multiple_of)
+}
+
+/// [`edge_parameters`] by the curve's closed form (a full circle) or its
+/// measured profile.
+fn measured_parameters(
+    curve: &NurbsCurve,
+    options: &TessellationOptions,
+    multiple_of: usize,
+) -> Vec<f64> {
     let (a, b) = curve.domain();
     if let Some(circle) = Circle::of(curve) {
         let n = segment_count(circle.length(), 1.0 / circle.radius, options, multiple_of);
@@ -113,6 +127,25 @@ pub fn edge_parameters(
     }
     params.push(b);
     params
+}
+
+/// Whether [`edge_parameters`] gives `curve` one segment without measuring it:
+/// a straight segment (degree 1, two control points, equal weights: its
+/// curvature is exactly zero) when no edge length limit or multiple asks for
+/// more, and the tolerance is valid. A course's or a cone's meridian, which
+/// every layout of a course or cone samples at its seam.
+fn one_straight_segment(
+    curve: &NurbsCurve,
+    options: &TessellationOptions,
+    multiple_of: usize,
+) -> bool {
+    let points = curve.homogeneous_points();
+    curve.degree() == 1
+        && points.len() == 2
+        && points[0].w == points[1].w
+        && options.max_edge_length.is_none()
+        && multiple_of <= 1
+        && options.tolerance > 0.0
 }
 
 /// Number of segments [`edge_parameters`] places on `curve` (one less than the
@@ -505,6 +538,43 @@ mod tests {
 
     use super::*;
     use crate::nurbs::builders::circular_arc;
+
+    /// A straight segment takes one segment without being measured, as the
+    /// measure gives it: lines of any length and direction, domains and
+    /// tolerances; not when an edge length limit or a multiple asks for more.
+    #[test]
+    fn a_straight_segment_is_one_segment_as_measured() {
+        use crate::nurbs::builders::line;
+        let ends = [
+            (DVec3::ZERO, DVec3::new(0.0, 0.0, 2400.0)),
+            (DVec3::new(900.0, 0.0, 0.0), DVec3::new(900.0, 0.0, 12345.6)),
+            (DVec3::new(-3.0, 7.0, 1.0), DVec3::new(250.0, -40.0, 33.0)),
+            (DVec3::ONE, DVec3::ONE),
+        ];
+        for (p, q) in ends {
+            let curve = line(p, q).expect("a line");
+            for curve in [
+                curve.clone(),
+                curve.reparametrized(-5.0, 17.5).expect("reparam"),
+            ] {
+                for tolerance in [0.01, 0.5, 1.0, 30.0] {
+                    let options = TessellationOptions::chord(tolerance);
+                    assert!(one_straight_segment(&curve, &options, 1));
+                    assert_eq!(
+                        edge_parameters(&curve, &options, 1),
+                        measured_parameters(&curve, &options, 1)
+                    );
+                }
+                let limited = TessellationOptions::chord(1.0).with_max_edge_length(Some(100.0));
+                assert!(!one_straight_segment(&curve, &limited, 1));
+                assert!(!one_straight_segment(
+                    &curve,
+                    &TessellationOptions::chord(1.0),
+                    4
+                ));
+            }
+        }
+    }
 
     /// A full circle takes the closed form: the same segment count as the
     /// general sampler, its vertices uniform in angle on the circle, and the
