@@ -16,6 +16,17 @@ use super::flip::{orient, strictly_ccw};
 use super::metric::Metric;
 use super::trimesh::TriMesh;
 
+thread_local! {
+    /// Each thread's ear clipper and Lawson flipper, kept between cavities: both
+    /// keep scratch buffers sized to the largest cavity seen (allocating them
+    /// afresh was a good part of a small cavity's time); results do not depend
+    /// on what they held before.
+    static EARCUT: std::cell::RefCell<earcut::Earcut<f64>> =
+        std::cell::RefCell::new(earcut::Earcut::new());
+    static REFINER: std::cell::RefCell<earcut::Refiner> =
+        std::cell::RefCell::new(earcut::Refiner::new());
+}
+
 /// A cavity triangle: its mesh vertices (counter-clockwise in (u, v)) and which
 /// of its edges are hole segments.
 pub(super) type Triangle = ([u32; 3], [bool; 3]);
@@ -134,7 +145,7 @@ impl Loops {
     pub fn ears(&self, mesh: &TriMesh) -> Option<Vec<[u32; 3]>> {
         let n = self.map.len();
         let mut local: Vec<u32> = Vec::with_capacity(3 * (n + 2 * self.starts.len()));
-        earcut::Earcut::new().earcut(self.chart.iter().copied(), &self.starts, &mut local);
+        EARCUT.with_borrow_mut(|e| e.earcut(self.chart.iter().copied(), &self.starts, &mut local));
         let mut used = vec![false; n];
         for &k in &local {
             used[k as usize] = true;
@@ -214,7 +225,7 @@ impl Loops {
     /// vertices, then each hole's, as [`new`](Self::new) takes them).
     pub fn finish_local(&self, mesh: &TriMesh, tris: Vec<[u32; 3]>) -> Option<Vec<Triangle>> {
         let mut flat: Vec<u32> = tris.into_iter().flatten().collect();
-        earcut::Refiner::new().refine(&mut flat, &self.chart);
+        REFINER.with_borrow_mut(|r| r.refine(&mut flat, &self.chart));
         let uv = |k: u32| self.uv(mesh, k);
         flat.chunks_exact(3)
             .map(|t| {
