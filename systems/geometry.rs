@@ -43,6 +43,9 @@ pub fn rebuild_dirty_patches(world: &mut World) {
         .map(|(e, s)| (*e, shape_patches(s)))
         .collect();
     let mut rebuilt = 0u64;
+    // New patches are spawned in one batch after the loop (one archetype
+    // lookup for all: a full build spawns every patch of the plant here).
+    let mut new_patches: Vec<(PatchOf, PatchSurface)> = Vec::new();
     for (entity, result) in built {
         let patches = match result {
             Ok(p) => p,
@@ -78,19 +81,19 @@ pub fn rebuild_dirty_patches(world: &mut World) {
                         world.resource_mut::<DirtyPatches>().surfaces.push(pe);
                     }
                 }
-                None => {
-                    let pe = world
-                        .spawn((PatchOf(entity), PatchSurface(Arc::new(patch))))
-                        .id();
-                    rebuilt += 1;
-                    world.resource_mut::<DirtyPatches>().surfaces.push(pe);
-                }
+                None => new_patches.push((PatchOf(entity), PatchSurface(Arc::new(patch)))),
             }
         }
         for &extra in existing.iter().skip(count) {
             world.despawn(extra);
         }
     }
+    rebuilt += new_patches.len() as u64;
+    let spawned: Vec<Entity> = world.spawn_batch(new_patches).collect();
+    world
+        .resource_mut::<DirtyPatches>()
+        .surfaces
+        .extend(spawned);
     let mut counters = world.resource_mut::<WorkCounters>();
     counters.patches_rebuilt += rebuilt;
     counters.shapes_rebuilt += work.len() as u64;

@@ -364,6 +364,7 @@ pub fn cut_openings(world: &mut World) {
     // (see `remesh_dirty_patches`).
     let mut new_openings: Vec<(Entity, Opening)> = Vec::new();
     let mut new_inputs: Vec<(Entity, OpeningInput)> = Vec::new();
+    let mut new_both: Vec<(Entity, (Opening, OpeningInput))> = Vec::new();
     for (nozzle, neck_patch, result, input, reused) in results {
         match result {
             Ok((hosts, cut, pad)) => {
@@ -387,8 +388,19 @@ pub fn cut_openings(world: &mut World) {
                     pad: pad_loop,
                     pad_trim,
                 };
-                let changed = match world.get_mut::<Opening>(nozzle) {
-                    Some(mut current) => {
+                set_pad(world, nozzle, pad.map(|p| p.patch));
+                // A nozzle new to both takes them in one insertion (one move of
+                // its row to their archetype, not two).
+                let held_input = match world.get_mut::<OpeningInput>(nozzle) {
+                    Some(mut held) => {
+                        *held = input;
+                        None
+                    }
+                    None => Some(input),
+                };
+                let changed = match (world.get_mut::<Opening>(nozzle), held_input) {
+                    (Some(mut current), input) => {
+                        new_inputs.extend(input.map(|i| (nozzle, i)));
                         if *current != opening {
                             *current = opening;
                             true
@@ -396,7 +408,11 @@ pub fn cut_openings(world: &mut World) {
                             false
                         }
                     }
-                    None => {
+                    (None, Some(input)) => {
+                        new_both.push((nozzle, (opening, input)));
+                        true
+                    }
+                    (None, None) => {
                         new_openings.push((nozzle, opening));
                         true
                     }
@@ -405,11 +421,6 @@ pub fn cut_openings(world: &mut World) {
                 placed += u64::from(changed && reused);
                 if changed {
                     world.resource_mut::<DirtyParts>().openings.push(nozzle);
-                }
-                set_pad(world, nozzle, pad.map(|p| p.patch));
-                match world.get_mut::<OpeningInput>(nozzle) {
-                    Some(mut held) => *held = input,
-                    None => new_inputs.push((nozzle, input)),
                 }
             }
             Err(rule) => {
@@ -420,6 +431,7 @@ pub fn cut_openings(world: &mut World) {
             }
         }
     }
+    world.insert_batch(new_both);
     world.insert_batch(new_openings);
     world.insert_batch(new_inputs);
     let mut counters = world.resource_mut::<WorkCounters>();

@@ -5,6 +5,7 @@
 use std::collections::{BTreeMap, HashMap};
 
 use bevy_ecs::world::World;
+use rayon::prelude::*;
 
 use super::{Edit, ModelError, VesselIndex, read};
 use crate::components::DesignOrder;
@@ -229,35 +230,43 @@ pub(crate) fn stage(world: &World, edit: Edit) -> Result<Staged, ModelError> {
     };
     work.apply(edit)?;
     let Work { touched, .. } = work;
+    // Each touched vessel is compared and resolved on its own: in parallel (a
+    // whole plant's design replaced resolves every vessel here), in order.
+    let index = &world.resource::<VesselIndex>().0;
+    let touched: Vec<(String, Option<(VesselDesign, u32)>)> = touched.into_iter().collect();
+    let staged: Vec<Result<Option<StagedVessel>, Vec<RuleViolation>>> = touched
+        .into_par_iter()
+        .map(|(tag, state)| {
+            let entity = index.get(&tag).copied();
+            match state {
+                None => Ok(entity.map(|_| StagedVessel::Remove { tag })),
+                Some((design, order)) => {
+                    // Compared with the world in place (it is not written until
+                    // the edit is checked).
+                    let unchanged = entity.is_some_and(|e| {
+                        world.get::<DesignOrder>(e).map(|o| o.0) == Some(order)
+                            && read::holds(world, e, &design)
+                    });
+                    if unchanged {
+                        return Ok(None);
+                    }
+                    resolve_vessel(&design, order as usize).map(|resolved| {
+                        Some(StagedVessel::Put {
+                            design: Box::new(design),
+                            order,
+                            resolved: Box::new(resolved),
+                        })
+                    })
+                }
+            }
+        })
+        .collect();
     let mut out = Vec::new();
     let mut violations = Vec::new();
-    for (tag, state) in touched {
-        let entity = world.resource::<VesselIndex>().0.get(&tag).copied();
-        match state {
-            None => {
-                if entity.is_some() {
-                    out.push(StagedVessel::Remove { tag });
-                }
-            }
-            Some((design, order)) => {
-                // Compared with the world in place (it is not written until
-                // the edit is checked).
-                let unchanged = entity.is_some_and(|e| {
-                    world.get::<DesignOrder>(e).map(|o| o.0) == Some(order)
-                        && read::holds(world, e, &design)
-                });
-                if unchanged {
-                    continue;
-                }
-                match resolve_vessel(&design, order as usize) {
-                    Ok(resolved) => out.push(StagedVessel::Put {
-                        design: Box::new(design),
-                        order,
-                        resolved: Box::new(resolved),
-                    }),
-                    Err(mut v) => violations.append(&mut v),
-                }
-            }
+    for result in staged {
+        match result {
+            Ok(put) => out.extend(put),
+            Err(mut v) => violations.append(&mut v),
         }
     }
     if violations.is_empty() {
