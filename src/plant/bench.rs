@@ -247,13 +247,18 @@ pub fn run_bench(
     ));
     // What the slow edits are: how much they mesh, against the others.
     let (slow, quick): (Vec<_>, Vec<_>) = meshed.iter().partition(|(t, _)| ms(*t) > 2.0);
-    let triangles = |edits: &[&(Duration, u64)]| {
-        edits.iter().map(|(_, n)| *n as f64).sum::<f64>() / edits.len().max(1) as f64
+    // "–" for none (a mean of nothing; the float sum of nothing is −0).
+    let triangles = |edits: &[&(Duration, u64)]| match edits.len() {
+        0 => "–".to_string(),
+        n => format!(
+            "{:.0}",
+            edits.iter().map(|(_, t)| *t as f64).sum::<f64>() / n as f64
+        ),
     };
     rows.push(row(
         "  edits over 2 ms: count, mean triangles meshed (others)",
         format!(
-            "{} of {}, {:.0} ({:.0})",
+            "{} of {}, {} ({})",
             slow.len(),
             meshed.len(),
             triangles(&slow),
