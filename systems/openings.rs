@@ -196,8 +196,9 @@ fn run(
         .collect()
 }
 
-/// Creates, updates (only if it differs) or removes a nozzle's pad patch.
-fn set_pad(world: &mut World, nozzle: Entity, pad: Option<Patch>) {
+/// Updates (only if it differs) or removes a nozzle's pad patch; a new one is
+/// returned, for the caller to spawn with the others in one batch.
+fn set_pad(world: &mut World, nozzle: Entity, pad: Option<Patch>) -> Option<(PadOf, PatchSurface)> {
     let existing = world.get::<PadPatch>(nozzle).map(PadPatch::entity);
     match (existing, pad) {
         (Some(e), Some(p)) => {
@@ -208,15 +209,13 @@ fn set_pad(world: &mut World, nozzle: Entity, pad: Option<Patch>) {
                 world.resource_mut::<DirtyPatches>().surfaces.push(e);
             }
         }
-        (None, Some(p)) => {
-            let e = world.spawn((PadOf(nozzle), PatchSurface(Arc::new(p)))).id();
-            world.resource_mut::<DirtyPatches>().surfaces.push(e);
-        }
+        (None, Some(p)) => return Some((PadOf(nozzle), PatchSurface(Arc::new(p)))),
         (Some(e), None) => {
             world.despawn(e);
         }
         (None, None) => {}
     }
+    None
 }
 
 /// Computes the opening of every nozzle that needs it.
@@ -365,6 +364,7 @@ pub fn cut_openings(world: &mut World) {
     let mut new_openings: Vec<(Entity, Opening)> = Vec::new();
     let mut new_inputs: Vec<(Entity, OpeningInput)> = Vec::new();
     let mut new_both: Vec<(Entity, (Opening, OpeningInput))> = Vec::new();
+    let mut new_pads: Vec<(PadOf, PatchSurface)> = Vec::new();
     for (nozzle, neck_patch, result, input, reused) in results {
         match result {
             Ok((hosts, cut, pad)) => {
@@ -388,7 +388,7 @@ pub fn cut_openings(world: &mut World) {
                     pad: pad_loop,
                     pad_trim,
                 };
-                set_pad(world, nozzle, pad.map(|p| p.patch));
+                new_pads.extend(set_pad(world, nozzle, pad.map(|p| p.patch)));
                 // A nozzle new to both takes them in one insertion (one move of
                 // its row to their archetype, not two).
                 let held_input = match world.get_mut::<OpeningInput>(nozzle) {
@@ -431,6 +431,8 @@ pub fn cut_openings(world: &mut World) {
             }
         }
     }
+    let pads: Vec<Entity> = world.spawn_batch(new_pads).collect();
+    world.resource_mut::<DirtyPatches>().surfaces.extend(pads);
     world.insert_batch(new_both);
     world.insert_batch(new_openings);
     world.insert_batch(new_inputs);
