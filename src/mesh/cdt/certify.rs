@@ -19,7 +19,7 @@
 //! to the triangle's plane is also bounded by the radial gap up to second-order
 //! terms), so the meshes are the ones the probes alone give.
 
-use glam::{DVec2, DVec3};
+use glam::DVec3;
 
 use crate::parts::Analytic;
 
@@ -34,12 +34,10 @@ pub(super) enum Bound {
         point: DVec3,
         normal: DVec3,
     },
-    /// A cylinder seen along its axis: `point` on the axis, `(e1, e2)` an
-    /// orthonormal basis across it.
+    /// A cylinder: `point` on its unit `axis`.
     Cylinder {
         point: DVec3,
-        e1: DVec3,
-        e2: DVec3,
+        axis: DVec3,
         radius: f64,
     },
     Sphere {
@@ -57,16 +55,11 @@ impl Bound {
                 point,
                 axis,
                 radius,
-            } => {
-                let e1 = axis.any_orthonormal_vector();
-                let e2 = axis.cross(e1);
-                Some(Self::Cylinder {
-                    point,
-                    e1,
-                    e2,
-                    radius,
-                })
-            }
+            } => Some(Self::Cylinder {
+                point,
+                axis,
+                radius,
+            }),
             Analytic::Sphere { center, radius } => Some(Self::Sphere { center, radius }),
             _ => None,
         }
@@ -83,16 +76,16 @@ impl Bound {
                 .fold(0.0, f64::max),
             Self::Cylinder {
                 point,
-                e1,
-                e2,
+                axis,
                 radius,
             } => {
+                // The corners seen along the axis: their offsets across it.
                 let q = p.map(|x| {
                     let d = x - point;
-                    DVec2::new(d.dot(e1), d.dot(e2))
+                    d - axis * d.dot(axis)
                 });
                 // Round the axis: no point of the cylinder's surface is near.
-                let sides = [0, 1, 2].map(|i| q[i].perp_dot(q[(i + 1) % 3]));
+                let sides = [0, 1, 2].map(|i| q[i].cross(q[(i + 1) % 3]).dot(axis));
                 if sides.iter().all(|&s| s > 0.0) || sides.iter().all(|&s| s < 0.0) {
                     return f64::INFINITY;
                 }
@@ -149,15 +142,7 @@ fn triangle_distance(q: [DVec3; 3]) -> f64 {
         // Collinear corners: the nearest of the three edges.
         return [(a, b), (b, c), (c, a)]
             .iter()
-            .map(|&(x, y)| {
-                let d = y - x;
-                let t = if d.length_squared() > 0.0 {
-                    (-x.dot(d) / d.length_squared()).clamp(0.0, 1.0)
-                } else {
-                    0.0
-                };
-                (x + t * d).length()
-            })
+            .map(|&(x, y)| segment_distance(x, y))
             .fold(f64::INFINITY, f64::min);
     }
     let (v, w) = (vb / denom, vc / denom);
@@ -165,7 +150,7 @@ fn triangle_distance(q: [DVec3; 3]) -> f64 {
 }
 
 /// Distance from the origin to the segment `a b`.
-fn segment_distance(a: DVec2, b: DVec2) -> f64 {
+fn segment_distance(a: DVec3, b: DVec3) -> f64 {
     let d = b - a;
     let len2 = d.length_squared();
     let t = if len2 > 0.0 {
@@ -217,7 +202,7 @@ mod tests {
                 for j in 0..=n - i {
                     let (s, t) = (i as f64 / n as f64, j as f64 / n as f64);
                     let x = p[0] + s * (p[1] - p[0]) + t * (p[2] - p[0]);
-                    let rho = (DVec2::new(x.x - 10.0, x.y + 5.0)).length();
+                    let rho = (glam::DVec2::new(x.x - 10.0, x.y + 5.0)).length();
                     sampled = sampled.max((r - rho).abs());
                 }
             }

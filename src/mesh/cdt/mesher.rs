@@ -182,7 +182,36 @@ fn mesh_oriented(
 mod tests {
     use super::*;
     use crate::mesh::cdt::sector::turn;
+    use crate::parts::Patch;
     use crate::parts::heads::{Head, HeadKind};
+
+    /// The structured mesh of the whole of `patch` (transposed when the mesher
+    /// would), handed to `f` with the patch's facts; nothing when the patch takes
+    /// the general path.
+    fn with_rings(
+        patch: &Patch,
+        options: &TessellationOptions,
+        f: impl FnOnce(&PatchInfo, &rings::Rings),
+    ) {
+        let region =
+            crate::mesh::patch_region(&patch.surface, options, &[], None).expect("a region");
+        let (surface, region) = if wants_transpose(&patch.surface) {
+            (patch.surface.transposed(), region.transposed())
+        } else {
+            (patch.surface.clone(), region)
+        };
+        let (lo, hi) = region.bounds();
+        let info = PatchInfo::new(&surface, lo, hi, |cap| {
+            Sizing::new(options, SEED_SHARE * SEED_SHARE, cap)
+        })
+        .with_analytic(Some(&patch.analytic));
+        let rings =
+            rings::triangulate(&info, &region, options, VERTEX_BUDGET, &mut Memo::default())
+                .expect("meshed");
+        if let Some(rings) = rings {
+            f(&info, &rings);
+        }
+    }
 
     /// The whole turns of every head shape's patches: each triangle flagged as an
     /// exact copy is, bit for bit, the quarter turn of the first quarter's
@@ -200,50 +229,31 @@ mod tests {
         ];
         for kind in kinds {
             for patch in Head::new(2400.0, kind).patches().expect("a head") {
-                let region = crate::mesh::patch_region(&patch.surface, &options, &[], None)
-                    .expect("a region");
-                let (surface, region) = if wants_transpose(&patch.surface) {
-                    (patch.surface.transposed(), region.transposed())
-                } else {
-                    (patch.surface.clone(), region)
-                };
-                let (lo, hi) = region.bounds();
-                let info = PatchInfo::new(&surface, lo, hi, |cap| {
-                    Sizing::new(&options, SEED_SHARE * SEED_SHARE, cap)
-                })
-                .with_analytic(Some(&patch.analytic));
-                let Some(rings) = rings::triangulate(
-                    &info,
-                    &region,
-                    &options,
-                    VERTEX_BUDGET,
-                    &mut Memo::default(),
-                )
-                .expect("meshed") else {
-                    continue;
-                };
-                let Some(copies) = &rings.copies else {
-                    continue;
-                };
-                let mesh = &rings.mesh;
-                let m = copies.per_quarter;
-                for t in m..mesh.tris.len() {
-                    if !copies.exact[t % m] {
-                        continue;
+                with_rings(&patch, &options, |info, rings| {
+                    let Some(copies) = &rings.copies else {
+                        return;
+                    };
+                    let mesh = &rings.mesh;
+                    let m = copies.per_quarter;
+                    for t in m..mesh.tris.len() {
+                        if !copies.exact[t % m] {
+                            continue;
+                        }
+                        copied += 1;
+                        for i in 0..3 {
+                            let p = mesh.verts[mesh.tris[t][i] as usize].point;
+                            let first = mesh.verts[mesh.tris[t % m][i] as usize].point;
+                            assert_eq!(p.to_array(), turn(first, t / m).to_array());
+                        }
                     }
-                    copied += 1;
-                    for i in 0..3 {
-                        let p = mesh.verts[mesh.tris[t][i] as usize].point;
-                        let first = mesh.verts[mesh.tris[t % m][i] as usize].point;
-                        assert_eq!(p.to_array(), turn(first, t / m).to_array());
-                    }
-                }
-                total += mesh.tris.len() - m;
-                let once = finish(&info, mesh, Some(copies), MeshStats::default()).expect("once");
-                let every = finish(&info, mesh, None, MeshStats::default()).expect("every");
-                assert_eq!(once.mesh, every.mesh);
-                assert_eq!(once.uvs, every.uvs);
-                assert_eq!(once.stats, every.stats);
+                    total += mesh.tris.len() - m;
+                    let once =
+                        finish(info, mesh, Some(copies), MeshStats::default()).expect("once");
+                    let every = finish(info, mesh, None, MeshStats::default()).expect("every");
+                    assert_eq!(once.mesh, every.mesh);
+                    assert_eq!(once.uvs, every.uvs);
+                    assert_eq!(once.stats, every.stats);
+                });
             }
         }
         // Most of the later quarters' triangles are copies.
@@ -286,40 +296,20 @@ mod tests {
         for tolerance in [0.2, 1.0, 4.0] {
             let options = TessellationOptions::chord(tolerance);
             for patch in &patches {
-                let region = crate::mesh::patch_region(&patch.surface, &options, &[], None)
-                    .expect("a region");
-                let (surface, region) = if wants_transpose(&patch.surface) {
-                    (patch.surface.transposed(), region.transposed())
-                } else {
-                    (patch.surface.clone(), region)
-                };
-                let (lo, hi) = region.bounds();
-                let info = PatchInfo::new(&surface, lo, hi, |cap| {
-                    Sizing::new(&options, SEED_SHARE * SEED_SHARE, cap)
-                })
-                .with_analytic(Some(&patch.analytic));
-                let Some(rings) = rings::triangulate(
-                    &info,
-                    &region,
-                    &options,
-                    VERTEX_BUDGET,
-                    &mut Memo::default(),
-                )
-                .expect("meshed") else {
-                    continue;
-                };
-                let all: Vec<u32> = (0..rings.mesh.tris.len() as u32).collect();
-                let screen = Screen::new(&info, &options).expect("an analytic surface");
-                let with_bound = screen.triangles(&rings.mesh, &all);
-                let probes = Screen::new(&info, &options)
-                    .expect("an analytic surface")
-                    .probes_only()
-                    .triangles(&rings.mesh, &all);
-                for (t, (&b, &p)) in with_bound.iter().zip(&probes).enumerate() {
-                    assert!(!b || p, "triangle {t} passed by the bound, not the probes");
-                }
-                total += all.len();
-                bounded += with_bound.iter().filter(|&&b| b).count();
+                with_rings(patch, &options, |info, rings| {
+                    let all: Vec<u32> = (0..rings.mesh.tris.len() as u32).collect();
+                    let screen = Screen::new(info, &options).expect("an analytic surface");
+                    let with_bound = screen.triangles(&rings.mesh, &all);
+                    let probes = Screen::new(info, &options)
+                        .expect("an analytic surface")
+                        .probes_only()
+                        .triangles(&rings.mesh, &all);
+                    for (t, (&b, &p)) in with_bound.iter().zip(&probes).enumerate() {
+                        assert!(!b || p, "triangle {t} passed by the bound, not the probes");
+                    }
+                    total += all.len();
+                    bounded += with_bound.iter().filter(|&&b| b).count();
+                });
             }
         }
         assert!(10 * bounded > 9 * total, "{bounded} of {total}");
