@@ -26,8 +26,7 @@ use crate::parts::Analytic;
 /// Share of the tolerance a closed-form bound must stay under to pass a triangle.
 pub(super) const MARGIN: f64 = 0.99;
 
-/// The closed-form bound of one analytic surface, with the frame it needs set
-/// up once per screen.
+/// The closed-form bound of one analytic surface (set up once per screen).
 #[derive(Clone, Copy, Debug)]
 pub(super) enum Bound {
     Plane {
