@@ -28,6 +28,10 @@ pub struct WorkCounters {
     pub openings_unchanged: u64,
     /// Patch regions laid out again.
     pub regions_laid_out: u64,
+    /// Trimmed patches whose surface was the same and whose openings' loops
+    /// read the same (u, v) as at their last layout, so they were not laid out
+    /// again (their region would come out the same).
+    pub regions_unchanged: u64,
     /// Patches rebuilt.
     pub patches_rebuilt: u64,
     /// Patch meshes rebuilt (replaced).

@@ -9,7 +9,12 @@
 //! unchanged; their sampled sides ([`PatchSides`], the costly part of a layout)
 //! are kept in [`HostSides`] and reused while the surface is the same. When the
 //! surface changed, a side whose edge curve did not (the bottom of a course whose
-//! length changed) is still taken from the kept sides.
+//! length changed) is still taken from the kept sides. With the sides,
+//! [`HostSides`] keeps the trim the patch was laid out with: a patch whose surface
+//! is the same and whose trim reads the same (u, v), bit for bit, would come out
+//! the same region, so it is not laid out at all — the neck of a nozzle placed
+//! again along its course (its loop's neck side is the canonical march's), the
+//! host of an opening whose host side did not change.
 
 use std::collections::{BTreeSet, HashMap};
 use std::sync::Arc;
@@ -18,6 +23,7 @@ use bevy_ecs::entity::Entity;
 use bevy_ecs::query::{QueryState, With};
 use bevy_ecs::resource::Resource;
 use bevy_ecs::world::World;
+use glam::DVec2;
 use rayon::prelude::*;
 
 use super::dirty::unique;
@@ -32,20 +38,34 @@ use crate::parts::Patch;
 
 /// The sampled sides of every patch an opening trims (a host, with openings or
 /// notches, or a nozzle neck) as last laid out, with the surface they were
-/// sampled from (held, so the pointer compared cannot be reused). Cleared when
-/// the tessellation options change.
+/// sampled from (held, so the pointer compared cannot be reused) and the trim.
+/// Cleared when the tessellation options change.
 #[derive(Resource, Default, Debug)]
-pub struct HostSides(HashMap<Entity, (Arc<Patch>, Arc<PatchSides>)>);
+pub struct HostSides(HashMap<Entity, Laid>);
+
+/// A trimmed patch's last layout: what it was laid out from, and its sides.
+#[derive(Debug)]
+struct Laid {
+    surface: Arc<Patch>,
+    sides: Arc<PatchSides>,
+    trim: Trim,
+}
 
 impl HostSides {
-    /// Heap bytes held by the kept sides (not the surfaces, which the patches hold).
+    /// Heap bytes held by the kept sides (not the surfaces, which the patches
+    /// hold, nor the loops, which the openings hold).
     pub fn heap_bytes(&self) -> usize {
-        self.0.capacity() * std::mem::size_of::<(Entity, (Arc<Patch>, Arc<PatchSides>))>()
-            + self.0.values().map(|(_, s)| s.heap_bytes()).sum::<usize>()
+        self.0.capacity() * std::mem::size_of::<(Entity, Laid)>()
+            + self
+                .0
+                .values()
+                .map(|l| l.sides.heap_bytes() + l.trim.heap_bytes())
+                .sum::<usize>()
     }
 }
 
 /// How a patch is trimmed.
+#[derive(Debug)]
 enum Trim {
     /// A part or nozzle patch: holes of the openings it hosts, notches of those
     /// crossing its seams, and a nozzle neck's bottom loop.
@@ -70,6 +90,70 @@ struct Job {
     /// they are while the surface is the same, else the source of any v side
     /// whose edge curve did not change (`PatchSides::of_reusing`).
     kept: Option<(Arc<Patch>, Arc<PatchSides>)>,
+    /// Same surface, trim read the same as at the last layout: the region
+    /// would come out the same, so it is not laid out.
+    same: bool,
+}
+
+impl Trim {
+    /// Whether a layout within `self` reads the same numbers as one within
+    /// `last`: the holes' host (u, v), the notches' paths and the bottom's neck
+    /// (u, v), bit for bit (the layout reads nothing else of them), in order.
+    fn lays_out_as(&self, last: &Trim) -> bool {
+        let (
+            Trim::Patch {
+                holes,
+                notches,
+                bottom,
+            },
+            Trim::Patch {
+                holes: last_holes,
+                notches: last_notches,
+                bottom: last_bottom,
+            },
+        ) = (self, last)
+        else {
+            return false;
+        };
+        let same_holes = holes.len() == last_holes.len()
+            && holes
+                .iter()
+                .zip(last_holes)
+                .all(|(a, b)| Arc::ptr_eq(a, b) || same_bits(&a.host_uv, &b.host_uv));
+        let same_notches = notches.len() == last_notches.len()
+            && notches.iter().zip(last_notches).all(|(a, b)| {
+                Arc::ptr_eq(a, b)
+                    || (a.len() == b.len()
+                        && a.iter()
+                            .zip(b.iter())
+                            .all(|(x, y)| x.side == y.side && same_bits(&x.path, &y.path)))
+            });
+        let same_bottom = match (bottom, last_bottom) {
+            (Some(a), Some(b)) => Arc::ptr_eq(a, b) || same_bits(&a.neck_uv, &b.neck_uv),
+            (None, None) => true,
+            _ => false,
+        };
+        same_holes && same_notches && same_bottom
+    }
+
+    /// Heap bytes of the trim's own lists (the loops are the openings').
+    fn heap_bytes(&self) -> usize {
+        match self {
+            Trim::Patch { holes, notches, .. } => {
+                holes.capacity() * std::mem::size_of::<Arc<IntersectionLoop>>()
+                    + notches.capacity() * std::mem::size_of::<Arc<[Notch]>>()
+            }
+            Trim::Pad { .. } => 0,
+        }
+    }
+}
+
+/// Whether `a` and `b` hold the same points, bit for bit.
+fn same_bits(a: &[DVec2], b: &[DVec2]) -> bool {
+    a.len() == b.len()
+        && a.iter()
+            .zip(b)
+            .all(|(p, q)| p.x.to_bits() == q.x.to_bits() && p.y.to_bits() == q.y.to_bits())
 }
 
 impl Job {
@@ -182,16 +266,28 @@ pub fn lay_out_regions(world: &mut World, all: &mut QueryState<Entity, With<Patc
         }
     }
     world.resource_mut::<OpeningHosts>().0 = hosts;
+    // A patch laid out within the same surface and trim as last time keeps its
+    // region, unless views were switched (the component's loops change).
+    let force = world.is_resource_changed::<Views>();
+    let dirty: Vec<Entity> = dirty.into_iter().collect();
+    let last = &kept;
+    // Gathered in parallel: a host's trim reads every opening it hosts.
     let jobs: Vec<Job> = dirty
-        .into_iter()
-        .filter_map(|patch| {
+        .par_iter()
+        .filter_map(|&patch| {
             let surface = world.get::<PatchSurface>(patch)?.0.clone();
             let trim = trims(world, patch)?;
+            let laid = last.get(&patch);
+            let same = !force
+                && laid.is_some_and(|l| {
+                    Arc::ptr_eq(&l.surface, &surface) && trim.lays_out_as(&l.trim)
+                });
             Some(Job {
                 patch,
                 surface,
                 trim,
-                kept: kept.get(&patch).cloned(),
+                kept: laid.map(|l| (l.surface.clone(), l.sides.clone())),
+                same,
             })
         })
         .collect();
@@ -201,6 +297,9 @@ pub fn lay_out_regions(world: &mut World, all: &mut QueryState<Entity, With<Patc
         .par_iter()
         .with_max_len(1)
         .map(|j| {
+            if j.same {
+                return None;
+            }
             let region = match &j.trim {
                 Trim::Patch {
                     holes,
@@ -237,16 +336,9 @@ pub fn lay_out_regions(world: &mut World, all: &mut QueryState<Entity, With<Patc
                 let fingerprint = r.fingerprint();
                 (Arc::new(r), fingerprint)
             });
-            (j.patch, (region, sides))
+            Some((region, sides))
         })
         .collect();
-    for (job, (_, (_, sides))) in jobs.iter().zip(&results) {
-        match sides {
-            Some(sides) => kept.insert(job.patch, (job.surface.clone(), sides.clone())),
-            None => kept.remove(&job.patch),
-        };
-    }
-    world.resource_mut::<HostSides>().0 = kept;
     let mut laid = 0;
     let mut failures = 0;
     // New components are inserted in one batch (see `remesh_dirty_patches`);
@@ -254,7 +346,36 @@ pub fn lay_out_regions(world: &mut World, all: &mut QueryState<Entity, With<Patc
     let mut new_regions: Vec<(Entity, PatchRegion)> = Vec::new();
     let mut laid_out = Vec::with_capacity(results.len());
     let mut changed_regions = Vec::with_capacity(results.len());
-    for (patch, (result, _)) in results {
+    let mut skipped = 0;
+    for (job, result) in jobs.into_iter().zip(results) {
+        let patch = job.patch;
+        let Some((result, sides)) = result else {
+            // Not laid out: the trim's loops are the openings' new ones now.
+            if let Some(l) = kept.get_mut(&patch) {
+                l.trim = job.trim;
+            }
+            skipped += 1;
+            continue;
+        };
+        // The sides are kept for the next layout, and the trim when the
+        // region came out.
+        match (sides, &result) {
+            (Some(sides), Ok(_)) => {
+                let surface = job.surface;
+                let trim = job.trim;
+                kept.insert(
+                    patch,
+                    Laid {
+                        surface,
+                        sides,
+                        trim,
+                    },
+                );
+            }
+            _ => {
+                kept.remove(&patch);
+            }
+        }
         match result {
             Ok((region, fingerprint)) => {
                 let component = PatchRegion {
@@ -296,11 +417,13 @@ pub fn lay_out_regions(world: &mut World, all: &mut QueryState<Entity, With<Patc
             }
         }
     }
+    world.resource_mut::<HostSides>().0 = kept;
     world.insert_batch(new_regions);
     let mut dirty = world.resource_mut::<DirtyPatches>();
     dirty.laid_out.extend(laid_out);
     dirty.regions.extend(changed_regions);
     let mut counters = world.resource_mut::<WorkCounters>();
     counters.regions_laid_out += laid;
+    counters.regions_unchanged += skipped;
     counters.failures += failures;
 }

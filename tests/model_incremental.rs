@@ -96,6 +96,10 @@ fn nozzle_elevation_places_its_opening_without_marching_and_keeps_neck_and_pad_m
     // Turning it (below) does the same.
     assert_eq!((c.openings_cut, c.openings_placed), (1, 1), "{c:?}");
     assert_eq!(c.meshes_rebuilt, 1, "{c:?}");
+    // The neck is not even laid out again: its surface is the same and its
+    // loop's neck side is the canonical march's, bit for bit. The host course's
+    // region changes; the pad's comes out the same.
+    assert_eq!((c.regions_unchanged, c.regions_laid_out), (1, 1), "{c:?}");
     // The course's other openings keep their cavities, whose triangles are
     // taken from its last meshing; the mesh is a fresh one's all the same.
     assert!(c.cavities_reused >= 1, "{c:?}");

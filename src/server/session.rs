@@ -372,6 +372,7 @@ fn work_json(w: &WorkCounters) -> Value {
         "openings_cut": w.openings_cut,
         "openings_placed": w.openings_placed,
         "regions_laid_out": w.regions_laid_out,
+        "regions_unchanged": w.regions_unchanged,
         "patches_rebuilt": w.patches_rebuilt,
         "meshes_rebuilt": w.meshes_rebuilt,
         "meshes_shared": w.meshes_shared,
