@@ -36,10 +36,6 @@ pub struct OpeningHosts(pub HashMap<Entity, Vec<Entity>>);
 #[derive(Resource, Default, Debug)]
 pub struct CutTable(pub SharedCuts);
 
-/// A cut opening: the host patch entities with their trims, the loops and the pad
-/// patch with its trim, or why not.
-type CutResult = Result<(Vec<(Entity, HostTrim)>, Cut, Option<PadCut>), String>;
-
 /// What an opening was last cut from: the neck and host patches (held, so the
 /// pointers compared cannot be reused), the pad, the tolerance and the two
 /// relative placements the cut and the pad patch are computed with. When all are
@@ -153,13 +149,78 @@ fn violation(world: &World, entity: Entity, rule: String) -> (String, Vec<RuleVi
     )
 }
 
-/// One opening cut: the nozzle, its neck patch, the cut, its inputs and
+/// One opening cut: the nozzle, its neck patch, the cut (made into the
+/// nozzle's new components, each compared with the world's), its inputs and
 /// whether it was placed from a kept cut.
-type Cutting = (Entity, Entity, CutResult, OpeningInput, bool);
+struct Cutting {
+    nozzle: Entity,
+    result: Result<Made, String>,
+    input: OpeningInput,
+    reused: bool,
+}
+
+/// An opening cut, as it will be written.
+struct Made {
+    opening: Opening,
+    /// Whether it differs from the nozzle's current opening (or it has none).
+    differs: bool,
+    /// The pad patch, if the nozzle has a pad, and whether it differs from the
+    /// current one's surface (or there is none).
+    pad: Option<(Patch, bool)>,
+}
+
+impl Made {
+    /// The components of `cut` for `job`'s nozzle, compared with the world's:
+    /// done in parallel, since comparing loops and patches reads every number.
+    fn of(
+        world: &World,
+        job: &Job,
+        hosts: Vec<(Entity, HostTrim)>,
+        cut: Cut,
+        pad: Option<PadCut>,
+    ) -> Self {
+        let curve = Arc::new(cut.neck);
+        let pad_loop = cut.pad.map(Arc::new);
+        // Off a straight course the pad's trim is the opening's own loops:
+        // held once.
+        let share = |l: &Arc<IntersectionLoop>, own: Option<&Arc<IntersectionLoop>>| {
+            own.filter(|o| o == &l).unwrap_or(l).clone()
+        };
+        let pad_trim = pad.as_ref().map(|p| {
+            (
+                share(&p.outer, pad_loop.as_ref()),
+                share(&p.inner, Some(&curve)),
+            )
+        });
+        let opening = Opening {
+            hosts,
+            neck_patch: job.neck_patch,
+            curve,
+            pad: pad_loop,
+            pad_trim,
+        };
+        let differs = world
+            .get::<Opening>(job.nozzle)
+            .is_none_or(|current| *current != opening);
+        let pad = pad.map(|p| {
+            let current = world
+                .get::<PadPatch>(job.nozzle)
+                .and_then(|e| world.get::<PatchSurface>(e.entity()));
+            let differs = current.is_none_or(|s| *s.0 != p.patch);
+            (p.patch, differs)
+        });
+        Self {
+            opening,
+            differs,
+            pad,
+        }
+    }
+}
 
 /// Cuts the openings of `jobs[ids]` by their `plans`, each placing its `kept`
 /// cut where that applies, in parallel, in that order.
 fn run(
+    world: &World,
     jobs: &[Job],
     plans: &[OpeningPlan],
     kept: &[Option<Arc<AxialCut>>],
@@ -183,39 +244,81 @@ fn run(
                     .iter()
                     .map(|(k, trim)| (job.hosts[*k].0, trim.clone()))
                     .collect();
-                (trims, c.cut, c.pad)
+                Made::of(world, job, trims, c.cut, c.pad)
             });
-            (
-                job.nozzle,
-                job.neck_patch,
+            Cutting {
+                nozzle: job.nozzle,
                 result,
-                OpeningInput::of(job, tolerance, axial),
+                input: OpeningInput::of(job, tolerance, axial),
                 reused,
-            )
+            }
         })
         .collect()
 }
 
-/// Updates (only if it differs) or removes a nozzle's pad patch; a new one is
+/// Updates (if it differs) or removes a nozzle's pad patch; a new one is
 /// returned, for the caller to spawn with the others in one batch.
-fn set_pad(world: &mut World, nozzle: Entity, pad: Option<Patch>) -> Option<(PadOf, PatchSurface)> {
+fn set_pad(
+    world: &mut World,
+    nozzle: Entity,
+    pad: Option<(Patch, bool)>,
+) -> Option<(PadOf, PatchSurface)> {
     let existing = world.get::<PadPatch>(nozzle).map(PadPatch::entity);
     match (existing, pad) {
-        (Some(e), Some(p)) => {
-            if let Some(mut s) = world.get_mut::<PatchSurface>(e)
-                && *s.0 != p
-            {
+        (Some(e), Some((p, differs))) => {
+            if differs && let Some(mut s) = world.get_mut::<PatchSurface>(e) {
                 s.0 = Arc::new(p);
                 world.resource_mut::<DirtyPatches>().surfaces.push(e);
             }
         }
-        (None, Some(p)) => return Some((PadOf(nozzle), PatchSurface(Arc::new(p)))),
+        (None, Some((p, _))) => return Some((PadOf(nozzle), PatchSurface(Arc::new(p)))),
         (Some(e), None) => {
             world.despawn(e);
         }
         (None, None) => {}
     }
     None
+}
+
+/// A dirty opening, gathered (held only while the stage runs, so the job is
+/// not boxed).
+#[allow(clippy::large_enum_variant)]
+enum Gathered {
+    /// Cut before from the same inputs: nothing to do.
+    Same,
+    /// To cut, with the canonical cut its last cut kept, if it may apply.
+    Cut(Job, Option<Arc<AxialCut>>),
+}
+
+/// The opening to cut for `nozzle`, if it has a host, a frame and a neck.
+fn gather(world: &World, nozzle: Entity) -> Option<Job> {
+    let host = world.get::<MountedOn>(nozzle)?.0;
+    let frame = world.get::<PartFrame>(nozzle)?.0;
+    let host_frame = world.get::<PartFrame>(host)?.0;
+    let neck_patch = *world.get::<Patches>(nozzle)?.entities().first()?;
+    let neck = world.get::<PatchSurface>(neck_patch)?.0.clone();
+    let hosts: Vec<_> = world
+        .get::<Patches>(host)
+        .map(|p| {
+            p.entities()
+                .iter()
+                .filter_map(|&e| Some((e, world.get::<PatchSurface>(e)?.0.clone())))
+                .collect()
+        })
+        .unwrap_or_default();
+    let pad_od = match world.get::<Shape>(nozzle) {
+        Some(Shape::Nozzle(_, pad)) => pad.map(|p| p.0),
+        _ => None,
+    };
+    Some(Job {
+        nozzle,
+        pad_od,
+        neck_patch,
+        neck,
+        frame,
+        host_frame,
+        hosts,
+    })
 }
 
 /// Computes the opening of every nozzle that needs it.
@@ -239,64 +342,36 @@ pub fn cut_openings(world: &mut World) {
         return;
     }
     let tolerance = world.resource::<Tessellation>().0.tolerance;
-    let mut jobs = Vec::new();
-    // The canonical cut each job's last cut kept, if it may apply.
-    let mut kept: Vec<Option<Arc<AxialCut>>> = Vec::new();
-    let mut skipped = 0u64;
-    for &nozzle in &dirty {
-        let (Some(host), Some(frame)) = (
-            world.get::<MountedOn>(nozzle).map(|m| m.0),
-            world.get::<PartFrame>(nozzle).map(|f| f.0),
-        ) else {
-            continue;
-        };
-        let Some(host_frame) = world.get::<PartFrame>(host).map(|f| f.0) else {
-            continue;
-        };
-        let Some(&neck_patch) = world
-            .get::<Patches>(nozzle)
-            .and_then(|p| p.entities().first())
-        else {
-            continue;
-        };
-        let Some(neck) = world.get::<PatchSurface>(neck_patch).map(|s| s.0.clone()) else {
-            continue;
-        };
-        let hosts: Vec<_> = world
-            .get::<Patches>(host)
-            .map(|p| {
-                p.entities()
-                    .iter()
-                    .filter_map(|&e| Some((e, world.get::<PatchSurface>(e)?.0.clone())))
-                    .collect()
-            })
-            .unwrap_or_default();
-        let pad_od = match world.get::<Shape>(nozzle) {
-            Some(Shape::Nozzle(_, pad)) => pad.map(|p| p.0),
-            _ => None,
-        };
-        let job = Job {
-            nozzle,
-            pad_od,
-            neck_patch,
-            neck,
-            frame,
-            host_frame,
-            hosts,
-        };
-        let last = world
-            .get::<OpeningInput>(nozzle)
-            .filter(|_| world.get::<Opening>(nozzle).is_some());
-        // Cut before from the same inputs (and it succeeded): nothing to do.
-        let unchanged =
-            last.is_some_and(|input| input.same(&OpeningInput::of(&job, tolerance, None)));
-        if unchanged {
-            skipped += 1;
-        } else {
-            kept.push(last.and_then(|input| input.kept_for(&job, tolerance)));
-            jobs.push(job);
-        }
-    }
+    // Gathered in parallel: each reads its host's patches and compares its
+    // inputs with the last cut's.
+    let world_ref = &*world;
+    let dirty: Vec<Entity> = dirty.into_iter().collect();
+    let gathered: Vec<Gathered> = dirty
+        .par_iter()
+        .filter_map(|&nozzle| {
+            let job = gather(world_ref, nozzle)?;
+            let last = world_ref
+                .get::<OpeningInput>(nozzle)
+                .filter(|_| world_ref.get::<Opening>(nozzle).is_some());
+            // Cut before from the same inputs (and it succeeded): nothing to do.
+            if last.is_some_and(|input| input.same(&OpeningInput::of(&job, tolerance, None))) {
+                return Some(Gathered::Same);
+            }
+            let kept = last.and_then(|input| input.kept_for(&job, tolerance));
+            Some(Gathered::Cut(job, kept))
+        })
+        .collect();
+    let skipped = gathered
+        .iter()
+        .filter(|g| matches!(g, Gathered::Same))
+        .count() as u64;
+    let (jobs, mut kept): (Vec<Job>, Vec<Option<Arc<AxialCut>>>) = gathered
+        .into_iter()
+        .filter_map(|g| match g {
+            Gathered::Cut(job, kept) => Some((job, kept)),
+            Gathered::Same => None,
+        })
+        .unzip();
     // Openings cut from one canonical march share it: each distinct march is
     // looked up among the cuts in use, else made once (by the first opening
     // that needs it) and placed for the others.
@@ -334,23 +409,26 @@ pub fn cut_openings(world: &mut World) {
     let mut done: Vec<Option<Cutting>> = (0..jobs.len()).map(|_| None).collect();
     for (i, r) in first
         .iter()
-        .zip(run(&jobs, &plans, &kept, &first, tolerance))
+        .zip(run(world, &jobs, &plans, &kept, &first, tolerance))
     {
         done[*i] = Some(r);
     }
     if !later.is_empty() {
         for &(i, leader) in &later {
-            kept[i] = done[leader].as_ref().and_then(|r| r.3.axial.clone());
+            kept[i] = done[leader].as_ref().and_then(|r| r.input.axial.clone());
         }
         let ids: Vec<usize> = later.iter().map(|&(i, _)| i).collect();
-        for (i, r) in ids.iter().zip(run(&jobs, &plans, &kept, &ids, tolerance)) {
+        for (i, r) in ids
+            .iter()
+            .zip(run(world, &jobs, &plans, &kept, &ids, tolerance))
+        {
             done[*i] = Some(r);
         }
     }
     {
         let table = &mut world.resource_mut::<CutTable>().0;
         for (key, r) in keys.iter().zip(&done) {
-            if let (Some(k), Some(Some(cut))) = (key, r.as_ref().map(|r| &r.3.axial)) {
+            if let (Some(k), Some(Some(cut))) = (key, r.as_ref().map(|r| &r.input.axial)) {
                 table.insert(*k, cut);
             }
         }
@@ -365,30 +443,20 @@ pub fn cut_openings(world: &mut World) {
     let mut new_inputs: Vec<(Entity, OpeningInput)> = Vec::new();
     let mut new_both: Vec<(Entity, (Opening, OpeningInput))> = Vec::new();
     let mut new_pads: Vec<(PadOf, PatchSurface)> = Vec::new();
-    for (nozzle, neck_patch, result, input, reused) in results {
+    for Cutting {
+        nozzle,
+        result,
+        input,
+        reused,
+    } in results
+    {
         match result {
-            Ok((hosts, cut, pad)) => {
-                let curve = Arc::new(cut.neck);
-                let pad_loop = cut.pad.map(Arc::new);
-                // Off a straight course the pad's trim is the opening's own loops:
-                // held once.
-                let share = |l: &Arc<IntersectionLoop>, own: Option<&Arc<IntersectionLoop>>| {
-                    own.filter(|o| o == &l).unwrap_or(l).clone()
-                };
-                let pad_trim = pad.as_ref().map(|p| {
-                    (
-                        share(&p.outer, pad_loop.as_ref()),
-                        share(&p.inner, Some(&curve)),
-                    )
-                });
-                let opening = Opening {
-                    hosts,
-                    neck_patch,
-                    curve,
-                    pad: pad_loop,
-                    pad_trim,
-                };
-                new_pads.extend(set_pad(world, nozzle, pad.map(|p| p.patch)));
+            Ok(Made {
+                opening,
+                differs,
+                pad,
+            }) => {
+                new_pads.extend(set_pad(world, nozzle, pad));
                 // A nozzle new to both takes them in one insertion (one move of
                 // its row to their archetype, not two).
                 let held_input = match world.get_mut::<OpeningInput>(nozzle) {
@@ -398,28 +466,19 @@ pub fn cut_openings(world: &mut World) {
                     }
                     None => Some(input),
                 };
-                let changed = match (world.get_mut::<Opening>(nozzle), held_input) {
+                match (world.get_mut::<Opening>(nozzle), held_input) {
                     (Some(mut current), input) => {
                         new_inputs.extend(input.map(|i| (nozzle, i)));
-                        if *current != opening {
+                        if differs {
                             *current = opening;
-                            true
-                        } else {
-                            false
                         }
                     }
-                    (None, Some(input)) => {
-                        new_both.push((nozzle, (opening, input)));
-                        true
-                    }
-                    (None, None) => {
-                        new_openings.push((nozzle, opening));
-                        true
-                    }
-                };
-                cut_count += u64::from(changed);
-                placed += u64::from(changed && reused);
-                if changed {
+                    (None, Some(input)) => new_both.push((nozzle, (opening, input))),
+                    (None, None) => new_openings.push((nozzle, opening)),
+                }
+                cut_count += u64::from(differs);
+                placed += u64::from(differs && reused);
+                if differs {
                     world.resource_mut::<DirtyParts>().openings.push(nozzle);
                 }
             }
