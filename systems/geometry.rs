@@ -27,6 +27,10 @@ pub(crate) fn shape_patches(shape: &Shape) -> Result<Vec<Patch>, PartError> {
     }
 }
 
+/// A rebuilt patch and whether it differs from the one in its place (or there
+/// is none).
+type Compared = (Patch, bool);
+
 /// Rebuilds the patches of every entity whose [`Shape`] changed (listed by the
 /// Constrain stage in [`DirtyParts`]).
 pub fn rebuild_dirty_patches(world: &mut World) {
@@ -38,9 +42,29 @@ pub fn rebuild_dirty_patches(world: &mut World) {
     if work.is_empty() {
         return;
     }
-    let built: Vec<(Entity, Result<Vec<Patch>, PartError>)> = work
+    // Built and compared with the patches in place in parallel: comparing reads
+    // every number of both surfaces. Each new patch comes with whether it
+    // differs from the one it replaces (or there is none).
+    let world_ref = &*world;
+    let built: Vec<(Entity, Result<Vec<Compared>, PartError>)> = work
         .par_iter()
-        .map(|(e, s)| (*e, shape_patches(s)))
+        .map(|(e, s)| {
+            let existing = world_ref.get::<Patches>(*e).map(Patches::entities);
+            let compared = shape_patches(s).map(|patches| {
+                patches
+                    .into_iter()
+                    .enumerate()
+                    .map(|(k, patch)| {
+                        let current = existing
+                            .and_then(|x| x.get(k))
+                            .and_then(|&pe| world_ref.get::<PatchSurface>(pe));
+                        let differs = current.is_none_or(|c| *c.0 != patch);
+                        (patch, differs)
+                    })
+                    .collect()
+            });
+            (*e, compared)
+        })
         .collect();
     let mut rebuilt = 0u64;
     // New patches are spawned in one batch after the loop (one archetype
@@ -70,12 +94,10 @@ pub fn rebuild_dirty_patches(world: &mut World) {
             .map(|p| p.entities().to_vec())
             .unwrap_or_default();
         let count = patches.len();
-        for (k, patch) in patches.into_iter().enumerate() {
+        for (k, (patch, differs)) in patches.into_iter().enumerate() {
             match existing.get(k) {
                 Some(&pe) => {
-                    if let Some(mut current) = world.get_mut::<PatchSurface>(pe)
-                        && *current.0 != patch
-                    {
+                    if differs && let Some(mut current) = world.get_mut::<PatchSurface>(pe) {
                         current.0 = Arc::new(patch);
                         rebuilt += 1;
                         world.resource_mut::<DirtyPatches>().surfaces.push(pe);
