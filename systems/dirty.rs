@@ -34,10 +34,11 @@ pub struct DirtyPatches {
     pub regions: Vec<Entity>,
     /// Patches whose `PatchMesh` was inserted or replaced.
     pub meshes: Vec<Entity>,
-    /// Every region laid out in this run, changed or not: what the Tessellate
-    /// stage meshes within (`PatchRegion` keeps only a fingerprint unless views
-    /// are kept).
-    pub laid_out: Vec<(Entity, Arc<Region>)>,
+    /// Every region laid out in this run, changed or not, with its fingerprint:
+    /// what the Tessellate stage meshes within (`PatchRegion` keeps only the
+    /// fingerprint unless views are kept), and keys its mesh by (hashed once,
+    /// by the layout).
+    pub laid_out: Vec<(Entity, Arc<Region>, u128)>,
 }
 
 impl DirtyPatches {

@@ -382,7 +382,7 @@ pub fn lay_out_regions(world: &mut World, all: &mut QueryState<Entity, With<Patc
                     fingerprint,
                     region: keep.then(|| region.clone()),
                 };
-                laid_out.push((patch, region));
+                laid_out.push((patch, region, fingerprint));
                 let changed = match world.get_mut::<PatchRegion>(patch) {
                     Some(mut current) => {
                         let differs = current.fingerprint != component.fingerprint;

@@ -48,9 +48,9 @@ pub struct Tessellation(pub TessellationOptions);
 pub fn remesh_dirty_patches(world: &mut World, surfaces: &mut QueryState<&PatchSurface>) {
     let options = world.resource::<Tessellation>().0;
     let lists = world.resource::<DirtyPatches>();
-    let mut laid: FxHashMap<Entity, &Arc<Region>> = FxHashMap::default();
+    let mut laid: FxHashMap<Entity, (&Arc<Region>, u128)> = FxHashMap::default();
     laid.reserve(lists.laid_out.len());
-    laid.extend(lists.laid_out.iter().map(|(e, r)| (*e, r)));
+    laid.extend(lists.laid_out.iter().map(|(e, r, f)| (*e, (r, *f))));
     let mut dirty: Vec<Entity> = if world.is_resource_changed::<Tessellation>() {
         laid.keys().copied().collect()
     } else {
@@ -69,12 +69,13 @@ pub fn remesh_dirty_patches(world: &mut World, surfaces: &mut QueryState<&PatchS
     // stage's wall time on two threads.
     surfaces.update_archetypes(world);
     let surfaces = &*surfaces;
-    let work: Vec<(Entity, Arc<Patch>, Arc<Region>)> = dirty
+    let work: Vec<(Entity, Arc<Patch>, Arc<Region>, u128)> = dirty
         .par_iter()
         .filter_map(|&e| {
             // A patch whose region could not be laid out has its error already.
-            let region = (*laid.get(&e)?).clone();
-            Some((e, surfaces.get_manual(world, e).ok()?.0.clone(), region))
+            let (region, fingerprint) = *laid.get(&e)?;
+            let surface = surfaces.get_manual(world, e).ok()?.0.clone();
+            Some((e, surface, region.clone(), fingerprint))
         })
         .collect();
     // The cavities each patch's last meshing met.
@@ -89,7 +90,7 @@ pub fn remesh_dirty_patches(world: &mut World, surfaces: &mut QueryState<&PatchS
     // batch, share its mesh; each distinct patch is meshed once.
     let keys: Vec<u128> = work
         .par_iter()
-        .map(|(_, p, r)| mesh_key(p, r.fingerprint(), &options))
+        .map(|(_, p, _, fingerprint)| mesh_key(p, *fingerprint, &options))
         .collect();
     let instances = &world.resource::<Instances>().0;
     let in_use: Vec<Option<Arc<PackedMesh>>> = keys.par_iter().map(|&k| instances.get(k)).collect();
@@ -106,7 +107,7 @@ pub fn remesh_dirty_patches(world: &mut World, surfaces: &mut QueryState<&PatchS
     };
     let meshed: FxHashMap<u128, Result<Meshed, String>> =
         map_biggest_first(&to_mesh, previous, |&i| {
-            let (_, p, r) = &work[i];
+            let (_, p, r, _) = &work[i];
             // Kept for the model's lifetime: packed (exact positions, 4-byte
             // normals, narrow indices, no growth slack).
             let result = mesh_patch_region_keeping(p, r, &options, kept[i].as_deref())
@@ -138,7 +139,7 @@ pub fn remesh_dirty_patches(world: &mut World, surfaces: &mut QueryState<&PatchS
     let mut new_meshes: Vec<(Entity, PatchMesh)> = Vec::new();
     let mut new_cavities: Vec<(Entity, PatchCavities)> = Vec::new();
     let mut written = Vec::with_capacity(work.len());
-    for (((e, _, _), key), held) in work.iter().zip(&keys).zip(in_use) {
+    for (((e, ..), key), held) in work.iter().zip(&keys).zip(in_use) {
         let e = *e;
         // A mesh in use elsewhere is shared with its cavities left as they were.
         let result = match held {
