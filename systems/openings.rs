@@ -5,7 +5,7 @@
 //! its shell course. Runs in the Geometry stage after the patches are rebuilt, in
 //! parallel with rayon.
 
-use std::collections::{BTreeSet, HashMap};
+use std::collections::BTreeSet;
 use std::sync::Arc;
 
 use bevy_ecs::entity::Entity;
@@ -13,6 +13,7 @@ use bevy_ecs::resource::Resource;
 use bevy_ecs::world::World;
 use glam::DAffine3;
 use rayon::prelude::*;
+use rustc_hash::FxHashMap;
 
 use super::labels::stable_id;
 use super::opening_input::OpeningInput;
@@ -29,7 +30,7 @@ use crate::parts::Patch;
 /// The host patches each nozzle's opening was last cut in (to re-lay-out a host
 /// patch whose opening moved away or disappeared).
 #[derive(Resource, Default, Debug)]
-pub struct OpeningHosts(pub HashMap<Entity, Vec<Entity>>);
+pub struct OpeningHosts(pub FxHashMap<Entity, Vec<Entity>>);
 
 /// The canonical cuts the model's openings keep, shared by every opening cut
 /// from the same march (see `mesh::shared_cuts`).
@@ -306,7 +307,7 @@ pub fn cut_openings(world: &mut World) {
     let mut later: Vec<(usize, usize)> = Vec::new();
     {
         let table = &world.resource::<CutTable>().0;
-        let mut leaders: HashMap<u128, usize> = HashMap::new();
+        let mut leaders: FxHashMap<u128, usize> = FxHashMap::default();
         for (i, key) in keys.iter().enumerate() {
             match key {
                 Some(k) => {

@@ -16,7 +16,7 @@
 //! again along its course (its loop's neck side is the canonical march's), the
 //! host of an opening whose host side did not change.
 
-use std::collections::{BTreeSet, HashMap};
+use std::collections::BTreeSet;
 use std::sync::Arc;
 
 use bevy_ecs::entity::Entity;
@@ -25,6 +25,7 @@ use bevy_ecs::resource::Resource;
 use bevy_ecs::world::World;
 use glam::DVec2;
 use rayon::prelude::*;
+use rustc_hash::FxHashMap;
 
 use super::dirty::unique;
 use super::labels::patch_label;
@@ -41,7 +42,7 @@ use crate::parts::Patch;
 /// sampled from (held, so the pointer compared cannot be reused) and the trim.
 /// Cleared when the tessellation options change.
 #[derive(Resource, Default, Debug)]
-pub struct HostSides(HashMap<Entity, Laid>);
+pub struct HostSides(FxHashMap<Entity, Laid>);
 
 /// A trimmed patch's last layout: what it was laid out from, and its sides.
 #[derive(Debug)]

@@ -10,7 +10,7 @@
 //! Orientation angles are measured about the axis from the top, clockwise looking
 //! from the left end (along +Z).
 
-use std::collections::HashMap;
+use rustc_hash::FxHashMap;
 
 use glam::{DAffine3, DMat3, DVec3};
 
@@ -111,7 +111,7 @@ pub(super) fn check_unique_ids(vessel: &VesselDesign, report: &mut Report) {
         At::Nozzle(i) => format!("nozzles[{i}].mark"),
         At::Note(i) => format!("notes[{i}].id"),
     };
-    let mut seen: HashMap<&str, At> = HashMap::new();
+    let mut seen: FxHashMap<&str, At> = FxHashMap::default();
     let ids = vessel
         .parts
         .iter()
