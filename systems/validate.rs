@@ -126,33 +126,29 @@ pub fn resolve_dirty_vessels(
     let vessels_found: Vec<_> = dirty.iter().filter_map(|&e| vessels.get(e).ok()).collect();
     counters.vessels_resolved += vessels_found.len() as u64;
     // Each vessel's resolution from the edit's check when the world holds the
-    // design it was checked on (compared in place); the others read back to be
-    // resolved here.
-    let work: Vec<(Entity, u32, Result<ResolvedVessel, VesselDesign>)> = vessels_found
+    // design it was checked on (compared in place, in parallel); the others
+    // read back and resolved here.
+    let work: Vec<_> = vessels_found
         .into_iter()
-        .map(|(e, spec, order, kids)| {
-            let known = checked.remove(&e).filter(|(o, d, _)| {
-                *o == order.0 && holds(&spec, kids, &parts, &nozzles, &notes, d)
-            });
-            let job = match known {
-                Some((_, _, resolved)) => Ok(resolved),
-                None => Err(read_vessel(&spec, kids, &parts, &nozzles, &notes)),
-            };
-            (e, order.0, job)
-        })
+        .map(|(e, spec, order, kids)| (e, spec, order.0, kids, checked.remove(&e)))
         .collect();
-    counters.resolutions_reused += work.iter().filter(|w| w.2.is_ok()).count() as u64;
     let results: Vec<_> = work
         .into_par_iter()
-        .map(|(e, order, job)| match job {
-            Ok(resolved) => (e, None, Ok(resolved)),
-            Err(design) => {
-                let result = resolve_vessel(&design, order as usize);
-                (e, Some(design.tag), result)
+        .map(|(e, spec, order, kids, known)| {
+            let known = known
+                .filter(|(o, d, _)| *o == order && holds(&spec, kids, &parts, &nozzles, &notes, d));
+            match known {
+                Some((_, _, resolved)) => (e, None, Ok(resolved), true),
+                None => {
+                    let design = read_vessel(&spec, kids, &parts, &nozzles, &notes);
+                    let result = resolve_vessel(&design, order as usize);
+                    (e, Some(design.tag), result, false)
+                }
             }
         })
         .collect();
-    for (e, tag, result) in results {
+    counters.resolutions_reused += results.iter().filter(|r| r.3).count() as u64;
+    for (e, tag, result, _) in results {
         match result {
             Ok(resolved) => pending.0.push((e, resolved)),
             Err(violations) => errors.0.push((tag.unwrap_or_default(), violations)),
