@@ -5,8 +5,9 @@
 //! A triangle whose vertices lie on a circular cylinder lies inside it (the
 //! cylinder's cross-section is convex), so its farthest point from the surface is
 //! its point nearest the axis: the deviation is `r − ρ_min`, where `ρ_min` is the
-//! distance from the axis to the triangle projected along it (a planar triangle;
-//! zero when it surrounds the axis). On a sphere it is `r − d_min`, `d_min` the
+//! distance from the axis to the triangle projected along it (a triangle in the
+//! cross-section's plane, worked in two coordinates; zero when it surrounds the
+//! axis). On a sphere it is `r − d_min`, `d_min` the
 //! distance from the centre to the triangle. Conversely every point of the
 //! surface lies radially outside some triangle of a mesh that covers it, no
 //! farther from it than that triangle's bound: the largest bound over a mesh is
@@ -19,7 +20,7 @@
 //! to the triangle's plane is also bounded by the radial gap up to second-order
 //! terms), so the meshes are the ones the probes alone give.
 
-use glam::DVec3;
+use glam::{DVec2, DVec3};
 
 use crate::parts::Analytic;
 
@@ -33,10 +34,11 @@ pub(super) enum Bound {
         point: DVec3,
         normal: DVec3,
     },
-    /// A cylinder: `point` on its unit `axis`.
+    /// A cylinder: `point` on its axis, `across` two unit vectors square to the
+    /// axis and to each other (the cross-section's plane).
     Cylinder {
         point: DVec3,
-        axis: DVec3,
+        across: (DVec3, DVec3),
         radius: f64,
     },
     Sphere {
@@ -56,7 +58,7 @@ impl Bound {
                 radius,
             } => Some(Self::Cylinder {
                 point,
-                axis,
+                across: axis.normalize().any_orthonormal_pair(),
                 radius,
             }),
             Analytic::Sphere { center, radius } => Some(Self::Sphere { center, radius }),
@@ -75,23 +77,28 @@ impl Bound {
                 .fold(0.0, f64::max),
             Self::Cylinder {
                 point,
-                axis,
+                across: (e1, e2),
                 radius,
             } => {
-                // The corners seen along the axis: their offsets across it.
+                // The corners seen along the axis: in the cross-section's plane.
                 let q = p.map(|x| {
                     let d = x - point;
-                    d - axis * d.dot(axis)
+                    DVec2::new(d.dot(e1), d.dot(e2))
                 });
                 // Round the axis: no point of the cylinder's surface is near.
-                let sides = [0, 1, 2].map(|i| q[i].cross(q[(i + 1) % 3]).dot(axis));
+                let sides = [0, 1, 2].map(|i| q[i].perp_dot(q[(i + 1) % 3]));
                 if sides.iter().all(|&s| s > 0.0) || sides.iter().all(|&s| s < 0.0) {
                     return f64::INFINITY;
                 }
                 let nearest = (0..3)
-                    .map(|i| segment_distance(q[i], q[(i + 1) % 3]))
-                    .fold(f64::INFINITY, f64::min);
-                let farthest = q.iter().map(|x| x.length()).fold(0.0, f64::max);
+                    .map(|i| segment_distance_squared(q[i], q[(i + 1) % 3]))
+                    .fold(f64::INFINITY, f64::min)
+                    .sqrt();
+                let farthest = q
+                    .iter()
+                    .map(|x| x.length_squared())
+                    .fold(0.0, f64::max)
+                    .sqrt();
                 (radius - nearest).max(farthest - radius)
             }
             Self::Sphere { center, radius } => {
@@ -146,6 +153,18 @@ fn triangle_distance(q: [DVec3; 3]) -> f64 {
     }
     let (v, w) = (vb / denom, vc / denom);
     (a + ab * v + ac * w).length()
+}
+
+/// Squared distance from the origin to the segment `a b` in a plane.
+fn segment_distance_squared(a: DVec2, b: DVec2) -> f64 {
+    let d = b - a;
+    let len2 = d.length_squared();
+    let t = if len2 > 0.0 {
+        (-a.dot(d) / len2).clamp(0.0, 1.0)
+    } else {
+        0.0
+    };
+    (a + t * d).length_squared()
 }
 
 /// Distance from the origin to the segment `a b`.
