@@ -46,7 +46,7 @@ impl Default for BenchConfig {
             seed: 1,
             tolerance: 1.0,
             edits: 200,
-            ticks: 20,
+            ticks: 50,
             tick_edits: 100,
         }
     }
