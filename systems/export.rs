@@ -9,9 +9,14 @@ use bevy_ecs::hierarchy::ChildOf;
 use bevy_ecs::resource::Resource;
 use bevy_ecs::system::{Query, ResMut};
 
+use rayon::prelude::*;
+
 use super::{DirtyParts, DirtyPatches};
 
 use crate::components::{NozzleSpec, PadOf, PartSpec, PatchOf, VesselSpec};
+
+/// Owners beyond which their ids are made in parallel.
+const PARALLEL_IDS: usize = 4096;
 
 /// Stable ids changed and removed since the log was last drained.
 #[derive(Resource, Default, Debug, Clone, PartialEq, Eq)]
@@ -63,11 +68,23 @@ pub fn collect_changes(
     owner_ids.sort_unstable();
     owner_ids.dedup();
     dirty.clear();
-    for owner in owner_ids {
-        if let Ok((c, p, n)) = owners.get(owner)
-            && let Some(id) = id_of(c, p, n)
-        {
-            log.changed.insert(id);
-        }
+    // Named in parallel and sorted before they go into the log: after a full
+    // build this is every part and nozzle of the plant, and inserting them one
+    // by one was a serial tail of the build.
+    let name = |&owner: &Entity| {
+        let (c, p, n) = owners.get(owner).ok()?;
+        id_of(c, p, n)
+    };
+    let mut ids: Vec<String> = if owner_ids.len() >= PARALLEL_IDS {
+        owner_ids.par_iter().filter_map(name).collect()
+    } else {
+        owner_ids.iter().filter_map(name).collect()
+    };
+    if log.changed.is_empty() {
+        ids.par_sort_unstable();
+        // Built in bulk from the sorted list.
+        log.changed = ids.into_iter().collect();
+    } else {
+        log.changed.extend(ids);
     }
 }
