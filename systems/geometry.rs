@@ -27,9 +27,9 @@ pub(crate) fn shape_patches(shape: &Shape) -> Result<Vec<Patch>, PartError> {
     }
 }
 
-/// A rebuilt patch and whether it differs from the one in its place (or there
-/// is none).
-type Compared = (Patch, bool);
+/// A rebuilt patch (put on the heap in the parallel pass) and whether it
+/// differs from the one in its place (or there is none).
+type Compared = (Arc<Patch>, bool);
 
 /// Rebuilds the patches of every entity whose [`Shape`] changed (listed by the
 /// Constrain stage in [`DirtyParts`]).
@@ -59,7 +59,7 @@ pub fn rebuild_dirty_patches(world: &mut World) {
                             .and_then(|x| x.get(k))
                             .and_then(|&pe| world_ref.get::<PatchSurface>(pe));
                         let differs = current.is_none_or(|c| *c.0 != patch);
-                        (patch, differs)
+                        (Arc::new(patch), differs)
                     })
                     .collect()
             });
@@ -98,12 +98,12 @@ pub fn rebuild_dirty_patches(world: &mut World) {
             match existing.get(k) {
                 Some(&pe) => {
                     if differs && let Some(mut current) = world.get_mut::<PatchSurface>(pe) {
-                        current.0 = Arc::new(patch);
+                        current.0 = patch;
                         rebuilt += 1;
                         world.resource_mut::<DirtyPatches>().surfaces.push(pe);
                     }
                 }
-                None => new_patches.push((PatchOf(entity), PatchSurface(Arc::new(patch)))),
+                None => new_patches.push((PatchOf(entity), PatchSurface(patch))),
             }
         }
         for &extra in existing.iter().skip(count) {
