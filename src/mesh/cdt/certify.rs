@@ -158,25 +158,23 @@ fn triangle_distance(q: [DVec3; 3]) -> f64 {
 /// Squared distance from the origin to the segment `a b` in a plane.
 fn segment_distance_squared(a: DVec2, b: DVec2) -> f64 {
     let d = b - a;
-    let len2 = d.length_squared();
-    let t = if len2 > 0.0 {
-        (-a.dot(d) / len2).clamp(0.0, 1.0)
-    } else {
-        0.0
-    };
-    (a + t * d).length_squared()
+    (a + nearest(a.dot(d), d.length_squared()) * d).length_squared()
 }
 
 /// Distance from the origin to the segment `a b`.
 fn segment_distance(a: DVec3, b: DVec3) -> f64 {
     let d = b - a;
-    let len2 = d.length_squared();
-    let t = if len2 > 0.0 {
-        (-a.dot(d) / len2).clamp(0.0, 1.0)
+    (a + nearest(a.dot(d), d.length_squared()) * d).length()
+}
+
+/// Where on a segment `a + t d`, `t` in [0, 1], the origin's nearest point
+/// lies, from `a · d` and `|d|²` (its start when the segment is a point).
+fn nearest(a_dot_d: f64, len2: f64) -> f64 {
+    if len2 > 0.0 {
+        (-a_dot_d / len2).clamp(0.0, 1.0)
     } else {
         0.0
-    };
-    (a + t * d).length()
+    }
 }
 
 #[cfg(test)]
