@@ -328,6 +328,7 @@ fn plant_commands_run_end_to_end() {
     for figure in [
         "vessels/s",
         "speed-up",
+        "(pairs: ",
         "p99",
         "tick of 100 edits",
         "memory per vessel",

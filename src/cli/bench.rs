@@ -11,19 +11,19 @@ use super::alloc::live_bytes;
 #[derive(Args)]
 pub struct BenchArgs {
     /// Vessels in the generated plant.
-    #[arg(long, default_value_t = 10_000)]
+    #[arg(long, default_value_t = BenchConfig::default().vessels)]
     vessels: usize,
     /// Plant seed.
-    #[arg(long, default_value_t = 1)]
+    #[arg(long, default_value_t = BenchConfig::default().seed)]
     seed: u64,
     /// Chordal tolerance, mm.
-    #[arg(long, default_value_t = 1.0, allow_negative_numbers = true)]
+    #[arg(long, default_value_t = BenchConfig::default().tolerance, allow_negative_numbers = true)]
     tolerance: f64,
     /// One-parameter edits measured.
-    #[arg(long, default_value_t = 200)]
+    #[arg(long, default_value_t = BenchConfig::default().edits)]
     edits: usize,
-    /// Ticks of 100 edits measured.
-    #[arg(long, default_value_t = 20)]
+    /// Ticks of 100 edits measured (the tick's p50 is their median).
+    #[arg(long, default_value_t = BenchConfig::default().ticks)]
     ticks: usize,
 }
 
