@@ -63,7 +63,12 @@ pub struct PatchSurface(pub Arc<Patch>);
 
 /// The triangle mesh of a patch, in its part's local frame, packed (exact
 /// positions, octahedral normals, narrow indices).
+///
+/// In a sparse set, like the other components later stages add to a patch or
+/// a nozzle: adding it leaves the entity's table row in place (see
+/// ARCHITECTURE.md, "A full build writes a component to every patch").
 #[derive(Component, Clone, Debug, PartialEq)]
+#[component(storage = "SparseSet")]
 pub struct PatchMesh(pub Arc<PackedMesh>);
 
 /// The cavities round a patch's openings as its last meshing triangulated them
@@ -71,12 +76,14 @@ pub struct PatchMesh(pub Arc<PackedMesh>);
 /// come out the same instead of triangulating them again. Absent on a patch
 /// without openings.
 #[derive(Component, Clone, Debug)]
+#[component(storage = "SparseSet")]
 pub struct PatchCavities(pub Arc<KeptCavities>);
 
 /// A nozzle's (or a boot's) opening: where its neck (the boot's shell) meets its
 /// host, computed once and used to trim both (the host patch gets a hole, the neck
 /// its bottom edge).
 #[derive(Component, Clone, Debug, PartialEq)]
+#[component(storage = "SparseSet")]
 pub struct Opening {
     /// The host patches the neck cuts, with how it trims each: one patch with a
     /// hole, or the two patches whose seam the opening crosses, with notches.
@@ -101,6 +108,7 @@ pub struct Opening {
 /// are kept only while the model keeps views (see `Views`): a plant build does
 /// not hold a second copy of every mesh boundary.
 #[derive(Component, Clone, Debug, PartialEq)]
+#[component(storage = "SparseSet")]
 pub struct PatchRegion {
     /// 128-bit fingerprint of the loops' exact coordinates
     /// ([`Region::fingerprint`]).

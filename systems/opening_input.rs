@@ -22,6 +22,7 @@ use crate::parts::Patch;
 /// straight course that only moved along the course's axis is placed again from
 /// the kept [`AxialCut`] without marching.
 #[derive(Component, Clone, Debug)]
+#[component(storage = "SparseSet")]
 pub struct OpeningInput {
     neck: Arc<Patch>,
     hosts: Vec<Arc<Patch>>,
