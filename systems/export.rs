@@ -58,14 +58,18 @@ pub fn collect_changes(
     // patches per owner).
     let mut owner_ids: Vec<Entity> = parts.moved_or_reshaped();
     parts.clear();
-    owner_ids.extend(
-        dirty
-            .meshes
-            .iter()
-            .filter_map(|&e| patches.get(e).ok())
-            .filter_map(|(patch, pad)| patch.map(|p| p.0).or(pad.map(|p| p.0))),
-    );
-    owner_ids.sort_unstable();
+    let owner = |&e: &Entity| {
+        let (patch, pad) = patches.get(e).ok()?;
+        patch.map(|p| p.0).or(pad.map(|p| p.0))
+    };
+    // In parallel after a full build, which meshes every patch of the plant.
+    if dirty.meshes.len() >= PARALLEL_IDS {
+        owner_ids.par_extend(dirty.meshes.par_iter().filter_map(owner));
+        owner_ids.par_sort_unstable();
+    } else {
+        owner_ids.extend(dirty.meshes.iter().filter_map(owner));
+        owner_ids.sort_unstable();
+    }
     owner_ids.dedup();
     dirty.clear();
     // Named in parallel and sorted before they go into the log: after a full
