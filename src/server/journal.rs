@@ -314,19 +314,21 @@ mod tests {
     use super::*;
     use serde_json::json;
 
-    fn temp_design(name: &str, text: &str) -> PathBuf {
-        let dir =
-            std::env::temp_dir().join(format!("vesselcad-journal-{name}-{}", std::process::id()));
-        std::fs::create_dir_all(&dir).unwrap();
-        let path = dir.join("d.json");
+    /// A design file in a fresh folder, removed with the folder when the
+    /// returned guard is dropped.
+    fn temp_design(name: &str, text: &str) -> (tempfile::TempDir, PathBuf) {
+        let dir = tempfile::Builder::new()
+            .prefix(&format!("vesselcad-journal-{name}-"))
+            .tempdir()
+            .unwrap();
+        let path = dir.path().join("d.json");
         std::fs::write(&path, text).unwrap();
-        let _ = std::fs::remove_file(journal_path(&path));
-        path
+        (dir, path)
     }
 
     #[test]
     fn replays_appended_edits_and_drops_a_torn_tail() {
-        let design = temp_design("torn", "{}");
+        let (_dir, design) = temp_design("torn", "{}");
         let (mut j, replay) = Journal::open(&design, b"{}").unwrap();
         assert!(replay.edits.is_empty());
         j.append(1, &json!([{"op": "add", "path": "/a", "value": 1}]))
@@ -352,7 +354,7 @@ mod tests {
 
     #[test]
     fn a_save_marker_matching_the_file_skips_what_it_saved() {
-        let design = temp_design("saved", "{}");
+        let (_dir, design) = temp_design("saved", "{}");
         let (mut j, _) = Journal::open(&design, b"{}").unwrap();
         j.append(1, &json!([])).unwrap();
         j.mark_saved(&fingerprint(b"{\"a\":1}"), 1).unwrap();

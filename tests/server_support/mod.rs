@@ -16,18 +16,40 @@ use serde_json::Value;
 /// How long any single request or start-up may take before the test fails.
 pub const TIMEOUT: Duration = Duration::from_secs(60);
 
+/// A copy of an example design in a fresh folder of its own, removed (with
+/// whatever the test wrote there: journals, saved designs) when dropped. Derefs
+/// to the design's path.
+pub struct DesignCopy {
+    path: PathBuf,
+    _dir: tempfile::TempDir,
+}
+
+impl std::ops::Deref for DesignCopy {
+    type Target = Path;
+    fn deref(&self) -> &Path {
+        &self.path
+    }
+}
+
+impl AsRef<Path> for DesignCopy {
+    fn as_ref(&self) -> &Path {
+        &self.path
+    }
+}
+
 /// A fresh folder holding a copy of `examples/designs/<example>`; returns the
-/// design path inside it.
-pub fn design_copy(example: &str, test: &str) -> PathBuf {
-    let dir = std::env::temp_dir().join(format!("vesselcad-{test}-{}", std::process::id()));
-    let _ = std::fs::remove_dir_all(&dir);
-    std::fs::create_dir_all(&dir).unwrap();
-    let path = dir.join("design.json");
+/// design path inside it (the folder goes when the copy is dropped).
+pub fn design_copy(example: &str, test: &str) -> DesignCopy {
+    let dir = tempfile::Builder::new()
+        .prefix(&format!("vesselcad-{test}-"))
+        .tempdir()
+        .unwrap();
+    let path = dir.path().join("design.json");
     let source = Path::new(env!("CARGO_MANIFEST_DIR"))
         .join("examples/designs")
         .join(example);
     std::fs::copy(source, &path).unwrap();
-    path
+    DesignCopy { path, _dir: dir }
 }
 
 /// A running `vesselcad serve`, killed (SIGKILL) when dropped.
