@@ -13,11 +13,10 @@
 //! it, and sharing never changes a byte of any mesh.
 
 use std::hash::{BuildHasher, Hasher};
-use std::sync::{Arc, Weak};
 
 use glam::DVec3;
-use rustc_hash::FxHashMap;
 
+use super::weak_table::WeakTable;
 use super::{PackedMesh, TessellationOptions};
 use crate::parts::{Analytic, Patch};
 
@@ -114,41 +113,12 @@ fn analytic_bits(analytic: &Analytic, write: &mut impl FnMut(u64)) {
 
 /// The meshes in use, by [`mesh_key`]: weak references, so an entry dies with the
 /// last patch using its mesh (dead entries are swept as the table grows).
-#[derive(Debug, Default)]
-pub struct MeshInstances {
-    table: FxHashMap<u128, Weak<PackedMesh>>,
-    /// Table size after the last sweep.
-    swept: usize,
-}
-
-impl MeshInstances {
-    /// The mesh in use for `key`, if a patch still holds it.
-    pub fn get(&self, key: u128) -> Option<Arc<PackedMesh>> {
-        self.table.get(&key)?.upgrade()
-    }
-
-    /// Records `mesh` as the mesh of `key`.
-    pub fn insert(&mut self, key: u128, mesh: &Arc<PackedMesh>) {
-        self.table.insert(key, Arc::downgrade(mesh));
-        if self.table.len() > 2 * self.swept + 1024 {
-            self.table.retain(|_, m| m.strong_count() > 0);
-            self.swept = self.table.len();
-        }
-    }
-
-    /// Entries (some possibly dead until the next sweep).
-    pub fn len(&self) -> usize {
-        self.table.len()
-    }
-
-    /// Whether the table is empty.
-    pub fn is_empty(&self) -> bool {
-        self.table.is_empty()
-    }
-}
+pub type MeshInstances = WeakTable<PackedMesh>;
 
 #[cfg(test)]
 mod tests {
+    use std::sync::Arc;
+
     use super::*;
     use crate::mesh::cdt::Region;
     use crate::parts::heads::{Head, HeadKind};

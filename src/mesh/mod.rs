@@ -21,6 +21,7 @@ mod shared_cuts;
 #[cfg(test)]
 mod test_parts;
 mod turn;
+mod weak_table;
 
 pub use axial::AxialCut;
 pub(crate) use axial::Extrusion;
@@ -38,6 +39,7 @@ pub use options::{OptionsError, TessellationOptions};
 pub use packed::{OctNormal, PackedMesh};
 pub use seams::{HostTrim, Notch};
 pub use shared_cuts::SharedCuts;
+pub use weak_table::WeakTable;
 
 use glam::DVec3;
 

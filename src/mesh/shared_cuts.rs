@@ -17,11 +17,9 @@
 //! kept cut gives what a fresh march gives).
 
 use std::hash::{BuildHasher, Hasher};
-use std::sync::{Arc, Weak};
-
-use rustc_hash::FxHashMap;
 
 use super::axial::AxialCut;
+use super::weak_table::WeakTable;
 
 /// A 128-bit key of the canonical march an opening in a one-patch straight
 /// course is placed from: the course and canonical placement (`course`, by
@@ -54,38 +52,7 @@ pub(super) fn shared_key(
 /// The canonical cuts in use, by their [`shared_key`]: weak references, so an
 /// entry dies with the last opening keeping its cut (dead entries are swept as
 /// the table grows).
-#[derive(Debug, Default)]
-pub struct SharedCuts {
-    table: FxHashMap<u128, Weak<AxialCut>>,
-    /// Table size after the last sweep.
-    swept: usize,
-}
-
-impl SharedCuts {
-    /// The cut in use for `key`, if an opening still keeps it.
-    pub fn get(&self, key: u128) -> Option<Arc<AxialCut>> {
-        self.table.get(&key)?.upgrade()
-    }
-
-    /// Records `cut` as the cut of `key`.
-    pub fn insert(&mut self, key: u128, cut: &Arc<AxialCut>) {
-        self.table.insert(key, Arc::downgrade(cut));
-        if self.table.len() > 2 * self.swept + 1024 {
-            self.table.retain(|_, c| c.strong_count() > 0);
-            self.swept = self.table.len();
-        }
-    }
-
-    /// Entries (some possibly dead until the next sweep).
-    pub fn len(&self) -> usize {
-        self.table.len()
-    }
-
-    /// Whether the table is empty.
-    pub fn is_empty(&self) -> bool {
-        self.table.is_empty()
-    }
-}
+pub type SharedCuts = WeakTable<AxialCut>;
 
 #[cfg(test)]
 mod tests {
