@@ -78,6 +78,22 @@ pub(crate) fn place(
                 format!("a {} belongs under a {needs} vessel", part.kind()),
             );
         };
+        // Legs and lugs stand round a vertical vessel, the first at an
+        // orientation: whether both hold (each broken rule reported).
+        let round_a_vertical = |report: &mut Report, orientation: f64| {
+            if !vertical {
+                wrong_kind(report, "vertical");
+                return false;
+            }
+            let orientation_path = format!("{path}.orientation");
+            check_angle(
+                report,
+                &orientation_path,
+                Some(id),
+                "orientation",
+                orientation,
+            )
+        };
         let resolved = match part {
             PartDesign::Skirt(s) => {
                 if !vertical {
@@ -195,18 +211,7 @@ pub(crate) fn place(
                 }
             }
             PartDesign::Legs(l) => {
-                if !vertical {
-                    wrong_kind(report, "vertical");
-                    continue;
-                }
-                let orientation_path = format!("{path}.orientation");
-                if !check_angle(
-                    report,
-                    &orientation_path,
-                    Some(id),
-                    "orientation",
-                    l.orientation,
-                ) {
+                if !round_a_vertical(report, l.orientation) {
                     continue;
                 }
                 let nps = match Nps::try_new(l.size) {
@@ -262,18 +267,7 @@ pub(crate) fn place(
                 }
             }
             PartDesign::Lugs(l) => {
-                if !vertical {
-                    wrong_kind(report, "vertical");
-                    continue;
-                }
-                let orientation_path = format!("{path}.orientation");
-                if !check_angle(
-                    report,
-                    &orientation_path,
-                    Some(id),
-                    "orientation",
-                    l.orientation,
-                ) {
+                if !round_a_vertical(report, l.orientation) {
                     continue;
                 }
                 let Some(course) =
