@@ -3,9 +3,9 @@
 
 use glam::DVec3;
 
-use super::profile::{MAX_HALF_ANGLE, MIN_HALF_ANGLE, Segment, xz};
+use super::profile::{Segment, half_angle, xz};
 use crate::nurbs::builders::line;
-use crate::parts::check::{in_range, less_than, non_negative};
+use crate::parts::check::{less_than, non_negative};
 use crate::parts::{Analytic, PartError};
 
 /// Profile from the tangent line at `z0`: cone, then (truncated) the small-end plate.
@@ -16,15 +16,7 @@ pub(super) fn profile(
     half_angle_deg: f64,
     small_diameter: f64,
 ) -> Result<Vec<Segment>, PartError> {
-    let alpha = in_range(
-        part,
-        "half_angle",
-        half_angle_deg,
-        MIN_HALF_ANGLE,
-        MAX_HALF_ANGLE,
-        false,
-    )?
-    .to_radians();
+    let alpha = half_angle(part, half_angle_deg)?;
     let small = non_negative(part, "small_diameter", small_diameter)?;
     less_than(
         part,

@@ -5,6 +5,7 @@ use glam::DVec3;
 
 use crate::nurbs::NurbsCurve;
 use crate::nurbs::builders::circular_arc;
+use crate::parts::check::in_range;
 use crate::parts::{Analytic, PartError};
 
 /// One smooth piece of a meridian, running away from the open end.
@@ -53,3 +54,17 @@ pub(super) fn knuckle_torus(major: f64, minor: f64, z: f64) -> Analytic {
 pub(super) const MIN_HALF_ANGLE: f64 = 1.0;
 /// Largest cone half-angle a head accepts, degrees (beyond it, design a flat head).
 pub(super) const MAX_HALF_ANGLE: f64 = 89.0;
+
+/// A cone head's `half_angle` (degrees) checked to lie within
+/// [`MIN_HALF_ANGLE`], [`MAX_HALF_ANGLE`]; in radians.
+pub(super) fn half_angle(part: &'static str, degrees: f64) -> Result<f64, PartError> {
+    Ok(in_range(
+        part,
+        "half_angle",
+        degrees,
+        MIN_HALF_ANGLE,
+        MAX_HALF_ANGLE,
+        false,
+    )?
+    .to_radians())
+}

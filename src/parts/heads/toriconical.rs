@@ -3,9 +3,9 @@
 
 use glam::DVec3;
 
-use super::profile::{MAX_HALF_ANGLE, MIN_HALF_ANGLE, Segment, arc_xz, knuckle_torus, xz};
+use super::profile::{Segment, arc_xz, half_angle, knuckle_torus, xz};
 use crate::nurbs::builders::line;
-use crate::parts::check::{in_range, less_than, positive};
+use crate::parts::check::{less_than, positive};
 use crate::parts::{Analytic, PartError};
 
 /// Profile from the tangent line at `z0`: knuckle, then cone to the apex.
@@ -16,15 +16,7 @@ pub(super) fn profile(
     half_angle_deg: f64,
     knuckle: f64,
 ) -> Result<Vec<Segment>, PartError> {
-    let alpha = in_range(
-        part,
-        "half_angle",
-        half_angle_deg,
-        MIN_HALF_ANGLE,
-        MAX_HALF_ANGLE,
-        false,
-    )?
-    .to_radians();
+    let alpha = half_angle(part, half_angle_deg)?;
     let knuckle = positive(part, "knuckle_radius", knuckle)?;
     less_than(part, "knuckle_radius", knuckle, r, "the outside radius D/2")?;
     let major = r - knuckle;
