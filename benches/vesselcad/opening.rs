@@ -172,42 +172,31 @@ fn bench(c: &mut Criterion) {
     .expect("a cut")
     .axial
     .expect("a course keeps its canonical cut");
+    // Placed at `at` from the kept canonical cut (asserted).
+    let placed = |at: &DAffine3| {
+        let cut = cut_opening_reusing(
+            &neck,
+            pad_od,
+            at,
+            &DAffine3::IDENTITY,
+            &[&course],
+            TOLERANCE,
+            Some(&kept),
+        )
+        .expect("a cut");
+        assert!(cut.reused);
+        cut
+    };
     let moved = DAffine3::from_translation(DVec3::new(0.0, 0.0, 100.0)) * frame;
     group.bench_function("cut: 8in with pad moved along the shell's axis", |b| {
-        b.iter(|| {
-            let cut = cut_opening_reusing(
-                &neck,
-                pad_od,
-                &moved,
-                &DAffine3::IDENTITY,
-                &[&course],
-                TOLERANCE,
-                Some(&kept),
-            )
-            .expect("a cut");
-            assert!(cut.reused);
-            black_box(cut)
-        })
+        b.iter(|| black_box(placed(&moved)))
     });
 
     // The same cut turned 70° about the course's axis (an orientation edit):
     // placed from the kept canonical cut too, host u in closed form.
     let turned = DAffine3::from_rotation_z(70f64.to_radians()) * frame;
     group.bench_function("cut: 8in with pad turned about the shell's axis", |b| {
-        b.iter(|| {
-            let cut = cut_opening_reusing(
-                &neck,
-                pad_od,
-                &turned,
-                &DAffine3::IDENTITY,
-                &[&course],
-                TOLERANCE,
-                Some(&kept),
-            )
-            .expect("a cut");
-            assert!(cut.reused);
-            black_box(cut)
-        })
+        b.iter(|| black_box(placed(&turned)))
     });
 
     // Region layout of a course with six openings at two elevations.
