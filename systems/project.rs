@@ -27,7 +27,7 @@ use bevy_ecs::world::World;
 use glam::DVec2;
 use rayon::prelude::*;
 
-use super::{Tessellation, WorkCounters};
+use super::{DirtyPatches, Tessellation, WorkCounters};
 use crate::components::{
     EntityViews, Footprint, NozzleSpec, PadOf, PadPatch, PartFrame, PartSpec, PatchMesh, PatchOf,
     PatchRegion, PatchSurface, Patches, Shape, VesselFrame, VesselSpec, VesselSummary, VesselViews,
@@ -48,6 +48,20 @@ type Unviewed = (
     With<Patches>,
     Without<EntityViews>,
     Or<(With<PartSpec>, With<NozzleSpec>)>,
+);
+
+/// A vessel whose views may need a whole rebuild or lost a member: its kind,
+/// frame or summary (projections and sampling) or its children changed, or it has
+/// no views yet.
+type Reframed = (
+    With<VesselSpec>,
+    Or<(
+        Changed<VesselSpec>,
+        Changed<VesselFrame>,
+        Changed<VesselSummary>,
+        Changed<Children>,
+        Without<VesselViews>,
+    )>,
 );
 
 /// The inputs of one member entity of vessel `tag`, or `None` when it has no frame
@@ -155,13 +169,28 @@ pub fn project_dirty_views(
     moved: &mut QueryState<Entity, Moved>,
     unviewed: &mut QueryState<Entity, Unviewed>,
     vessels: &mut QueryState<(Entity, &VesselSpec, &VesselFrame, &VesselSummary)>,
+    reframed: &mut QueryState<Entity, Reframed>,
 ) {
     let tessellation_changed = world.is_resource_changed::<Tessellation>();
+    let views_changed = world.is_resource_changed::<Views>();
     let tolerance = world.resource::<Tessellation>().0.tolerance;
     let moved_set: BTreeSet<Entity> = moved.iter(world).chain(unviewed.iter(world)).collect();
     let mut dirty: BTreeSet<Entity> = moved_set.clone();
-    dirty.extend(meshed.iter(world).map(|p| p.0));
-    dirty.extend(padded.iter(world).map(|p| p.0));
+    if views_changed {
+        // Views (back) on: every mesh written since the stage last ran, which
+        // may be several updates ago.
+        dirty.extend(meshed.iter(world).map(|p| p.0));
+        dirty.extend(padded.iter(world).map(|p| p.0));
+    } else {
+        // The stage ran on the last update: the meshes written since are the
+        // ones the Tessellate stage lists for this run (a scan of every patch's
+        // mesh for changes cost more than the rest of an idle update).
+        let owner = |e: Entity| {
+            (world.get::<PatchOf>(e).map(|p| p.0)).or_else(|| world.get::<PadOf>(e).map(|p| p.0))
+        };
+        let meshes = &world.resource::<DirtyPatches>().meshes;
+        dirty.extend(meshes.iter().filter_map(|&e| owner(e)));
+    }
     let vessel_of = |e: Entity| world.get::<ChildOf>(e).map(ChildOf::parent);
     let mut by_vessel: BTreeMap<Entity, BTreeSet<Entity>> = BTreeMap::new();
     for &e in &dirty {
@@ -169,8 +198,19 @@ pub fn project_dirty_views(
             by_vessel.entry(v).or_default().insert(e);
         }
     }
-    let all_vessels: Vec<(Entity, String, [_; 4], ViewSettings)> = vessels
-        .iter(world)
+    // The vessels to look at: every one when the options or the views themselves
+    // changed, else those with a dirty member or a change of their own (looking
+    // at each of a plant's vessels on every update cost milliseconds).
+    let candidates: Vec<Entity> = if tessellation_changed || views_changed {
+        vessels.iter(world).map(|(e, ..)| e).collect()
+    } else {
+        let mut set: BTreeSet<Entity> = by_vessel.keys().copied().collect();
+        set.extend(reframed.iter(world));
+        set.into_iter().collect()
+    };
+    let all_vessels: Vec<(Entity, String, [_; 4], ViewSettings)> = candidates
+        .into_iter()
+        .filter_map(|e| vessels.get(world, e).ok())
         .map(|(e, spec, frame, summary)| {
             (
                 e,

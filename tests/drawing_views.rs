@@ -353,3 +353,65 @@ fn views_can_be_left_off_and_turned_on_later() {
         sheet_svg(&kept, &tag, &SheetOptions::default()).unwrap()
     );
 }
+
+/// Whether every entity view of `tag` is the same `Arc` in both snapshots.
+fn untouched(before: &[(ViewKind, String, Arc<EntityView>)], model: &Model, tag: &str) -> bool {
+    let after = snapshot(model, tag);
+    before.len() == after.len()
+        && before
+            .iter()
+            .zip(&after)
+            .all(|(b, a)| Arc::ptr_eq(&b.2, &a.2))
+}
+
+#[test]
+fn in_a_plant_an_edit_rebuilds_only_its_vessels_views() {
+    use vesselcad::model::Views;
+    let tags = ["V-101", "V-102", "C-201", "TK-301"];
+    let mut model = Model::from_design(&example("small-plant"), options()).unwrap();
+    let before: Vec<_> = tags.iter().map(|t| snapshot(&model, t)).collect();
+    assert_eq!(model.update().views_rebuilt, 0, "nothing changed");
+    // A nozzle removed: its footprint frees the lines behind it, and its views go.
+    let counters = model
+        .edit(Edit::RemoveNozzle {
+            vessel: "C-201".into(),
+            mark: "N7".into(),
+        })
+        .unwrap();
+    assert!(counters.views_rebuilt > 0);
+    for (i, tag) in tags.iter().enumerate().filter(|(_, t)| **t != "C-201") {
+        assert!(untouched(&before[i], &model, tag), "{tag} was rebuilt");
+    }
+    let after = snapshot(&model, "C-201");
+    assert_eq!(after.len(), before[2].len() - 4, "N7's four views are gone");
+    let fresh = Model::from_design(&model.design(), options()).unwrap();
+    for ((kind, id, a), (_, _, b)) in after.iter().zip(&snapshot(&fresh, "C-201")) {
+        assert_close(a, b, 1.0, &format!("{id} in {kind:?}"));
+    }
+    // A nozzle moved while views are off: turning them on catches up with it
+    // and leaves the other vessels as they were.
+    let before: Vec<_> = tags.iter().map(|t| snapshot(&model, t)).collect();
+    model.set_views(Views::Off);
+    let design = model.design();
+    let mut n5 = design.vessels[2].nozzles[4].clone();
+    assert_eq!(n5.mark, "N5");
+    n5.elevation = Some(2500.0);
+    model
+        .edit(Edit::SetNozzle {
+            vessel: "C-201".into(),
+            nozzle: n5,
+        })
+        .unwrap();
+    model.set_views(Views::Kept);
+    assert!(model.update().views_rebuilt > 0);
+    for (i, tag) in tags.iter().enumerate().filter(|(_, t)| **t != "C-201") {
+        assert!(untouched(&before[i], &model, tag), "{tag} was rebuilt");
+    }
+    let fresh = Model::from_design(&model.design(), options()).unwrap();
+    let after = snapshot(&model, "C-201");
+    assert_eq!(after.len(), before[2].len());
+    for ((kind, id, a), (_, _, b)) in after.iter().zip(&snapshot(&fresh, "C-201")) {
+        assert_close(a, b, 1.0, &format!("{id} in {kind:?}"));
+    }
+    assert_eq!(model.update().views_rebuilt, 0, "nothing changed since");
+}
