@@ -33,8 +33,8 @@ use crate::components::{
     PatchRegion, PatchSurface, Patches, Shape, VesselFrame, VesselSpec, VesselSummary, VesselViews,
 };
 use crate::project::{
-    EntityInput, EntityView, LineKind, Occluder, PatchInput, ViewSettings, build_entity_view,
-    footprint, projections,
+    EntityInput, EntityView, LineKind, Occluder, PatchInput, PreparedEntity, ViewSettings,
+    build_entity_view, footprint, projections,
 };
 
 /// A part or nozzle whose frame or shape changed.
@@ -307,14 +307,24 @@ pub fn project_dirty_views(
                 )
             })
             .collect();
+        // What an entity's views share is evaluated once for all its jobs.
+        let mut with_jobs: Vec<Entity> = jobs.iter().map(|&(e, _)| e).collect();
+        with_jobs.dedup();
+        let prepared: HashMap<Entity, PreparedEntity> = with_jobs
+            .par_iter()
+            .map(|&e| (e, PreparedEntity::new(&inputs[&e], &settings)))
+            .collect();
         let built: Vec<(Entity, usize, EntityView)> = jobs
             .par_iter()
             .map(|&(e, k)| {
-                (
-                    e,
-                    k,
-                    build_entity_view(&inputs[&e], &views[k], &occluders[k], &settings),
-                )
+                let view = build_entity_view(
+                    &inputs[&e],
+                    &prepared[&e],
+                    &views[k],
+                    &occluders[k],
+                    &settings,
+                );
+                (e, k, view)
             })
             .collect();
         rebuilt += built.len() as u64;

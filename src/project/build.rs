@@ -3,7 +3,9 @@
 //!
 //! The input is what the Tessellate stage left on the entity's patches (exact
 //! surface, trimmed region, mesh) and its frame; the output is an [`EntityView`].
-//! This is the unit of work the Project stage caches and rebuilds.
+//! This is the unit of work the Project stage caches and rebuilds; what an
+//! entity's views share (silhouette normal grids, boundary edges) is evaluated
+//! once per entity as a [`PreparedEntity`].
 
 use std::sync::Arc;
 
@@ -12,7 +14,7 @@ use glam::{DAffine3, DVec2, DVec3};
 use super::classify::{Sampling, classify};
 use super::edges::boundary_polylines;
 use super::occlusion::Occluder;
-use super::silhouette::silhouettes;
+use super::silhouette::{NormalGrid, SurfacePoint, silhouettes};
 use super::{EntityView, LineKind, Projection, ViewLine};
 use crate::mesh::Mesh;
 use crate::mesh::cdt::Region;
@@ -77,29 +79,60 @@ pub fn footprint(entity: &EntityInput, projection: &Projection) -> Option<(DVec2
     Some(it.fold((first, first), |(lo, hi), p| (lo.min(p), hi.max(p))))
 }
 
+/// What an entity's views share, whatever the view: per patch, its normal grid
+/// for silhouettes and its boundary polylines (vessel frame). Built once for the
+/// views of an entity rebuilt together.
+#[derive(Clone, Debug)]
+pub struct PreparedEntity {
+    patches: Vec<PreparedPatch>,
+}
+
+#[derive(Clone, Debug)]
+struct PreparedPatch {
+    grid: NormalGrid,
+    closed_u: bool,
+    boundaries: Vec<Vec<SurfacePoint>>,
+}
+
+impl PreparedEntity {
+    /// Evaluates the view-independent part of `entity`'s lines.
+    pub fn new(entity: &EntityInput, settings: &ViewSettings) -> Self {
+        let patches = entity
+            .patches
+            .iter()
+            .map(|p| PreparedPatch {
+                grid: NormalGrid::new(&p.patch.surface, settings.silhouette_spacing),
+                closed_u: crate::mesh::closed_in_u(&p.patch.surface),
+                boundaries: boundary_polylines(&p.mesh, &entity.frame),
+            })
+            .collect();
+        Self { patches }
+    }
+}
+
 /// The entity's lines in one view: silhouettes and boundary edges, visible or
 /// hidden against `occluder`, then its centrelines.
 pub fn build_entity_view(
     entity: &EntityInput,
+    prepared: &PreparedEntity,
     projection: &Projection,
     occluder: &Occluder,
     settings: &ViewSettings,
 ) -> EntityView {
     let mut lines = Vec::new();
-    for p in &entity.patches {
-        let closed = crate::mesh::closed_in_u(&p.patch.surface);
+    for (p, prep) in entity.patches.iter().zip(&prepared.patches) {
         for s in silhouettes(
             &p.patch.surface,
+            &prep.grid,
             p.region.as_deref(),
             &entity.frame,
             projection.toward_viewer,
-            settings.silhouette_spacing,
-            closed,
+            prep.closed_u,
         ) {
             classify(&s, projection, occluder, &settings.sampling, &mut lines);
         }
-        for b in boundary_polylines(&p.mesh, &entity.frame) {
-            classify(&b, projection, occluder, &settings.sampling, &mut lines);
+        for b in &prep.boundaries {
+            classify(b, projection, occluder, &settings.sampling, &mut lines);
         }
     }
     lines.extend(centrelines(entity, projection));
@@ -212,13 +245,25 @@ pub fn build_views(
             )
         })
         .collect();
-    let jobs: Vec<(usize, usize)> = selected
-        .iter()
-        .flat_map(|&i| (0..4).map(move |k| (i, k)))
+    let prepared: Vec<PreparedEntity> = selected
+        .par_iter()
+        .map(|&i| PreparedEntity::new(&entities[i], settings))
+        .collect();
+    let jobs: Vec<(usize, usize)> = (0..selected.len())
+        .flat_map(|n| (0..4).map(move |k| (n, k)))
         .collect();
     let mut built: Vec<EntityView> = jobs
         .par_iter()
-        .map(|&(i, k)| build_entity_view(&entities[i], &projections[k], &occluders[k], settings))
+        .map(|&(n, k)| {
+            let entity = &entities[selected[n]];
+            build_entity_view(
+                entity,
+                &prepared[n],
+                &projections[k],
+                &occluders[k],
+                settings,
+            )
+        })
         .collect();
     let mut out = Vec::with_capacity(selected.len());
     while built.len() >= 4 {

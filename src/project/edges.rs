@@ -8,7 +8,7 @@
 //! patch's parameter seam, a collapsed pole) are welded first, so the parameter
 //! seam of a cylinder and the pole of a head are not drawn: only real edges are.
 
-use std::collections::HashMap;
+use rustc_hash::FxHashMap as HashMap;
 
 use glam::{DAffine3, DVec3};
 
@@ -29,7 +29,7 @@ pub fn boundary_polylines(mesh: &Mesh, frame: &DAffine3) -> Vec<Vec<SurfacePoint
             (p.z / WELD).round() as i64,
         )
     };
-    let mut ids: HashMap<(i64, i64, i64), u32> = HashMap::new();
+    let mut ids: HashMap<(i64, i64, i64), u32> = HashMap::default();
     let mut first: Vec<usize> = Vec::new();
     let welded: Vec<u32> = mesh
         .positions
@@ -42,7 +42,7 @@ pub fn boundary_polylines(mesh: &Mesh, frame: &DAffine3) -> Vec<Vec<SurfacePoint
             })
         })
         .collect();
-    let mut directed: HashMap<(u32, u32), u32> = HashMap::new();
+    let mut directed: HashMap<(u32, u32), u32> = HashMap::default();
     for t in mesh.indices.chunks_exact(3) {
         for k in 0..3 {
             let (a, b) = (welded[t[k] as usize], welded[t[(k + 1) % 3] as usize]);
@@ -52,7 +52,7 @@ pub fn boundary_polylines(mesh: &Mesh, frame: &DAffine3) -> Vec<Vec<SurfacePoint
         }
     }
     // Boundary: a directed edge without its reverse.
-    let mut next: HashMap<u32, Vec<u32>> = HashMap::new();
+    let mut next: HashMap<u32, Vec<u32>> = HashMap::default();
     let mut edges: Vec<(u32, u32)> = directed
         .keys()
         .filter(|(a, b)| !directed.contains_key(&(*b, *a)))
@@ -62,7 +62,7 @@ pub fn boundary_polylines(mesh: &Mesh, frame: &DAffine3) -> Vec<Vec<SurfacePoint
     for &(a, b) in &edges {
         next.entry(a).or_default().push(b);
     }
-    let mut incoming: HashMap<u32, usize> = HashMap::new();
+    let mut incoming: HashMap<u32, usize> = HashMap::default();
     for &(_, b) in &edges {
         *incoming.entry(b).or_default() += 1;
     }
@@ -73,7 +73,7 @@ pub fn boundary_polylines(mesh: &Mesh, frame: &DAffine3) -> Vec<Vec<SurfacePoint
             normal: (frame.matrix3 * mesh.normals[i]).normalize(),
         }
     };
-    let mut used: HashMap<(u32, u32), bool> = HashMap::new();
+    let mut used: HashMap<(u32, u32), bool> = HashMap::default();
     let mut out = Vec::new();
     // Open chains start where nothing comes in; then loops.
     let mut starts: Vec<(u32, u32)> = edges

@@ -17,10 +17,13 @@ mod occlusion;
 mod silhouette;
 mod types;
 
-pub use build::{EntityInput, PatchInput, ViewSettings, build_entity_view, build_views, footprint};
+pub use build::{
+    EntityInput, PatchInput, PreparedEntity, ViewSettings, build_entity_view, build_views,
+    footprint,
+};
 pub use classify::Sampling;
 pub use edges::boundary_polylines;
 pub use frames::{plan_north, projections};
 pub use occlusion::Occluder;
-pub use silhouette::{SurfacePoint, silhouettes};
+pub use silhouette::{NormalGrid, SurfacePoint, silhouettes};
 pub use types::{EntityView, LineKind, Projection, View, ViewKind, ViewLine};

@@ -13,11 +13,53 @@ use glam::{DAffine3, DVec2, DVec3};
 use super::Projection;
 use crate::mesh::Mesh;
 
+/// A projected triangle, ready for point tests: its first corner, the inverse of
+/// its edge matrix (view point → barycentric coordinates of the second and third
+/// corners), its corners' depths and the nearest of them.
+#[derive(Clone, Copy, Debug)]
+struct Facet {
+    a: DVec2,
+    inverse: [f64; 4],
+    depths: [f64; 3],
+    nearest: f64,
+}
+
+impl Facet {
+    fn new([a, b, c]: [DVec3; 3]) -> Self {
+        let (e1, e2) = ((b - a).truncate(), (c - a).truncate());
+        let det = e1.perp_dot(e2);
+        Facet {
+            a: a.truncate(),
+            inverse: [e2.y / det, -e2.x / det, -e1.y / det, e1.x / det],
+            depths: [a.z, b.z, c.z],
+            nearest: a.z.max(b.z).max(c.z),
+        }
+    }
+
+    /// Whether the triangle covers `p` and lies nearer than `depth` there.
+    fn hides(&self, p: DVec2, depth: f64) -> bool {
+        // Behind everywhere: most of a cell's triangles (the far side).
+        if self.nearest <= depth {
+            return false;
+        }
+        let d = p - self.a;
+        let [m0, m1, m2, m3] = self.inverse;
+        let wb = m0 * d.x + m1 * d.y;
+        let wc = m2 * d.x + m3 * d.y;
+        let wa = 1.0 - wb - wc;
+        const INSIDE: f64 = -1e-12;
+        wa >= INSIDE
+            && wb >= INSIDE
+            && wc >= INSIDE
+            && wa * self.depths[0] + wb * self.depths[1] + wc * self.depths[2] > depth
+    }
+}
+
 /// Projected triangles of a vessel in one view, binned in a grid.
 #[derive(Clone, Debug, Default)]
 pub struct Occluder {
-    /// Triangles as `(x, y, depth)` per corner, view coordinates.
-    triangles: Vec<[DVec3; 3]>,
+    /// Triangles in view coordinates.
+    facets: Vec<Facet>,
     /// Lower-left corner of the grid.
     origin: DVec2,
     /// Cell side, mm.
@@ -82,7 +124,7 @@ impl Occluder {
             ((extent.y / cell).floor() as usize + 1).max(1),
         );
         let mut occluder = Occluder {
-            triangles,
+            facets: Vec::new(),
             origin: lo,
             cell,
             size,
@@ -90,7 +132,7 @@ impl Occluder {
             items: Vec::new(),
         };
         let mut counts = vec![0u32; size.0 * size.1 + 1];
-        for t in &occluder.triangles {
+        for t in &triangles {
             occluder.for_cells(t, |c| counts[c] += 1);
         }
         let mut starts = Vec::with_capacity(counts.len());
@@ -101,7 +143,7 @@ impl Occluder {
         }
         let mut fill = starts.clone();
         let mut items = vec![0u32; total as usize];
-        for (i, t) in occluder.triangles.iter().enumerate() {
+        for (i, t) in triangles.iter().enumerate() {
             occluder.for_cells(t, |c| {
                 items[fill[c] as usize] = i as u32;
                 fill[c] += 1;
@@ -109,6 +151,7 @@ impl Occluder {
         }
         occluder.starts = starts;
         occluder.items = items;
+        occluder.facets = triangles.into_iter().map(Facet::new).collect();
         occluder
     }
 
@@ -137,7 +180,7 @@ impl Occluder {
     /// Whether the view point `p` at `depth` is hidden: some triangle covers `p`
     /// and is nearer the viewer there by more than `tolerance`.
     pub fn hides(&self, p: DVec2, depth: f64, tolerance: f64) -> bool {
-        if self.triangles.is_empty() {
+        if self.facets.is_empty() {
             return false;
         }
         let q = (p - self.origin) / self.cell;
@@ -146,23 +189,14 @@ impl Occluder {
         }
         let c = (q.y as usize) * self.size.0 + q.x as usize;
         let range = self.starts[c] as usize..self.starts[c + 1] as usize;
-        self.items[range].iter().any(|&i| {
-            let [a, b, c] = self.triangles[i as usize];
-            let (a2, b2, c2) = (a.truncate(), b.truncate(), c.truncate());
-            let area = (b2 - a2).perp_dot(c2 - a2);
-            let wa = (b2 - p).perp_dot(c2 - p) / area;
-            let wb = (c2 - p).perp_dot(a2 - p) / area;
-            let wc = 1.0 - wa - wb;
-            const INSIDE: f64 = -1e-12;
-            wa >= INSIDE
-                && wb >= INSIDE
-                && wc >= INSIDE
-                && wa * a.z + wb * b.z + wc * c.z > depth + tolerance
-        })
+        let behind = depth + tolerance;
+        self.items[range]
+            .iter()
+            .any(|&i| self.facets[i as usize].hides(p, behind))
     }
 
     /// Number of triangles binned.
     pub fn triangle_count(&self) -> usize {
-        self.triangles.len()
+        self.facets.len()
     }
 }

@@ -2,7 +2,8 @@
 //! normal is perpendicular to the viewing direction (`n · d = 0`).
 //!
 //! The patch's (u, v) domain is sampled on a grid fine enough for the view (the
-//! sizing is in 3D, from the surface itself); every grid edge where `n · d` changes
+//! sizing is in 3D, from the surface itself), with the normal at every node: a
+//! [`NormalGrid`], the same for every view; every grid edge where `n · d` changes
 //! sign holds a silhouette point, found by a bracketed root search on the exact
 //! surface, so each point lies on the silhouette to round-off. The points are
 //! joined cell by cell (marching squares) into polylines, which are cut where they
@@ -11,7 +12,7 @@
 //! `n · d` vanishes everywhere and the patch's boundary circles are its outline.
 //! Sits between the Geometry/Tessellate outputs and the hidden-line classifier.
 
-use std::collections::HashMap;
+use rustc_hash::FxHashMap as HashMap;
 
 use glam::{DAffine3, DVec2, DVec3};
 
@@ -146,27 +147,47 @@ fn root(f: impl Fn(f64) -> f64, mut a: f64, mut b: f64, mut fa: f64, mut fb: f64
 /// Key of a grid edge: `(horizontal?, i, j)` of its first node.
 type EdgeKey = (bool, usize, usize);
 
+/// A patch's sampling grid with the exact unit normal at every node (part
+/// frame): what finding its silhouettes needs whatever the view, so an entity's
+/// four views evaluate it once.
+#[derive(Clone, Debug)]
+pub struct NormalGrid {
+    us: Vec<f64>,
+    vs: Vec<f64>,
+    /// Normal at `(us[i], vs[j])` is `normals[i * vs.len() + j]`.
+    normals: Vec<DVec3>,
+}
+
+impl NormalGrid {
+    /// The grid of `surface` with steps no longer than `spacing` mm.
+    pub fn new(surface: &NurbsSurface, spacing: f64) -> Self {
+        let us = grid_parameters(surface, true, spacing);
+        let vs = grid_parameters(surface, false, spacing);
+        let normals = us
+            .iter()
+            .flat_map(|&u| vs.iter().map(move |&v| (u, v)))
+            .map(|(u, v)| surface.normal(u, v))
+            .collect();
+        Self { us, vs, normals }
+    }
+}
+
 /// The silhouette polylines of one patch for the viewing direction
-/// `toward_viewer` (vessel frame), in the vessel frame. `frame` maps the part's
-/// frame to the vessel's; `spacing` is the largest grid step in mm; `closed_u`
+/// `toward_viewer` (vessel frame), in the vessel frame. `grid` is the patch's
+/// [`NormalGrid`]; `frame` maps the part's frame to the vessel's; `closed_u`
 /// says whether the patch closes on itself in u.
 pub fn silhouettes(
     surface: &NurbsSurface,
+    grid: &NormalGrid,
     region: Option<&Region>,
     frame: &DAffine3,
     toward_viewer: DVec3,
-    spacing: f64,
     closed_u: bool,
 ) -> Vec<Vec<SurfacePoint>> {
     let d = (frame.matrix3.transpose() * toward_viewer).normalize();
-    let us = grid_parameters(surface, true, spacing);
-    let vs = grid_parameters(surface, false, spacing);
+    let (us, vs) = (&grid.us, &grid.vs);
     let (nu, nv) = (us.len(), vs.len());
-    let g: Vec<f64> = us
-        .iter()
-        .flat_map(|&u| vs.iter().map(move |&v| (u, v)))
-        .map(|(u, v)| surface.normal(u, v).dot(d))
-        .collect();
+    let g: Vec<f64> = grid.normals.iter().map(|n| n.dot(d)).collect();
     let at = |i: usize, j: usize| g[i * nv + j];
     if g.iter().all(|x| x.abs() < 1e-6)
         || g.iter().all(|&x| x > -ZERO)
@@ -179,16 +200,16 @@ pub fn silhouettes(
     // and round-off noise along an edge-on row makes no crossings.
     let sign = |x: f64| if x < -ZERO { -1 } else { 1 };
     // Crossing point on each grid edge whose ends have strictly opposite signs.
-    let mut points: HashMap<EdgeKey, DVec2> = HashMap::new();
+    let mut points: HashMap<EdgeKey, DVec2> = HashMap::default();
     let mut crossing = |key: EdgeKey| -> Option<DVec2> {
-        if let Some(p) = points.get(&key) {
-            return Some(*p);
-        }
         let (horizontal, i, j) = key;
         let (i2, j2) = if horizontal { (i + 1, j) } else { (i, j + 1) };
         let (ga, gb) = (at(i, j), at(i2, j2));
         if sign(ga) == sign(gb) {
             return None;
+        }
+        if let Some(p) = points.get(&key) {
+            return Some(*p);
         }
         let p = if ga.abs() < ZERO {
             DVec2::new(us[i], vs[j])
@@ -217,21 +238,32 @@ pub fn silhouettes(
     let mut segments: Vec<(EdgeKey, EdgeKey)> = Vec::new();
     for i in 0..nu - 1 {
         for j in 0..nv - 1 {
+            // Most cells lie wholly on one side.
+            let s = sign(at(i, j));
+            if [at(i + 1, j), at(i, j + 1), at(i + 1, j + 1)]
+                .iter()
+                .all(|&x| sign(x) == s)
+            {
+                continue;
+            }
             let edges = [
                 (true, i, j),
                 (false, i + 1, j),
                 (true, i, j + 1),
                 (false, i, j),
             ];
-            let hit: Vec<EdgeKey> = edges
-                .into_iter()
-                .map(canonical)
-                .filter(|&k| crossing(k).is_some())
-                .collect();
-            if hit.len() >= 2 {
+            let mut hit = [(false, 0, 0); 4];
+            let mut hits = 0;
+            for k in edges.into_iter().map(canonical) {
+                if crossing(k).is_some() {
+                    hit[hits] = k;
+                    hits += 1;
+                }
+            }
+            if hits >= 2 {
                 segments.push((hit[0], hit[1]));
             }
-            if hit.len() == 4 {
+            if hits == 4 {
                 segments.push((hit[2], hit[3]));
             }
         }
@@ -335,7 +367,7 @@ fn snap(surface: &NurbsSurface, d: DVec3, uv: DVec2) -> DVec2 {
 /// Joins segments sharing an end into chains of keys (closed chains repeat their
 /// first key at the end).
 fn chain(segments: &[(EdgeKey, EdgeKey)]) -> Vec<Vec<EdgeKey>> {
-    let mut by_key: HashMap<EdgeKey, Vec<usize>> = HashMap::new();
+    let mut by_key: HashMap<EdgeKey, Vec<usize>> = HashMap::default();
     for (s, (a, b)) in segments.iter().enumerate() {
         by_key.entry(*a).or_default().push(s);
         by_key.entry(*b).or_default().push(s);
