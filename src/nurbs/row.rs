@@ -19,12 +19,17 @@ use super::basis::{
     MAX_ORDER, SMALL_ORDER, basis_derivatives, basis_derivatives_in, basis_functions_in,
 };
 use super::curve::euclidean;
-use super::surface::{NurbsSurface, SurfaceDerivatives, rational_surface_derivatives};
+use super::surface::{
+    DEGENERATE, NurbsSurface, SurfaceDerivatives, normal_from_derivatives,
+    rational_surface_derivatives,
+};
 
 /// One row of constant v of a surface; see the module documentation.
 #[derive(Clone, Debug)]
 pub struct SurfaceRow<'a> {
     surface: &'a NurbsSurface,
+    /// The row's v (clamped to the domain).
+    v: f64,
     /// Homogeneous points of `Aʷ(·, v)`, `Aʷ_v` and `Aʷ_vv`, one per u control
     /// index.
     rows: [Vec<DVec4>; 3],
@@ -60,6 +65,7 @@ impl NurbsSurface {
         }
         SurfaceRow {
             surface: self,
+            v,
             rows,
             hint: Cell::new(self.u_degree()),
         }
@@ -121,6 +127,22 @@ impl SurfaceRow<'_> {
         let span = self.surface.u_knots().find_span(u);
         self.hint.set(span);
         span
+    }
+
+    /// The unit normal at (u, v) on this row (u clamped), equal to
+    /// [`NurbsSurface::normal`] bit for bit, poles included.
+    pub fn normal(&self, u: f64) -> DVec3 {
+        // First derivatives suffice but where they are parallel (a pole).
+        let (_, du, dv) = self.first_derivatives(u);
+        let n = du.cross(dv);
+        let scale = du.length_squared().max(dv.length_squared());
+        if n.length_squared() > DEGENERATE * DEGENERATE * scale * scale {
+            return n.normalize();
+        }
+        let d = self.derivatives(u);
+        let ((u0, u1), (v0, v1)) = self.surface.domain();
+        let u = self.surface.u_knots().clamp(u);
+        normal_from_derivatives(&d, u - u0 < u1 - u, self.v - v0 < v1 - self.v)
     }
 
     /// The derivatives up to second order at (u, v) on this row (u clamped).
@@ -188,6 +210,7 @@ mod tests {
                     let d = surface.derivatives(u, v);
                     assert_eq!(row.derivatives(u), d, "{} at ({u}, {v})", patch.name);
                     assert_eq!(row.first_derivatives(u), (d.point, d.du, d.dv));
+                    assert_eq!(row.normal(u), surface.normal(u, v));
                     let p = row.point(u);
                     assert!((p - surface.point(u, v)).length() <= 1e-9 * od);
                 }

@@ -374,7 +374,7 @@ pub(crate) fn rational_surface_derivatives(a: [DVec4; 6]) -> SurfaceDerivatives 
 }
 
 /// Relative size below which a first derivative counts as vanished (a degenerate edge).
-const DEGENERATE: f64 = 1e-12;
+pub(crate) const DEGENERATE: f64 = 1e-12;
 
 /// Unit normal from derivatives, with the limit at degenerate edges. `u_low`/`v_low`
 /// say whether the parameter is nearer the low end of its domain.

@@ -163,11 +163,15 @@ impl NormalGrid {
     pub fn new(surface: &NurbsSurface, spacing: f64) -> Self {
         let us = grid_parameters(surface, true, spacing);
         let vs = grid_parameters(surface, false, spacing);
-        let normals = us
-            .iter()
-            .flat_map(|&u| vs.iter().map(move |&v| (u, v)))
-            .map(|(u, v)| surface.normal(u, v))
-            .collect();
+        // Row by row (a row's v half of the work done once), stored u-major.
+        let nv = vs.len();
+        let mut normals = vec![DVec3::ZERO; us.len() * nv];
+        for (j, &v) in vs.iter().enumerate() {
+            let row = surface.row(v);
+            for (i, &u) in us.iter().enumerate() {
+                normals[i * nv + j] = row.normal(u);
+            }
+        }
         Self { us, vs, normals }
     }
 }
