@@ -79,35 +79,76 @@ fn crossings(l: &UvLoop, p: DVec2) -> usize {
         .count()
 }
 
-/// Whether `(u, v)` lies in the trimmed region (trying u shifted by a period for
-/// loops that cross the seam of a closed patch).
-fn in_region(region: &Region, uv: DVec2, period: Option<f64>) -> bool {
-    let shifts: &[f64] = match period {
-        Some(_) => &[0.0, 1.0, -1.0],
-        None => &[0.0],
-    };
-    // Points on a loop (a silhouette ending on a patch side) count as inside.
-    let (lo, hi) = region.bounds();
-    let eps = 1e-9 * (hi - lo).max_element().max(1e-300);
-    shifts.iter().any(|s| {
-        let p = DVec2::new(uv.x + s * period.unwrap_or(0.0), uv.y);
-        region.loops().map(|l| crossings(l, p)).sum::<usize>() % 2 == 1
-            || region
-                .loops()
-                .flat_map(UvLoop::segments)
-                .any(|(a, b)| distance_to_segment(p, a, b) <= eps)
-    })
+/// A patch's trimmed region as the silhouette cutter asks it, with what every
+/// question shares worked out once: the loops' boxes and the tolerance.
+struct Trim<'a> {
+    /// Each loop with its (u, v) box.
+    loops: Vec<(&'a UvLoop, DVec2, DVec2)>,
+    /// Points this close to a loop count as inside.
+    eps: f64,
+    /// The u period of a closed patch.
+    period: Option<f64>,
 }
 
-/// Distance from `p` to the segment `ab`.
-fn distance_to_segment(p: DVec2, a: DVec2, b: DVec2) -> f64 {
+impl<'a> Trim<'a> {
+    fn new(region: &'a Region, period: Option<f64>) -> Self {
+        let (lo, hi) = region.bounds();
+        let loops = region
+            .loops()
+            .map(|l| {
+                let (a, b) = l.segments().fold(
+                    (DVec2::splat(f64::MAX), DVec2::splat(f64::MIN)),
+                    |(lo, hi), (p, _)| (lo.min(p), hi.max(p)),
+                );
+                (l, a, b)
+            })
+            .collect();
+        Trim {
+            loops,
+            eps: 1e-9 * (hi - lo).max_element().max(1e-300),
+            period,
+        }
+    }
+
+    /// Whether `(u, v)` lies in the region (trying u shifted by a period for
+    /// loops that cross the seam of a closed patch). Points on a loop (a
+    /// silhouette ending on a patch side) count as inside.
+    fn contains(&self, uv: DVec2) -> bool {
+        let shifts: &[f64] = match self.period {
+            Some(_) => &[0.0, 1.0, -1.0],
+            None => &[0.0],
+        };
+        let eps = self.eps;
+        shifts.iter().any(|s| {
+            let p = DVec2::new(uv.x + s * self.period.unwrap_or(0.0), uv.y);
+            // A ray to +u can cross a loop only within its v range and left of
+            // its right side; a point can be near it only within its grown box.
+            let parity: usize = self
+                .loops
+                .iter()
+                .filter(|(_, lo, hi)| lo.y <= p.y && p.y <= hi.y && p.x <= hi.x)
+                .map(|(l, ..)| crossings(l, p))
+                .sum();
+            parity % 2 == 1
+                || self.loops.iter().any(|(l, lo, hi)| {
+                    p.cmpge(*lo - eps).all()
+                        && p.cmple(*hi + eps).all()
+                        && l.segments()
+                            .any(|(a, b)| distance_squared_to_segment(p, a, b) <= eps * eps)
+                })
+        })
+    }
+}
+
+/// Squared distance from `p` to the segment `ab`.
+fn distance_squared_to_segment(p: DVec2, a: DVec2, b: DVec2) -> f64 {
     let ab = b - a;
     let t = if ab.length_squared() > 0.0 {
         ((p - a).dot(ab) / ab.length_squared()).clamp(0.0, 1.0)
     } else {
         0.0
     };
-    (p - (a + ab * t)).length()
+    (p - (a + ab * t)).length_squared()
 }
 
 /// The root of `f` between `a` and `b` (opposite signs at the ends), Illinois
@@ -274,6 +315,7 @@ pub fn silhouettes(
     }
     let chains = chain(&segments);
     let period = closed_u.then(|| us[nu - 1] - us[0]);
+    let trim = region.map(|r| Trim::new(r, period));
     // A silhouette that runs into a pole (a collapsed v side) ends at the pole: the
     // grid row next to it holds the last crossing; the pole itself has `n · d = 0`.
     let collapsed = |v: f64| {
@@ -303,7 +345,7 @@ pub fn silhouettes(
                 uvs.push(p);
             }
         }
-        let inside = |uv: DVec2| region.is_none_or(|r| in_region(r, uv, period));
+        let inside = |uv: DVec2| trim.as_ref().is_none_or(|t| t.contains(uv));
         let at = |uv: DVec2, last: Option<&SurfacePoint>| SurfacePoint {
             point: frame.transform_point3(surface.point(uv.x, uv.y)),
             normal: (frame.matrix3 * surface.normal(uv.x, uv.y))
