@@ -3,7 +3,8 @@
 //! nozzle edit must rebuild at least (the nozzle and its host, against fresh
 //! occluders), and the whole pipeline's edit + update, which now includes the
 //! Project stage's incremental rebuild. The sheet composition and SVG writing of
-//! the column are measured too.
+//! the column are measured too, and, in a generated plant whose views are kept,
+//! an update with nothing to do and a one-parameter edit.
 
 use std::hint::black_box;
 use std::time::Duration;
@@ -12,8 +13,12 @@ use criterion::{Criterion, criterion_group};
 use vesselcad::design::load;
 use vesselcad::drawing::{SheetOptions, sheet, to_svg, view_inputs};
 use vesselcad::mesh::TessellationOptions;
-use vesselcad::model::{Edit, Model};
+use vesselcad::model::{Edit, Model, Views};
+use vesselcad::plant::{Simulation, generate_plant};
 use vesselcad::project::build_views;
+
+/// Vessels in the plant whose views are kept.
+const PLANT: usize = 60;
 
 fn bench(c: &mut Criterion) {
     let design = load(concat!(
@@ -66,6 +71,20 @@ fn bench(c: &mut Criterion) {
             ))
         })
     });
+    // A plant with views kept, as a live session on a plant file keeps them: an
+    // update with nothing to do must not look at every vessel, and an edit
+    // rebuilds only its vessel's views.
+    let plant = generate_plant(PLANT, 1).expect("generated");
+    let model = Model::from_design_with(&plant, TessellationOptions::chord(1.0), Views::Kept)
+        .expect("valid");
+    let mut sim = Simulation::new(model, &plant, 7);
+    group.bench_function("plant of 60, views kept: update with nothing to do", |b| {
+        b.iter(|| black_box(sim.model_mut().update()))
+    });
+    group.bench_function(
+        "plant of 60, views kept: one-parameter edit + update",
+        |b| b.iter(|| black_box(sim.tick(1, 0))),
+    );
     group.finish();
 }
 
