@@ -20,8 +20,8 @@ use super::basis::{
 };
 use super::curve::euclidean;
 use super::surface::{
-    DEGENERATE, NurbsSurface, SurfaceDerivatives, normal_from_derivatives,
-    rational_surface_derivatives,
+    NurbsSurface, SurfaceDerivatives, normal_from_derivatives, rational_surface_derivatives,
+    regular_normal,
 };
 
 /// One row of constant v of a surface; see the module documentation.
@@ -134,10 +134,8 @@ impl SurfaceRow<'_> {
     pub fn normal(&self, u: f64) -> DVec3 {
         // First derivatives suffice but where they are parallel (a pole).
         let (_, du, dv) = self.first_derivatives(u);
-        let n = du.cross(dv);
-        let scale = du.length_squared().max(dv.length_squared());
-        if n.length_squared() > DEGENERATE * DEGENERATE * scale * scale {
-            return n.normalize();
+        if let Some(n) = regular_normal(du, dv) {
+            return n;
         }
         let d = self.derivatives(u);
         let ((u0, u1), (v0, v1)) = self.surface.domain();

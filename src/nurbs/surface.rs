@@ -374,16 +374,23 @@ pub(crate) fn rational_surface_derivatives(a: [DVec4; 6]) -> SurfaceDerivatives 
 }
 
 /// Relative size below which a first derivative counts as vanished (a degenerate edge).
-pub(crate) const DEGENERATE: f64 = 1e-12;
+const DEGENERATE: f64 = 1e-12;
+
+/// Unit normal from the first derivatives, `None` where they are (nearly)
+/// parallel: a degenerate edge, whose normal needs the second derivatives.
+#[inline]
+pub(crate) fn regular_normal(du: DVec3, dv: DVec3) -> Option<DVec3> {
+    let n = du.cross(dv);
+    let scale = du.length_squared().max(dv.length_squared());
+    (n.length_squared() > DEGENERATE * DEGENERATE * scale * scale).then(|| n.normalize())
+}
 
 /// Unit normal from derivatives, with the limit at degenerate edges. `u_low`/`v_low`
 /// say whether the parameter is nearer the low end of its domain.
 #[inline]
 pub(crate) fn normal_from_derivatives(d: &SurfaceDerivatives, u_low: bool, v_low: bool) -> DVec3 {
-    let n = d.du.cross(d.dv);
-    let scale = d.du.length_squared().max(d.dv.length_squared());
-    if n.length_squared() > DEGENERATE * DEGENERATE * scale * scale {
-        return n.normalize();
+    if let Some(n) = regular_normal(d.du, d.dv) {
+        return n;
     }
     let (lu, lv) = (d.du.length_squared(), d.dv.length_squared());
     // Near the edge S_u ≈ (v − v_e) S_uv: the sign depends on which end v_e is.

@@ -92,8 +92,7 @@ struct Trim<'a> {
 
 impl<'a> Trim<'a> {
     fn new(region: &'a Region, period: Option<f64>) -> Self {
-        let (lo, hi) = region.bounds();
-        let loops = region
+        let loops: Vec<(&UvLoop, DVec2, DVec2)> = region
             .loops()
             .map(|l| {
                 let (a, b) = l.segments().fold(
@@ -103,9 +102,13 @@ impl<'a> Trim<'a> {
                 (l, a, b)
             })
             .collect();
+        // The region's bounds are its outer loop's box, the first.
+        let size = loops
+            .first()
+            .map_or(0.0, |&(_, lo, hi)| (hi - lo).max_element());
         Trim {
             loops,
-            eps: 1e-9 * (hi - lo).max_element().max(1e-300),
+            eps: 1e-9 * size.max(1e-300),
             period,
         }
     }
