@@ -111,10 +111,10 @@ pub fn remesh_dirty_patches(world: &mut World, surfaces: &mut QueryState<&PatchS
             // Kept for the model's lifetime: packed (exact positions, 4-byte
             // normals, narrow indices, no growth slack).
             let result = mesh_patch_region_keeping(p, r, &options, kept[i].as_deref())
-                .map(|(mesh, stats, cavities)| Meshed {
-                    mesh: Arc::new(PackedMesh::pack(&mesh)),
+                .map(|(out, cavities)| Meshed {
+                    mesh: Arc::new(PackedMesh::pack_marked(&out.mesh, &out.on_loops)),
                     cavities: (!cavities.is_empty()).then(|| Arc::new(cavities)),
-                    reused: stats.cavities_reused as u64,
+                    reused: out.stats.cavities_reused as u64,
                 })
                 .map_err(|e| e.to_string());
             (keys[i], result)

@@ -19,8 +19,8 @@ use crate::constraints::PartGeometry;
 use crate::design::{Design, resolve};
 use crate::mesh::cdt::mesh_patch_region;
 use crate::mesh::{
-    HostTrim, Mesh, Notch, PackedMesh, PadCut, TessellationOptions, cut_opening_reusing,
-    host_region, pad_region,
+    HostTrim, Notch, PackedMesh, PadCut, TessellationOptions, cut_opening_reusing, host_region,
+    pad_region,
 };
 use crate::nurbs::intersect::IntersectionLoop;
 use crate::parts::{Nozzle, PartError, Patch};
@@ -182,7 +182,7 @@ pub fn build_scene(design: &Design, options: &TessellationOptions) -> Result<Sce
             flat.push((*v, *n, usize::MAX, &pads[i].1.patch, true));
         }
     }
-    let meshes: Vec<Result<Mesh, String>> = flat
+    let meshes: Vec<Result<PackedMesh, String>> = flat
         .par_iter()
         .map(|&(v, n, k, patch, is_pad)| {
             let region = if is_pad {
@@ -202,7 +202,7 @@ pub fn build_scene(design: &Design, options: &TessellationOptions) -> Result<Sce
             }
             .map_err(|e| e.to_string())?;
             mesh_patch_region(patch, &region, options)
-                .map(|(m, _)| m)
+                .map(|out| PackedMesh::pack_marked(&out.mesh, &out.on_loops))
                 .map_err(|e| e.to_string())
         })
         .collect();
@@ -213,7 +213,7 @@ pub fn build_scene(design: &Design, options: &TessellationOptions) -> Result<Sce
         })?;
         vessels[v].nodes[n].patches.push(ScenePatch {
             name: patch_name(patch),
-            mesh: Arc::new(PackedMesh::pack(&mesh)),
+            mesh: Arc::new(mesh),
         });
     }
     Ok(Scene { vessels })

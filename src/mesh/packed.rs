@@ -51,7 +51,7 @@ impl OctNormal {
         if n.z < 0.0 {
             p = (DVec2::ONE - DVec2::new(p.y.abs(), p.x.abs())) * sign(p);
         }
-        let q = |x: f64| (x.clamp(-1.0, 1.0) * SNORM16).round() as i16;
+        let q = |x: f64| round_small(x.clamp(-1.0, 1.0) * SNORM16) as i16;
         Self([q(p.x), q(p.y)])
     }
 
@@ -66,6 +66,25 @@ impl OctNormal {
             p = (DVec2::ONE - DVec2::new(p.y.abs(), p.x.abs())) * sign(p);
         }
         DVec3::new(p.x, p.y, z).normalize()
+    }
+}
+
+/// `x.round()` (half away from zero) for |x| < 2⁶², as packing's offsets and
+/// normal components are: the truncation is the hardware's conversion to an
+/// integer, where `f64::round` is a library call on CPUs without SSE4.1 — and
+/// packing rounds five numbers per vertex. The difference `x − trunc(x)` is
+/// exact, so the result is `round`'s value (a zero may lose its sign, which the
+/// integer conversion after it drops anyway; tested).
+#[inline]
+fn round_small(x: f64) -> f64 {
+    let t = x as i64 as f64;
+    let d = x - t;
+    if d >= 0.5 {
+        t + 1.0
+    } else if d <= -0.5 {
+        t - 1.0
+    } else {
+        t
     }
 }
 
@@ -127,16 +146,26 @@ impl FixedPoints {
             1.0
         };
         let coarse = 256.0 * fine;
+        // Powers of two: multiplying by the reciprocal is the division, bit for
+        // bit, unless the reciprocal overflows (a mesh some 1e-300 mm across).
+        let (per_fine, per_coarse) = (1.0 / fine, 1.0 / coarse);
+        let scaled = |p: DVec3, unit: f64, per_unit: f64| {
+            if per_unit.is_finite() {
+                (p - origin) * per_unit
+            } else {
+                (p - origin) / unit
+            }
+        };
         let mut his = Vec::with_capacity(points.len());
         let mut los = Vec::with_capacity(boundary);
         for (k, &p) in points.iter().enumerate() {
             if k < boundary {
-                let q = ((p - origin) / fine).round();
+                let q = scaled(p, fine, per_fine).map(round_small);
                 let q = [q.x as i64, q.y as i64, q.z as i64];
                 his.push(IVec3::from_array(q.map(|c| (c >> 8) as i32)));
                 los.push(q.map(|c| (c & 0xFF) as u8));
             } else {
-                let q = ((p - origin) / coarse).round();
+                let q = scaled(p, coarse, per_coarse).map(round_small);
                 his.push(IVec3::new(q.x as i32, q.y as i32, q.z as i32));
             }
         }
@@ -299,6 +328,33 @@ impl PackedMesh {
     /// Packs `mesh`. Nothing is repaired: counts stay as they are and a bad
     /// normal stays bad, for the exporters' checks.
     pub fn pack(mesh: &Mesh) -> Self {
+        Self::pack_with(mesh, |mesh| {
+            interior_vertices(&mesh.indices, mesh.positions.len())
+        })
+    }
+
+    /// [`pack`](Self::pack) of a mesh whose vertices on its boundary are known:
+    /// `on_loops` marks, for each vertex, whether it lies on a loop of the meshed
+    /// region (the mesher's `RegionMesh::on_loops`, a superset of the vertices on
+    /// edges one triangle alone uses). Those and unused vertices stay exact; the
+    /// edges are not counted again. Without one flag per vertex, packs as
+    /// [`pack`](Self::pack) does.
+    pub fn pack_marked(mesh: &Mesh, on_loops: &[bool]) -> Self {
+        if on_loops.len() != mesh.positions.len() {
+            return Self::pack(mesh);
+        }
+        Self::pack_with(mesh, |mesh| {
+            let mut interior = vec![false; on_loops.len()];
+            for &i in &mesh.indices {
+                interior[i as usize] = !on_loops[i as usize];
+            }
+            interior
+        })
+    }
+
+    /// Packs `mesh` with the interior vertices `interior` finds (indices already
+    /// checked in range).
+    fn pack_with(mesh: &Mesh, interior: impl FnOnce(&Mesh) -> Vec<bool>) -> Self {
         let count = mesh.positions.len();
         let well_formed = mesh.normals.len() == count
             && mesh.indices.len().is_multiple_of(3)
@@ -316,7 +372,7 @@ impl PackedMesh {
         // Edges used by one triangle bound the patch; their vertices are shared
         // with neighbours (or are opening loops) and stay exact. Unused vertices
         // stay exact too.
-        let interior = interior_vertices(&mesh.indices, count);
+        let interior = interior(mesh);
         let order: Vec<usize> = (0..count)
             .filter(|&i| !interior[i])
             .chain((0..count).filter(|&i| interior[i]))
@@ -658,6 +714,36 @@ mod tests {
         let interior = super::interior_vertices(&indices, 12);
         assert!(interior[0]);
         assert!(interior[1..].iter().all(|&i| !i), "{interior:?}");
+    }
+
+    #[test]
+    fn round_small_is_round() {
+        let mut cases = vec![
+            0.0,
+            -0.0,
+            0.5,
+            -0.5,
+            1.5,
+            -2.5,
+            0.49999999999999994,
+            -0.49999999999999994,
+            4503599627370495.5,
+            4503599627370497.0,
+            -4503599627370495.5,
+            (1u64 << 61) as f64 + 512.0,
+            32767.0,
+            -32766.5,
+        ];
+        let mut x = 0.123_456_789_f64;
+        for _ in 0..10_000 {
+            x = (x * 7919.0 + 0.3251).fract();
+            cases.push((x - 0.5) * 1e12);
+            cases.push((x - 0.5) * 65536.0);
+            cases.push(((x - 0.5) * 1000.0).floor() + 0.5);
+        }
+        for c in cases {
+            assert_eq!(super::round_small(c), c.round(), "{c:e}");
+        }
     }
 
     #[test]

@@ -181,13 +181,23 @@ fn boundary(chains: &[Chain], cavity: &Cavity) -> Vec<u32> {
     out
 }
 
+/// One cavity's triangles in the mesh, as [`fill`] left them.
+pub(super) struct Filled {
+    /// Its range of the mesh's triangles.
+    pub range: std::ops::Range<u32>,
+    /// Its inputs and triangles, to keep (unless spade triangulated it; taken
+    /// from the memo's kept cavities when they had them).
+    pub kept: Option<Arc<Kept>>,
+}
+
 /// Triangulates every cavity into `mesh` (see `ring`: a zip for one hole, ear
 /// clipping for several, spade when neither gives a valid cover; or the
 /// triangles `memo` kept for a cavity with the same inputs, see `kept`):
 /// appends the holes' vertices and the cavities' triangles (hole segments
-/// fixed), records the cavities `ring` triangulated in `memo`, and returns the
-/// range of triangles added. `None` when a cavity cannot be triangulated here
-/// (the caller falls back to the general path, which reports what is wrong).
+/// fixed) and returns each cavity's range of triangles, in order, with what to
+/// keep of it (the caller records it in `memo` once screened). `None` when a
+/// cavity cannot be triangulated here (the caller falls back to the general
+/// path, which reports what is wrong).
 pub(super) fn fill(
     info: &PatchInfo,
     mesh: &mut TriMesh,
@@ -195,7 +205,7 @@ pub(super) fn fill(
     cavities: &[Cavity],
     region: &Region,
     memo: &mut Memo,
-) -> Result<Option<std::ops::Range<u32>>, CdtError> {
+) -> Result<Option<Vec<Filled>>, CdtError> {
     // Every hole's vertices, evaluated once, in hole order.
     let mut hole_first = Vec::with_capacity(region.holes.len());
     let mut uvs = Vec::with_capacity(region.vertex_count());
@@ -206,13 +216,14 @@ pub(super) fn fill(
     if uvs.iter().any(|&uv| info.check_loop_point(uv).is_err()) {
         return Ok(None);
     }
-    let verts: Vec<Vertex> = uvs
-        .par_iter()
-        .with_min_len(super::MIN_VERTICES)
-        .map(|&uv| info.vertex_lazy(uv))
+    let chunks: Vec<Vec<Vertex>> = uvs
+        .par_chunks(super::MIN_VERTICES)
+        .map(|chunk| info.vertices_lazy(chunk))
         .collect::<Result<_, _>>()?;
-    mesh.verts.extend(verts);
-    let start = mesh.tris.len() as u32;
+    mesh.verts.reserve(uvs.len());
+    for chunk in chunks {
+        mesh.verts.extend(chunk);
+    }
     let (kept, record) = (memo.kept, memo.record);
     let pieces: Vec<Option<Piece>> = cavities
         .par_iter()
@@ -261,20 +272,25 @@ pub(super) fn fill(
             })
         })
         .collect();
+    let mut filled = Vec::with_capacity(pieces.len());
     for piece in pieces {
         let Some(piece) = piece else {
             return Ok(None);
         };
         memo.reused += usize::from(piece.reused);
-        memo.found.extend(piece.found.filter(|_| record));
+        let start = mesh.tris.len() as u32;
         for (tri, fixed) in piece.triangles {
             mesh.tris.push(tri);
             mesh.fixed.push(fixed);
             mesh.adj.push([NONE; 3]);
             mesh.touched.push(0);
         }
+        filled.push(Filled {
+            range: start..mesh.tris.len() as u32,
+            kept: piece.found.filter(|_| record),
+        });
     }
-    Ok(Some(start..mesh.tris.len() as u32))
+    Ok(Some(filled))
 }
 
 /// `tris` in a cavity's local numbering as mesh triangles (`map`: local index →

@@ -13,7 +13,7 @@
 //! that patch, which returns the cavities it met.
 
 use std::hash::{Hash, Hasher};
-use std::sync::Arc;
+use std::sync::{Arc, OnceLock};
 
 use glam::DVec2;
 use rustc_hash::{FxHashMap, FxHasher};
@@ -31,11 +31,15 @@ pub struct KeptCavities {
 }
 
 /// One cavity's inputs and its triangles in the cavity's local numbering (its
-/// boundary's vertices, then each hole's).
+/// boundary's vertices, then each hole's), with the screen's verdicts on them.
 #[derive(Debug)]
 pub(super) struct Kept {
     input: CavityInput,
     triangles: Box<[Triangle]>,
+    /// The screen's verdict on each triangle and the key of the surface, the
+    /// analytic surface and the options it screened against
+    /// ([`Memo::surface`]), once screened.
+    verdicts: OnceLock<(u128, Box<[bool]>)>,
 }
 
 impl Kept {
@@ -43,18 +47,42 @@ impl Kept {
         Arc::new(Self {
             input,
             triangles: triangles.into_boxed_slice(),
+            verdicts: OnceLock::new(),
         })
     }
 
     pub fn triangles(&self) -> &[Triangle] {
         &self.triangles
     }
+
+    /// The screen's verdicts on the triangles, when they were screened on the
+    /// surface with key `surface`.
+    pub fn verdicts(&self, surface: u128) -> Option<&[bool]> {
+        self.verdicts
+            .get()
+            .filter(|(key, v)| *key == surface && v.len() == self.triangles.len())
+            .map(|(_, v)| &**v)
+    }
+
+    /// This cavity with `verdicts` screened on the surface with key `surface`
+    /// recorded: itself unless it holds another surface's, then a copy.
+    pub fn with_verdicts(self: &Arc<Self>, surface: u128, verdicts: &[bool]) -> Arc<Self> {
+        let _ = self.verdicts.set((surface, verdicts.into()));
+        if self.verdicts(surface).is_some() {
+            return self.clone();
+        }
+        Arc::new(Self {
+            input: self.input.clone(),
+            triangles: self.triangles.clone(),
+            verdicts: OnceLock::from((surface, Box::from(verdicts))),
+        })
+    }
 }
 
 /// What a cavity's triangulation is a function of: its loops' (u, v), boundary
 /// first, where each hole starts in that list, and the size metric at its
 /// centre.
-#[derive(Debug, PartialEq)]
+#[derive(Clone, Debug, PartialEq)]
 pub(super) struct CavityInput {
     uvs: Box<[DVec2]>,
     starts: Box<[u32]>,
@@ -130,6 +158,7 @@ impl KeptCavities {
                 + k.input.uvs.len() * std::mem::size_of::<DVec2>()
                 + k.input.starts.len() * 4
                 + k.triangles.len() * std::mem::size_of::<Triangle>()
+                + k.verdicts.get().map_or(0, |(_, v)| v.len())
         };
         self.cavities.iter().map(each).sum::<usize>() + self.by_hash.capacity() * 16
     }
@@ -140,6 +169,10 @@ impl KeptCavities {
 #[derive(Default)]
 pub(super) struct Memo<'k> {
     pub kept: Option<&'k KeptCavities>,
+    /// The key of the surface, its analytic surface and the options
+    /// (`mesh::mesh_key` with no region): kept cavities' screen verdicts are
+    /// taken when recorded on the same key. `None`: none taken or recorded.
+    pub surface: Option<u128>,
     /// Whether the cavities met are wanted (a caller that keeps none does not
     /// pay for recording them).
     pub record: bool,
@@ -152,9 +185,19 @@ impl<'k> Memo<'k> {
     pub fn new(kept: Option<&'k KeptCavities>, record: bool) -> Self {
         Self {
             kept,
+            surface: None,
             record,
             found: Vec::new(),
             reused: 0,
+        }
+    }
+
+    /// This memo, taking and recording screen verdicts on the surface with key
+    /// `surface` (see [`Memo::surface`]).
+    pub fn on_surface(self, surface: u128) -> Self {
+        Self {
+            surface: Some(surface),
+            ..self
         }
     }
 
@@ -215,5 +258,27 @@ mod tests {
                 .is_none()
         );
         assert!(kept.heap_bytes() > 8 * 16);
+    }
+
+    #[test]
+    fn verdicts_are_taken_only_on_the_surface_they_were_screened_on() {
+        let tris: Vec<Triangle> = vec![([0, 1, 4], [false; 3]), ([1, 2, 4], [false; 3])];
+        let kept = Kept::new(input(0.0), tris);
+        assert_eq!(kept.verdicts(7), None);
+        // Recorded in place the first time, and found again on that surface only.
+        let same = kept.with_verdicts(7, &[true, false]);
+        assert!(Arc::ptr_eq(&same, &kept));
+        assert_eq!(kept.verdicts(7), Some(&[true, false][..]));
+        assert_eq!(kept.verdicts(8), None);
+        // Another surface's verdicts go to a copy; the original keeps its own.
+        let other = kept.with_verdicts(8, &[false, false]);
+        assert!(!Arc::ptr_eq(&other, &kept));
+        assert_eq!(other.verdicts(8), Some(&[false, false][..]));
+        assert_eq!(other.triangles(), kept.triangles());
+        assert_eq!(kept.verdicts(7), Some(&[true, false][..]));
+        // Verdicts that do not match the triangles are never handed out.
+        let short = Kept::new(input(0.0), vec![([0, 1, 4], [false; 3])]);
+        let short = short.with_verdicts(7, &[true, true]);
+        assert_eq!(short.verdicts(7), None);
     }
 }

@@ -47,12 +47,16 @@ pub fn mesh_region(
 /// probes measured against the patch's analytic surface in closed form (much
 /// cheaper than inverting the NURBS, and equal to it to rounding since the patch
 /// lies on that surface).
+///
+/// Returns the whole [`RegionMesh`]: its `on_loops` flags let the packer skip
+/// counting the mesh's edges ([`PackedMesh::pack_marked`](crate::mesh::PackedMesh::pack_marked)).
 pub fn mesh_patch_region(
     patch: &Patch,
     region: &Region,
     options: &TessellationOptions,
-) -> Result<(Mesh, MeshStats), CdtError> {
-    mesh_region_on(&patch.surface, &patch.analytic, region, options)
+) -> Result<RegionMesh, CdtError> {
+    let memo = Memo::default();
+    Ok(mesh_with(&patch.surface, Some(&patch.analytic), region, options, memo)?.0)
 }
 
 /// [`mesh_patch_region`] for a surface and the analytic surface it lies on.
@@ -75,10 +79,9 @@ pub fn mesh_patch_region_keeping(
     region: &Region,
     options: &TessellationOptions,
     kept: Option<&KeptCavities>,
-) -> Result<(Mesh, MeshStats, KeptCavities), CdtError> {
-    let memo = Memo::new(kept, true);
-    let (out, kept) = mesh_with(&patch.surface, Some(&patch.analytic), region, options, memo)?;
-    Ok((out.mesh, out.stats, kept))
+) -> Result<(RegionMesh, KeptCavities), CdtError> {
+    let memo = Memo::new(kept, true).on_surface(crate::mesh::mesh_key(patch, 0, options));
+    mesh_with(&patch.surface, Some(&patch.analytic), region, options, memo)
 }
 
 /// [`mesh_region`] that also returns the (u, v) of every output vertex.

@@ -54,6 +54,12 @@ pub struct RegionMesh {
     /// (u, v) of each vertex as in the loops (u not wrapped); for a welded vertex,
     /// those of its first copy (a loop vertex when there is one).
     pub uvs: Vec<DVec2>,
+    /// For each vertex, whether it ends a loop segment of the region (a fixed
+    /// edge of the triangulation, the seam's included): every vertex on an edge
+    /// that one triangle alone uses is one, since such edges are loop segments.
+    /// The packer stores these exactly without recounting the mesh's edges
+    /// ([`PackedMesh::pack_marked`](crate::mesh::PackedMesh::pack_marked)).
+    pub on_loops: Vec<bool>,
     /// What happened.
     pub stats: MeshStats,
 }
@@ -142,9 +148,15 @@ pub(super) fn finish(
         info.closed_u && r.min(period - r) <= 1e-9 * period
     };
     let mut used = vec![false; mesh.verts.len()];
-    for tri in &mesh.tris {
-        for &k in tri {
-            used[k as usize] = true;
+    // The ends of fixed edges (loop segments), by mesh vertex.
+    let mut on_loop = vec![false; mesh.verts.len()];
+    for (tri, fixed) in mesh.tris.iter().zip(&mesh.fixed) {
+        for i in 0..3 {
+            used[tri[i] as usize] = true;
+            if fixed[i] {
+                on_loop[tri[i] as usize] = true;
+                on_loop[tri[(i + 1) % 3] as usize] = true;
+            }
         }
     }
     let mut out = RegionMesh::default();
@@ -152,6 +164,7 @@ pub(super) fn finish(
     out.mesh.positions.reserve(expected);
     out.mesh.normals.reserve(expected);
     out.uvs.reserve(expected);
+    out.on_loops.reserve(expected);
     out.mesh.indices.reserve(3 * mesh.tris.len());
     let mut index = vec![u32::MAX; mesh.verts.len()];
     for (k, v) in mesh.verts.iter().enumerate() {
@@ -163,6 +176,7 @@ pub(super) fn finish(
             out.mesh.positions.push(v.point);
             out.mesh.normals.push(v.normal);
             out.uvs.push(v.uv);
+            out.on_loops.push(on_loop[k]);
             continue;
         }
         let c = cell(v.point);
@@ -184,12 +198,16 @@ pub(super) fn finish(
             }
         }
         index[k] = match found {
-            Some(o) => o,
+            Some(o) => {
+                out.on_loops[o as usize] |= on_loop[k];
+                o
+            }
             None => {
                 let o = out.mesh.positions.len() as u32;
                 out.mesh.positions.push(v.point);
                 out.mesh.normals.push(v.normal);
                 out.uvs.push(v.uv);
+                out.on_loops.push(on_loop[k]);
                 grid.entry(c).or_default().push(o);
                 o
             }

@@ -284,6 +284,33 @@ impl<'a> PatchInfo<'a> {
         self.vertex_from(uv, &d)
     }
 
+    /// The mesh vertices at `uvs` ([`vertex_lazy`](Self::vertex_lazy) of each), in
+    /// order. On a surface swept straight along Z (a course) one row evaluator at
+    /// v0 serves them all: S(u, v) is that row's point at u moved to the axial
+    /// coordinate of v, and S_u, S_v do not depend on v — the screen's shortcut
+    /// (`screen::Swept`), at well under half the cost of a surface evaluation
+    /// per vertex (a course's opening loops hold most of its vertices).
+    pub fn vertices_lazy(&self, uvs: &[DVec2]) -> Result<Vec<Vertex>, CdtError> {
+        let Some(extrusion) = crate::mesh::Extrusion::of(self.surface) else {
+            return uvs.iter().map(|&uv| self.vertex_lazy(uv)).collect();
+        };
+        let row = self.surface.row(self.surface.domain().1.0);
+        uvs.iter()
+            .map(|&uv| {
+                let (p, du, dv) = row.first_derivatives(self.wrap_u(uv.x));
+                let d = SurfaceDerivatives {
+                    point: DVec3::new(p.x, p.y, extrusion.z_at(uv.y)),
+                    du,
+                    dv,
+                    duu: DVec3::NAN,
+                    duv: DVec3::NAN,
+                    dvv: DVec3::NAN,
+                };
+                self.vertex_from(uv, &d)
+            })
+            .collect()
+    }
+
     /// The vertices of the row of constant `v` at the parameters `us`, evaluated
     /// along the row (see [`SurfaceRow`](crate::nurbs::SurfaceRow)), with their
     /// metrics [unset](Metric::UNSET): only refinement reads them, after

@@ -172,9 +172,10 @@ fn structured(
     for (k, (v, u)) in lists.iter().enumerate() {
         let row = match (u, &path) {
             (Some(_), Some(path)) if k == 0 => path
-                .par_iter()
-                .map(|&uv| info.vertex_lazy(uv))
-                .collect::<Result<Vec<_>, _>>()?,
+                .par_chunks(super::MIN_VERTICES)
+                .map(|chunk| info.vertices_lazy(chunk))
+                .collect::<Result<Vec<_>, _>>()?
+                .concat(),
             (Some(_), _) => evaluated.next().unwrap_or_default(),
             (None, _) => Vec::new(),
         };
@@ -232,10 +233,16 @@ fn structured(
     let mut zipped: Vec<bool> = (0..strips.len())
         .map(|k| matches!((chains[k].kind, chains[k + 1].kind), (Kind::Row, Kind::Row)))
         .collect();
+    // The cavities follow the strips, each screened on its own (so that its
+    // verdicts depend on its triangles alone and can be kept with them).
+    let first_cavity = strips.len();
+    let mut filled = Vec::new();
     if !cavities.is_empty() {
-        let Some(range) = cavity::fill(info, &mut mesh, &chains, &cavities, region, memo)? else {
+        let Some(pieces) = cavity::fill(info, &mut mesh, &chains, &cavities, region, memo)? else {
             return Ok(None);
         };
+        let start = pieces.first().map_or(0, |p| p.range.start);
+        let range = start..pieces.last().map_or(start, |p| p.range.end);
         // The cavities' edges along the v sides are loop segments too.
         let last = chains.len() - 1;
         if matches!(chains[0].kind, Kind::Row) {
@@ -250,10 +257,14 @@ fn structured(
             let top = (chains[last].first, chains[last].len);
             fix_ring(&mut mesh, range.clone(), top, false);
         }
-        strips.push(range);
-        zipped.push(false);
+        for piece in &pieces {
+            strips.push(piece.range.clone());
+            zipped.push(false);
+        }
+        filled = pieces;
     }
     let Some(screen) = Screen::new(info, options) else {
+        keep(memo, filled, None, &[]);
         let seam = seam_edges(&mesh, lo.x, hi.x);
         return Ok(Some(Rings {
             mesh,
@@ -263,14 +274,27 @@ fn structured(
             copies: None,
         }));
     };
+    // A kept cavity screened on this very surface keeps its verdicts: they are
+    // a function of its triangles' vertices, the surface and the options alone
+    // on a course, whose probes all go through one row (see `screen::Swept`).
+    let surface = memo.surface.filter(|_| screen.is_swept());
+    let known = |k: usize| -> Option<&[bool]> {
+        let piece = filled.get(k.checked_sub(first_cavity)?)?;
+        piece.kept.as_ref()?.verdicts(surface?)
+    };
     // One task per strip: strips differ in size by as much as their rows do
     // (a head's next to its pole against its widest), and rayon's even split of
     // the list left one thread idle for much of a big head's screen.
     let flags: Vec<Vec<bool>> = strips
         .par_iter()
+        .enumerate()
         .with_max_len(1)
-        .map(|range| screen.strip(&mesh, range.clone()))
+        .map(|(k, range)| match known(k) {
+            Some(verdicts) if verdicts.len() == range.len() => verdicts.to_vec(),
+            _ => screen.strip(&mesh, range.clone()),
+        })
         .collect();
+    keep(memo, filled, surface, &flags[first_cavity..]);
     let (mut within, mended) = mend::mend(info, &screen, &mut mesh, &strips, &zipped, flags)?;
     let bisected = mend::bisect(info, &screen, &mut mesh, &mut within)?;
     let seam = seam_edges(&mesh, lo.x, hi.x);
@@ -281,6 +305,28 @@ fn structured(
         insertions: mended + bisected,
         copies: None,
     }))
+}
+
+/// Records the cavities `filled` in `memo` (when it records), each with its
+/// screen's `verdicts` on the surface with key `surface` when there is one.
+fn keep(
+    memo: &mut Memo,
+    filled: Vec<cavity::Filled>,
+    surface: Option<u128>,
+    verdicts: &[Vec<bool>],
+) {
+    if !memo.record {
+        return;
+    }
+    for (k, piece) in filled.into_iter().enumerate() {
+        let Some(kept) = piece.kept else {
+            continue;
+        };
+        memo.found.push(match (surface, verdicts.get(k)) {
+            (Some(surface), Some(v)) => kept.with_verdicts(surface, v),
+            _ => kept,
+        });
+    }
 }
 
 /// The seam edges of a structured mesh: every edge between two row ends on one

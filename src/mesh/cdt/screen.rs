@@ -116,6 +116,13 @@ impl<'a> Screen<'a> {
         }
     }
 
+    /// Whether the surface is swept straight along Z (a course): then every
+    /// probe goes through one row evaluator, so a triangle's verdict depends
+    /// on it alone, not on the others screened with it.
+    pub fn is_swept(&self) -> bool {
+        self.swept.is_some()
+    }
+
     /// The chordal tolerance screened against, mm.
     pub fn tolerance(&self) -> f64 {
         self.limits.tolerance
