@@ -295,20 +295,20 @@ impl<'a> PatchInfo<'a> {
             return uvs.iter().map(|&uv| self.vertex_lazy(uv)).collect();
         };
         let row = self.surface.row(self.surface.domain().1.0);
-        uvs.iter()
-            .map(|&uv| {
-                let (p, du, dv) = row.first_derivatives(self.wrap_u(uv.x));
-                let d = SurfaceDerivatives {
-                    point: DVec3::new(p.x, p.y, extrusion.z_at(uv.y)),
-                    du,
-                    dv,
-                    duu: DVec3::NAN,
-                    duv: DVec3::NAN,
-                    dvv: DVec3::NAN,
-                };
-                self.vertex_from(uv, &d)
-            })
-            .collect()
+        let mut out = Vec::with_capacity(uvs.len());
+        for &uv in uvs {
+            let (p, du, dv) = row.first_derivatives(self.wrap_u(uv.x));
+            let d = SurfaceDerivatives {
+                point: DVec3::new(p.x, p.y, extrusion.z_at(uv.y)),
+                du,
+                dv,
+                duu: DVec3::NAN,
+                duv: DVec3::NAN,
+                dvv: DVec3::NAN,
+            };
+            out.push(self.vertex_from(uv, &d)?);
+        }
+        Ok(out)
     }
 
     /// The vertices of the row of constant `v` at the parameters `us`, evaluated
@@ -394,5 +394,79 @@ impl<'a> PatchInfo<'a> {
             metric: Metric::UNSET,
             pole: pole.is_some(),
         })
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::mesh::test_parts::{OD, course};
+    use crate::parts::heads::{Head, HeadKind};
+
+    /// Scattered (u, v) across a patch's domain, seam and sides included.
+    fn scattered(surface: &NurbsSurface) -> Vec<DVec2> {
+        let ((u0, u1), (v0, v1)) = surface.domain();
+        let mut t = 0.37_f64;
+        let mut out = vec![DVec2::new(u0, v0), DVec2::new(u1, v1), DVec2::new(u1, v0)];
+        for _ in 0..200 {
+            t = (t * 97.0 + 0.211).fract();
+            let s = (t * 31.0).fract();
+            out.push(DVec2::new(u0 + (u1 - u0) * t, v0 + (v1 - v0) * s));
+        }
+        out
+    }
+
+    #[test]
+    fn a_courses_vertices_from_one_row_are_its_surface_points_and_normals() {
+        let patch = course();
+        let surface = &patch.surface;
+        let options = crate::mesh::TessellationOptions::chord(1.0);
+        let info = PatchInfo::new(surface, DVec2::ZERO, DVec2::ONE, |cap| {
+            Sizing::new(&options, 1.0, cap)
+        });
+        assert!(crate::mesh::Extrusion::of(surface).is_some());
+        let uvs = scattered(surface);
+        let fast = info.vertices_lazy(&uvs).expect("vertices");
+        assert_eq!(fast.len(), uvs.len());
+        let r = OD / 2.0;
+        for (v, &uv) in fast.iter().zip(&uvs) {
+            let exact = info.vertex_lazy(uv).expect("a vertex");
+            assert_eq!(v.uv, uv);
+            // On the cylinder, where the surface evaluation puts it.
+            let p = v.point;
+            assert!((p.truncate().length() - r).abs() <= 1e-9 * OD, "{p}");
+            assert!(
+                (p - exact.point).length() <= 1e-9 * OD,
+                "{p} vs {}",
+                exact.point
+            );
+            assert!((v.normal - exact.normal).length() <= 1e-12, "{uv}");
+            assert!((v.normal - p.truncate().extend(0.0) / r).length() <= 1e-9);
+        }
+    }
+
+    #[test]
+    fn other_surfaces_take_the_vertex_by_vertex_evaluation() {
+        let patch = Head::new(2400.0, HeadKind::TWO_TO_ONE)
+            .patches()
+            .expect("a head")
+            .remove(0);
+        let surface = &patch.surface;
+        assert!(crate::mesh::Extrusion::of(surface).is_none());
+        let ((u0, u1), (v0, v1)) = surface.domain();
+        let options = crate::mesh::TessellationOptions::chord(1.0);
+        let info = PatchInfo::new(surface, DVec2::new(u0, v0), DVec2::new(u1, v1), |cap| {
+            Sizing::new(&options, 1.0, cap)
+        });
+        let uvs = scattered(surface);
+        let all = info.vertices_lazy(&uvs).expect("vertices");
+        for (v, &uv) in all.iter().zip(&uvs) {
+            // The same vertex (its metric is unset: NaN in both).
+            let one = info.vertex_lazy(uv).expect("a vertex");
+            assert_eq!(
+                (v.uv, v.point, v.normal, v.pole),
+                (one.uv, one.point, one.normal, one.pole)
+            );
+        }
     }
 }

@@ -284,15 +284,23 @@ fn structured(
     };
     // One task per strip: strips differ in size by as much as their rows do
     // (a head's next to its pole against its widest), and rayon's even split of
-    // the list left one thread idle for much of a big head's screen.
-    let flags: Vec<Vec<bool>> = strips
-        .par_iter()
-        .enumerate()
+    // the list left one thread idle for much of a big head's screen. The
+    // cavities, each screened on its own, make one task.
+    let flag = |k: usize| match known(k) {
+        Some(verdicts) if verdicts.len() == strips[k].len() => verdicts.to_vec(),
+        _ => screen.strip(&mesh, strips[k].clone()),
+    };
+    let tasks: Vec<Range<usize>> = (0..first_cavity)
+        .map(|k| k..k + 1)
+        .chain((first_cavity < strips.len()).then_some(first_cavity..strips.len()))
+        .collect();
+    let flags: Vec<Vec<bool>> = tasks
+        .into_par_iter()
         .with_max_len(1)
-        .map(|(k, range)| match known(k) {
-            Some(verdicts) if verdicts.len() == range.len() => verdicts.to_vec(),
-            _ => screen.strip(&mesh, range.clone()),
-        })
+        .map(|task| task.map(flag).collect::<Vec<_>>())
+        .collect::<Vec<_>>()
+        .into_iter()
+        .flatten()
         .collect();
     keep(memo, filled, surface, &flags[first_cavity..]);
     let (mut within, mended) = mend::mend(info, &screen, &mut mesh, &strips, &zipped, flags)?;
