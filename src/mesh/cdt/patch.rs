@@ -94,6 +94,19 @@ fn coincide(mut points: impl Iterator<Item = DVec3>, tol: f64) -> bool {
     points.all(|p| (p - first).length() <= tol)
 }
 
+/// Derivatives of the first order only (the second left NaN: a lazy vertex's
+/// metric is filled later, from a full evaluation).
+fn first_order(point: DVec3, du: DVec3, dv: DVec3) -> SurfaceDerivatives {
+    SurfaceDerivatives {
+        point,
+        du,
+        dv,
+        duu: DVec3::NAN,
+        duv: DVec3::NAN,
+        dvv: DVec3::NAN,
+    }
+}
+
 /// One vertex of the mesh being built.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub(super) struct Vertex {
@@ -273,14 +286,7 @@ impl<'a> PatchInfo<'a> {
     /// refinement needs it).
     pub fn vertex_lazy(&self, uv: DVec2) -> Result<Vertex, CdtError> {
         let f = self.surface.first_derivatives(self.wrap_u(uv.x), uv.y);
-        let d = SurfaceDerivatives {
-            point: f.point,
-            du: f.du,
-            dv: f.dv,
-            duu: DVec3::NAN,
-            duv: DVec3::NAN,
-            dvv: DVec3::NAN,
-        };
+        let d = first_order(f.point, f.du, f.dv);
         self.vertex_from(uv, &d)
     }
 
@@ -298,15 +304,8 @@ impl<'a> PatchInfo<'a> {
         let mut out = Vec::with_capacity(uvs.len());
         for &uv in uvs {
             let (p, du, dv) = row.first_derivatives(self.wrap_u(uv.x));
-            let d = SurfaceDerivatives {
-                point: DVec3::new(p.x, p.y, extrusion.z_at(uv.y)),
-                du,
-                dv,
-                duu: DVec3::NAN,
-                duv: DVec3::NAN,
-                dvv: DVec3::NAN,
-            };
-            out.push(self.vertex_from(uv, &d)?);
+            let point = DVec3::new(p.x, p.y, extrusion.z_at(uv.y));
+            out.push(self.vertex_from(uv, &first_order(point, du, dv))?);
         }
         Ok(out)
     }
@@ -320,15 +319,7 @@ impl<'a> PatchInfo<'a> {
         let mut out = Vec::with_capacity(us.len());
         for &u in us {
             let (point, du, dv) = row.first_derivatives(self.wrap_u(u));
-            let d = SurfaceDerivatives {
-                point,
-                du,
-                dv,
-                duu: DVec3::NAN,
-                duv: DVec3::NAN,
-                dvv: DVec3::NAN,
-            };
-            out.push(self.vertex_from(DVec2::new(u, v), &d)?);
+            out.push(self.vertex_from(DVec2::new(u, v), &first_order(point, du, dv))?);
         }
         Ok(out)
     }
