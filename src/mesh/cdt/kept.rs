@@ -11,6 +11,13 @@
 //! mesh is the one a fresh meshing gives. The Tessellate stage keeps each
 //! patch's [`KeptCavities`] beside its mesh and hands it to the next meshing of
 //! that patch, which returns the cavities it met.
+//!
+//! A kept cavity also carries the screen's verdicts on its triangles, with the
+//! key of the surface, analytic surface and options they were found on
+//! ([`Memo::surface`]). On a course every probe goes through one row evaluator,
+//! so a triangle's verdict is a function of its vertices, the surface and the
+//! options alone; a later meshing on the same key takes the verdicts instead of
+//! screening the cavity again (`rings`). Other surfaces screen afresh.
 
 use std::hash::{Hash, Hasher};
 use std::sync::{Arc, OnceLock};
