@@ -22,7 +22,7 @@ use super::{ModelErrors, WorkCounters};
 use crate::components::{PatchCavities, PatchMesh, PatchSurface};
 use crate::design::RuleViolation;
 use crate::mesh::cdt::{KeptCavities, Region, mesh_patch_region_keeping};
-use crate::mesh::{MeshInstances, PackedMesh, TessellationOptions, mesh_key};
+use crate::mesh::{MeshInstances, PackedMesh, TessellationOptions, mesh_key_of, surface_key};
 use crate::parts::Patch;
 
 /// The meshes in use by content (see [`MeshInstances`]): the Tessellate stage's
@@ -88,9 +88,12 @@ pub fn remesh_dirty_patches(world: &mut World, surfaces: &mut QueryState<&PatchS
     }
     // Patches equal to one whose mesh is in use, or to an earlier one of this
     // batch, share its mesh; each distinct patch is meshed once.
-    let keys: Vec<u128> = work
+    let surface_keys: Vec<u128> = work
         .par_iter()
-        .map(|(_, p, _, fingerprint)| mesh_key(p, *fingerprint, &options))
+        .map(|(_, p, ..)| surface_key(p, &options))
+        .collect();
+    let keys: Vec<u128> = (work.iter().zip(&surface_keys))
+        .map(|((.., fingerprint), &surface)| mesh_key_of(surface, *fingerprint))
         .collect();
     let instances = &world.resource::<Instances>().0;
     let in_use: Vec<Option<Arc<PackedMesh>>> = keys.par_iter().map(|&k| instances.get(k)).collect();
@@ -110,13 +113,14 @@ pub fn remesh_dirty_patches(world: &mut World, surfaces: &mut QueryState<&PatchS
             let (_, p, r, _) = &work[i];
             // Kept for the model's lifetime: packed (exact positions, 4-byte
             // normals, narrow indices, no growth slack).
-            let result = mesh_patch_region_keeping(p, r, &options, kept[i].as_deref())
-                .map(|(out, cavities)| Meshed {
-                    mesh: Arc::new(PackedMesh::pack_marked(&out.mesh, &out.on_loops)),
-                    cavities: (!cavities.is_empty()).then(|| Arc::new(cavities)),
-                    reused: out.stats.cavities_reused as u64,
-                })
-                .map_err(|e| e.to_string());
+            let result =
+                mesh_patch_region_keeping(p, r, &options, kept[i].as_deref(), surface_keys[i])
+                    .map(|(out, cavities)| Meshed {
+                        mesh: Arc::new(PackedMesh::pack_marked(&out.mesh, &out.on_loops)),
+                        cavities: (!cavities.is_empty()).then(|| Arc::new(cavities)),
+                        reused: out.stats.cavities_reused as u64,
+                    })
+                    .map_err(|e| e.to_string());
             (keys[i], result)
         })
         .into_iter()

@@ -21,12 +21,36 @@ use super::{PackedMesh, TessellationOptions};
 use crate::parts::{Analytic, Patch};
 
 /// A 128-bit key of everything the mesh of `patch` within the region with
-/// fingerprint `region` at `options` depends on: the surface's degrees, knots and
-/// homogeneous control points, the analytic surface the probes measure against,
-/// the region's fingerprint and the options, all by their exact bits. Two
-/// independent 64-bit hashes, like [`Region::fingerprint`](crate::mesh::cdt::Region::fingerprint):
+/// fingerprint `region` at `options` depends on: the surface's key
+/// ([`surface_key`]) and the region's fingerprint. Two independent 64-bit
+/// hashes, like [`Region::fingerprint`](crate::mesh::cdt::Region::fingerprint):
 /// different inputs collide with probability about 2⁻¹²⁸.
 pub fn mesh_key(patch: &Patch, region: u128, options: &TessellationOptions) -> u128 {
+    mesh_key_of(surface_key(patch, options), region)
+}
+
+/// [`mesh_key`] from the patch's [`surface_key`] (which the mesher also takes,
+/// to tell whether kept cavities' screen verdicts hold).
+pub fn mesh_key_of(surface: u128, region: u128) -> u128 {
+    let mut fx = rustc_hash::FxBuildHasher.build_hasher();
+    let mut sip = std::collections::hash_map::DefaultHasher::new();
+    for x in [
+        surface as u64,
+        (surface >> 64) as u64,
+        region as u64,
+        (region >> 64) as u64,
+    ] {
+        fx.write_u64(x);
+        sip.write_u64(x);
+    }
+    (u128::from(sip.finish()) << 64) | u128::from(fx.finish())
+}
+
+/// A 128-bit key of everything a patch's mesh depends on but its region: the
+/// surface's degrees, knots and homogeneous control points, the analytic
+/// surface the probes measure against and the options, all by their exact bits
+/// (two independent 64-bit hashes).
+pub fn surface_key(patch: &Patch, options: &TessellationOptions) -> u128 {
     let mut fx = rustc_hash::FxBuildHasher.build_hasher();
     let mut sip = std::collections::hash_map::DefaultHasher::new();
     let mut write = |x: u64| {
@@ -47,8 +71,6 @@ pub fn mesh_key(patch: &Patch, region: u128, options: &TessellationOptions) -> u
         }
     }
     analytic_bits(&patch.analytic, &mut write);
-    write(region as u64);
-    write((region >> 64) as u64);
     // Destructured, so that a new option cannot be left out of the key.
     let TessellationOptions {
         tolerance,

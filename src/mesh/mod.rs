@@ -27,7 +27,7 @@ pub use axial::AxialCut;
 pub(crate) use axial::Extrusion;
 pub use edges::{MAX_EDGE_SEGMENTS, edge_parameters, edge_segments};
 pub use grid::tessellate;
-pub use instances::{MeshInstances, mesh_key};
+pub use instances::{MeshInstances, mesh_key, mesh_key_of, surface_key};
 pub use layout::{
     LayoutError, PatchSides, SEAM_CUTS, closed_in_u, host_region, host_region_with, pad_region,
     patch_region,

@@ -177,7 +177,7 @@ impl KeptCavities {
 pub(super) struct Memo<'k> {
     pub kept: Option<&'k KeptCavities>,
     /// The key of the surface, its analytic surface and the options
-    /// (`mesh::mesh_key` with no region): kept cavities' screen verdicts are
+    /// (`mesh::surface_key`): kept cavities' screen verdicts are
     /// taken when recorded on the same key. `None`: none taken or recorded.
     pub surface: Option<u128>,
     /// Whether the cavities met are wanted (a caller that keeps none does not

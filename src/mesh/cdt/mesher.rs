@@ -73,14 +73,17 @@ pub fn mesh_region_on(
 /// [`mesh_patch_region`] of a patch meshed before: the cavities `kept` from
 /// that meshing whose inputs come out the same bit for bit are taken instead of
 /// triangulated again (the mesh is the same as without them, see `kept`).
+/// `surface` is the patch's [`surface_key`](crate::mesh::surface_key) at
+/// `options`: a kept cavity screened on the same key keeps its verdicts.
 /// Returns the cavities this meshing met, to keep for the next one.
 pub fn mesh_patch_region_keeping(
     patch: &Patch,
     region: &Region,
     options: &TessellationOptions,
     kept: Option<&KeptCavities>,
+    surface: u128,
 ) -> Result<(RegionMesh, KeptCavities), CdtError> {
-    let memo = Memo::new(kept, true).on_surface(crate::mesh::mesh_key(patch, 0, options));
+    let memo = Memo::new(kept, true).on_surface(surface);
     mesh_with(&patch.surface, Some(&patch.analytic), region, options, memo)
 }
 
