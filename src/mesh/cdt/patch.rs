@@ -8,6 +8,7 @@ use glam::{DVec2, DVec3};
 
 use super::CdtError;
 use super::metric::{Metric, Sizing};
+use crate::mesh::Extrusion;
 use crate::nurbs::{NurbsSurface, SurfaceDerivatives};
 use crate::parts::Analytic;
 
@@ -141,6 +142,10 @@ pub(super) struct PatchInfo<'a> {
     /// (every kind but the oblique cone): probes then measure the distance in
     /// closed form instead of inverting the NURBS.
     pub analytic: Option<Analytic>,
+    /// The extrusion the surface is when it is swept straight along Z (a
+    /// course): one row evaluator then serves every v (loop vertices, screen
+    /// probes, the lattice's row metrics).
+    pub swept: Option<Extrusion>,
     /// Normal of the point each collapsed side maps to: the mean of the limit
     /// normals along the side (the limit itself at a smooth pole, the axis
     /// direction at a cone's apex, where the limit depends on the approach).
@@ -198,6 +203,7 @@ impl<'a> PatchInfo<'a> {
             scale,
             sizing: sizing(extent),
             analytic: None,
+            swept: Extrusion::of(surface),
             pole_normals,
         }
     }
@@ -297,7 +303,7 @@ impl<'a> PatchInfo<'a> {
     /// (`screen::Swept`), at well under half the cost of a surface evaluation
     /// per vertex (a course's opening loops hold most of its vertices).
     pub fn vertices_lazy(&self, uvs: &[DVec2]) -> Result<Vec<Vertex>, CdtError> {
-        let Some(extrusion) = crate::mesh::Extrusion::of(self.surface) else {
+        let Some(extrusion) = self.swept else {
             return uvs.iter().map(|&uv| self.vertex_lazy(uv)).collect();
         };
         let row = self.surface.row(self.surface.domain().1.0);
@@ -415,7 +421,7 @@ mod tests {
         let info = PatchInfo::new(surface, DVec2::ZERO, DVec2::ONE, |cap| {
             Sizing::new(&options, 1.0, cap)
         });
-        assert!(crate::mesh::Extrusion::of(surface).is_some());
+        assert!(info.swept.is_some());
         let uvs = scattered(surface);
         let fast = info.vertices_lazy(&uvs).expect("vertices");
         assert_eq!(fast.len(), uvs.len());
@@ -443,12 +449,13 @@ mod tests {
             .expect("a head")
             .remove(0);
         let surface = &patch.surface;
-        assert!(crate::mesh::Extrusion::of(surface).is_none());
+
         let ((u0, u1), (v0, v1)) = surface.domain();
         let options = crate::mesh::TessellationOptions::chord(1.0);
         let info = PatchInfo::new(surface, DVec2::new(u0, v0), DVec2::new(u1, v1), |cap| {
             Sizing::new(&options, 1.0, cap)
         });
+        assert!(info.swept.is_none());
         let uvs = scattered(surface);
         let all = info.vertices_lazy(&uvs).expect("vertices");
         for (v, &uv) in all.iter().zip(&uvs) {

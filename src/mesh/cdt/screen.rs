@@ -79,7 +79,7 @@ impl<'a> Screen<'a> {
     /// no analytic surface: then every triangle is measured in full.
     pub fn new(info: &'a PatchInfo<'a>, options: &TessellationOptions) -> Option<Self> {
         let analytic = info.analytic?;
-        let swept = Extrusion::of(info.surface);
+        let swept = info.swept;
         Some(Self {
             info,
             analytic,

@@ -129,7 +129,7 @@ fn plan(info: &PatchInfo, region: &Region, budget: usize) -> Result<Plan, CdtErr
     let grid_us = u_samples(info, lo, hi, GRID_SAMPLES_PER_U_SPAN);
     // On a surface swept straight along Z (a course) every row is the same
     // cross-section: its metrics are the first row's, evaluated once.
-    let swept = crate::mesh::Extrusion::of(info.surface).is_some();
+    let swept = info.swept.is_some();
     // Row density across v (max over u) and an estimate of the lattice size.
     let mut rows: Vec<f64> = Vec::new();
     let mut estimate = 0.0;
