@@ -11,7 +11,8 @@
 //! cavities; the cavity's boundary (its bottom chain's vertices left to right, its
 //! right ends upwards, its top chain's vertices right to left, its left ends
 //! downwards) and its holes are triangulated by `ring` (zipped to a single hole,
-//! ear-clipped round several, flipped to Delaunay), unless the patch's last
+//! swept round several, ear-clipped when neither works, flipped to Delaunay),
+//! unless the patch's last
 //! meshing kept a cavity with the very same inputs (`kept`), whose triangles are
 //! then taken. Cavities that overlap are merged; a cavity `ring` cannot cover is
 //! triangulated by spade (`initial`) instead. A cavity that would reach the seam
@@ -255,7 +256,9 @@ pub(super) fn fill(
                 });
             }
             if let Some(loops) = Loops::numbered(mesh, map, starts, &metric)
-                && let Some(tris) = loops.zip(mesh).or_else(|| loops.ears(mesh))
+                && let Some(tris) = (loops.zip(mesh))
+                    .or_else(|| loops.sweep(mesh))
+                    .or_else(|| loops.ears(mesh))
                 && let Some(local) = loops.finish_local(mesh, tris)
             {
                 return Some(Piece {
@@ -512,7 +515,7 @@ mod tests {
     }
 
     #[test]
-    fn holes_sharing_a_cavity_are_ear_clipped_with_every_row_vertex_kept() {
+    fn holes_sharing_a_cavity_are_swept_or_ear_clipped_with_every_row_vertex_kept() {
         // Three rows; a large opening low down and a small one just under the
         // middle row, whose cavity therefore reaches the top row and takes in
         // the large one's (as on a long course with a small nozzle above a
@@ -536,12 +539,15 @@ mod tests {
         };
         let loops = Loops::new(&mesh, &outer, ranges, &metric).expect("loops");
         assert!(loops.zip(&mesh).is_none(), "a zip takes one hole");
-        let tris = loops.ears(&mesh).expect("ear clipping covers the cavity");
-        let tris = loops.finish(&mesh, tris).expect("flipped");
-        let used: std::collections::HashSet<u32> = tris.iter().flat_map(|t| t.0).collect();
-        assert!(outer.iter().all(|k| used.contains(k)), "a row vertex lost");
+        // Swept (the mesher's way), and ear-clipped (its fallback).
         let expected = cavity_area(&mesh, &chains, cavity, &[&big, &small]);
-        assert_delaunay_cover(&mesh, &tris, expected, 64, &metric);
+        for tris in [loops.sweep(&mesh), loops.ears(&mesh)] {
+            let tris = tris.expect("a cover of the cavity");
+            let tris = loops.finish(&mesh, tris).expect("flipped");
+            let used: std::collections::HashSet<u32> = tris.iter().flat_map(|t| t.0).collect();
+            assert!(outer.iter().all(|k| used.contains(k)), "a row vertex lost");
+            assert_delaunay_cover(&mesh, &tris, expected, 64, &metric);
+        }
     }
 
     #[test]

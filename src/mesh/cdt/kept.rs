@@ -6,7 +6,7 @@
 //! keeps its cut bit for bit. `cavity::fill` looks each cavity up here by its
 //! exact inputs — the (u, v) of its boundary and hole vertices, where each hole
 //! starts, and the size metric at its centre, all bit for bit — and takes the
-//! triangles found for them last time instead of zipping or ear-clipping again.
+//! triangles found for them last time instead of zipping or sweeping again.
 //! Those triangles are a deterministic function of exactly these inputs, so the
 //! mesh is the one a fresh meshing gives. The Tessellate stage keeps each
 //! patch's [`KeptCavities`] beside its mesh and hands it to the next meshing of

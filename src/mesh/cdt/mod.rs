@@ -8,7 +8,7 @@
 //!
 //! Pipeline: `region` (validate) → for a whole patch closed in u, `rings` (the
 //! lattice's rows zipped seam to seam round the `cavity` of each opening, each
-//! cavity zipped to its hole or ear-clipped round its holes and flipped to
+//! cavity zipped to its hole or swept round its holes (`sweep`) and flipped to
 //! Delaunay (`ring`), checked, refined only if needed); otherwise
 //! `seed` (curvature-sized lattice clipped to the
 //! region, in the size `metric` of the surface) → `initial` (spade's constrained
@@ -37,6 +37,7 @@ mod rings;
 mod screen;
 mod sector;
 mod seed;
+mod sweep;
 mod trimesh;
 
 /// Fewest vertices or triangles per parallel task in the mesher's per-item loops:
