@@ -211,22 +211,42 @@ impl Loops {
     /// input.
     fn cover(&self, mesh: &TriMesh, tris: &[[u32; 3]]) -> bool {
         let uv = |k: u32| self.uv(mesh, k);
-        let mut edges: rustc_hash::FxHashSet<(u32, u32)> = rustc_hash::FxHashSet::default();
-        edges.reserve(3 * tris.len());
+        let n = self.map.len();
+        // The triangles' directed edges by first vertex: vertex a's ends are
+        // `ends[first[a]..first[a + 1]]` (a handful each; no hashing).
+        let mut first = vec![0u32; n + 1];
         for tri in tris {
-            if !strictly_ccw(uv(tri[0]), uv(tri[1]), uv(tri[2])) {
+            if tri.iter().any(|&k| k as usize >= n)
+                || !strictly_ccw(uv(tri[0]), uv(tri[1]), uv(tri[2]))
+            {
                 return false;
             }
-            for i in 0..3 {
-                if !edges.insert((tri[i], tri[(i + 1) % 3])) {
-                    return false;
-                }
+            for &a in tri {
+                first[a as usize + 1] += 1;
             }
         }
-        let paired = edges
-            .iter()
-            .all(|&(a, b)| self.segment(a, b) != edges.contains(&(b, a)));
-        paired && (0..self.map.len() as u32).all(|a| edges.contains(&(a, self.next[a as usize])))
+        for a in 0..n {
+            first[a + 1] += first[a];
+        }
+        let mut ends = vec![0u32; 3 * tris.len()];
+        let mut fill = first.clone();
+        for tri in tris {
+            for i in 0..3 {
+                let a = tri[i] as usize;
+                ends[fill[a] as usize] = tri[(i + 1) % 3];
+                fill[a] += 1;
+            }
+        }
+        let out = |a: u32| &ends[first[a as usize] as usize..first[a as usize + 1] as usize];
+        (0..n as u32).all(|a| {
+            let ends = out(a);
+            // No edge twice; each loop segment once, in its loop's direction;
+            // every other edge paired with its reverse.
+            ends.iter()
+                .enumerate()
+                .all(|(i, &b)| !ends[..i].contains(&b) && self.segment(a, b) != out(b).contains(&a))
+                && ends.contains(&self.next[a as usize])
+        })
     }
 
     /// `tris` (a valid cover) flipped to Delaunay in the chart by Lawson's flips

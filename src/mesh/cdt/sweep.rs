@@ -57,7 +57,6 @@ pub(super) fn triangulate(next: &[u32], chart: &[[f64; 2]]) -> Option<Vec<[u32; 
         }
         *slot = k as u32;
     }
-    let before = |a: usize, b: usize| p[a].y > p[b].y || (p[a].y == p[b].y && p[a].x < p[b].x);
     let mut order: Vec<u32> = (0..n as u32).collect();
     order.sort_unstable_by(|&a, &b| {
         let (a, b) = (p[a as usize], p[b as usize]);
@@ -69,6 +68,12 @@ pub(super) fn triangulate(next: &[u32], chart: &[[f64; 2]]) -> Option<Vec<[u32; 
     {
         return None;
     }
+    // Each vertex's place in the sweep: `before` is one comparison.
+    let mut rank = vec![0u32; n];
+    for (r, &v) in order.iter().enumerate() {
+        rank[v as usize] = r as u32;
+    }
+    let before = |a: usize, b: usize| rank[a] < rank[b];
     let mut roles = Vec::with_capacity(n);
     for v in 0..n {
         let (a, b) = (prev[v] as usize, next[v] as usize);
@@ -82,7 +87,7 @@ pub(super) fn triangulate(next: &[u32], chart: &[[f64; 2]]) -> Option<Vec<[u32; 
             _ => Role::Regular,
         });
     }
-    let diagonals = split_monotone(next, &prev, &p, &order, &roles)?;
+    let diagonals = split_monotone(next, &prev, &p, &order, &roles, &before)?;
     let mut tris = Vec::with_capacity(n + 2 * diagonals.len());
     faces(next, &p, &diagonals, &before, &mut tris)?;
     Some(tris)
@@ -97,6 +102,7 @@ fn split_monotone(
     p: &[DVec2],
     order: &[u32],
     roles: &[Role],
+    before: &impl Fn(usize, usize) -> bool,
 ) -> Option<Vec<(u32, u32)>> {
     // Edges crossing the sweep line with the polygon on their right, by their
     // first vertex (edge k runs from k to next[k]), and each edge's helper.
@@ -164,10 +170,8 @@ fn split_monotone(
                 helper[e as usize] = v;
             }
             Role::Regular => {
-                let going_down = p[e_prev as usize].y > p[v as usize].y
-                    || (p[e_prev as usize].y == p[v as usize].y
-                        && p[e_prev as usize].x < p[v as usize].x);
-                if going_down {
+                // The boundary going down: the polygon on its right.
+                if before(e_prev as usize, v as usize) {
                     if let Some(h) = merge_helper(&helper, e_prev) {
                         diagonals.push((v, h));
                     }
