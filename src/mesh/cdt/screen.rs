@@ -274,8 +274,10 @@ fn screen_triangles(
             let (x, y) = (v[i], v[(i + 1) % 3]);
             // Towards a pole the normal that counts is the limit along the
             // other end's meridian (as the full measure takes it).
+            // (No length limit by default: not even the length is worked out.)
             if end_normal(info, x, y.uv).dot(end_normal(info, y, x.uv)) < limits.min_cos
-                || (x.point - y.point).length_squared() > limits.max_edge * limits.max_edge
+                || (limits.max_edge.is_finite()
+                    && (x.point - y.point).length_squared() > limits.max_edge * limits.max_edge)
             {
                 within[slot] = false;
             }
