@@ -138,54 +138,35 @@ fn split_monotone(
         let h = helper[e as usize];
         (h != u32::MAX && roles[h as usize] == Role::Merge).then_some(h)
     };
+    // Each role is up to three steps of the book's handlers, in this order:
+    // close the edge arriving from above, join the edge to the left, open the
+    // edge leaving downwards.
     for &v in order {
         let e_prev = prev[v as usize];
-        match roles[v as usize] {
-            Role::Start => {
-                status.push(v);
-                helper[v as usize] = v;
+        let role = roles[v as usize];
+        // A regular vertex with the boundary going down has the polygon on its
+        // right; going up, on its left.
+        let down = role == Role::Regular && before(e_prev as usize, v as usize);
+        if matches!(role, Role::End | Role::Merge) || down {
+            if let Some(h) = merge_helper(&helper, e_prev) {
+                diagonals.push((v, h));
             }
-            Role::End => {
-                if let Some(h) = merge_helper(&helper, e_prev) {
-                    diagonals.push((v, h));
-                }
-                remove(&mut status, e_prev)?;
+            remove(&mut status, e_prev)?;
+        }
+        if role == Role::Split {
+            let e = left_of(&status, v as usize)?;
+            diagonals.push((v, *helper.get(e as usize).filter(|&&h| h != u32::MAX)?));
+            helper[e as usize] = v;
+        } else if role == Role::Merge || (role == Role::Regular && !down) {
+            let e = left_of(&status, v as usize)?;
+            if let Some(h) = merge_helper(&helper, e) {
+                diagonals.push((v, h));
             }
-            Role::Split => {
-                let e = left_of(&status, v as usize)?;
-                diagonals.push((v, *helper.get(e as usize).filter(|&&h| h != u32::MAX)?));
-                helper[e as usize] = v;
-                status.push(v);
-                helper[v as usize] = v;
-            }
-            Role::Merge => {
-                if let Some(h) = merge_helper(&helper, e_prev) {
-                    diagonals.push((v, h));
-                }
-                remove(&mut status, e_prev)?;
-                let e = left_of(&status, v as usize)?;
-                if let Some(h) = merge_helper(&helper, e) {
-                    diagonals.push((v, h));
-                }
-                helper[e as usize] = v;
-            }
-            Role::Regular => {
-                // The boundary going down: the polygon on its right.
-                if before(e_prev as usize, v as usize) {
-                    if let Some(h) = merge_helper(&helper, e_prev) {
-                        diagonals.push((v, h));
-                    }
-                    remove(&mut status, e_prev)?;
-                    status.push(v);
-                    helper[v as usize] = v;
-                } else {
-                    let e = left_of(&status, v as usize)?;
-                    if let Some(h) = merge_helper(&helper, e) {
-                        diagonals.push((v, h));
-                    }
-                    helper[e as usize] = v;
-                }
-            }
+            helper[e as usize] = v;
+        }
+        if matches!(role, Role::Start | Role::Split) || down {
+            status.push(v);
+            helper[v as usize] = v;
         }
     }
     // A diagonal along a loop edge, or twice, would be no split at all.
