@@ -276,6 +276,12 @@ pub(super) fn fill(
         })
         .collect();
     let mut filled = Vec::with_capacity(pieces.len());
+    // The strips' triangles were reserved for; the cavities' are added at once.
+    let added: usize = pieces.iter().flatten().map(|p| p.triangles.len()).sum();
+    mesh.tris.reserve(added);
+    mesh.fixed.reserve(added);
+    mesh.adj.reserve(added);
+    mesh.touched.reserve(added);
     for piece in pieces {
         let Some(piece) = piece else {
             return Ok(None);

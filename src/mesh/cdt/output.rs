@@ -144,8 +144,19 @@ pub(super) fn finish(
         .map(|v| v.uv.x)
         .fold(f64::INFINITY, f64::min);
     let on_seam = |uv: DVec2| {
-        let r = (uv.x - lo).rem_euclid(period);
-        info.closed_u && r.min(period - r) <= 1e-9 * period
+        if !info.closed_u {
+            return false;
+        }
+        // `lo` is the least u, so the offset is rarely a period or more: the
+        // remainder of one in [0, period) is the offset itself, without the
+        // library's `fmod` (a call per vertex of every closed patch).
+        let offset = uv.x - lo;
+        let r = if (0.0..period).contains(&offset) {
+            offset
+        } else {
+            offset.rem_euclid(period)
+        };
+        r.min(period - r) <= 1e-9 * period
     };
     let mut used = vec![false; mesh.verts.len()];
     // The ends of fixed edges (loop segments), by mesh vertex.

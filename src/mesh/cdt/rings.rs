@@ -167,8 +167,11 @@ fn structured(
         .filter_map(|(v, u)| u.as_deref().map(|u| (*v, u)))
         .collect();
     let mut evaluated = evaluate(info, &rows)?.into_iter();
-    mesh.verts
-        .reserve(rows.iter().map(|(_, u)| u.len()).sum::<usize>());
+    // The rows' vertices, then the holes' (`cavity::fill`): one allocation.
+    mesh.verts.reserve(
+        rows.iter().map(|(_, u)| u.len()).sum::<usize>()
+            + region.holes.iter().map(|h| h.uv.len()).sum::<usize>(),
+    );
     for (k, (v, u)) in lists.iter().enumerate() {
         let row = match (u, &path) {
             (Some(_), Some(path)) if k == 0 => path
