@@ -121,20 +121,23 @@ impl FixedPoints {
     /// Encodes `points`, the first `boundary` of them to 40 bits; `None` when a
     /// point is not finite.
     fn encode(points: &[DVec3], boundary: usize) -> Option<Self> {
-        if points.iter().any(|p| !p.is_finite()) {
-            return None;
-        }
         let Some(&first) = points.first() else {
             return Some(Self::default());
         };
-        let (lo, hi) = points
+        // One pass: finiteness and the bounds.
+        let (lo, hi, finite) = points
             .iter()
-            .fold((first, first), |(lo, hi), &p| (lo.min(p), hi.max(p)));
+            .fold((first, first, true), |(lo, hi, ok), &p| {
+                (lo.min(p), hi.max(p), ok & p.is_finite())
+            });
+        if !finite {
+            return None;
+        }
         let origin = (lo + hi) * 0.5;
-        let reach = points
-            .iter()
-            .map(|&p| (p - origin).abs().max_element())
-            .fold(0.0f64, f64::max);
+        // The largest |p − origin| of any point, from the bounds alone: the
+        // rounded difference grows with p, so each component's largest is at
+        // the bound (`hi − origin` or `origin − lo`), bit for bit.
+        let reach = (hi - origin).max(origin - lo).max_element().max(0.0);
         // Smallest power of two with reach / fine within range.
         let fine = if reach > 0.0 {
             2f64.powi((reach / Self::RANGE).log2().ceil() as i32)

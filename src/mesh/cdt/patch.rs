@@ -219,6 +219,11 @@ impl<'a> PatchInfo<'a> {
 
     /// The normal of the pole `uv` lies on, if it lies on a collapsed side.
     fn pole_normal(&self, uv: DVec2) -> Option<DVec3> {
+        // No pole (a course, a cone's frustum): nothing to look for, at every
+        // vertex of the patch.
+        if self.pole_normals.iter().all(Option::is_none) {
+            return None;
+        }
         let ((u0, u1), (v0, v1)) = self.surface.domain();
         let (eu, ev) = (1e-12 * (u1 - u0), 1e-12 * (v1 - v0));
         let u = self.wrap_u(uv.x);

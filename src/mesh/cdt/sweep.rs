@@ -57,11 +57,15 @@ pub(super) fn triangulate(next: &[u32], chart: &[[f64; 2]]) -> Option<Vec<[u32; 
         }
         *slot = k as u32;
     }
-    let mut order: Vec<u32> = (0..n as u32).collect();
-    order.sort_unstable_by(|&a, &b| {
-        let (a, b) = (p[a as usize], p[b as usize]);
-        b.y.total_cmp(&a.y).then(a.x.total_cmp(&b.x))
-    });
+    // Sweep order: y falling, then x rising (`total_cmp`'s order), sorted as
+    // integer keys rather than through the points.
+    let mut keyed: Vec<(u64, u64, u32)> = p
+        .iter()
+        .enumerate()
+        .map(|(k, q)| (!ordered(q.y), ordered(q.x), k as u32))
+        .collect();
+    keyed.sort_unstable();
+    let order: Vec<u32> = keyed.into_iter().map(|(_, _, k)| k).collect();
     if order
         .windows(2)
         .any(|w| p[w[0] as usize] == p[w[1] as usize])
@@ -91,6 +95,16 @@ pub(super) fn triangulate(next: &[u32], chart: &[[f64; 2]]) -> Option<Vec<[u32; 
     let mut tris = Vec::with_capacity(n + 2 * diagonals.len());
     faces(next, &p, &diagonals, &before, &mut tris)?;
     Some(tris)
+}
+
+/// `x`'s bits as an integer in `f64::total_cmp`'s order.
+fn ordered(x: f64) -> u64 {
+    let bits = x.to_bits();
+    if bits >> 63 == 1 {
+        !bits
+    } else {
+        bits | 1 << 63
+    }
 }
 
 /// The diagonals that split the polygon into pieces monotone along the sweep
@@ -374,6 +388,35 @@ mod tests {
             first += len;
         }
         next
+    }
+
+    #[test]
+    fn integer_keys_order_as_total_cmp() {
+        let values = [
+            f64::NEG_INFINITY,
+            -1e300,
+            -2.5,
+            -f64::MIN_POSITIVE,
+            -0.0,
+            0.0,
+            f64::MIN_POSITIVE,
+            1e-300,
+            1.0,
+            2.5,
+            f64::MAX,
+            f64::INFINITY,
+            -f64::NAN,
+            f64::NAN,
+        ];
+        for a in values {
+            for b in values {
+                assert_eq!(
+                    ordered(a).cmp(&ordered(b)),
+                    a.total_cmp(&b),
+                    "{a} against {b}"
+                );
+            }
+        }
     }
 
     #[test]
