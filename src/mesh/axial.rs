@@ -24,7 +24,7 @@
 //! the incremental model stays byte-identical to a full build. The neck's region
 //! is then unchanged too, and the Tessellate stage shares its old mesh.
 
-use std::hash::{BuildHasher, Hasher};
+use super::key::Key;
 use std::sync::Arc;
 
 use glam::{DAffine3, DVec2, DVec3, DVec4};
@@ -102,17 +102,12 @@ impl Extrusion {
 /// A 128-bit key of everything a canonical cut depends on besides the neck, the
 /// pad and the tolerance: the host's cross-section (u knots, x·w, y·w, w of its
 /// control points, which way v runs) and the nozzle's placement across the axis,
-/// all by their exact bits. Two independent 64-bit hashes, like
-/// [`mesh_key`](crate::mesh::mesh_key): different inputs collide with
-/// probability about 2⁻¹²⁸.
+/// all by their exact bits (a [`Key`], like [`mesh_key`](crate::mesh::mesh_key)):
+/// different inputs collide with probability about 2⁻¹²⁸.
 fn key(surface: &NurbsSurface, ext: &Extrusion, across: &DAffine3, turned: bool) -> u128 {
-    let mut fx = rustc_hash::FxBuildHasher.build_hasher();
-    let mut sip = std::collections::hash_map::DefaultHasher::new();
-    let mut write = |x: u64| {
-        fx.write_u64(x);
-        sip.write_u64(x);
-    };
     let knots = surface.u_knots();
+    let mut key = Key::with_capacity(knots.len() + 3 * surface.homogeneous_points().len() / 2 + 16);
+    let mut write = |x: u64| key.write(x);
     write(knots.degree() as u64);
     write(knots.len() as u64);
     knots.as_slice().iter().for_each(|k| write(k.to_bits()));
@@ -126,7 +121,7 @@ fn key(surface: &NurbsSurface, ext: &Extrusion, across: &DAffine3, turned: bool)
     for x in across.to_cols_array() {
         write(x.to_bits());
     }
-    (u128::from(sip.finish()) << 64) | u128::from(fx.finish())
+    key.finish()
 }
 
 /// The nozzle's placement in the host split into its part along the axis (`t`)

@@ -12,7 +12,7 @@
 //! nothing. The table holds weak references: a mesh lives as long as a patch uses
 //! it, and sharing never changes a byte of any mesh.
 
-use std::hash::{BuildHasher, Hasher};
+use super::key::Key;
 
 use glam::DVec3;
 
@@ -22,8 +22,8 @@ use crate::parts::{Analytic, Patch};
 
 /// A 128-bit key of everything the mesh of `patch` within the region with
 /// fingerprint `region` at `options` depends on: the surface's key
-/// ([`surface_key`]) and the region's fingerprint. Two independent 64-bit
-/// hashes, like [`Region::fingerprint`](crate::mesh::cdt::Region::fingerprint):
+/// ([`surface_key`]) and the region's fingerprint, as a [`Key`] (XXH3-128,
+/// like [`Region::fingerprint`](crate::mesh::cdt::Region::fingerprint)):
 /// different inputs collide with probability about 2⁻¹²⁸.
 pub fn mesh_key(patch: &Patch, region: u128, options: &TessellationOptions) -> u128 {
     mesh_key_of(surface_key(patch, options), region)
@@ -32,32 +32,25 @@ pub fn mesh_key(patch: &Patch, region: u128, options: &TessellationOptions) -> u
 /// [`mesh_key`] from the patch's [`surface_key`] (which the mesher also takes,
 /// to tell whether kept cavities' screen verdicts hold).
 pub fn mesh_key_of(surface: u128, region: u128) -> u128 {
-    let mut fx = rustc_hash::FxBuildHasher.build_hasher();
-    let mut sip = std::collections::hash_map::DefaultHasher::new();
-    for x in [
-        surface as u64,
-        (surface >> 64) as u64,
-        region as u64,
-        (region >> 64) as u64,
-    ] {
-        fx.write_u64(x);
-        sip.write_u64(x);
-    }
-    (u128::from(sip.finish()) << 64) | u128::from(fx.finish())
+    let mut key = Key::with_capacity(4);
+    key.write_u128(surface);
+    key.write_u128(region);
+    key.finish()
 }
 
 /// A 128-bit key of everything a patch's mesh depends on but its region: the
 /// surface's degrees, knots and homogeneous control points, the analytic
 /// surface the probes measure against and the options, all by their exact bits
-/// (two independent 64-bit hashes).
+/// (see [`Key`]).
 pub fn surface_key(patch: &Patch, options: &TessellationOptions) -> u128 {
-    let mut fx = rustc_hash::FxBuildHasher.build_hasher();
-    let mut sip = std::collections::hash_map::DefaultHasher::new();
-    let mut write = |x: u64| {
-        fx.write_u64(x);
-        sip.write_u64(x);
-    };
     let s = &patch.surface;
+    let mut key = Key::with_capacity(
+        s.u_knots().as_slice().len()
+            + s.v_knots().as_slice().len()
+            + 4 * s.homogeneous_points().len()
+            + 32,
+    );
+    let mut write = |x: u64| key.write(x);
     for knots in [s.u_knots(), s.v_knots()] {
         write(knots.degree() as u64);
         write(knots.as_slice().len() as u64);
@@ -83,7 +76,7 @@ pub fn surface_key(patch: &Patch, options: &TessellationOptions) -> u128 {
     write(optional(angle_tolerance));
     write(optional(max_edge_length));
     write(optional(max_stretch));
-    (u128::from(sip.finish()) << 64) | u128::from(fx.finish())
+    key.finish()
 }
 
 /// Feeds the kind and every number of `analytic` to `write`.

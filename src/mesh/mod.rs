@@ -11,6 +11,7 @@ mod circles;
 mod edges;
 mod grid;
 mod instances;
+mod key;
 mod layout;
 mod opening;
 mod options;

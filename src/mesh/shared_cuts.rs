@@ -16,7 +16,7 @@
 //! opening keeps it, and sharing never changes a bit of any opening (placing a
 //! kept cut gives what a fresh march gives).
 
-use std::hash::{BuildHasher, Hasher};
+use super::key::Key;
 
 use super::axial::AxialCut;
 use super::weak_table::WeakTable;
@@ -34,19 +34,13 @@ pub(super) fn shared_key(
     pad_od: Option<f64>,
     tolerance: f64,
 ) -> u128 {
-    let mut fx = rustc_hash::FxBuildHasher.build_hasher();
-    let mut sip = std::collections::hash_map::DefaultHasher::new();
-    let mut write = |x: u64| {
-        fx.write_u64(x);
-        sip.write_u64(x);
-    };
-    write(course as u64);
-    write((course >> 64) as u64);
-    write(radius);
-    write(height);
-    write(pad_od.map_or(u64::MAX, f64::to_bits));
-    write(tolerance.to_bits());
-    (u128::from(sip.finish()) << 64) | u128::from(fx.finish())
+    let mut key = Key::with_capacity(6);
+    key.write_u128(course);
+    key.write(radius);
+    key.write(height);
+    key.write(pad_od.map_or(u64::MAX, f64::to_bits));
+    key.write(tolerance.to_bits());
+    key.finish()
 }
 
 /// The canonical cuts in use, by their [`shared_key`]: weak references, so an
