@@ -22,7 +22,7 @@ use crate::parts::{Analytic, Patch};
 
 /// A 128-bit key of everything the mesh of `patch` within the region with
 /// fingerprint `region` at `options` depends on: the surface's key
-/// ([`surface_key`]) and the region's fingerprint, as a [`Key`] (XXH3-128,
+/// ([`surface_key`]) and the region's fingerprint, as a `mesh::key::Key` (XXH3-128,
 /// like [`Region::fingerprint`](crate::mesh::cdt::Region::fingerprint)):
 /// different inputs collide with probability about 2⁻¹²⁸.
 pub fn mesh_key(patch: &Patch, region: u128, options: &TessellationOptions) -> u128 {
@@ -41,7 +41,7 @@ pub fn mesh_key_of(surface: u128, region: u128) -> u128 {
 /// A 128-bit key of everything a patch's mesh depends on but its region: the
 /// surface's degrees, knots and homogeneous control points, the analytic
 /// surface the probes measure against and the options, all by their exact bits
-/// (see [`Key`]).
+/// (a `mesh::key::Key`).
 pub fn surface_key(patch: &Patch, options: &TessellationOptions) -> u128 {
     let s = &patch.surface;
     let mut key = Key::with_capacity(

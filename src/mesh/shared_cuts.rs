@@ -43,7 +43,7 @@ pub(super) fn shared_key(
     key.finish()
 }
 
-/// The canonical cuts in use, by their [`shared_key`]: weak references, so an
+/// The canonical cuts in use, by their `shared_key`: weak references, so an
 /// entry dies with the last opening keeping its cut (dead entries are swept as
 /// the table grows).
 pub type SharedCuts = WeakTable<AxialCut>;
