@@ -65,8 +65,8 @@ pub struct PatchSurface(pub Arc<Patch>);
 /// positions, octahedral normals, narrow indices).
 ///
 /// In a sparse set, like the other components later stages add to a patch or
-/// a nozzle: adding it leaves the entity's table row in place (see
-/// ARCHITECTURE.md, "A full build writes a component to every patch").
+/// a nozzle: adding it leaves the entity's table row in place, so a full build
+/// that adds one to every patch moves no table rows.
 #[derive(Component, Clone, Debug, PartialEq)]
 #[component(storage = "SparseSet")]
 pub struct PatchMesh(pub Arc<PackedMesh>);

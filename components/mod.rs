@@ -4,7 +4,7 @@
 //! Parameters are the design-file types themselves (one component per entity
 //! kind), so an entity's parameters and its design-file entry can never disagree.
 //! Derived components are written with `set_if_neq`, so an unchanged value stops a
-//! cascade. See `ARCHITECTURE.md` for which system writes what.
+//! cascade. See `ARCHITECTURE.md` (*ECS stages*) for which system writes what.
 
 mod derived;
 mod params;

@@ -2,6 +2,8 @@
 //! and 1 with every problem listed for invalid ones, `info` reports figures, and
 //! unreadable files exit 2. No input makes it panic.
 
+mod common;
+
 use std::process::Command;
 
 fn vesselcad(args: &[&str]) -> std::process::Output {
@@ -12,10 +14,7 @@ fn vesselcad(args: &[&str]) -> std::process::Output {
 }
 
 fn example(name: &str) -> String {
-    format!(
-        "{}/examples/designs/{name}.json",
-        env!("CARGO_MANIFEST_DIR")
-    )
+    common::examples::example_path(name).display().to_string()
 }
 
 #[test]

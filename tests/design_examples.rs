@@ -1,20 +1,9 @@
 //! The example designs load, pass every rule, and survive load → save → load.
 
+mod common;
+
+use common::examples::{EXAMPLES, example_path as path};
 use vesselcad::design::{load, parse, resolve, to_canonical_json};
-
-const EXAMPLES: [&str; 4] = [
-    "horizontal-drum",
-    "vertical-column",
-    "storage-tank",
-    "small-plant",
-];
-
-fn path(name: &str) -> String {
-    format!(
-        "{}/examples/designs/{name}.json",
-        env!("CARGO_MANIFEST_DIR")
-    )
-}
 
 #[test]
 fn examples_load_and_resolve() {

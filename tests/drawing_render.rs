@@ -2,6 +2,8 @@
 //! drawing: not blank, with drawn content in each view's region. The PNGs are kept
 //! in `target/drawings/` for a person to look at.
 
+mod common;
+
 use std::path::{Path, PathBuf};
 use std::process::Command;
 
@@ -118,11 +120,7 @@ fn every_example_sheet_renders_as_a_drawing_in_chromium() {
         ("small-plant", "V-101", SheetSize::IsoA3),
     ];
     for (name, tag, size) in cases {
-        let path = format!(
-            "{}/examples/designs/{name}.json",
-            env!("CARGO_MANIFEST_DIR")
-        );
-        let design = vesselcad::design::load(Path::new(&path)).unwrap();
+        let design = common::examples::example(name);
         let model = Model::from_design(&design, TessellationOptions::chord(0.5)).unwrap();
         let s = sheet(&model, tag, &SheetOptions::sized(size)).unwrap();
         let png = render(&s, &format!("{name}-{tag}"));

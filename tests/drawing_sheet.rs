@@ -2,9 +2,12 @@
 //! title block comes from the design file, dimensions do not overlap each other or
 //! the views, the SVG is well-formed XML and the DXF reads back with its layers.
 
+mod common;
+
+use common::examples::example;
 use std::collections::BTreeSet;
 
-use vesselcad::design::{Design, DesignError, parse};
+use vesselcad::design::{DesignError, parse};
 use vesselcad::drawing::{
     HiddenLines, Item, Layer, Sheet, SheetOptions, SheetSize, sheet, sheet_svg, to_dxf_bytes,
     to_svg,
@@ -12,14 +15,6 @@ use vesselcad::drawing::{
 use vesselcad::mesh::TessellationOptions;
 use vesselcad::model::{Edit, Model};
 use vesselcad::project::ViewKind;
-
-fn example(name: &str) -> Design {
-    let path = format!(
-        "{}/examples/designs/{name}.json",
-        env!("CARGO_MANIFEST_DIR")
-    );
-    vesselcad::design::load(std::path::Path::new(&path)).expect("example loads")
-}
 
 fn model(name: &str) -> Model {
     Model::from_design(&example(name), TessellationOptions::chord(0.5)).unwrap()

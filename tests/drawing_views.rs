@@ -1,21 +1,16 @@
 //! Drawing views: exact silhouettes, hidden-line classification and the
 //! incremental Project stage (work counters, agreement with a fresh build).
 
+mod common;
+
+use common::examples::example;
 use std::sync::Arc;
 
-use vesselcad::design::{Design, NozzleDesign, parse};
+use vesselcad::design::{NozzleDesign, parse};
 use vesselcad::drawing::vessel_views;
 use vesselcad::mesh::TessellationOptions;
 use vesselcad::model::{Edit, Model};
 use vesselcad::project::{EntityView, LineKind, View, ViewKind};
-
-fn example(name: &str) -> Design {
-    let path = format!(
-        "{}/examples/designs/{name}.json",
-        env!("CARGO_MANIFEST_DIR")
-    );
-    vesselcad::design::load(std::path::Path::new(&path)).expect("example loads")
-}
 
 fn options() -> TessellationOptions {
     TessellationOptions::chord(0.5)

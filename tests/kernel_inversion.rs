@@ -3,8 +3,11 @@
 //! closest point (known in closed form on spheres, cylinders, tori and circles, by
 //! brute force elsewhere).
 
+mod common;
+
 use std::f64::consts::TAU;
 
+use common::heads::head_kinds;
 use glam::{DVec3, DVec4};
 use vesselcad::nurbs::builders::{circle, circular_arc};
 use vesselcad::nurbs::{KnotVector, NurbsError, NurbsSurface};
@@ -36,29 +39,8 @@ impl Rng {
 
 /// Every kind of head, with and without straight flange.
 fn all_heads() -> Vec<Head> {
-    let cone = |half_angle, small_diameter| HeadKind::Conical {
-        half_angle,
-        small_diameter,
-    };
-    let flat = |knuckle_radius| HeadKind::Flat { knuckle_radius };
-    let toricone = |half_angle, knuckle_radius| HeadKind::Toriconical {
-        half_angle,
-        knuckle_radius,
-    };
-    let kinds = [
-        HeadKind::Hemispherical,
-        HeadKind::TWO_TO_ONE,
-        HeadKind::Ellipsoidal { ratio: 1.7 },
-        HeadKind::asme_fd(OD),
-        HeadKind::eighty_ten(OD),
-        toricone(30.0, 0.1 * OD),
-        cone(30.0, 0.0),
-        cone(45.0, 0.25 * OD),
-        flat(0.0),
-        flat(0.05 * OD),
-    ];
     let flanges = [0.0, 50.0];
-    kinds
+    head_kinds(OD)
         .into_iter()
         .flat_map(|k| flanges.map(|sf| Head::new(OD, k).with_straight_flange(sf)))
         .collect()

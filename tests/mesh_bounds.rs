@@ -5,8 +5,9 @@
 //! degenerate or faces against the exact normals. The minimum-angle distribution
 //! (the seed's quality index) is printed.
 
+mod common;
+
 use vesselcad::components::{PatchMesh, PatchSurface};
-use vesselcad::design::load;
 use vesselcad::mesh::TessellationOptions;
 use vesselcad::model::Model;
 
@@ -16,11 +17,7 @@ const TOLERANCE: f64 = 1.0;
 fn every_triangle_is_within_the_tolerance() {
     let mut histogram = [0usize; 4];
     for name in ["horizontal-drum", "vertical-column", "storage-tank"] {
-        let design = load(format!(
-            "{}/examples/designs/{name}.json",
-            env!("CARGO_MANIFEST_DIR")
-        ))
-        .unwrap();
+        let design = common::examples::example(name);
         let mut model = Model::from_design(&design, TessellationOptions::chord(TOLERANCE)).unwrap();
         assert!(model.errors().0.is_empty(), "{name}: {:?}", model.errors());
         let world = model_world(&mut model);
@@ -133,11 +130,7 @@ fn quality(
 /// the needles along straight generators while keeping the chordal bound.
 #[test]
 fn a_stretch_limit_removes_needles() {
-    let design = load(format!(
-        "{}/examples/designs/horizontal-drum.json",
-        env!("CARGO_MANIFEST_DIR")
-    ))
-    .unwrap();
+    let design = common::examples::example("horizontal-drum");
     let plain = quality(&design, TessellationOptions::chord(TOLERANCE));
     let limited = quality(
         &design,

@@ -13,6 +13,7 @@
 //! midpoints, found by point inversion, are within the tolerance; every loop vertex
 //! is in the output.
 
+mod common;
 mod mesh_cdt_support;
 
 use std::time::Instant;

@@ -5,22 +5,17 @@
 //! enclosed volume is positive (normals outward). Checked on every example design,
 //! on randomized nozzle layouts and on randomized boots.
 
+mod common;
+
+use common::examples::example;
 use std::collections::HashMap;
 
 use glam::{DAffine3, DVec3};
 use proptest::prelude::*;
-use vesselcad::design::{Design, HeadShape, NozzleDesign, PadDesign, PartDesign, load};
+use vesselcad::design::{Design, HeadShape, NozzleDesign, PadDesign, PartDesign};
 use vesselcad::export::{Scene, SceneNodeKind};
 use vesselcad::mesh::TessellationOptions;
 use vesselcad::model::{Edit, Model};
-
-fn example(name: &str) -> Design {
-    load(format!(
-        "{}/examples/designs/{name}.json",
-        env!("CARGO_MANIFEST_DIR")
-    ))
-    .unwrap()
-}
 
 /// Welds positions on a fine grid (1e-6 mm cells, neighbours checked) into ids.
 struct Welder {

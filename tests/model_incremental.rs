@@ -2,18 +2,13 @@
 //! without changing anything, and after any sequence of edits holds exactly what a
 //! from-scratch build of its design gives.
 
-use vesselcad::design::{PartDesign, load, to_canonical_json};
+mod common;
+
+use common::examples::example;
+use vesselcad::design::{PartDesign, to_canonical_json};
 use vesselcad::export::{build_scene, write_glb};
 use vesselcad::mesh::TessellationOptions;
 use vesselcad::model::{Edit, Model, ModelError};
-
-fn example(name: &str) -> vesselcad::design::Design {
-    load(format!(
-        "{}/examples/designs/{name}.json",
-        env!("CARGO_MANIFEST_DIR")
-    ))
-    .unwrap()
-}
 
 fn options() -> TessellationOptions {
     TessellationOptions::chord(2.0)
@@ -25,11 +20,28 @@ fn model(name: &str) -> Model {
 
 /// The incremental model's GLB equals a from-scratch build of its design.
 fn assert_matches_full_build(model: &Model) {
-    let incremental = write_glb(&model.scene()).unwrap();
-    let full = write_glb(&build_scene(&model.design(), &options()).unwrap()).unwrap();
+    common::full_build::assert_matches_full_build(model, &options());
+}
+
+/// The comparison names the first node that differs, not only that bytes do.
+#[test]
+fn a_mismatch_names_the_first_differing_node() {
+    let m = model("small-plant");
+    let mut design = m.design();
+    design.vessels[1].nozzles[2].orientation += 10.0;
+    let moved = design.vessels[1].nozzles[2].mark.clone();
+    let tag = design.vessels[1].tag.clone();
+    let other = build_scene(&design, &options()).unwrap();
+    let found =
+        common::full_build::first_difference(&m.scene(), &other).expect("the scenes differ");
     assert!(
-        incremental == full,
-        "incremental GLB differs from the full build"
+        found.starts_with(&format!("{tag}/{moved}: frame")),
+        "{found}"
+    );
+    let same = build_scene(&m.design(), &options()).unwrap();
+    assert_eq!(
+        common::full_build::first_difference(&m.scene(), &same),
+        None
     );
 }
 

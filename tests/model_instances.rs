@@ -3,11 +3,13 @@
 //! again, at the first build and after edits, and the model still holds exactly
 //! what a from-scratch build of its design gives.
 
+mod common;
+
 use std::collections::HashSet;
 use std::sync::Arc;
 
 use vesselcad::components::PatchMesh;
-use vesselcad::design::{Design, HeadShape, PartDesign, VesselDesign, load};
+use vesselcad::design::{Design, HeadShape, PartDesign, VesselDesign};
 use vesselcad::export::{build_scene, write_glb};
 use vesselcad::mesh::TessellationOptions;
 use vesselcad::model::{Edit, Model};
@@ -17,11 +19,7 @@ fn options() -> TessellationOptions {
 }
 
 fn small_plant() -> Design {
-    load(format!(
-        "{}/examples/designs/small-plant.json",
-        env!("CARGO_MANIFEST_DIR")
-    ))
-    .expect("the example loads")
+    common::examples::example("small-plant")
 }
 
 /// Distinct meshes held by the model's patches, and the number of patches.
@@ -64,13 +62,7 @@ fn torispherical(vessel: &VesselDesign, id: &str) -> Edit {
 }
 
 fn assert_matches_full_build(model: &Model) {
-    let incremental = write_glb(&model.scene()).expect("the model exports");
-    let full = write_glb(&build_scene(&model.design(), &options()).expect("the design builds"))
-        .expect("the build exports");
-    assert!(
-        incremental == full,
-        "incremental GLB differs from the full build"
-    );
+    common::full_build::assert_matches_full_build(model, &options());
 }
 
 #[test]

@@ -3,6 +3,8 @@
 //! the spherical cap, full-volume limits against the NURBS divergence integral of
 //! the inside head for every head kind, and the model keeping them current.
 
+mod common;
+
 use std::f64::consts::PI;
 
 use vesselcad::design::{Design, OperatingDesign, VesselDesign, load, parse, resolve, save};
@@ -270,11 +272,7 @@ fn operating_mass_and_centre_of_gravity() {
 #[test]
 fn operating_data_is_optional_round_trips_and_is_checked() {
     // Old files (no operating data) still load; new fields round-trip.
-    let old = load(concat!(
-        env!("CARGO_MANIFEST_DIR"),
-        "/examples/designs/small-plant.json"
-    ))
-    .unwrap();
+    let old = common::examples::example("small-plant");
     assert!(old.vessels.iter().all(|v| v.operating.is_none()));
     let mut d = vessel("vertical", TWO_TO_ONE, TWO_TO_ONE, 1000.0);
     d.vessels[0].operating.as_mut().unwrap().liquid_density = Some(850.0);

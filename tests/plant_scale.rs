@@ -3,15 +3,19 @@
 //! deterministic and leaves the incremental model equal to a full build; the
 //! plant commands run end to end.
 
+mod common;
+
 use std::collections::BTreeSet;
 use std::process::Command;
 
-use vesselcad::design::{HeadShape, PartDesign, VesselKind, load, to_canonical_json, validate};
+use vesselcad::design::{HeadShape, PartDesign, VesselKind, to_canonical_json, validate};
 use vesselcad::export::{build_scene, stream_glb, write_glb};
 use vesselcad::mesh::TessellationOptions;
 use vesselcad::model::{Edit, Model};
 use vesselcad::plant::rng::SplitMix64;
-use vesselcad::plant::{PLOT_PITCH, Simulation, build_plant, draw_edit, generate_plant};
+use vesselcad::plant::{
+    BenchRow, PLOT_PITCH, Simulation, build_plant, draw_edit, format_markdown, generate_plant,
+};
 
 fn options() -> TessellationOptions {
     TessellationOptions::chord(5.0)
@@ -90,11 +94,7 @@ fn generated_plant_builds_without_failures_and_chunked_build_matches() {
 
 #[test]
 fn streaming_writer_matches_on_the_example_plant() {
-    let design = load(concat!(
-        env!("CARGO_MANIFEST_DIR"),
-        "/examples/designs/small-plant.json"
-    ))
-    .unwrap();
+    let design = common::examples::example("small-plant");
     let scene = build_scene(&design, &options()).unwrap();
     let mut streamed = Vec::new();
     stream_glb(&scene, &mut streamed, std::path::Path::new("mem")).unwrap();
@@ -121,8 +121,7 @@ fn simulation_is_deterministic_and_incremental_equals_full_build() {
     assert_eq!(a.model().design(), b.model().design());
     assert_ne!(a.model().design(), design, "the ticks changed the plant");
     // After the ticks the incremental model is what a full build of its design gives.
-    let full = write_glb(&build_scene(&a.model().design(), &options()).unwrap()).unwrap();
-    assert!(write_glb(&a.model().scene()).unwrap() == full);
+    common::full_build::assert_matches_full_build(a.model(), &options());
     // Its operating mass is the sum of the vessels' figures from scratch.
     let fresh = Model::from_design(&a.model().design(), options()).unwrap();
     let fresh_sim = Simulation::new(fresh, &a.model().design(), 0);
@@ -337,4 +336,46 @@ fn plant_commands_run_end_to_end() {
         assert!(out.contains(figure), "{figure} missing:\n{out}");
     }
     std::fs::remove_dir_all(&dir).ok();
+}
+
+/// `vesselcad bench --markdown`: the table as BENCHMARKS.md holds it, with the bars
+/// inside a cell escaped so that every row keeps the header's four cells.
+#[test]
+fn bench_table_as_markdown() {
+    let row = |name: &str, value: &str, target: &str, met| BenchRow {
+        name: name.into(),
+        value: value.into(),
+        target: target.into(),
+        met,
+    };
+    let rows = [
+        row(
+            "tick of 100 edits: p50 (max)",
+            "18.60 ms (25.10 ms)",
+            "≤ 20 ms",
+            Some(true),
+        ),
+        row(
+            "  edit, mean: Geometry | Tessellate",
+            "0.1 | 0.2 ms",
+            "",
+            None,
+        ),
+        row("speed-up, 2 threads over 1", "1.70×", "≥ 1.8×", Some(false)),
+    ];
+    let table = format_markdown(&rows);
+    let lines: Vec<&str> = table.lines().collect();
+    assert_eq!(
+        lines,
+        [
+            "| Figure | Value | Target | Met |",
+            "|---|---|---|---|",
+            "| tick of 100 edits: p50 (max) | 18.60 ms (25.10 ms) | ≤ 20 ms | met |",
+            r"| ↳ edit, mean: Geometry \| Tessellate | 0.1 \| 0.2 ms |  |  |",
+            "| speed-up, 2 threads over 1 | 1.70× | ≥ 1.8× | **not met** |",
+        ]
+    );
+    for line in &lines {
+        assert_eq!(line.replace(r"\|", "").matches('|').count(), 5, "{line}");
+    }
 }

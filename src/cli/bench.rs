@@ -3,7 +3,7 @@
 use std::process::ExitCode;
 
 use clap::Args;
-use vesselcad::plant::{BenchConfig, format_table, run_bench};
+use vesselcad::plant::{BenchConfig, format_markdown, format_table, run_bench};
 
 use super::alloc::live_bytes;
 
@@ -25,6 +25,10 @@ pub struct BenchArgs {
     /// Ticks of 100 edits measured (the tick's p50 is their median).
     #[arg(long, default_value_t = BenchConfig::default().ticks)]
     ticks: usize,
+    /// Print the table as Markdown (figure | value | target | met), as BENCHMARKS.md
+    /// holds it.
+    #[arg(long)]
+    markdown: bool,
 }
 
 /// Runs `vesselcad bench`.
@@ -45,7 +49,11 @@ pub fn run(args: BenchArgs) -> ExitCode {
     let mut progress = |what: &str| eprintln!("bench: {what}…");
     match run_bench(&config, &heap, &mut progress, &std::env::temp_dir()) {
         Ok(rows) => {
-            print!("{}", format_table(&rows));
+            if args.markdown {
+                print!("{}", format_markdown(&rows));
+            } else {
+                print!("{}", format_table(&rows));
+            }
             ExitCode::SUCCESS
         }
         Err(e) => {

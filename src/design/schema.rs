@@ -10,13 +10,14 @@
 //! are externally tagged objects (`{"shell": {...}}`) so that every error can name
 //! its exact JSON path.
 
+use schemars::JsonSchema;
 use serde::{Deserialize, Serialize};
 
 /// The format tag every design file carries.
 pub const FORMAT: &str = "vesselcad/1";
 
 /// A whole design file: one vessel or a plant of many.
-#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
+#[derive(Clone, Debug, PartialEq, Serialize, Deserialize, JsonSchema)]
 #[serde(deny_unknown_fields)]
 pub struct Design {
     /// Always [`FORMAT`].
@@ -29,7 +30,7 @@ pub struct Design {
 }
 
 /// Length unit declared by a design file.
-#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Serialize, Deserialize)]
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Serialize, Deserialize, JsonSchema)]
 #[serde(rename_all = "lowercase")]
 pub enum Units {
     /// Millimetres (the default, and what loaded designs use).
@@ -40,7 +41,7 @@ pub enum Units {
 }
 
 /// One vessel: its identity, placement, design data, parts, nozzles and notes.
-#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
+#[derive(Clone, Debug, PartialEq, Serialize, Deserialize, JsonSchema)]
 #[serde(deny_unknown_fields)]
 pub struct VesselDesign {
     /// Unique tag, e.g. `"V-101"`.
@@ -72,7 +73,7 @@ pub struct VesselDesign {
 }
 
 /// A vessel's operating state: how full it is and of what.
-#[derive(Clone, Copy, Debug, PartialEq, Serialize, Deserialize)]
+#[derive(Clone, Copy, Debug, PartialEq, Serialize, Deserialize, JsonSchema)]
 #[serde(deny_unknown_fields)]
 pub struct OperatingDesign {
     /// Height of the liquid surface above the lowest point of the vessel's interior,
@@ -88,7 +89,7 @@ pub struct OperatingDesign {
 pub const WATER_DENSITY: f64 = 1000.0;
 
 /// What kind of vessel this is; decides the local frame's orientation in the plant.
-#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash, Serialize, Deserialize)]
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash, Serialize, Deserialize, JsonSchema)]
 #[serde(rename_all = "lowercase")]
 pub enum VesselKind {
     /// Axis horizontal; local +Y is plant up.
@@ -101,7 +102,7 @@ pub enum VesselKind {
 
 /// Placement of the vessel's datum (the bottom or left tangent line on the axis)
 /// in the plant frame (X east, Y north, Z up), mm.
-#[derive(Clone, Copy, Debug, Default, PartialEq, Serialize, Deserialize)]
+#[derive(Clone, Copy, Debug, Default, PartialEq, Serialize, Deserialize, JsonSchema)]
 #[serde(deny_unknown_fields)]
 pub struct Placement {
     /// Datum position `[east, north, up]`, mm.
@@ -114,7 +115,7 @@ pub struct Placement {
 }
 
 /// Design conditions of a vessel (data for drawings and weights).
-#[derive(Clone, Debug, Default, PartialEq, Serialize, Deserialize)]
+#[derive(Clone, Debug, Default, PartialEq, Serialize, Deserialize, JsonSchema)]
 #[serde(deny_unknown_fields)]
 pub struct DesignConditions {
     /// Design pressure, kPa gauge.
@@ -137,7 +138,7 @@ pub struct DesignConditions {
 }
 
 /// Title-block data of a vessel's drawing sheet; every field optional.
-#[derive(Clone, Debug, Default, PartialEq, Serialize, Deserialize)]
+#[derive(Clone, Debug, Default, PartialEq, Serialize, Deserialize, JsonSchema)]
 #[serde(deny_unknown_fields)]
 pub struct DrawingInfo {
     /// Drawing number, e.g. `"D-201-001"`; default: the vessel's tag.
@@ -162,7 +163,7 @@ impl DrawingInfo {
 }
 
 /// One part, tagged by its kind: `{"shell": {...}}`, `{"head": {...}}`, ….
-#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
+#[derive(Clone, Debug, PartialEq, Serialize, Deserialize, JsonSchema)]
 #[serde(rename_all = "lowercase")]
 pub enum PartDesign {
     /// A cylindrical shell course.
@@ -184,7 +185,7 @@ pub enum PartDesign {
 }
 
 /// A cylindrical shell course.
-#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
+#[derive(Clone, Debug, PartialEq, Serialize, Deserialize, JsonSchema)]
 #[serde(deny_unknown_fields)]
 pub struct ShellDesign {
     /// Part id, unique in the vessel.
@@ -199,7 +200,7 @@ pub struct ShellDesign {
 }
 
 /// Shape of a head.
-#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash, Serialize, Deserialize)]
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash, Serialize, Deserialize, JsonSchema)]
 #[serde(rename_all = "lowercase")]
 pub enum HeadShape {
     /// Half sphere.
@@ -217,7 +218,7 @@ pub enum HeadShape {
 }
 
 /// A head. Its outside diameter is the OD of the course it closes.
-#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
+#[derive(Clone, Debug, PartialEq, Serialize, Deserialize, JsonSchema)]
 #[serde(deny_unknown_fields)]
 pub struct HeadDesign {
     /// Part id, unique in the vessel.
@@ -249,7 +250,7 @@ pub struct HeadDesign {
 }
 
 /// A conical reducer; its end diameters are those of the courses it joins.
-#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
+#[derive(Clone, Debug, PartialEq, Serialize, Deserialize, JsonSchema)]
 #[serde(deny_unknown_fields)]
 pub struct ReducerDesign {
     /// Part id, unique in the vessel.
@@ -266,7 +267,7 @@ pub struct ReducerDesign {
 }
 
 /// A skirt; its top diameter is the OD of the bottom course.
-#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
+#[derive(Clone, Debug, PartialEq, Serialize, Deserialize, JsonSchema)]
 #[serde(deny_unknown_fields)]
 pub struct SkirtDesign {
     /// Part id, unique in the vessel.
@@ -285,7 +286,7 @@ pub struct SkirtDesign {
 }
 
 /// A saddle; it fits the OD of the course it stands under.
-#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
+#[derive(Clone, Debug, PartialEq, Serialize, Deserialize, JsonSchema)]
 #[serde(deny_unknown_fields)]
 pub struct SaddleDesign {
     /// Part id, unique in the vessel.
@@ -307,7 +308,7 @@ pub struct SaddleDesign {
 }
 
 /// Pipe legs around a small vertical vessel.
-#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
+#[derive(Clone, Debug, PartialEq, Serialize, Deserialize, JsonSchema)]
 #[serde(deny_unknown_fields)]
 pub struct LegsDesign {
     /// Part id, unique in the vessel.
@@ -324,7 +325,7 @@ pub struct LegsDesign {
 }
 
 /// Support lugs on a vertical vessel.
-#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
+#[derive(Clone, Debug, PartialEq, Serialize, Deserialize, JsonSchema)]
 #[serde(deny_unknown_fields)]
 pub struct LugsDesign {
     /// Part id, unique in the vessel.
@@ -345,7 +346,7 @@ pub struct LugsDesign {
 }
 
 /// A boot under a horizontal vessel.
-#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
+#[derive(Clone, Debug, PartialEq, Serialize, Deserialize, JsonSchema)]
 #[serde(deny_unknown_fields)]
 pub struct BootDesign {
     /// Part id, unique in the vessel.
@@ -362,7 +363,7 @@ pub struct BootDesign {
 }
 
 /// Flange facing.
-#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash, Serialize, Deserialize)]
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash, Serialize, Deserialize, JsonSchema)]
 pub enum FacingDesign {
     /// Raised face.
     #[serde(rename = "RF")]
@@ -376,7 +377,7 @@ pub enum FacingDesign {
 }
 
 /// Flange type of a nozzle.
-#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Hash, Serialize, Deserialize)]
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Hash, Serialize, Deserialize, JsonSchema)]
 pub enum FlangeDesign {
     /// Weld-neck (the default).
     #[default]
@@ -391,7 +392,7 @@ pub enum FlangeDesign {
 }
 
 /// A nozzle or manway mounted on a host part (a shell course or a head).
-#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
+#[derive(Clone, Debug, PartialEq, Serialize, Deserialize, JsonSchema)]
 #[serde(deny_unknown_fields)]
 pub struct NozzleDesign {
     /// Mark, unique in the vessel: `N1`, `M1` (manway), ….
@@ -435,7 +436,7 @@ pub struct NozzleDesign {
 }
 
 /// A reinforcing pad around a nozzle.
-#[derive(Clone, Copy, Debug, PartialEq, Serialize, Deserialize)]
+#[derive(Clone, Copy, Debug, PartialEq, Serialize, Deserialize, JsonSchema)]
 #[serde(deny_unknown_fields)]
 pub struct PadDesign {
     /// Pad outside diameter, mm.
@@ -445,7 +446,7 @@ pub struct PadDesign {
 }
 
 /// A note: text anchored to a target (vessel tag, part id or nozzle mark).
-#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
+#[derive(Clone, Debug, PartialEq, Serialize, Deserialize, JsonSchema)]
 #[serde(deny_unknown_fields)]
 pub struct NoteDesign {
     /// Note id, unique in the vessel.

@@ -1,9 +1,14 @@
 //! Meshes: triangle approximations of patches, in the patch's part-local frame.
 //!
-//! The Tessellate stage turns each dirty patch's exact surface into a [`Mesh`] with
-//! [`tessellate`], driven by [`TessellationOptions`]. The model keeps each
-//! finished mesh as a [`PackedMesh`] (exact `f64` positions, octahedral normals,
-//! narrow indices); exporters convert them to `f32` buffers.
+//! The Tessellate stage (`systems::remesh_dirty_patches`) meshes each dirty patch
+//! with the error-bounded constrained-Delaunay mesher of [`cdt`]
+//! ([`cdt::mesh_patch_region_keeping`]), over the (u, v) region laid out here
+//! ([`patch_region`], [`host_region`]: the patch's boundary and the loops of the
+//! openings cut into it, [`cut_opening`]), driven by [`TessellationOptions`].
+//! Meshes equal by content are meshed once and shared ([`MeshInstances`]); the model
+//! keeps each finished mesh as a [`PackedMesh`] (fixed-point positions, octahedral
+//! normals, narrow indices); exporters convert them to `f32` buffers. [`tessellate`]
+//! is an older uniform-grid mesher that the pipeline no longer uses.
 
 mod axial;
 pub mod cdt;

@@ -464,3 +464,26 @@ pub fn format_table(rows: &[BenchRow]) -> String {
     }
     out
 }
+
+/// The rows as a Markdown table (figure | value | target | met), for BENCHMARKS.md:
+/// `vesselcad bench --markdown`. A `|` inside a cell is escaped so that it does not
+/// split the cell.
+pub fn format_markdown(rows: &[BenchRow]) -> String {
+    let cell = |s: &str| s.trim().replace('|', "\\|");
+    let mut out = String::from("| Figure | Value | Target | Met |\n|---|---|---|---|\n");
+    for r in rows {
+        let mark = match r.met {
+            Some(true) => "met",
+            Some(false) => "**not met**",
+            None => "",
+        };
+        let indent = if r.name.starts_with(' ') { "↳ " } else { "" };
+        out.push_str(&format!(
+            "| {indent}{} | {} | {} | {mark} |\n",
+            cell(&r.name),
+            cell(&r.value),
+            cell(&r.target)
+        ));
+    }
+    out
+}

@@ -15,4 +15,4 @@ mod simulate;
 pub use simulate::{Simulation, TickReport, after_edit, draw_edit, quantile};
 mod bench;
 
-pub use bench::{BenchConfig, BenchError, BenchRow, format_table, run_bench};
+pub use bench::{BenchConfig, BenchError, BenchRow, format_markdown, format_table, run_bench};

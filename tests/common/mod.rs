@@ -1,8 +1,12 @@
-//! Shared checks for the integration tests: dense sampling of patches against their
-//! analytic surfaces, and continuity across patch joints.
+//! Shared helpers of the integration tests: the example designs, the comparison of
+//! the incremental model with a full build, the head kinds every head suite sweeps,
+//! dense sampling of patches against their analytic surfaces, and continuity across
+//! patch joints.
 
-#![allow(dead_code, reason = "each test binary uses a different subset")]
+#![expect(dead_code, reason = "each test binary uses a different subset")]
 
+pub mod examples;
+pub mod full_build;
 pub mod heads;
 pub mod numbers;
 pub mod supports;

@@ -3,37 +3,12 @@
 
 use glam::DVec4;
 use vesselcad::nurbs::NurbsSurface;
-use vesselcad::parts::heads::{Head, HeadKind};
+use vesselcad::parts::heads::Head;
 use vesselcad::parts::tables::{FlangeClass, Nps, PipeSchedule};
 use vesselcad::parts::{Facing, FlangeType, Nozzle, Patch, Shell};
 
-/// One head of every kind.
-pub fn head_kinds(od: f64) -> Vec<HeadKind> {
-    vec![
-        HeadKind::Hemispherical,
-        HeadKind::TWO_TO_ONE,
-        HeadKind::asme_fd(od),
-        HeadKind::eighty_ten(od),
-        HeadKind::Toriconical {
-            half_angle: 30.0,
-            knuckle_radius: 0.1 * od,
-        },
-        HeadKind::Conical {
-            half_angle: 30.0,
-            small_diameter: 0.0,
-        },
-        HeadKind::Conical {
-            half_angle: 45.0,
-            small_diameter: 0.25 * od,
-        },
-        HeadKind::Flat {
-            knuckle_radius: 0.0,
-        },
-        HeadKind::Flat {
-            knuckle_radius: 0.05 * od,
-        },
-    ]
-}
+/// One head of every kind: the list every head suite sweeps.
+pub use crate::common::heads::head_kinds;
 
 /// Three NPS 4 nozzles: weld-neck raised face, slip-on flat face, blind ring joint.
 pub fn nozzles() -> Vec<Nozzle> {

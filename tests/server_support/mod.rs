@@ -3,7 +3,7 @@
 //! folder, and a minimal HTTP/1.1 client over `TcpStream` (raw, so tests can send
 //! exactly the bytes they mean, including paths a client library would clean up).
 
-#![allow(dead_code, reason = "each test binary uses a different subset")]
+#![expect(dead_code, reason = "each test binary uses a different subset")]
 
 use std::io::{BufRead, BufReader, Read, Write};
 use std::net::{SocketAddr, TcpStream};

@@ -30,7 +30,10 @@ pub(super) fn rows(class: FlangeClass) -> &'static [FlangeRow] {
 
 /// Builds a row from the columns in B16.5 order: NPS, O, tf, X, A, Y weld
 /// neck, Y slip-on, R, W, number of bolts, hole diameter (in), bolt size (in).
-#[allow(clippy::too_many_arguments)] // one argument per printed column keeps the tables auditable
+#[expect(
+    clippy::too_many_arguments,
+    reason = "one argument per printed column keeps the tables auditable"
+)]
 const fn row(
     nps: f64,
     outside_diameter: f64,
