@@ -36,6 +36,11 @@ pub struct ServeArgs {
     /// dropped (a viewer that only falls behind is resynced, not dropped).
     #[arg(long, default_value_t = VIEWER_SEND_TIMEOUT.as_secs_f64(), value_parser = parse_timeout, allow_negative_numbers = true)]
     pub viewer_timeout: f64,
+    /// On a clean shutdown (Ctrl-C, SIGTERM), write unsaved edits into the design
+    /// file. Without it the file is written only by `POST /save`; unsaved edits
+    /// stay in the journal and are replayed on the next start.
+    #[arg(long)]
+    pub save_on_exit: bool,
 }
 
 /// A positive, finite number of seconds (at most a day).
@@ -66,6 +71,7 @@ pub fn serve_command(args: ServeArgs) -> ExitCode {
         token: args.token,
         tessellation: TessellationOptions::chord(args.tolerance),
         viewer_timeout: Duration::from_secs_f64(args.viewer_timeout),
+        save_on_exit: args.save_on_exit,
     };
     match run(options) {
         Ok(()) => ExitCode::SUCCESS,

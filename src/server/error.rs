@@ -99,6 +99,10 @@ pub enum ApiError {
     /// the model was put back as it was. 500.
     #[error("edit not saved, nothing changed: {0}")]
     Storage(String),
+    /// The design file could not be saved; it is as it was and the journal
+    /// still holds every edit. 500.
+    #[error("design not saved (the file is as it was, the journal keeps every edit): {0}")]
+    SaveFailed(String),
 }
 
 impl ApiError {
@@ -114,7 +118,7 @@ impl ApiError {
             ApiError::Unauthorized => StatusCode::UNAUTHORIZED,
             ApiError::UnknownVessel(_) | ApiError::NotFound(_) => StatusCode::NOT_FOUND,
             ApiError::Drawing(_) => StatusCode::UNPROCESSABLE_ENTITY,
-            ApiError::Storage(_) => StatusCode::INTERNAL_SERVER_ERROR,
+            ApiError::Storage(_) | ApiError::SaveFailed(_) => StatusCode::INTERNAL_SERVER_ERROR,
         }
     }
 
@@ -133,6 +137,7 @@ impl ApiError {
             ApiError::BadQuery(_) => "bad_query",
             ApiError::Drawing(_) => "drawing",
             ApiError::Storage(_) => "storage",
+            ApiError::SaveFailed(_) => "save_failed",
         }
     }
 

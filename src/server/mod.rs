@@ -54,6 +54,10 @@ pub struct ServeOptions {
     /// How long a viewer's socket may take to accept one message before the
     /// viewer is dropped ([`VIEWER_SEND_TIMEOUT`] by default).
     pub viewer_timeout: Duration,
+    /// Whether a clean shutdown saves unsaved edits into the design file. Off by
+    /// default: the file is written only by `POST /save`; unsaved edits stay in
+    /// the journal and are replayed on the next start.
+    pub save_on_exit: bool,
 }
 
 impl ServeOptions {
@@ -66,6 +70,7 @@ impl ServeOptions {
             token: None,
             tessellation: TessellationOptions::DEFAULT,
             viewer_timeout: VIEWER_SEND_TIMEOUT,
+            save_on_exit: false,
         }
     }
 }
@@ -76,6 +81,7 @@ pub struct Server {
     session: Arc<Mutex<Session>>,
     shutdown: watch::Sender<bool>,
     task: JoinHandle<std::io::Result<()>>,
+    save_on_exit: bool,
 }
 
 /// Opens the session (design + journal replay) and starts serving it on the
@@ -128,6 +134,7 @@ pub async fn start(options: ServeOptions) -> Result<Server, ServeError> {
         session,
         shutdown,
         task,
+        save_on_exit: options.save_on_exit,
     })
 }
 
@@ -137,8 +144,10 @@ impl Server {
         self.address
     }
 
-    /// Stops serving (viewers are closed), waits for requests in flight, then
-    /// saves the design and starts a fresh journal.
+    /// Stops serving (viewers are closed) and waits for requests in flight; with
+    /// [`ServeOptions::save_on_exit`], then saves unsaved edits into the design
+    /// file and starts a fresh journal. Otherwise the file is left as it is and
+    /// unsaved edits stay in the journal.
     ///
     /// # Errors
     ///
@@ -149,10 +158,21 @@ impl Server {
         let served = self.task.await;
         let address = self.address.to_string();
         let session = self.session;
+        let save_on_exit = self.save_on_exit;
         let saved = tokio::task::spawn_blocking(move || {
             let mut s = session.lock().unwrap_or_else(|p| p.into_inner());
             let path = s.path().display().to_string();
-            s.save().map_err(|e| ServeError::Save {
+            if !save_on_exit {
+                if s.has_unsaved_edits() {
+                    println!(
+                        "vesselcad serve: {path} not written: its unsaved edits are kept in \
+                         the journal and replayed on the next start (POST /save or \
+                         --save-on-exit writes them)"
+                    );
+                }
+                return Ok(());
+            }
+            s.save().map(|_| ()).map_err(|e| ServeError::Save {
                 path,
                 source: std::io::Error::other(e.to_string()),
             })
@@ -169,7 +189,7 @@ impl Server {
             }
         }
         match saved {
-            Ok(result) => result.map(|_| ()),
+            Ok(result) => result,
             Err(e) => Err(ServeError::Save {
                 path: String::new(),
                 source: std::io::Error::other(e.to_string()),
@@ -199,7 +219,7 @@ pub fn run(options: ServeOptions) -> Result<(), ServeError> {
         use std::io::Write;
         let _ = std::io::stdout().flush();
         stop_signal().await;
-        println!("vesselcad serve: shutting down, saving the design");
+        println!("vesselcad serve: shutting down");
         server.shutdown().await
     })
 }

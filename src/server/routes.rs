@@ -200,10 +200,13 @@ async fn edit(
 
 async fn save(State(state): State<AppState>, headers: HeaderMap) -> Result<Response, ApiError> {
     state.authorize(&headers)?;
-    let (revision, path) = state
+    let ((revision, written), path) = state
         .with_session(|s, _| Ok::<_, ApiError>((s.save()?, s.path().display().to_string())))
         .await?;
-    Ok(axum::Json(json!({ "saved": path, "revision": revision })).into_response())
+    Ok(
+        axum::Json(json!({ "saved": path, "revision": revision, "written": written }))
+            .into_response(),
+    )
 }
 
 /// The `vessel` query parameter.
