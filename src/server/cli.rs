@@ -22,11 +22,13 @@ pub struct ServeArgs {
     /// Port to listen on (0: any free port; the URL is printed).
     #[arg(long, default_value_t = 8080)]
     pub port: u16,
-    /// Address to listen on. Loopback by default; anything else exposes the
-    /// session to the network.
+    /// Address to listen on. Loopback by default, and then only loopback Host
+    /// names are answered (no DNS rebinding); anything else exposes the session
+    /// to the network and answers any Host name.
     #[arg(long, default_value = "127.0.0.1")]
     pub bind: IpAddr,
-    /// Require `Authorization: Bearer <token>` on edits and saves.
+    /// Require this token on every route but the page shell: `Authorization:
+    /// Bearer <token>`, or `?token=<token>` on a GET (the page asks for it once).
     #[arg(long)]
     pub token: Option<String>,
     /// Chordal tolerance of the meshes, mm.

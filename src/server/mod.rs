@@ -18,6 +18,7 @@ pub mod assets;
 pub mod broadcast;
 pub mod cli;
 pub mod error;
+pub mod guard;
 pub mod journal;
 pub mod routes;
 pub mod session;
@@ -47,7 +48,7 @@ pub struct ServeOptions {
     pub bind: IpAddr,
     /// The port (0: any free port).
     pub port: u16,
-    /// The token edits and saves need, if any.
+    /// The token every route but the page shell needs, if any.
     pub token: Option<String>,
     /// Meshing options of the model.
     pub tessellation: TessellationOptions,
@@ -117,6 +118,7 @@ pub async fn start(options: ServeOptions) -> Result<Server, ServeError> {
         session: session.clone(),
         hub: Hub::default(),
         token: options.token,
+        loopback_only: options.bind.is_loopback(),
         shutdown: watching.clone(),
         viewer_timeout: options.viewer_timeout,
     };
