@@ -7,9 +7,11 @@ use std::time::Instant;
 
 use clap::{Args, ValueEnum};
 use vesselcad::design::{DesignError, load};
-use vesselcad::drawing::{HiddenLines, SheetOptions, SheetSize, sheet, to_dxf_bytes, to_svg};
+use vesselcad::drawing::{
+    HiddenLines, SheetModelError, SheetOptions, SheetSize, sheet, sheet_model, to_dxf_bytes, to_svg,
+};
 use vesselcad::mesh::TessellationOptions;
-use vesselcad::model::{Model, ModelError};
+use vesselcad::model::ModelError;
 use vesselcad::project::ViewKind;
 
 /// Sheet sizes on the command line.
@@ -78,9 +80,18 @@ pub fn run(args: DrawingArgs) -> ExitCode {
         Ok(d) => d,
         Err(e) => return fail_design(&e),
     };
-    let model = match Model::from_design(&design, TessellationOptions::chord(args.tolerance)) {
-        Ok(m) => m,
-        Err(ModelError::Design(e)) => return fail_design(&e),
+    // Only the vessel drawn is built: a sheet costs what its vessel costs.
+    let (model, work) = match sheet_model(
+        &design,
+        &args.vessel,
+        TessellationOptions::chord(args.tolerance),
+    ) {
+        Ok(built) => built,
+        Err(SheetModelError::Model(ModelError::Design(e))) => return fail_design(&e),
+        Err(e @ SheetModelError::UnknownVessel { .. }) => {
+            eprintln!("error: {e}");
+            return ExitCode::from(1);
+        }
         Err(e) => {
             eprintln!("error: {e}");
             return ExitCode::from(2);
@@ -125,12 +136,16 @@ pub fn run(args: DrawingArgs) -> ExitCode {
         }
     }
     println!(
-        "{}: {} sheet at 1:{}, {} nozzles scheduled, {} dimensions, {:.0} ms",
+        "{}: {} sheet at 1:{}, {} nozzles scheduled, {} dimensions; built {} vessel(s), \
+         {} meshes, {} triangles; {:.0} ms",
         args.output.display(),
         size.name(),
         sheet.scale,
         sheet.schedule.len(),
         sheet.dimensions.len(),
+        work.vessels_resolved,
+        work.meshes_rebuilt,
+        work.triangles_meshed,
         start.elapsed().as_secs_f64() * 1e3
     );
     ExitCode::SUCCESS
