@@ -48,7 +48,7 @@ pub struct DrawingArgs {
     /// Tag of the vessel to draw.
     #[arg(long)]
     vessel: String,
-    /// Output SVG file.
+    /// Output SVG file, or `-` for standard output.
     #[arg(short, long)]
     output: PathBuf,
     /// Also write the sheet as DXF (R2000) to this file.
@@ -120,7 +120,16 @@ pub fn run(args: DrawingArgs) -> ExitCode {
             return ExitCode::from(1);
         }
     };
-    if let Err(e) = std::fs::write(&args.output, to_svg(&sheet)) {
+    let to_stdout = args.output.as_os_str() == "-";
+    let written = if to_stdout {
+        use std::io::Write;
+        let mut out = std::io::stdout().lock();
+        out.write_all(to_svg(&sheet).as_bytes())
+            .and_then(|()| out.flush())
+    } else {
+        std::fs::write(&args.output, to_svg(&sheet))
+    };
+    if let Err(e) = written {
         eprintln!("error: writing {}: {e}", args.output.display());
         return ExitCode::from(2);
     }
@@ -135,10 +144,14 @@ pub fn run(args: DrawingArgs) -> ExitCode {
             return ExitCode::from(2);
         }
     }
-    println!(
+    let summary = format!(
         "{}: {} sheet at 1:{}, {} nozzles scheduled, {} dimensions; built {} vessel(s), \
          {} meshes, {} triangles; {:.0} ms",
-        args.output.display(),
+        if to_stdout {
+            "<stdout>".into()
+        } else {
+            args.output.display().to_string()
+        },
         size.name(),
         sheet.scale,
         sheet.schedule.len(),
@@ -148,5 +161,11 @@ pub fn run(args: DrawingArgs) -> ExitCode {
         work.triangles_meshed,
         start.elapsed().as_secs_f64() * 1e3
     );
+    // On standard error when the sheet itself goes to standard output.
+    if to_stdout {
+        eprintln!("{summary}");
+    } else {
+        println!("{summary}");
+    }
     ExitCode::SUCCESS
 }
