@@ -152,3 +152,37 @@ fn every_answer_carries_the_security_headers() {
         "{page}"
     );
 }
+
+#[test]
+fn idle_connections_are_closed_and_cannot_starve_the_server() {
+    use std::io::{Read, Write};
+    let design = design_copy("storage-tank.json", "security-idle");
+    let server = ServerProcess::start(&design, &["--max-connections", "8", "--idle-timeout", "1"]);
+    // More idle sockets than the server serves at once; some stop mid-headers.
+    let mut idle: Vec<std::net::TcpStream> = (0..24)
+        .map(|_| std::net::TcpStream::connect(server.address).unwrap())
+        .collect();
+    for s in idle.iter_mut().take(8) {
+        s.write_all(b"GET /design.json HTTP/1.1\r\nHost: 127.0.0.1\r\n")
+            .unwrap();
+    }
+    // A real request is still answered: idle ones are closed to make room.
+    let r = server.request("GET", "/design.json", &[], b"");
+    assert_eq!(r.status, 200, "{}", r.text());
+    // Every idle socket was closed by the server (end of stream or reset), none
+    // left open until the client's own timeout.
+    for mut s in idle {
+        s.set_read_timeout(Some(server_support::TIMEOUT)).unwrap();
+        let mut rest = Vec::new();
+        match s.read_to_end(&mut rest) {
+            Ok(_) => {}
+            Err(e) => assert!(
+                !matches!(
+                    e.kind(),
+                    std::io::ErrorKind::WouldBlock | std::io::ErrorKind::TimedOut
+                ),
+                "an idle socket stayed open: {e}"
+            ),
+        }
+    }
+}

@@ -38,6 +38,13 @@ pub struct ServeArgs {
     /// dropped (a viewer that only falls behind is resynced, not dropped).
     #[arg(long, default_value_t = VIEWER_SEND_TIMEOUT.as_secs_f64(), value_parser = parse_timeout, allow_negative_numbers = true)]
     pub viewer_timeout: f64,
+    /// Connections served at once; more wait until one closes.
+    #[arg(long, default_value_t = super::limits::MAX_CONNECTIONS as u16, value_parser = clap::value_parser!(u16).range(1..))]
+    pub max_connections: u16,
+    /// Seconds a connection may move no byte (idle keep-alive, unfinished
+    /// headers, a silent viewer) before it is closed.
+    #[arg(long, default_value_t = super::limits::IDLE_TIMEOUT.as_secs_f64(), value_parser = parse_timeout, allow_negative_numbers = true)]
+    pub idle_timeout: f64,
     /// On a clean shutdown (Ctrl-C, SIGTERM), write unsaved edits into the design
     /// file. Without it the file is written only by `POST /save`; unsaved edits
     /// stay in the journal and are replayed on the next start.
@@ -74,6 +81,8 @@ pub fn serve_command(args: ServeArgs) -> ExitCode {
         tessellation: TessellationOptions::chord(args.tolerance),
         viewer_timeout: Duration::from_secs_f64(args.viewer_timeout),
         save_on_exit: args.save_on_exit,
+        max_connections: usize::from(args.max_connections),
+        idle_timeout: Duration::from_secs_f64(args.idle_timeout),
     };
     match run(options) {
         Ok(()) => ExitCode::SUCCESS,

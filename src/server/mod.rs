@@ -10,7 +10,8 @@
 //! ([`broadcast`], [`crate::export::write_delta_glb`]). The viewer page and its
 //! three.js bundle are embedded ([`assets`]); the routes are in [`routes`].
 //!
-//! Limits: request bodies [`MAX_BODY`] bytes; a viewer's queue [`VIEWER_QUEUE`]
+//! Limits: [`limits::MAX_CONNECTIONS`] connections at once, each closed after
+//! [`limits::IDLE_TIMEOUT`] without a byte moving; request bodies [`MAX_BODY`] bytes; a viewer's queue [`VIEWER_QUEUE`]
 //! updates (beyond: full resync); a viewer's socket [`VIEWER_SEND_TIMEOUT`] per
 //! message (beyond: dropped); viewer messages [`MAX_VIEWER_MESSAGE`] bytes.
 
@@ -20,6 +21,7 @@ pub mod cli;
 pub mod error;
 pub mod guard;
 pub mod journal;
+pub mod limits;
 pub mod routes;
 pub mod session;
 
@@ -55,6 +57,11 @@ pub struct ServeOptions {
     /// How long a viewer's socket may take to accept one message before the
     /// viewer is dropped ([`VIEWER_SEND_TIMEOUT`] by default).
     pub viewer_timeout: Duration,
+    /// Connections served at once ([`limits::MAX_CONNECTIONS`] by default).
+    pub max_connections: usize,
+    /// How long a connection may move no byte before it is closed
+    /// ([`limits::IDLE_TIMEOUT`] by default).
+    pub idle_timeout: Duration,
     /// Whether a clean shutdown saves unsaved edits into the design file. Off by
     /// default: the file is written only by `POST /save`; unsaved edits stay in
     /// the journal and are replayed on the next start.
@@ -72,6 +79,8 @@ impl ServeOptions {
             tessellation: TessellationOptions::DEFAULT,
             viewer_timeout: VIEWER_SEND_TIMEOUT,
             save_on_exit: false,
+            max_connections: limits::MAX_CONNECTIONS,
+            idle_timeout: limits::IDLE_TIMEOUT,
         }
     }
 }
@@ -121,8 +130,11 @@ pub async fn start(options: ServeOptions) -> Result<Server, ServeError> {
         loopback_only: options.bind.is_loopback(),
         shutdown: watching.clone(),
         viewer_timeout: options.viewer_timeout,
+        viewer_ping: limits::ping_interval(options.idle_timeout),
     };
     let app = router(state);
+    let listener =
+        limits::LimitedListener::new(listener, options.max_connections, options.idle_timeout);
     let mut stop = watching;
     let task = tokio::spawn(async move {
         axum::serve(listener, app)

@@ -60,6 +60,8 @@ pub struct AppState {
     pub shutdown: watch::Receiver<bool>,
     /// How long a viewer's socket may accept nothing before it is dropped.
     pub viewer_timeout: Duration,
+    /// How often viewers are pinged (so a quiet viewer is not idle).
+    pub viewer_ping: Duration,
 }
 
 impl AppState {
@@ -270,7 +272,8 @@ async fn viewer_socket(State(state): State<AppState>, ws: WebSocketUpgrade) -> R
                 async move { Some(state.with_session(|s, _| s.snapshot()).await) }
             };
             let timeout = state.viewer_timeout;
-            run_viewer::<_, _>(socket, queue, snapshot, shutdown, timeout).await;
+            let ping = state.viewer_ping;
+            run_viewer::<_, _>(socket, queue, snapshot, shutdown, timeout, ping).await;
         })
 }
 
