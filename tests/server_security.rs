@@ -9,6 +9,9 @@ mod server_support;
 use serde_json::json;
 use server_support::{ServerProcess, design_copy};
 
+/// A request (method, path, headers, body) and the status it must get.
+type Case<'a> = (&'a str, &'a str, Vec<(&'a str, &'a str)>, Vec<u8>, u16);
+
 fn patch() -> Vec<u8> {
     json!([{ "op": "replace", "path": "/vessels/0/placement/rotation", "value": 10 }])
         .to_string()
@@ -22,7 +25,7 @@ fn cross_origin_and_simple_requests_cannot_edit_or_save() {
     let server = ServerProcess::start(&design, &[]);
     let own = server.url();
     let evil = [("Origin", "http://evil.example")];
-    let cases: Vec<(&str, &str, Vec<(&str, &str)>, Vec<u8>, u16)> = vec![
+    let cases: Vec<Case> = vec![
         // What the report found: a cross-origin text/plain POST was accepted.
         (
             "POST",

@@ -82,8 +82,9 @@ fn check(state: &AppState, request: &Request, host: Option<&str>) -> Result<(), 
             kind.as_deref(),
             Some("application/json" | "application/json-patch+json")
         );
-        let empty = kind.is_none() && body_is_empty(headers);
-        if !json && !(path == "/save" && empty) {
+        // A save may also come with no body at all (nothing a form sends).
+        let bodiless_save = path == "/save" && kind.is_none() && body_is_empty(headers);
+        if !(json || bodiless_save) {
             return Err(ApiError::UnsupportedType(format!(
                 "{} needs Content-Type application/json-patch+json or application/json, \
                  got {}",
