@@ -7,9 +7,11 @@ use std::time::Instant;
 
 use clap::{Args, ValueEnum};
 use vesselcad::design::{DesignError, load};
-use vesselcad::drawing::{HiddenLines, SheetOptions, SheetSize, sheet, to_dxf_bytes, to_svg};
+use vesselcad::drawing::{
+    HiddenLines, SheetModelError, SheetOptions, SheetSize, sheet, sheet_model, to_dxf_bytes, to_svg,
+};
 use vesselcad::mesh::TessellationOptions;
-use vesselcad::model::{Model, ModelError};
+use vesselcad::model::ModelError;
 use vesselcad::project::ViewKind;
 
 /// Sheet sizes on the command line.
@@ -46,7 +48,7 @@ pub struct DrawingArgs {
     /// Tag of the vessel to draw.
     #[arg(long)]
     vessel: String,
-    /// Output SVG file.
+    /// Output SVG file, or `-` for standard output.
     #[arg(short, long)]
     output: PathBuf,
     /// Also write the sheet as DXF (R2000) to this file.
@@ -78,9 +80,18 @@ pub fn run(args: DrawingArgs) -> ExitCode {
         Ok(d) => d,
         Err(e) => return fail_design(&e),
     };
-    let model = match Model::from_design(&design, TessellationOptions::chord(args.tolerance)) {
-        Ok(m) => m,
-        Err(ModelError::Design(e)) => return fail_design(&e),
+    // Only the vessel drawn is built: a sheet costs what its vessel costs.
+    let (model, work) = match sheet_model(
+        &design,
+        &args.vessel,
+        TessellationOptions::chord(args.tolerance),
+    ) {
+        Ok(built) => built,
+        Err(SheetModelError::Model(ModelError::Design(e))) => return fail_design(&e),
+        Err(e @ SheetModelError::UnknownVessel { .. }) => {
+            eprintln!("error: {e}");
+            return ExitCode::from(1);
+        }
         Err(e) => {
             eprintln!("error: {e}");
             return ExitCode::from(2);
@@ -109,7 +120,16 @@ pub fn run(args: DrawingArgs) -> ExitCode {
             return ExitCode::from(1);
         }
     };
-    if let Err(e) = std::fs::write(&args.output, to_svg(&sheet)) {
+    let to_stdout = args.output.as_os_str() == "-";
+    let written = if to_stdout {
+        use std::io::Write;
+        let mut out = std::io::stdout().lock();
+        out.write_all(to_svg(&sheet).as_bytes())
+            .and_then(|()| out.flush())
+    } else {
+        std::fs::write(&args.output, to_svg(&sheet))
+    };
+    if let Err(e) = written {
         eprintln!("error: writing {}: {e}", args.output.display());
         return ExitCode::from(2);
     }
@@ -124,14 +144,28 @@ pub fn run(args: DrawingArgs) -> ExitCode {
             return ExitCode::from(2);
         }
     }
-    println!(
-        "{}: {} sheet at 1:{}, {} nozzles scheduled, {} dimensions, {:.0} ms",
-        args.output.display(),
+    let summary = format!(
+        "{}: {} sheet at 1:{}, {} nozzles scheduled, {} dimensions; built {} vessel(s), \
+         {} meshes, {} triangles; {:.0} ms",
+        if to_stdout {
+            "<stdout>".into()
+        } else {
+            args.output.display().to_string()
+        },
         size.name(),
         sheet.scale,
         sheet.schedule.len(),
         sheet.dimensions.len(),
+        work.vessels_resolved,
+        work.meshes_rebuilt,
+        work.triangles_meshed,
         start.elapsed().as_secs_f64() * 1e3
     );
+    // On standard error when the sheet itself goes to standard output.
+    if to_stdout {
+        eprintln!("{summary}");
+    } else {
+        println!("{summary}");
+    }
     ExitCode::SUCCESS
 }

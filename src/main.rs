@@ -13,7 +13,7 @@ use std::time::Instant;
 
 use clap::{Parser, Subcommand};
 use vesselcad::design::{DesignError, load};
-use vesselcad::export::stream_glb_to;
+use vesselcad::export::{stream_glb, stream_glb_to};
 use vesselcad::mesh::TessellationOptions;
 use vesselcad::model::ModelError;
 use vesselcad::report::report;
@@ -38,7 +38,7 @@ enum Command {
     Build {
         /// The design file (JSON, vesselcad/1).
         design: PathBuf,
-        /// Output GLB file.
+        /// Output GLB file (`.glb`), or `-` for standard output.
         #[arg(short, long)]
         output: PathBuf,
         /// Chordal tolerance of the meshes, mm.
@@ -53,6 +53,9 @@ enum Command {
     Check {
         /// The design file.
         design: PathBuf,
+        /// Print the result as JSON (`vesselcad-check/1`) on standard output.
+        #[arg(long)]
+        json: bool,
     },
     /// Serve a live redesign session: viewer page, JSON Patch edits, journal,
     /// glTF deltas over WebSocket (see `vesselcad::server`).
@@ -101,7 +104,11 @@ fn main() -> ExitCode {
     match cli.command {
         Command::Serve(args) => serve_command(args),
         Command::Drawing(args) => drawing_command::run(args),
-        Command::Check { design } => match load(&design) {
+        Command::Check { design, json: true } => cli::check::check_json(&design),
+        Command::Check {
+            design,
+            json: false,
+        } => match load(&design) {
             Ok(d) => {
                 println!(
                     "{}: valid ({} vessel(s))",
@@ -130,7 +137,12 @@ fn main() -> ExitCode {
                 Err(e) => return fail(&e),
             };
             if json {
-                match serde_json::to_string_pretty(&vessels) {
+                let report = serde_json::json!({
+                    "format": cli::check::INFO_FORMAT,
+                    "units": cli::check::info_units(),
+                    "vessels": vessels,
+                });
+                match serde_json::to_string_pretty(&report) {
                     Ok(text) => println!("{text}"),
                     Err(e) => {
                         eprintln!("error: {e}");
@@ -179,6 +191,19 @@ fn main() -> ExitCode {
             max_stretch,
         } => {
             let start = Instant::now();
+            let to_stdout = output.as_os_str() == "-";
+            if !to_stdout
+                && output
+                    .extension()
+                    .is_some_and(|e| e.eq_ignore_ascii_case("gltf"))
+            {
+                eprintln!(
+                    "error: {}: vesselcad writes binary glTF only; name the output .glb \
+                     (a .gltf file would be read as JSON glTF and fail)",
+                    output.display()
+                );
+                return ExitCode::from(2);
+            }
             let d = match load(&design) {
                 Ok(d) => d,
                 Err(e) => return fail(&e),
@@ -210,22 +235,47 @@ fn main() -> ExitCode {
                 .flat_map(|n| &n.patches)
                 .map(|p| p.mesh.triangle_count())
                 .sum();
-            let bytes = match stream_glb_to(&scene, &output) {
+            let written = if to_stdout {
+                let stdout = std::io::stdout().lock();
+                let mut out = std::io::BufWriter::new(stdout);
+                stream_glb(&scene, &mut out, std::path::Path::new("<stdout>")).and_then(|n| {
+                    use std::io::Write;
+                    out.flush()
+                        .map_err(|source| vesselcad::export::ExportError::Io {
+                            path: "<stdout>".into(),
+                            source,
+                        })?;
+                    Ok(n)
+                })
+            } else {
+                stream_glb_to(&scene, &output)
+            };
+            let bytes = match written {
                 Ok(bytes) => bytes,
                 Err(e) => {
                     eprintln!("error: {e}");
                     return ExitCode::from(2);
                 }
             };
-            println!(
+            // On standard error when the GLB itself goes to standard output.
+            let summary = format!(
                 "{}: {} vessel(s), {} triangles at {} mm, {} bytes, {:.0} ms",
-                output.display(),
+                if to_stdout {
+                    "<stdout>".into()
+                } else {
+                    output.display().to_string()
+                },
                 scene.vessels.len(),
                 triangles,
                 tolerance,
                 bytes,
                 start.elapsed().as_secs_f64() * 1e3
             );
+            if to_stdout {
+                eprintln!("{summary}");
+            } else {
+                println!("{summary}");
+            }
             ExitCode::SUCCESS
         }
     }

@@ -118,7 +118,10 @@ fn info_reports_figures() {
     let o = vesselcad(&["info", &example("vertical-column"), "--json"]);
     assert!(o.status.success());
     let v: serde_json::Value = serde_json::from_slice(&o.stdout).unwrap();
-    let c = &v[0];
+    assert_eq!(v["format"], "vesselcad-info/1");
+    assert_eq!(v["units"]["length"], "mm");
+    assert_eq!(v["units"]["volume"], "m3");
+    let c = &v["vessels"][0];
     assert_eq!(c["tag"], "C-201");
     assert_eq!(c["tangent_length"], 21000.0);
     assert_eq!(c["outside_diameter"], 2000.0);
@@ -158,4 +161,86 @@ fn inch_designs_load_as_millimetres() {
         d.vessels[0].nozzles[0].size, 8.0,
         "NPS is a name, never scaled"
     );
+}
+
+#[test]
+fn dash_writes_to_standard_output_and_gltf_is_refused() {
+    let dir = tempfile::tempdir().unwrap();
+    let o = Command::new(env!("CARGO_BIN_EXE_vesselcad"))
+        .current_dir(dir.path())
+        .args([
+            "build",
+            &example("horizontal-drum"),
+            "-o",
+            "-",
+            "--tolerance",
+            "5",
+        ])
+        .output()
+        .unwrap();
+    assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
+    assert_eq!(&o.stdout[..4], b"glTF");
+    gltf::Gltf::from_slice(&o.stdout).unwrap();
+    assert!(String::from_utf8_lossy(&o.stderr).contains("<stdout>"));
+    assert!(!dir.path().join("-").exists(), "wrote a file named -");
+
+    let o = Command::new(env!("CARGO_BIN_EXE_vesselcad"))
+        .current_dir(dir.path())
+        .args(["drawing", &example("horizontal-drum"), "--vessel", "V-101"])
+        .args(["-o", "-", "--tolerance", "5"])
+        .output()
+        .unwrap();
+    assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
+    assert!(o.stdout.starts_with(b"<svg"));
+    assert!(!dir.path().join("-").exists(), "wrote a file named -");
+
+    let gltf = dir.path().join("x.gltf");
+    let o = vesselcad(&[
+        "build",
+        &example("horizontal-drum"),
+        "-o",
+        gltf.to_str().unwrap(),
+    ]);
+    assert_eq!(o.status.code(), Some(2));
+    assert!(String::from_utf8_lossy(&o.stderr).contains(".glb"));
+    assert!(!gltf.exists());
+}
+
+#[test]
+fn check_json_names_its_format_and_every_problem() {
+    let o = vesselcad(&["check", &example("storage-tank"), "--json"]);
+    assert_eq!(o.status.code(), Some(0));
+    let v: serde_json::Value = serde_json::from_slice(&o.stdout).unwrap();
+    assert_eq!(v["format"], "vesselcad-check/1");
+    assert_eq!(v["valid"], true);
+    assert_eq!(v["vessels"], 1);
+
+    let bad = format!(
+        "{}/tests/bad_designs/inch_file_negative_length.json",
+        env!("CARGO_MANIFEST_DIR")
+    );
+    let o = vesselcad(&["check", &bad, "--json"]);
+    assert_eq!(o.status.code(), Some(1));
+    let v: serde_json::Value = serde_json::from_slice(&o.stdout).unwrap();
+    assert_eq!(
+        (v["valid"].clone(), v["kind"].clone()),
+        (false.into(), "invalid".into())
+    );
+    let violation = &v["violations"][0];
+    assert_eq!(violation["path"], "vessels[0].parts[1].shell.length");
+    assert_eq!(violation["value"], "-1 in (= -25.4 mm)");
+
+    let o = vesselcad(&["check", "/nonexistent/design.json", "--json"]);
+    assert_eq!(o.status.code(), Some(2));
+    let v: serde_json::Value = serde_json::from_slice(&o.stdout).unwrap();
+    assert_eq!(v["kind"], "unreadable");
+
+    // Two designs in one file are not one design.
+    let two = format!(
+        "{}/tests/bad_designs/syntax_two_designs_concatenated.json",
+        env!("CARGO_MANIFEST_DIR")
+    );
+    let o = vesselcad(&["check", &two]);
+    assert_eq!(o.status.code(), Some(1));
+    assert!(String::from_utf8_lossy(&o.stderr).contains("after the design's JSON object"));
 }

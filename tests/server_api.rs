@@ -199,7 +199,7 @@ fn bad_edits_are_refused_with_a_clear_error_and_change_nothing() {
 }
 
 #[test]
-fn edits_need_the_token_when_one_is_set() {
+fn every_route_but_the_page_shell_needs_the_token_when_one_is_set() {
     let design = design_copy("storage-tank.json", "api-token");
     let server = ServerProcess::start(&design, &["--token", "s3cret"]);
     let patch = json!([{ "op": "replace", "path": "/vessels/0/placement/rotation", "value": 10 }])
@@ -220,13 +220,38 @@ fn edits_need_the_token_when_one_is_set() {
         let r = server.request("POST", "/save", &headers, b"");
         assert_eq!(r.status, 401, "save {headers:?}");
     }
-    assert_eq!(state(&server).1, "0");
     let auth = [("Authorization", "Bearer s3cret")];
+    let r = server.request("GET", "/design.json", &auth, b"");
+    assert_eq!(r.header("x-vesselcad-revision"), Some("0"));
     let r = server.request("POST", "/edit", &auth, patch.as_bytes());
     assert_eq!(r.status, 200, "{}", r.text());
     assert_eq!(r.json()["revision"], 1);
-    // Reading needs no token.
-    assert_eq!(server.request("GET", "/model.glb", &[], b"").status, 200);
+    // Reading needs it too (a header, or the query for what a browser cannot
+    // send headers with); only the page shell does not.
+    for path in [
+        "/model.glb",
+        "/design.json",
+        "/drawing.svg?vessel=TK-301",
+        "/ws",
+        "/nowhere",
+    ] {
+        let r = server.request("GET", path, &[], b"");
+        assert_eq!(r.status, 401, "GET {path}: {}", r.text());
+        let r = server.request("GET", &format!("{path}?token=wrong"), &[], b"");
+        assert_eq!(r.status, 401, "GET {path}?token=wrong");
+    }
+    for path in ["/model.glb", "/design.json"] {
+        assert_eq!(
+            server.request("GET", path, &auth, b"").status,
+            200,
+            "{path}"
+        );
+        let r = server.request("GET", &format!("{path}?token=s3cret"), &[], b"");
+        assert_eq!(r.status, 200, "GET {path}?token=s3cret");
+    }
+    for path in ["/", "/static/viewer.js"] {
+        assert_eq!(server.request("GET", path, &[], b"").status, 200, "{path}");
+    }
 }
 
 #[test]

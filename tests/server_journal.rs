@@ -1,7 +1,8 @@
 //! Nothing acknowledged is lost: `vesselcad serve` killed with SIGKILL after N
 //! acknowledged edits comes back, on restart, with all N (the journal is flushed
-//! before each answer); `POST /save` and a clean shutdown write the design file
-//! and start a fresh journal.
+//! before each answer); `POST /save` (and a clean shutdown with
+//! `--save-on-exit`) write the design file and start a fresh journal; a clean
+//! shutdown without it leaves the file alone.
 
 mod server_support;
 
@@ -81,10 +82,26 @@ fn every_acknowledged_edit_survives_kill_9() {
     );
     assert_eq!(r.json(), serde_json::to_value(&saved).unwrap());
 
-    // A clean shutdown (SIGTERM) saves too.
+    // A clean shutdown (SIGTERM) leaves the file as the last save wrote it: the
+    // edit stays in the journal and comes back on restart.
     let r = server
         .edit(&json!([{ "op": "replace", "path": "/vessels/0/placement/rotation", "value": 45 }]));
     assert_eq!(r.status, 200);
+    let file = std::fs::read(&*design).unwrap();
+    assert!(server.terminate(), "clean shutdown failed");
+    assert_eq!(
+        std::fs::read(&*design).unwrap(),
+        file,
+        "the file was rewritten"
+    );
+    assert_eq!(
+        std::fs::read_to_string(&journal).unwrap().lines().count(),
+        2
+    );
+    // With --save-on-exit, a clean shutdown saves it.
+    let mut server = ServerProcess::start(&design, &["--save-on-exit"]);
+    let r = server.request("GET", "/design.json", &[], b"");
+    assert_eq!(r.json()["vessels"][0]["placement"]["rotation"], 45.0);
     assert!(server.terminate(), "clean shutdown failed");
     assert_eq!(load(&design).unwrap().vessels[0].placement.rotation, 45.0);
     assert_eq!(

@@ -334,3 +334,30 @@ fn a_viewer_message_over_the_limit_closes_only_that_viewer() {
         assert_eq!(delta["revision"], answer["revision"]);
     });
 }
+
+#[test]
+fn a_quiet_viewer_outlives_the_idle_timeout() {
+    let design = design_copy("horizontal-drum.json", "stream-quiet");
+    let server = ServerProcess::start(&design, &["--idle-timeout", "1"]);
+    runtime().block_on(async {
+        let mut ws = connect(&server).await;
+        let (hello, _) = next_pair(&mut ws).await;
+        assert_eq!(hello["type"], "hello");
+        // Three idle timeouts with no edit: the server's pings keep it alive
+        // (the client answers them while it waits for the next message).
+        let quiet = tokio::time::timeout(Duration::from_secs(3), ws.next()).await;
+        if let Ok(Some(message)) = quiet {
+            assert!(
+                message.unwrap().is_ping(),
+                "only pings while nothing changes"
+            );
+        }
+        let answer = post_edit(
+            &server,
+            json!([{ "op": "replace", "path": "/vessels/0/placement/rotation", "value": 5 }]),
+        )
+        .await;
+        let (delta, _) = next_pair(&mut ws).await;
+        assert_eq!(delta["revision"], answer["revision"]);
+    });
+}

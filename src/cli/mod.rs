@@ -5,6 +5,7 @@
 pub mod alloc;
 pub mod bench;
 pub mod build;
+pub mod check;
 pub mod plant;
 pub mod progress;
 pub mod simulate;

@@ -13,6 +13,9 @@ pub mod units;
 mod validate;
 
 pub use error::{DesignError, RuleViolation};
-pub use io::{load, parse, parse_unchecked, save, to_canonical_json};
+pub use io::{
+    MAX_DESIGN_BYTES, decode_design, load, parse, parse_unchecked, read_design_bytes, save,
+    to_canonical_json,
+};
 pub use schema::*;
 pub use validate::{resolve, validate};

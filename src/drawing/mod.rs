@@ -20,6 +20,7 @@ mod dimensions;
 mod dxf;
 mod layout;
 mod sheet;
+mod single;
 mod svg;
 mod tables;
 
@@ -33,6 +34,7 @@ pub use sheet::{
     Align, HiddenLines, Item, Layer, PlacedDimension, Rect, ScheduleRow, Sheet, SheetOptions,
     SheetSize, text_width,
 };
+pub use single::{SheetModelError, sheet_model};
 pub use svg::to_svg;
 pub use tables::{SCHEDULE_COLUMNS, STEEL_DENSITY, empty_weight};
 

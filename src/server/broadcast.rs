@@ -107,7 +107,8 @@ enum Ended {
 }
 
 /// Serves one viewer until it goes, the server shuts down, or it stops reading
-/// (its socket accepts nothing for `timeout`). `snapshot` gives the current full
+/// (its socket accepts nothing for `timeout`); pings it every `ping`, so a quiet
+/// viewer is never an idle connection. `snapshot` gives the current full
 /// model (it locks the session).
 pub async fn run_viewer<F, Fut>(
     socket: WebSocket,
@@ -115,6 +116,7 @@ pub async fn run_viewer<F, Fut>(
     snapshot: F,
     mut shutdown: watch::Receiver<bool>,
     timeout: Duration,
+    ping: Duration,
 ) where
     F: Fn() -> Fut,
     Fut: std::future::Future<Output = Option<Snapshot>>,
@@ -130,8 +132,16 @@ pub async fn run_viewer<F, Fut>(
     {
         return;
     }
+    let mut pings = tokio::time::interval_at(tokio::time::Instant::now() + ping, ping);
+    pings.set_missed_tick_behavior(tokio::time::MissedTickBehavior::Delay);
     loop {
         tokio::select! {
+            _ = pings.tick() => {
+                let sent = tokio::time::timeout(timeout, sink.send(Message::Ping(Bytes::new()))).await;
+                if !matches!(sent, Ok(Ok(()))) {
+                    break;
+                }
+            }
             update = queue.recv() => {
                 let sent = match update {
                     Ok(update) if update.revision <= at => Ok(()),

@@ -22,11 +22,13 @@ pub struct ServeArgs {
     /// Port to listen on (0: any free port; the URL is printed).
     #[arg(long, default_value_t = 8080)]
     pub port: u16,
-    /// Address to listen on. Loopback by default; anything else exposes the
-    /// session to the network.
+    /// Address to listen on. Loopback by default, and then only loopback Host
+    /// names are answered (no DNS rebinding); anything else exposes the session
+    /// to the network and answers any Host name.
     #[arg(long, default_value = "127.0.0.1")]
     pub bind: IpAddr,
-    /// Require `Authorization: Bearer <token>` on edits and saves.
+    /// Require this token on every route but the page shell: `Authorization:
+    /// Bearer <token>`, or `?token=<token>` on a GET (the page asks for it once).
     #[arg(long)]
     pub token: Option<String>,
     /// Chordal tolerance of the meshes, mm.
@@ -36,6 +38,18 @@ pub struct ServeArgs {
     /// dropped (a viewer that only falls behind is resynced, not dropped).
     #[arg(long, default_value_t = VIEWER_SEND_TIMEOUT.as_secs_f64(), value_parser = parse_timeout, allow_negative_numbers = true)]
     pub viewer_timeout: f64,
+    /// Connections served at once; more wait until one closes.
+    #[arg(long, default_value_t = super::limits::MAX_CONNECTIONS as u16, value_parser = clap::value_parser!(u16).range(1..))]
+    pub max_connections: u16,
+    /// Seconds a connection may move no byte (idle keep-alive, unfinished
+    /// headers, a silent viewer) before it is closed.
+    #[arg(long, default_value_t = super::limits::IDLE_TIMEOUT.as_secs_f64(), value_parser = parse_timeout, allow_negative_numbers = true)]
+    pub idle_timeout: f64,
+    /// On a clean shutdown (Ctrl-C, SIGTERM), write unsaved edits into the design
+    /// file. Without it the file is written only by `POST /save`; unsaved edits
+    /// stay in the journal and are replayed on the next start.
+    #[arg(long)]
+    pub save_on_exit: bool,
 }
 
 /// A positive, finite number of seconds (at most a day).
@@ -66,6 +80,9 @@ pub fn serve_command(args: ServeArgs) -> ExitCode {
         token: args.token,
         tessellation: TessellationOptions::chord(args.tolerance),
         viewer_timeout: Duration::from_secs_f64(args.viewer_timeout),
+        save_on_exit: args.save_on_exit,
+        max_connections: usize::from(args.max_connections),
+        idle_timeout: Duration::from_secs_f64(args.idle_timeout),
     };
     match run(options) {
         Ok(()) => ExitCode::SUCCESS,

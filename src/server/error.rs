@@ -81,8 +81,18 @@ pub enum ApiError {
     #[error("the model refused the edit: {0}")]
     Refused(ModelError),
     /// Editing needs `Authorization: Bearer <token>` and it was missing or wrong. 401.
-    #[error("editing needs the header `Authorization: Bearer <token>` with the server's --token")]
+    #[error(
+        "this session needs its token: the header `Authorization: Bearer <token>` (or \
+         `?token=<token>` on a GET) with the server's --token"
+    )]
     Unauthorized,
+    /// Refused by the session's origin rules: a Host that is not served, or a
+    /// request from another origin. 403.
+    #[error("forbidden: {0}")]
+    Forbidden(String),
+    /// A POST whose body is not declared JSON. 415.
+    #[error("unsupported content type: {0}")]
+    UnsupportedType(String),
     /// No such vessel (e.g. in `/drawing.svg?vessel=`). 404.
     #[error("no vessel has the tag {0:?}")]
     UnknownVessel(String),
@@ -99,6 +109,10 @@ pub enum ApiError {
     /// the model was put back as it was. 500.
     #[error("edit not saved, nothing changed: {0}")]
     Storage(String),
+    /// The design file could not be saved; it is as it was and the journal
+    /// still holds every edit. 500.
+    #[error("design not saved (the file is as it was, the journal keeps every edit): {0}")]
+    SaveFailed(String),
 }
 
 impl ApiError {
@@ -112,9 +126,11 @@ impl ApiError {
             }
             ApiError::TestFailed(_) => StatusCode::CONFLICT,
             ApiError::Unauthorized => StatusCode::UNAUTHORIZED,
+            ApiError::Forbidden(_) => StatusCode::FORBIDDEN,
+            ApiError::UnsupportedType(_) => StatusCode::UNSUPPORTED_MEDIA_TYPE,
             ApiError::UnknownVessel(_) | ApiError::NotFound(_) => StatusCode::NOT_FOUND,
             ApiError::Drawing(_) => StatusCode::UNPROCESSABLE_ENTITY,
-            ApiError::Storage(_) => StatusCode::INTERNAL_SERVER_ERROR,
+            ApiError::Storage(_) | ApiError::SaveFailed(_) => StatusCode::INTERNAL_SERVER_ERROR,
         }
     }
 
@@ -128,11 +144,14 @@ impl ApiError {
             ApiError::Invalid(_) => "invalid",
             ApiError::Refused(_) => "refused",
             ApiError::Unauthorized => "unauthorized",
+            ApiError::Forbidden(_) => "forbidden",
+            ApiError::UnsupportedType(_) => "unsupported_type",
             ApiError::UnknownVessel(_) => "unknown_vessel",
             ApiError::NotFound(_) => "not_found",
             ApiError::BadQuery(_) => "bad_query",
             ApiError::Drawing(_) => "drawing",
             ApiError::Storage(_) => "storage",
+            ApiError::SaveFailed(_) => "save_failed",
         }
     }
 

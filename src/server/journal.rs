@@ -54,6 +54,8 @@ pub struct Replay {
     pub base_revision: u64,
     /// The edits to apply over it, in order.
     pub edits: Vec<JournalEntry>,
+    /// The lines not replayed, and why (the session logs them).
+    pub dropped: Vec<Dropped>,
 }
 
 /// One line of the journal.
@@ -112,33 +114,37 @@ impl Journal {
     pub fn open(design: &Path, design_bytes: &[u8]) -> Result<(Journal, Replay), ServeError> {
         let path = journal_path(design);
         let print = fingerprint(design_bytes);
-        let text = match std::fs::read(&path) {
-            Ok(bytes) => String::from_utf8(bytes)
-                .map_err(|_| journal_error(&path, "not UTF-8 text".into()))?,
-            Err(e) if e.kind() == std::io::ErrorKind::NotFound => String::new(),
+        let bytes = match std::fs::read(&path) {
+            Ok(bytes) => bytes,
+            Err(e) if e.kind() == std::io::ErrorKind::NotFound => Vec::new(),
             Err(e) => return Err(journal_error(&path, e.to_string())),
         };
-        // Complete lines only: the tail after the last newline was never acknowledged.
-        let complete = text.rfind('\n').map_or(0, |k| k + 1);
-        let lines: Vec<&str> = text[..complete].lines().collect();
-        if lines.is_empty() {
+        if bytes.iter().all(u8::is_ascii_whitespace) {
             let journal = Journal::create(&path, &print, 0)?;
             return Ok((
                 journal,
                 Replay {
                     base_revision: 0,
                     edits: Vec::new(),
+                    dropped: Vec::new(),
                 },
             ));
         }
-        let replay = read_lines(&path, &lines, &print)?;
-        if complete < text.len() {
-            // Drop the torn tail so new lines start on a line of their own.
+        let recovered = read_lines(&path, &bytes, &print)?;
+        if recovered.keep < bytes.len() {
+            // Keep what is dropped beside the journal, then cut the journal back to
+            // its last intact line so new lines follow it.
+            if recovered.replay.dropped.iter().any(|d| d.acknowledged) {
+                let mut name = path.file_name().unwrap_or_default().to_os_string();
+                name.push(".damaged");
+                write_atomically(&path.with_file_name(name), &bytes)
+                    .map_err(|e| journal_error(&path, e.to_string()))?;
+            }
             let file = OpenOptions::new()
                 .write(true)
                 .open(&path)
                 .map_err(|e| journal_error(&path, e.to_string()))?;
-            file.set_len(complete as u64)
+            file.set_len(recovered.keep as u64)
                 .and_then(|()| file.sync_all())
                 .map_err(|e| journal_error(&path, e.to_string()))?;
         }
@@ -146,7 +152,7 @@ impl Journal {
             .append(true)
             .open(&path)
             .map_err(|e| journal_error(&path, e.to_string()))?;
-        Ok((Journal { path, file }, replay))
+        Ok((Journal { path, file }, recovered.replay))
     }
 
     /// Writes a fresh journal (header only) at `path`, atomically.
@@ -217,21 +223,129 @@ impl Journal {
     }
 }
 
-/// Reads the complete lines of a journal: what to replay over a design file with
-/// fingerprint `print`.
-fn read_lines(path: &Path, lines: &[&str], print: &str) -> Result<Replay, ServeError> {
-    let mut parsed = Vec::with_capacity(lines.len());
-    for (k, line) in lines.iter().enumerate() {
-        let line: Line = serde_json::from_str(line)
-            .map_err(|e| journal_error(path, format!("line {}: not a journal line: {e}", k + 1)))?;
-        parsed.push(line);
+/// What reading a journal's bytes gave: the replay and how many bytes of the
+/// file are intact (the rest is cut off).
+struct Recovered {
+    replay: Replay,
+    keep: usize,
+}
+
+/// A line of the journal that is not replayed, and why.
+#[derive(Clone, Debug, PartialEq)]
+pub struct Dropped {
+    /// Its line number, from 1.
+    pub line: usize,
+    /// Why it is not replayed.
+    pub reason: String,
+    /// Whether it may have been acknowledged (a whole line; a last line without
+    /// its newline never was). The journal is then kept as `<journal>.damaged`.
+    pub acknowledged: bool,
+}
+
+impl std::fmt::Display for Dropped {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        write!(f, "line {}: {}", self.line, self.reason)
+    }
+}
+
+/// Reads a journal: what to replay over a design file with fingerprint `print`.
+///
+/// Every intact line is recovered: blank lines are skipped; a last line without
+/// its newline (never acknowledged) is dropped; the first line that is not a
+/// journal line, is not UTF-8, or whose revision does not follow the one before
+/// (backwards, repeated or jumping) ends the replay there, and it and every
+/// line after it are dropped — each one listed in [`Replay::dropped`] with why.
+fn read_lines(path: &Path, bytes: &[u8], print: &str) -> Result<Recovered, ServeError> {
+    let mut parsed: Vec<(usize, Line)> = Vec::new();
+    let mut dropped = Vec::new();
+    let mut keep = 0;
+    let mut start = 0;
+    let mut number = 0;
+    let mut damaged = false;
+    while start < bytes.len() {
+        number += 1;
+        let (raw, end, whole) = match bytes[start..].iter().position(|&b| b == b'\n') {
+            Some(k) => (&bytes[start..start + k], start + k + 1, true),
+            None => (&bytes[start..], bytes.len(), false),
+        };
+        start = end;
+        if damaged {
+            dropped.push(Dropped {
+                line: number,
+                reason: "follows a damaged line".into(),
+                acknowledged: whole,
+            });
+            continue;
+        }
+        if !whole {
+            dropped.push(Dropped {
+                line: number,
+                reason: format!(
+                    "the last line was cut off before its end ({} bytes, no newline): \
+                     its edit was never acknowledged",
+                    raw.len()
+                ),
+                acknowledged: false,
+            });
+            continue;
+        }
+        if raw.iter().all(u8::is_ascii_whitespace) {
+            keep = end;
+            continue;
+        }
+        let line = std::str::from_utf8(raw)
+            .map_err(|e| format!("not UTF-8 text ({e})"))
+            .and_then(|text| {
+                serde_json::from_str::<Line>(text).map_err(|e| format!("not a journal line: {e}"))
+            });
+        let line = match (line, parsed.last()) {
+            (Ok(line), Some((_, previous))) => {
+                let expected = previous.revision();
+                match line {
+                    Line::Edit { revision, .. } if revision != expected + 1 => Err(format!(
+                        "revision {revision} does not follow revision {expected} \
+                         (expected {})",
+                        expected + 1
+                    )),
+                    Line::Saved { revision, .. } if revision != expected => Err(format!(
+                        "a save marker of revision {revision} after revision {expected}"
+                    )),
+                    Line::Header { .. } => Err("a header in the middle".into()),
+                    line => Ok(line),
+                }
+            }
+            (line, _) => line,
+        };
+        match line {
+            Ok(line) => {
+                parsed.push((number, line));
+                keep = end;
+            }
+            Err(reason) if parsed.is_empty() => {
+                return Err(journal_error(
+                    path,
+                    format!("line {number}: expected a {JOURNAL_FORMAT} header: {reason}"),
+                ));
+            }
+            Err(reason) => {
+                damaged = true;
+                dropped.push(Dropped {
+                    line: number,
+                    reason,
+                    acknowledged: true,
+                });
+            }
+        }
     }
     let (base, base_revision) = match parsed.first() {
-        Some(Line::Header {
-            journal,
-            base,
-            revision,
-        }) if journal == JOURNAL_FORMAT => (base.clone(), *revision),
+        Some((
+            _,
+            Line::Header {
+                journal,
+                base,
+                revision,
+            },
+        )) if journal == JOURNAL_FORMAT => (base.clone(), *revision),
         _ => {
             return Err(journal_error(
                 path,
@@ -240,18 +354,18 @@ fn read_lines(path: &Path, lines: &[&str], print: &str) -> Result<Replay, ServeE
         }
     };
     // The last point (header or save marker) whose design is the file's.
-    let mut start = None;
+    let mut from = None;
     if base == print {
-        start = Some((0, base_revision));
+        from = Some((0, base_revision));
     }
-    for (k, line) in parsed.iter().enumerate().skip(1) {
+    for (k, (_, line)) in parsed.iter().enumerate().skip(1) {
         if let Line::Saved { saved, revision } = line
             && saved == print
         {
-            start = Some((k, *revision));
+            from = Some((k, *revision));
         }
     }
-    let Some((start, base_revision)) = start else {
+    let Some((from, base_revision)) = from else {
         return Err(journal_error(
             path,
             "the design file was changed outside the server since this journal was \
@@ -260,23 +374,33 @@ fn read_lines(path: &Path, lines: &[&str], print: &str) -> Result<Replay, ServeE
                 .into(),
         ));
     };
-    let mut edits = Vec::new();
-    for (k, line) in parsed.into_iter().enumerate().skip(start + 1) {
-        match line {
-            Line::Edit { revision, patch } => edits.push(JournalEntry { revision, patch }),
-            Line::Saved { .. } => {}
-            Line::Header { .. } => {
-                return Err(journal_error(
-                    path,
-                    format!("line {}: a header in the middle", k + 1),
-                ));
-            }
+    let edits = parsed
+        .into_iter()
+        .skip(from + 1)
+        .filter_map(|(_, line)| match line {
+            Line::Edit { revision, patch } => Some(JournalEntry { revision, patch }),
+            _ => None,
+        })
+        .collect();
+    Ok(Recovered {
+        replay: Replay {
+            base_revision,
+            edits,
+            dropped,
+        },
+        keep,
+    })
+}
+
+impl Line {
+    /// The revision the design has after this line.
+    fn revision(&self) -> u64 {
+        match self {
+            Line::Header { revision, .. }
+            | Line::Edit { revision, .. }
+            | Line::Saved { revision, .. } => *revision,
         }
     }
-    Ok(Replay {
-        base_revision,
-        edits,
-    })
 }
 
 /// Writes `bytes` to `path` so that a crash leaves either the old or the new file:
@@ -285,11 +409,21 @@ pub fn write_atomically(path: &Path, bytes: &[u8]) -> std::io::Result<()> {
     let mut name = path.file_name().unwrap_or_default().to_os_string();
     name.push(".tmp");
     let tmp = path.with_file_name(name);
-    let mut file = File::create(&tmp)?;
-    file.write_all(bytes)?;
-    file.sync_all()?;
-    drop(file);
-    std::fs::rename(&tmp, path)?;
+    let written = File::create(&tmp).and_then(|mut file| {
+        // The new file keeps the old one's permissions.
+        if let Ok(meta) = std::fs::metadata(path) {
+            file.set_permissions(meta.permissions())?;
+        }
+        file.write_all(bytes)?;
+        file.sync_all()?;
+        drop(file);
+        std::fs::rename(&tmp, path)
+    });
+    if let Err(e) = written {
+        // No half-written temp file is left behind.
+        let _ = std::fs::remove_file(&tmp);
+        return Err(e);
+    }
     let folder = match path.parent() {
         Some(p) if !p.as_os_str().is_empty() => p,
         _ => Path::new("."),
@@ -372,5 +506,94 @@ mod tests {
             err.to_string().contains("changed outside the server"),
             "{err}"
         );
+    }
+
+    /// A journal of `design` (file `{}`) with these lines after its header.
+    fn journal_with(name: &str, lines: &[u8]) -> (tempfile::TempDir, PathBuf) {
+        let (dir, design) = temp_design(name, "{}");
+        let (mut j, _) = Journal::open(&design, b"{}").unwrap();
+        j.append(1, &json!([])).unwrap();
+        drop(j);
+        let mut f = OpenOptions::new()
+            .append(true)
+            .open(journal_path(&design))
+            .unwrap();
+        f.write_all(lines).unwrap();
+        (dir, design)
+    }
+
+    fn revisions(replay: &Replay) -> Vec<u64> {
+        replay.edits.iter().map(|e| e.revision).collect()
+    }
+
+    #[test]
+    fn a_torn_multibyte_tail_and_a_blank_line_do_not_stop_the_start() {
+        // "é" is C3 A9: cut after its first byte.
+        let (_dir, design) = journal_with(
+            "multibyte",
+            b"{\"revision\":2,\"patch\":[]}\n\n{\"revision\":3,\"patch\":[{\"op\":\"add\",\"path\":\"/a\",\"value\":\"\xC3",
+        );
+        let (mut j, replay) = Journal::open(&design, b"{}").unwrap();
+        assert_eq!(revisions(&replay), [1, 2]);
+        assert_eq!(replay.dropped.len(), 1, "{:?}", replay.dropped);
+        assert_eq!(replay.dropped[0].line, 5);
+        assert!(!replay.dropped[0].acknowledged);
+        assert!(
+            replay.dropped[0].reason.contains("cut off"),
+            "{:?}",
+            replay.dropped
+        );
+        // The next edit starts a line of its own and is replayed.
+        j.append(3, &json!([])).unwrap();
+        drop(j);
+        let (_, replay) = Journal::open(&design, b"{}").unwrap();
+        assert_eq!(revisions(&replay), [1, 2, 3]);
+        assert!(replay.dropped.is_empty(), "{:?}", replay.dropped);
+    }
+
+    #[test]
+    fn revisions_out_of_sequence_end_the_replay_and_are_named() {
+        for (name, lines, reason) in [
+            (
+                "backwards",
+                &b"{\"revision\":2,\"patch\":[]}\n{\"revision\":1,\"patch\":[]}\n"[..],
+                "revision 1 does not follow revision 2",
+            ),
+            (
+                "repeated",
+                b"{\"revision\":2,\"patch\":[]}\n{\"revision\":2,\"patch\":[]}\n",
+                "revision 2 does not follow revision 2",
+            ),
+            (
+                "jump",
+                b"{\"revision\":2,\"patch\":[]}\n{\"revision\":5,\"patch\":[]}\n",
+                "revision 5 does not follow revision 2",
+            ),
+            (
+                "garbage",
+                b"{\"revision\":2,\"patch\":[]}\n{\"revis\n",
+                "not a journal line",
+            ),
+        ] {
+            let (_dir, design) = journal_with(name, lines);
+            let (_, replay) = Journal::open(&design, b"{}").unwrap();
+            assert_eq!(revisions(&replay), [1, 2], "{name}");
+            assert_eq!(replay.dropped.len(), 1, "{name}: {:?}", replay.dropped);
+            let dropped = &replay.dropped[0];
+            assert_eq!(dropped.line, 4, "{name}");
+            assert!(dropped.acknowledged, "{name}");
+            assert!(dropped.reason.contains(reason), "{name}: {dropped}");
+            // The whole journal is kept aside; the journal itself is cut back to
+            // its last intact line, so a restart drops nothing more.
+            let mut aside = journal_path(&design).into_os_string();
+            aside.push(".damaged");
+            assert!(std::fs::read(&aside).unwrap().ends_with(lines), "{name}");
+            let (_, replay) = Journal::open(&design, b"{}").unwrap();
+            assert_eq!(
+                (revisions(&replay), replay.dropped.len()),
+                (vec![1, 2], 0),
+                "{name}"
+            );
+        }
     }
 }

@@ -10,7 +10,8 @@
 //! ([`broadcast`], [`crate::export::write_delta_glb`]). The viewer page and its
 //! three.js bundle are embedded ([`assets`]); the routes are in [`routes`].
 //!
-//! Limits: request bodies [`MAX_BODY`] bytes; a viewer's queue [`VIEWER_QUEUE`]
+//! Limits: [`limits::MAX_CONNECTIONS`] connections at once, each closed after
+//! [`limits::IDLE_TIMEOUT`] without a byte moving; request bodies [`MAX_BODY`] bytes; a viewer's queue [`VIEWER_QUEUE`]
 //! updates (beyond: full resync); a viewer's socket [`VIEWER_SEND_TIMEOUT`] per
 //! message (beyond: dropped); viewer messages [`MAX_VIEWER_MESSAGE`] bytes.
 
@@ -18,7 +19,9 @@ pub mod assets;
 pub mod broadcast;
 pub mod cli;
 pub mod error;
+pub mod guard;
 pub mod journal;
+pub mod limits;
 pub mod routes;
 pub mod session;
 
@@ -47,13 +50,22 @@ pub struct ServeOptions {
     pub bind: IpAddr,
     /// The port (0: any free port).
     pub port: u16,
-    /// The token edits and saves need, if any.
+    /// The token every route but the page shell needs, if any.
     pub token: Option<String>,
     /// Meshing options of the model.
     pub tessellation: TessellationOptions,
     /// How long a viewer's socket may take to accept one message before the
     /// viewer is dropped ([`VIEWER_SEND_TIMEOUT`] by default).
     pub viewer_timeout: Duration,
+    /// Connections served at once ([`limits::MAX_CONNECTIONS`] by default).
+    pub max_connections: usize,
+    /// How long a connection may move no byte before it is closed
+    /// ([`limits::IDLE_TIMEOUT`] by default).
+    pub idle_timeout: Duration,
+    /// Whether a clean shutdown saves unsaved edits into the design file. Off by
+    /// default: the file is written only by `POST /save`; unsaved edits stay in
+    /// the journal and are replayed on the next start.
+    pub save_on_exit: bool,
 }
 
 impl ServeOptions {
@@ -66,6 +78,9 @@ impl ServeOptions {
             token: None,
             tessellation: TessellationOptions::DEFAULT,
             viewer_timeout: VIEWER_SEND_TIMEOUT,
+            save_on_exit: false,
+            max_connections: limits::MAX_CONNECTIONS,
+            idle_timeout: limits::IDLE_TIMEOUT,
         }
     }
 }
@@ -76,6 +91,7 @@ pub struct Server {
     session: Arc<Mutex<Session>>,
     shutdown: watch::Sender<bool>,
     task: JoinHandle<std::io::Result<()>>,
+    save_on_exit: bool,
 }
 
 /// Opens the session (design + journal replay) and starts serving it on the
@@ -111,10 +127,14 @@ pub async fn start(options: ServeOptions) -> Result<Server, ServeError> {
         session: session.clone(),
         hub: Hub::default(),
         token: options.token,
+        loopback_only: options.bind.is_loopback(),
         shutdown: watching.clone(),
         viewer_timeout: options.viewer_timeout,
+        viewer_ping: limits::ping_interval(options.idle_timeout),
     };
     let app = router(state);
+    let listener =
+        limits::LimitedListener::new(listener, options.max_connections, options.idle_timeout);
     let mut stop = watching;
     let task = tokio::spawn(async move {
         axum::serve(listener, app)
@@ -128,6 +148,7 @@ pub async fn start(options: ServeOptions) -> Result<Server, ServeError> {
         session,
         shutdown,
         task,
+        save_on_exit: options.save_on_exit,
     })
 }
 
@@ -137,8 +158,10 @@ impl Server {
         self.address
     }
 
-    /// Stops serving (viewers are closed), waits for requests in flight, then
-    /// saves the design and starts a fresh journal.
+    /// Stops serving (viewers are closed) and waits for requests in flight; with
+    /// [`ServeOptions::save_on_exit`], then saves unsaved edits into the design
+    /// file and starts a fresh journal. Otherwise the file is left as it is and
+    /// unsaved edits stay in the journal.
     ///
     /// # Errors
     ///
@@ -149,10 +172,21 @@ impl Server {
         let served = self.task.await;
         let address = self.address.to_string();
         let session = self.session;
+        let save_on_exit = self.save_on_exit;
         let saved = tokio::task::spawn_blocking(move || {
             let mut s = session.lock().unwrap_or_else(|p| p.into_inner());
             let path = s.path().display().to_string();
-            s.save().map_err(|e| ServeError::Save {
+            if !save_on_exit {
+                if s.has_unsaved_edits() {
+                    println!(
+                        "vesselcad serve: {path} not written: its unsaved edits are kept in \
+                         the journal and replayed on the next start (POST /save or \
+                         --save-on-exit writes them)"
+                    );
+                }
+                return Ok(());
+            }
+            s.save().map(|_| ()).map_err(|e| ServeError::Save {
                 path,
                 source: std::io::Error::other(e.to_string()),
             })
@@ -169,7 +203,7 @@ impl Server {
             }
         }
         match saved {
-            Ok(result) => result.map(|_| ()),
+            Ok(result) => result,
             Err(e) => Err(ServeError::Save {
                 path: String::new(),
                 source: std::io::Error::other(e.to_string()),
@@ -199,7 +233,7 @@ pub fn run(options: ServeOptions) -> Result<(), ServeError> {
         use std::io::Write;
         let _ = std::io::stdout().flush();
         stop_signal().await;
-        println!("vesselcad serve: shutting down, saving the design");
+        println!("vesselcad serve: shutting down");
         server.shutdown().await
     })
 }

@@ -11,8 +11,9 @@
 //! GET  /ws                    the viewer stream (see `broadcast`)
 //! ```
 //!
-//! Edits and saves need `Authorization: Bearer <token>` when the server was started
-//! with `--token`. Request bodies are limited to [`MAX_BODY`] bytes. Every refusal
+//! Every request first passes [`guard`] (loopback `Host` names, same-origin
+//! `Origin`, JSON content types, and with `--token` the token on every route but
+//! the page shell; security headers on every answer). Request bodies are limited to [`MAX_BODY`] bytes. Every refusal
 //! is an [`ApiError`] with a 4xx status and a JSON body; the session is unchanged.
 //! Session work (model updates, GLB writing) runs on blocking threads, one edit at
 //! a time under the session lock; updates are published inside that lock so
@@ -36,6 +37,7 @@ use tokio::sync::watch;
 use super::assets::{self, Asset};
 use super::broadcast::{Hub, MAX_VIEWER_MESSAGE, Update, run_viewer};
 use super::error::ApiError;
+use super::guard::guard;
 use super::session::Session;
 use crate::drawing::{SheetOptions, sheet_svg};
 
@@ -49,12 +51,17 @@ pub struct AppState {
     pub session: Arc<Mutex<Session>>,
     /// Viewers' updates.
     pub hub: Hub,
-    /// The token edits need, if any.
+    /// The token every route but the page shell needs, if any.
     pub token: Option<String>,
+    /// Whether only loopback `Host` names are answered (the server is bound to
+    /// a loopback address).
+    pub loopback_only: bool,
     /// Turns true when the server shuts down (viewers close).
     pub shutdown: watch::Receiver<bool>,
     /// How long a viewer's socket may accept nothing before it is dropped.
     pub viewer_timeout: Duration,
+    /// How often viewers are pinged (so a quiet viewer is not idle).
+    pub viewer_ping: Duration,
 }
 
 impl AppState {
@@ -74,15 +81,21 @@ impl AppState {
         }
     }
 
-    /// Refuses an edit without the right token.
-    fn authorize(&self, headers: &HeaderMap) -> Result<(), ApiError> {
+    /// Refuses a request without the right token (in the `Authorization`
+    /// header, or `from_query`).
+    pub(super) fn authorize(
+        &self,
+        headers: &HeaderMap,
+        from_query: Option<&str>,
+    ) -> Result<(), ApiError> {
         let Some(token) = &self.token else {
             return Ok(());
         };
         let given = headers
             .get(header::AUTHORIZATION)
             .and_then(|v| v.to_str().ok())
-            .and_then(|v| v.strip_prefix("Bearer "));
+            .and_then(|v| v.strip_prefix("Bearer "))
+            .or(from_query);
         match given {
             Some(g) if constant_time_eq(g.as_bytes(), token.as_bytes()) => Ok(()),
             _ => Err(ApiError::Unauthorized),
@@ -109,6 +122,7 @@ pub fn router(state: AppState) -> Router {
         .route("/ws", get(viewer_socket))
         .fallback(not_found)
         .layer(DefaultBodyLimit::max(MAX_BODY))
+        .layer(axum::middleware::from_fn_with_state(state.clone(), guard))
         .with_state(state)
 }
 
@@ -183,10 +197,8 @@ fn body_or_error(body: Result<Bytes, BytesRejection>) -> Result<Bytes, ApiError>
 
 async fn edit(
     State(state): State<AppState>,
-    headers: HeaderMap,
     body: Result<Bytes, BytesRejection>,
 ) -> Result<Response, ApiError> {
-    state.authorize(&headers)?;
     let body = body_or_error(body)?;
     let answer = state
         .with_session(move |session, hub| {
@@ -198,12 +210,14 @@ async fn edit(
     Ok(axum::Json(answer).into_response())
 }
 
-async fn save(State(state): State<AppState>, headers: HeaderMap) -> Result<Response, ApiError> {
-    state.authorize(&headers)?;
-    let (revision, path) = state
+async fn save(State(state): State<AppState>) -> Result<Response, ApiError> {
+    let ((revision, written), path) = state
         .with_session(|s, _| Ok::<_, ApiError>((s.save()?, s.path().display().to_string())))
         .await?;
-    Ok(axum::Json(json!({ "saved": path, "revision": revision })).into_response())
+    Ok(
+        axum::Json(json!({ "saved": path, "revision": revision, "written": written }))
+            .into_response(),
+    )
 }
 
 /// The `vessel` query parameter.
@@ -258,7 +272,8 @@ async fn viewer_socket(State(state): State<AppState>, ws: WebSocketUpgrade) -> R
                 async move { Some(state.with_session(|s, _| s.snapshot()).await) }
             };
             let timeout = state.viewer_timeout;
-            run_viewer::<_, _>(socket, queue, snapshot, shutdown, timeout).await;
+            let ping = state.viewer_ping;
+            run_viewer::<_, _>(socket, queue, snapshot, shutdown, timeout, ping).await;
         })
 }
 

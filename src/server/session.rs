@@ -22,7 +22,8 @@ use serde_json::{Value, json};
 
 use super::error::{ApiError, ServeError};
 use super::journal::{Journal, fingerprint, write_atomically};
-use crate::design::{self, Design, DesignError, to_canonical_json};
+use crate::design::units::to_inches;
+use crate::design::{self, Design, DesignError, Units, to_canonical_json};
 use crate::export::{Scene, node_id, scene_ids, write_delta_glb, write_glb};
 use crate::mesh::TessellationOptions;
 use crate::model::{Edit, Model, ModelError};
@@ -74,6 +75,10 @@ pub struct Session {
     /// The current design as canonical JSON: the document patches apply to.
     design: Value,
     revision: u64,
+    /// The revision the design file on disk holds.
+    saved_revision: u64,
+    /// The file's length unit: a save writes the design back in it.
+    units: Units,
     journal: Journal,
     /// The full GLB of the current revision, built on first request.
     full: Option<Snapshot>,
@@ -95,40 +100,63 @@ impl Session {
             path: path.display().to_string(),
             source,
         };
-        let bytes = std::fs::read(path).map_err(|source| {
-            design_error(ModelError::Design(DesignError::Io {
-                path: path.display().to_string(),
-                source,
-            }))
-        })?;
-        let text = String::from_utf8_lossy(&bytes);
-        let parsed = design::parse(&text).map_err(|e| design_error(e.into()))?;
-        let model = Model::from_design(&parsed, options).map_err(design_error)?;
+        let bytes = design::read_design_bytes(path).map_err(|e| design_error(e.into()))?;
+        let text = design::decode_design(path, &bytes).map_err(|e| design_error(e.into()))?;
+        let units = design::parse_unchecked(text)
+            .map_err(|e| design_error(e.into()))?
+            .units;
+        let parsed = design::parse(text).map_err(|e| design_error(e.into()))?;
         let (journal, replay) = Journal::open(path, &bytes)?;
+        let journal_path = journal.path().display().to_string();
+        for dropped in &replay.dropped {
+            eprintln!("vesselcad serve: journal {journal_path}: dropped {dropped}");
+        }
+        // The journaled edits are replayed on the design alone, then the model is
+        // built once: each edit was checked when it was accepted.
+        let mut design = parsed;
+        let mut revision = replay.base_revision;
+        if !replay.edits.is_empty() {
+            let mut value = design_value(&design);
+            for entry in &replay.edits {
+                let replay_error = |e: String| ServeError::Journal {
+                    path: journal_path.clone(),
+                    message: format!("revision {} cannot be replayed: {e}", entry.revision),
+                };
+                let mut patch = entry.patch.clone();
+                canonical_numbers(&mut patch);
+                let patch = parse_patch(patch).map_err(|e| replay_error(e.to_string()))?;
+                canonical_numbers(&mut value);
+                json_patch::patch(&mut value, &patch).map_err(|e| replay_error(e.to_string()))?;
+                // As the model would give it back: defaults in their canonical form.
+                let next: Design = serde_json::from_value(value)
+                    .map_err(|e| replay_error(format!("not a design: {e}")))?;
+                value = design_value(&next);
+                revision = entry.revision;
+            }
+            design = serde_json::from_value(value).map_err(|e| ServeError::Journal {
+                path: journal_path.clone(),
+                message: format!("the replayed design is not a design: {e}"),
+            })?;
+        }
+        let model = Model::from_design(&design, options).map_err(|e| match e {
+            e if replay.edits.is_empty() => design_error(e),
+            e => ServeError::Journal {
+                path: journal_path.clone(),
+                message: format!("the design after replaying the journal is refused: {e}"),
+            },
+        })?;
         let mut session = Session {
             path: path.to_path_buf(),
             design: design_value(&model.design()),
             extras: node_extras(&model.scene()),
             model,
-            revision: replay.base_revision,
+            revision,
+            saved_revision: replay.base_revision,
+            units,
             journal,
             full: None,
         };
-        let journal_path = session.journal.path().display().to_string();
-        for entry in replay.edits {
-            let replay_error = |e: ApiError| ServeError::Journal {
-                path: journal_path.clone(),
-                message: format!("revision {} cannot be replayed: {e}", entry.revision),
-            };
-            let mut value = entry.patch.clone();
-            canonical_numbers(&mut value);
-            let patch = parse_patch(value).map_err(replay_error)?;
-            let (next, _) = session.stage(&patch).map_err(replay_error)?;
-            session.design = next;
-            session.revision = entry.revision;
-        }
         session.model.take_changes();
-        session.extras = node_extras(&session.model.scene());
         Ok(session)
     }
 
@@ -217,27 +245,55 @@ impl Session {
         }
     }
 
-    /// Writes the design file atomically and starts a fresh journal. Returns the
-    /// revision saved.
+    /// Writes the design file and starts a fresh journal, if there are edits the
+    /// file does not hold; returns the revision the file holds and whether it was
+    /// written.
+    ///
+    /// The file keeps its length unit (an inch file is written in inches, each
+    /// value with the decimals it was given), its previous content is kept as
+    /// `<file>.bak`, and a design reached through a symbolic link is written to
+    /// the link's target (the link stays). The write is atomic: temp file,
+    /// `fsync`, rename, `fsync` of the folder.
     ///
     /// # Errors
     ///
-    /// [`ApiError::Storage`] when the file or the journal cannot be written (the
-    /// journal still holds every edit, so nothing is lost).
-    pub fn save(&mut self) -> Result<u64, ApiError> {
-        let text = to_canonical_json(&self.model.design());
+    /// [`ApiError::SaveFailed`] when the file or the journal cannot be written:
+    /// the file is as it was, no temp file is left, and the journal still holds
+    /// every edit, so nothing is lost.
+    pub fn save(&mut self) -> Result<(u64, bool), ApiError> {
+        if self.revision == self.saved_revision {
+            return Ok((self.revision, false));
+        }
+        let mut design = self.model.design();
+        if self.units == Units::In {
+            to_inches(&mut design);
+        }
+        let text = to_canonical_json(&design);
         let print = fingerprint(text.as_bytes());
-        let storage = |what: &Path, e: &dyn std::fmt::Display| {
-            ApiError::Storage(format!("cannot write {}: {e}", what.display()))
+        let failed = |what: &Path, e: &dyn std::fmt::Display| {
+            ApiError::SaveFailed(format!("cannot write {}: {e}", what.display()))
         };
+        // Through a link to the file it names.
+        let target = std::fs::canonicalize(&self.path).unwrap_or_else(|_| self.path.clone());
+        let mut backup = target.file_name().unwrap_or_default().to_os_string();
+        backup.push(".bak");
+        let backup = target.with_file_name(backup);
+        let previous = std::fs::read(&target).map_err(|e| failed(&target, &e))?;
+        write_atomically(&backup, &previous).map_err(|e| failed(&backup, &e))?;
         self.journal
             .mark_saved(&print, self.revision)
-            .map_err(|e| storage(self.journal.path(), &e))?;
-        write_atomically(&self.path, text.as_bytes()).map_err(|e| storage(&self.path, &e))?;
+            .map_err(|e| failed(self.journal.path(), &e))?;
+        write_atomically(&target, text.as_bytes()).map_err(|e| failed(&target, &e))?;
+        self.saved_revision = self.revision;
         self.journal
             .reset(&print, self.revision)
-            .map_err(|e| storage(&self.path, &e))?;
-        Ok(self.revision)
+            .map_err(|e| failed(&self.path, &e))?;
+        Ok((self.revision, true))
+    }
+
+    /// Whether there are edits the design file does not hold yet.
+    pub fn has_unsaved_edits(&self) -> bool {
+        self.revision != self.saved_revision
     }
 
     /// The full model at the current revision (built once per revision).

@@ -188,11 +188,17 @@ pub fn request(
     let mut stream = TcpStream::connect_timeout(&address, TIMEOUT).unwrap();
     stream.set_read_timeout(Some(TIMEOUT)).unwrap();
     stream.set_write_timeout(Some(TIMEOUT)).unwrap();
-    let mut head = format!(
-        "{method} {path} HTTP/1.1\r\nHost: {address}\r\nConnection: close\r\nContent-Length: {}\r\n",
+    let given = |name: &str| headers.iter().any(|(n, _)| n.eq_ignore_ascii_case(name));
+    let mut head = format!("{method} {path} HTTP/1.1\r\n");
+    // Host and Content-Type unless the test gives its own.
+    if !given("Host") {
+        head.push_str(&format!("Host: {address}\r\n"));
+    }
+    head.push_str(&format!(
+        "Connection: close\r\nContent-Length: {}\r\n",
         body.len()
-    );
-    if !body.is_empty() {
+    ));
+    if !body.is_empty() && !given("Content-Type") {
         head.push_str("Content-Type: application/json-patch+json\r\n");
     }
     for (name, value) in headers {

@@ -13,7 +13,7 @@
 import {
   Scene, PerspectiveCamera, WebGLRenderer, HemisphereLight, DirectionalLight,
   Box3, Vector3, Vector2, Raycaster, Color, GLTFLoader, OrbitControls,
-} from 'three-bundle';
+} from '/static/three-bundle.js';
 
 const $ = (id) => document.getElementById(id);
 const loader = new GLTFLoader();
@@ -185,11 +185,47 @@ async function handle(header, buffer) {
   refreshDrawing();
 }
 
+// ---- token --------------------------------------------------------------------
+// A server started with --token needs it on every route but this page: from
+// the address (#token=...), the field, or asked for once; kept for the tab.
+
+function currentToken() {
+  const fromHash = new URLSearchParams(location.hash.slice(1)).get('token');
+  if (fromHash) sessionStorage.setItem('vesselcad-token', fromHash);
+  return $('token').value || sessionStorage.getItem('vesselcad-token') || '';
+}
+
+function authHeaders() {
+  const token = currentToken();
+  return token ? { Authorization: `Bearer ${token}` } : {};
+}
+
+// A GET URL carrying the token, for what cannot send headers (socket, image).
+function withToken(url) {
+  const token = currentToken();
+  if (!token) return url;
+  return `${url}${url.includes('?') ? '&' : '?'}token=${encodeURIComponent(token)}`;
+}
+
+let asked = false;
+function askToken() {
+  if (asked) return;
+  asked = true;
+  const token = window.prompt('This vesselcad session needs its token (serve --token):');
+  if (token) {
+    sessionStorage.setItem('vesselcad-token', token);
+    location.reload();
+  }
+}
+
+$('token').addEventListener('change', (e) => sessionStorage.setItem('vesselcad-token', e.target.value));
+$('token').value = currentToken();
+
 // Messages come in pairs (JSON header, GLB); they are handled one at a time.
 let pendingHeader = null;
 let queue = Promise.resolve();
 function connect() {
-  const ws = new WebSocket(`${location.protocol === 'https:' ? 'wss' : 'ws'}://${location.host}/ws`);
+  const ws = new WebSocket(`${location.protocol === 'https:' ? 'wss' : 'ws'}://${location.host}${withToken('/ws')}`);
   ws.binaryType = 'arraybuffer';
   ws.onmessage = (event) => {
     if (typeof event.data === 'string') {
@@ -201,8 +237,11 @@ function connect() {
     if (!header) return;
     queue = queue.then(() => handle(header, event.data)).catch((e) => showError(`viewer: ${e}`));
   };
-  ws.onclose = () => {
+  ws.onclose = async () => {
     $('status').textContent = `disconnected at revision ${state.revision}; reconnecting…`;
+    // A refused upgrade says nothing to the page: ask the server why.
+    const probe = await fetch('/design.json', { cache: 'no-store', headers: authHeaders() }).catch(() => null);
+    if (probe && probe.status === 401) askToken();
     setTimeout(connect, 1000);
   };
 }
@@ -249,7 +288,8 @@ function highlight() {
 }
 
 async function loadDesign() {
-  const response = await fetch('/design.json', { cache: 'no-store' });
+  const response = await fetch('/design.json', { cache: 'no-store', headers: authHeaders() });
+  if (response.status === 401) return askToken();
   if (response.ok) state.design = await response.json();
 }
 
@@ -347,9 +387,7 @@ function showError(message) {
 }
 
 async function sendEdit(patch) {
-  const headers = { 'Content-Type': 'application/json-patch+json' };
-  const token = $('token').value;
-  if (token) headers.Authorization = `Bearer ${token}`;
+  const headers = { 'Content-Type': 'application/json-patch+json', ...authHeaders() };
   try {
     const response = await fetch('/edit', { method: 'POST', headers, body: JSON.stringify(patch) });
     const body = await response.json();
@@ -376,11 +414,11 @@ function refreshDrawing() {
   if (!tag || img.dataset.key === `${url}#${state.revision}`) return;
   img.dataset.key = `${url}#${state.revision}`;
   $('drawing-error').textContent = '';
-  img.src = `${url}&revision=${state.revision}`;
+  img.src = withToken(`${url}&revision=${state.revision}`);
 }
 
 $('drawing').addEventListener('error', async () => {
-  const response = await fetch($('drawing').src);
+  const response = await fetch($('drawing').src, { headers: authHeaders() });
   let text = `${response.status}`;
   try { text = (await response.json()).error; } catch (e) { /* not JSON */ }
   $('drawing-error').textContent = text;

@@ -1,0 +1,88 @@
+//! `vesselcad check --json` and the envelope of `info --json`: machine-readable
+//! results that name their format version and units.
+//!
+//! `check --json` prints one object on standard output, whatever the outcome:
+//!
+//! ```text
+//! {"format": "vesselcad-check/1", "file": "...", "valid": true, "vessels": 3}
+//! {"format": "vesselcad-check/1", "file": "...", "valid": false, "kind": "invalid",
+//!  "error": "<message>", "violations": [{"path", "entity", "field", "value", "rule"}]}
+//! ```
+//!
+//! with the same exit codes as `check`: 0 valid, 1 invalid, 2 unreadable.
+
+use std::path::Path;
+use std::process::ExitCode;
+
+use serde_json::{Value, json};
+use vesselcad::design::{DesignError, load};
+
+/// The format tag of `check --json`.
+pub const CHECK_FORMAT: &str = "vesselcad-check/1";
+
+/// The format tag of `info --json`.
+pub const INFO_FORMAT: &str = "vesselcad-info/1";
+
+/// The units of `info --json`'s figures.
+pub fn info_units() -> Value {
+    json!({
+        "length": "mm",
+        "volume": "m3",
+        "area": "m2",
+        "mass": "kg",
+        "angle": "deg",
+    })
+}
+
+/// Runs `check --json` on `path`.
+pub fn check_json(path: &Path) -> ExitCode {
+    let file = path.display().to_string();
+    let (report, code) = match load(path) {
+        Ok(design) => (
+            json!({
+                "format": CHECK_FORMAT,
+                "file": file,
+                "valid": true,
+                "vessels": design.vessels.len(),
+            }),
+            ExitCode::SUCCESS,
+        ),
+        Err(e) => {
+            let (kind, code) = match &e {
+                DesignError::Io { .. } => ("unreadable", ExitCode::from(2)),
+                DesignError::Syntax { .. } => ("syntax", ExitCode::from(1)),
+                DesignError::Format { .. } => ("format", ExitCode::from(1)),
+                DesignError::Invalid(_) => ("invalid", ExitCode::from(1)),
+            };
+            let violations: Vec<Value> = e
+                .violations()
+                .iter()
+                .map(|v| {
+                    json!({
+                        "path": v.path, "entity": v.entity, "field": v.field,
+                        "value": v.value, "rule": v.rule,
+                    })
+                })
+                .collect();
+            let mut report = json!({
+                "format": CHECK_FORMAT,
+                "file": file,
+                "valid": false,
+                "kind": kind,
+                "error": e.to_string(),
+            });
+            if let DesignError::Syntax { path, .. } = &e {
+                report["path"] = json!(path);
+            }
+            if !violations.is_empty() {
+                report["violations"] = json!(violations);
+            }
+            (report, code)
+        }
+    };
+    println!(
+        "{}",
+        serde_json::to_string_pretty(&report).unwrap_or_default()
+    );
+    code
+}
