@@ -31,6 +31,7 @@ pub mod components;
 pub mod constraints;
 pub mod design;
 pub mod drawing;
+pub mod exchange;
 pub mod export;
 pub mod mesh;
 pub mod model;

@@ -5,6 +5,7 @@
 pub mod alloc;
 pub mod bench;
 pub mod build;
+pub mod export;
 pub mod plant;
 pub mod progress;
 pub mod simulate;
