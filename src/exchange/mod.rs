@@ -11,6 +11,7 @@
 
 mod blocks;
 mod error;
+mod seam;
 mod source;
 mod step;
 mod topology;

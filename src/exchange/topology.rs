@@ -29,8 +29,9 @@ use std::collections::HashMap;
 use glam::{DAffine3, DVec2, DVec3};
 
 use super::error::ExchangeError;
+use super::seam::with_seam_samples;
 use super::source::{NodeKind, VesselSource};
-use crate::mesh::HostTrim;
+use crate::mesh::{HostTrim, closed_in_u};
 use crate::nurbs::intersect::IntersectionLoop;
 use crate::nurbs::{NurbsCurve, NurbsSurface};
 
@@ -182,11 +183,15 @@ pub fn vessel_brep(source: &VesselSource) -> Result<VesselBrep, ExchangeError> {
 
     // Opening loops: one closed edge each, or two where the loop goes round
     // its host's pole (split at the sample on the host's seam).
-    let mut bottoms: HashMap<usize, (LoopEdges, &IntersectionLoop)> = HashMap::new();
     let mut holes: HashMap<(usize, usize), Vec<(LoopEdges, Vec<DVec2>)>> = HashMap::new();
     let mut rounds: HashMap<(usize, usize), (LoopEdges, &IntersectionLoop, usize)> = HashMap::new();
     let mut pad_faces = Vec::new();
-    for cut in &source.cuts {
+    // Loops with samples added on a host's seam, by cut.
+    let mut seam_loops: Vec<Option<IntersectionLoop>> = vec![None; source.cuts.len()];
+    let mut seam_holes: HashMap<(usize, usize), Vec<(LoopEdges, Vec<DVec2>, Vec<usize>)>> =
+        HashMap::new();
+    let mut pairs = Vec::new();
+    for (c, cut) in source.cuts.iter().enumerate() {
         let host_frame = source.nodes[cut.host].frame;
         let fail = |k: usize, rule: &str| ExchangeError::Topology {
             entity: entity(cut.neck),
@@ -232,12 +237,47 @@ pub fn vessel_brep(source: &VesselSource) -> Result<VesselBrep, ExchangeError> {
                 }
             }
         }
-        let neck_edges = builder.loop_edges(&cut.cut.neck, &host_frame, round.map(|r| r.1));
+        // A plain hole across its closed host's seam: samples on the seam.
+        let mut splits: Vec<usize> = round.map(|r| vec![r.1]).unwrap_or_default();
+        let mut seam_host = None;
+        if round.is_none() && cut.cut.pad.is_none() {
+            if let [(k, HostTrim::Hole)] = cut.cut.hosts.as_slice() {
+                let host = &source.nodes[cut.host].patches[*k].surface;
+                if closed_in_u(host) {
+                    let neck_frame = host_frame.inverse() * source.nodes[cut.neck].frame;
+                    let neck = source.nodes[cut.neck].patches[0]
+                        .surface
+                        .transformed(&neck_frame)
+                        .map_err(|source| ExchangeError::Geometry {
+                            entity: entity(cut.neck),
+                            source,
+                        })?;
+                    let (with_seam, seam) = with_seam_samples(&cut.cut.neck, &neck, host)
+                        .map_err(|rule| fail(*k, &rule))?;
+                    if !seam.is_empty() {
+                        seam_loops[c] = Some(with_seam);
+                        splits = seam.clone();
+                        seam_host = Some((*k, seam));
+                    }
+                }
+            }
+        }
+        let neck_loop: &IntersectionLoop = seam_loops[c].as_ref().unwrap_or(&cut.cut.neck);
+        let neck_edges = builder.loop_edges(neck_loop, &host_frame, &splits);
         let hole_edges = match &cut.cut.pad {
-            Some(pad_loop) => builder.loop_edges(pad_loop, &host_frame, None),
+            Some(pad_loop) => builder.loop_edges(pad_loop, &host_frame, &[]),
             None => neck_edges.clone(),
         };
         let hole_loop = cut.cut.pad.as_ref().unwrap_or(&cut.cut.neck);
+        if let Some((k, seam)) = seam_host {
+            seam_holes.entry((cut.host, k)).or_default().push((
+                neck_edges.clone(),
+                neck_loop.host_uv.clone(),
+                seam,
+            ));
+            pairs.push((c, neck_edges));
+            continue;
+        }
         for (k, _) in &cut.cut.hosts {
             match round {
                 Some((r, split)) if r == *k => {
@@ -252,7 +292,14 @@ pub fn vessel_brep(source: &VesselSource) -> Result<VesselBrep, ExchangeError> {
         if let Some(pad) = &cut.pad {
             pad_faces.push((cut, pad, neck_edges.clone(), hole_edges));
         }
-        bottoms.insert(cut.neck, (neck_edges, &cut.cut.neck));
+        pairs.push((c, neck_edges));
+    }
+    // Each neck's bottom: its loop (with any seam samples) and its edges.
+    let mut bottoms: HashMap<usize, (LoopEdges, &IntersectionLoop)> = HashMap::new();
+    for (c, edges) in pairs {
+        let cut = &source.cuts[c];
+        let curve = seam_loops[c].as_ref().unwrap_or(&cut.cut.neck);
+        bottoms.insert(cut.neck, (edges, curve));
     }
 
     let mut faces = Vec::new();
@@ -266,8 +313,9 @@ pub fn vessel_brep(source: &VesselSource) -> Result<VesselBrep, ExchangeError> {
             })?;
             let bottom = if k == 0 { bottoms.get(&n) } else { None };
             let face_holes = holes.remove(&(n, k)).unwrap_or_default();
+            let across = seam_holes.remove(&(n, k)).unwrap_or_default();
             let face = builder
-                .patch_face(&surface, bottom, rounds.get(&(n, k)), &face_holes)
+                .patch_face(&surface, bottom, rounds.get(&(n, k)), &face_holes, &across)
                 .map_err(|rule| ExchangeError::Topology {
                     entity: entity(n),
                     patch: crate::export::patch_name(patch),
@@ -435,7 +483,7 @@ impl Builder {
         &mut self,
         curve: &IntersectionLoop,
         host_frame: &DAffine3,
-        split: Option<usize>,
+        splits: &[usize],
     ) -> LoopEdges {
         let mut points: Vec<DVec3> = curve
             .points
@@ -444,10 +492,9 @@ impl Builder {
             .collect();
         points.push(points[0]);
         let n = curve.points.len();
-        let bounds: Vec<usize> = match split {
-            Some(k) if k > 0 && k < n => vec![0, k, n],
-            _ => vec![0, n],
-        };
+        let mut bounds: Vec<usize> = vec![0];
+        bounds.extend(splits.iter().copied().filter(|&k| k > 0 && k < n));
+        bounds.push(n);
         let parts = bounds
             .windows(2)
             .map(|w| {
@@ -644,6 +691,90 @@ impl Builder {
         }
     }
 
+    /// The arcs of a hole across the seam, between consecutive seam samples:
+    /// `(near u1, v where the outer loop meets it, v where it leaves, uses)`,
+    /// the uses running the way the face's outer loop does (up the u1 side,
+    /// down the u0 side).
+    #[expect(clippy::type_complexity, reason = "a private tuple read right away")]
+    fn seam_arcs(
+        surface: &NurbsSurface,
+        edges: &LoopEdges,
+        uv: &[DVec2],
+        seam: &[usize],
+    ) -> Result<Vec<(bool, f64, f64, Vec<OrientedEdge>)>, String> {
+        let ((u0, u1), _) = surface.domain();
+        let period = u1 - u0;
+        let n = uv.len();
+        let at = |k: usize| uv[k % n];
+        let mut arcs = Vec::new();
+        for (i, &from) in seam.iter().enumerate() {
+            let to = if i + 1 < seam.len() {
+                seam[i + 1]
+            } else {
+                seam[0] + n
+            };
+            // The arc's samples from..=to (indices past n wrap round).
+            let inner: Vec<f64> = (from + 1..to).map(|k| at(k).x).collect();
+            let Some(&middle) = inner.get(inner.len() / 2) else {
+                return Err("an arc of the opening between two seam samples has no sample".into());
+            };
+            let shift = ((u0 + 0.5 * period - middle) / period).round() * period;
+            let near_u1 =
+                (inner.iter().sum::<f64>() / inner.len() as f64 + shift) > u0 + 0.5 * period;
+            let edge_u = if near_u1 { u1 } else { u0 };
+            let mut uses = Vec::new();
+            for &(edge, a, b) in &edges.parts {
+                // Parts within from..=to, by their place in the unrolled order.
+                let (a2, b2) = if a < from { (a + n, b + n) } else { (a, b) };
+                if a2 >= from && b2 <= to {
+                    let mut pcurve: Vec<DVec2> = (a2..=b2)
+                        .map(|k| {
+                            let p = at(k);
+                            DVec2::new(p.x + shift, p.y)
+                        })
+                        .collect();
+                    if a2 == from {
+                        pcurve[0].x = edge_u;
+                    }
+                    if b2 == to {
+                        pcurve.last_mut().expect("a sample").x = edge_u;
+                    }
+                    uses.push((
+                        a2,
+                        OrientedEdge {
+                            edge,
+                            forward: true,
+                            pcurve,
+                        },
+                    ));
+                }
+            }
+            uses.sort_by_key(|u| u.0);
+            let uses: Vec<OrientedEdge> = uses.into_iter().map(|u| u.1).collect();
+            if uses
+                .iter()
+                .any(|e| e.pcurve.iter().any(|p| p.x < u0 - 1e-9 || p.x > u1 + 1e-9))
+            {
+                return Err("an arc of the opening leaves the patch's domain".into());
+            }
+            let (v_from, v_to) = (at(from).y, at(to).y);
+            // Up the u1 side: from the lower end; down the u0 side: from the upper.
+            let along = if near_u1 {
+                v_from < v_to
+            } else {
+                v_from > v_to
+            };
+            let uses = if along { uses } else { Self::against(uses) };
+            let (enter, leave) = if along {
+                (v_from, v_to)
+            } else {
+                (v_to, v_from)
+            };
+            arcs.push((near_u1, enter, leave, uses));
+        }
+        Ok(arcs)
+    }
+
     /// A patch's loops: its rectangle's sides (poles left out), the bottom
     /// replaced by the neck–host loop on a neck, and its holes.
     fn patch_face(
@@ -652,6 +783,7 @@ impl Builder {
         bottom: Option<&(LoopEdges, &IntersectionLoop)>,
         round: Option<&(LoopEdges, &IntersectionLoop, usize)>,
         holes: &[(LoopEdges, Vec<DVec2>)],
+        across: &[(LoopEdges, Vec<DVec2>, Vec<usize>)],
     ) -> Result<Loops, String> {
         let ((u0, u1), (v0, v1)) = surface.domain();
         let mut outer = Vec::with_capacity(4);
@@ -697,25 +829,52 @@ impl Builder {
                 }
             }
         }
-        let piece = |c: NurbsCurve| -> Result<NurbsCurve, String> {
-            let mut c = c;
-            if v_low > v0 {
+        // Arcs of holes across the seam, each with its v-range on the seam:
+        // those just inside u1 interrupt the right side, those just inside u0
+        // the left one.
+        let mut right_arcs: Vec<(f64, f64, Vec<OrientedEdge>)> = Vec::new();
+        let mut left_arcs: Vec<(f64, f64, Vec<OrientedEdge>)> = Vec::new();
+        for (edges, uv, seam) in across {
+            for arc in Self::seam_arcs(surface, edges, uv, seam)? {
+                if arc.0 {
+                    right_arcs.push((arc.1, arc.2, arc.3));
+                } else {
+                    left_arcs.push((arc.1, arc.2, arc.3));
+                }
+            }
+        }
+        right_arcs.sort_by(|a, b| a.0.total_cmp(&b.0));
+        left_arcs.sort_by(|a, b| b.0.total_cmp(&a.0));
+        let piece = |c: &NurbsCurve, low: f64, high: f64| -> Result<NurbsCurve, String> {
+            let mut c = c.clone();
+            if low > v0 {
                 c = c
-                    .split_at(v_low)
+                    .split_at(low)
                     .map(|(_, upper)| upper)
                     .map_err(|e| e.to_string())?;
             }
-            if v_high < v1 {
+            if high < v1 {
                 c = c
-                    .split_at(v_high)
+                    .split_at(high)
                     .map(|(lower, _)| lower)
                     .map_err(|e| e.to_string())?;
             }
             Ok(c)
         };
-        let right = piece(surface.isocurve_u(u1))?;
+        // Up the right side, round its arcs.
+        let right_curve = surface.isocurve_u(u1);
+        let mut v = v_low;
+        for (low, high, uses) in right_arcs {
+            let c = piece(&right_curve, v, low)?;
+            if !self.degenerate(&c) {
+                outer.push(self.side_use(c, DVec2::new(u1, v), DVec2::new(u1, low), true));
+            }
+            outer.extend(uses);
+            v = high;
+        }
+        let right = piece(&right_curve, v, v_high)?;
         if !self.degenerate(&right) {
-            outer.push(self.side_use(right, DVec2::new(u1, v_low), DVec2::new(u1, v_high), true));
+            outer.push(self.side_use(right, DVec2::new(u1, v), DVec2::new(u1, v_high), true));
         }
         match top_uses {
             Some(uses) => outer.extend(uses),
@@ -726,9 +885,20 @@ impl Builder {
                 }
             }
         }
-        let left = piece(surface.isocurve_u(u0))?;
+        // Down the left side, round its arcs.
+        let left_curve = surface.isocurve_u(u0);
+        let mut v = v_high;
+        for (high, low, uses) in left_arcs {
+            let c = piece(&left_curve, high, v)?;
+            if !self.degenerate(&c) {
+                outer.push(self.side_use(c, DVec2::new(u0, high), DVec2::new(u0, v), false));
+            }
+            outer.extend(uses);
+            v = low;
+        }
+        let left = piece(&left_curve, v_low, v)?;
         if !self.degenerate(&left) {
-            outer.push(self.side_use(left, DVec2::new(u0, v_low), DVec2::new(u0, v_high), false));
+            outer.push(self.side_use(left, DVec2::new(u0, v_low), DVec2::new(u0, v), false));
         }
         let mut inner = Vec::with_capacity(holes.len());
         for (edges, uv) in holes {

@@ -87,7 +87,7 @@ def main():
         explorer.Next()
         entity = transfer.EntityFromShapeResult(face, -1)
         props = GProp_GProps()
-        BRepGProp.SurfaceProperties_s(face, props)
+        BRepGProp.SurfaceProperties_s(face, props, 1e-10)
         surface = BRep_Tool.Surface_s(face)
         u0, u1, v0, v1 = BRepTools.UVBounds_s(face)
         points = []
