@@ -34,6 +34,10 @@ pub struct ExportArgs {
     /// for it, mm.
     #[arg(long, default_value_t = ExchangeOptions::DEFAULT.tolerance, allow_negative_numbers = true)]
     tolerance: f64,
+    /// Close each nozzle's bore at its gasket face and write each vessel's
+    /// closed envelope as a solid (its displacement).
+    #[arg(long)]
+    solids: bool,
 }
 
 /// The format named by a file's extension.
@@ -68,6 +72,7 @@ pub fn run(args: ExportArgs) -> ExitCode {
     };
     let options = ExchangeOptions {
         tolerance: args.tolerance,
+        solids: args.solids,
     };
     let name = args
         .output

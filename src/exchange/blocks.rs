@@ -15,7 +15,7 @@ use xxhash_rust::xxh3::Xxh3;
 use super::error::ExchangeError;
 use super::source::vessel_source;
 use super::step::{PlacedBlock, StepBlock, vessel_block, write_step};
-use super::topology::vessel_brep;
+use super::topology::vessel_brep_with;
 use crate::design::{Design, resolve};
 
 /// What an exchange export is built to.
@@ -25,11 +25,18 @@ pub struct ExchangeOptions {
     /// the sampled curve written for it (and between its pcurves' images on
     /// both faces and that curve). Finite and > 0.
     pub tolerance: f64,
+    /// Close each nozzle's bore with a disk in its gasket plane and write every
+    /// closed shell as a solid (`MANIFOLD_SOLID_BREP`): the vessel's
+    /// displacement solid.
+    pub solids: bool,
 }
 
 impl ExchangeOptions {
-    /// 0.001 mm.
-    pub const DEFAULT: Self = Self { tolerance: 1e-3 };
+    /// 0.001 mm, surfaces only.
+    pub const DEFAULT: Self = Self {
+        tolerance: 1e-3,
+        solids: false,
+    };
 
     /// Checks the options.
     ///
@@ -95,6 +102,7 @@ pub fn export_step(
         .map(|(i, v)| {
             let mut hasher = Xxh3::new();
             hasher.update(&options.tolerance.to_bits().to_le_bytes());
+            hasher.update(&[u8::from(options.solids)]);
             hasher.update(serde_json::to_string(v).unwrap_or_default().as_bytes());
             (i, hasher.digest128())
         })
@@ -106,8 +114,8 @@ pub fn export_step(
                 return Ok((block.clone(), false));
             }
             let source = vessel_source(&resolved[i], options.tolerance)?;
-            let brep = vessel_brep(&source)?;
-            Ok((Arc::new(vessel_block(&brep)), true))
+            let brep = vessel_brep_with(&source, options.solids)?;
+            Ok((Arc::new(vessel_block(&brep, options.solids)), true))
         })
         .collect();
     let mut placed = Vec::with_capacity(blocks.len());

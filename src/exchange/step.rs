@@ -330,7 +330,7 @@ impl Writer {
 }
 
 /// Writes one vessel's block: product, geometry, topology, placements.
-pub fn vessel_block(brep: &VesselBrep) -> StepBlock {
+pub fn vessel_block(brep: &VesselBrep, solids: bool) -> StepBlock {
     let mut w = Writer {
         out: String::with_capacity(1 << 16),
         next: LOCAL_BASE,
@@ -499,32 +499,45 @@ pub fn vessel_block(brep: &VesselBrep) -> StepBlock {
         })
         .collect();
 
-    let shells: Vec<usize> = brep
-        .shells
-        .iter()
-        .map(|shell| {
-            let ids: Vec<usize> = shell.faces.iter().map(|&f| faces[f]).collect();
-            let id = w.begin();
-            w.out.push_str(if shell.closed {
-                "CLOSED_SHELL("
-            } else {
-                "OPEN_SHELL("
-            });
-            string(&mut w.out, &brep.tag);
-            w.out.push(',');
-            w.refs(&ids);
-            w.out.push(')');
+    // Closed shells become solids when asked; the others go in one surface
+    // model.
+    let mut solid_items = Vec::new();
+    let mut open_shells = Vec::new();
+    for shell in &brep.shells {
+        let ids: Vec<usize> = shell.faces.iter().map(|&f| faces[f]).collect();
+        let id = w.begin();
+        w.out.push_str(if shell.closed {
+            "CLOSED_SHELL("
+        } else {
+            "OPEN_SHELL("
+        });
+        string(&mut w.out, &brep.tag);
+        w.out.push(',');
+        w.refs(&ids);
+        w.out.push(')');
+        w.end();
+        if solids && shell.closed {
+            let solid = w.begin();
+            w.out.push_str("MANIFOLD_SOLID_BREP(");
+            string(&mut w.out, &format!("{} displacement", brep.tag));
+            let _ = write!(w.out, ",#{id})");
             w.end();
-            id
-        })
-        .collect();
-    let model = w.begin();
-    w.out.push_str("SHELL_BASED_SURFACE_MODEL(");
-    string(&mut w.out, &brep.tag);
-    w.out.push(',');
-    w.refs(&shells);
-    w.out.push(')');
-    w.end();
+            solid_items.push(solid);
+        } else {
+            open_shells.push(id);
+        }
+    }
+    let mut items = solid_items;
+    if !open_shells.is_empty() {
+        let model = w.begin();
+        w.out.push_str("SHELL_BASED_SURFACE_MODEL(");
+        string(&mut w.out, &brep.tag);
+        w.out.push(',');
+        w.refs(&open_shells);
+        w.out.push(')');
+        w.end();
+        items.push(model);
+    }
 
     // The identity placement under its reserved id, then the connection points.
     let (o, z, x) = (
@@ -536,14 +549,19 @@ pub fn vessel_block(brep: &VesselBrep) -> StepBlock {
         w.out,
         "#{VESSEL_IDENTITY}=AXIS2_PLACEMENT_3D('',#{o},#{z},#{x});"
     );
-    let mut items = vec![model, VESSEL_IDENTITY];
+    items.push(VESSEL_IDENTITY);
     for port in &brep.ports {
         let name = format!("{}/{}/connection {}", brep.tag, port.mark, port.description);
         items.push(w.placement(&name, port.origin, port.axis, port.across));
     }
     let _ = write!(
         w.out,
-        "#{VESSEL_REPRESENTATION}=MANIFOLD_SURFACE_SHAPE_REPRESENTATION("
+        "#{VESSEL_REPRESENTATION}={}(",
+        if solids {
+            "SHAPE_REPRESENTATION"
+        } else {
+            "MANIFOLD_SURFACE_SHAPE_REPRESENTATION"
+        }
     );
     string(&mut w.out, &brep.tag);
     w.out.push(',');

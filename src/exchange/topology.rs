@@ -32,8 +32,10 @@ use super::error::ExchangeError;
 use super::seam::with_seam_samples;
 use super::source::{NodeKind, VesselSource};
 use crate::mesh::{HostTrim, closed_in_u};
+use crate::nurbs::builders::{line, revolve};
 use crate::nurbs::intersect::IntersectionLoop;
 use crate::nurbs::{NurbsCurve, NurbsSurface};
+use std::f64::consts::TAU;
 
 /// An edge's curve, in the vessel frame.
 #[derive(Clone, Debug, PartialEq)]
@@ -149,6 +151,12 @@ pub struct VesselBrep {
     pub ports: Vec<Port>,
 }
 
+/// The nozzle patch whose inner edge is the bore.
+const GASKET_FACE: &str = "gasket face";
+
+/// The name of the disk closing a bore.
+pub const BORE_CAP: &str = "bore cap";
+
 /// Distance, relative to the vessel's size, within which two points are one
 /// vertex and two curves one edge.
 const MATCH_RELATIVE: f64 = 1e-9;
@@ -165,6 +173,21 @@ const MATCH_MIN: f64 = 1e-7;
 /// pole or crosses a closed patch's seam), [`ExchangeError::Geometry`] where a
 /// surface or curve cannot be mapped or split.
 pub fn vessel_brep(source: &VesselSource) -> Result<VesselBrep, ExchangeError> {
+    vessel_brep_with(source, false)
+}
+
+/// [`vessel_brep`], with each nozzle's bore closed by a disk in its gasket
+/// plane (`"bore cap"`, continuing the gasket face's parametrization to the
+/// axis) when `close_bores` is set: the envelope is then a closed shell, the
+/// vessel's displacement solid.
+///
+/// # Errors
+///
+/// As [`vessel_brep`].
+pub fn vessel_brep_with(
+    source: &VesselSource,
+    close_bores: bool,
+) -> Result<VesselBrep, ExchangeError> {
     let mut size = 0.0f64;
     for node in &source.nodes {
         for patch in &node.patches {
@@ -200,32 +223,26 @@ pub fn vessel_brep(source: &VesselSource) -> Result<VesselBrep, ExchangeError> {
         };
         // The host patch a hole lies in, and the seam sample of a loop round its pole.
         let mut round: Option<(usize, usize)> = None;
+        // For a padded opening round the pole: the pad loop's and the neck
+        // loop's seam samples.
+        let mut pad_round: Option<(usize, usize)> = None;
         for (k, trim) in &cut.cut.hosts {
             let host = &source.nodes[cut.host].patches[*k].surface;
             let hole_loop = cut.cut.pad.as_ref().unwrap_or(&cut.cut.neck);
             match trim {
                 HostTrim::Hole if hole_loop.host_turns(host) != 0 => {
-                    if cut.cut.pad.is_some() {
-                        return Err(fail(
+                    let no_sample = || {
+                        fail(
                             *k,
-                            "a padded opening round the pole of its host is not written yet",
-                        ));
+                            "the loop round the pole has no sample on the host's seam",
+                        )
+                    };
+                    let split = seam_index(&hole_loop.host_uv, host).ok_or_else(no_sample)?;
+                    if cut.cut.pad.is_some() {
+                        let neck_split =
+                            seam_index(&cut.cut.neck.host_uv, host).ok_or_else(no_sample)?;
+                        pad_round = Some((split, neck_split));
                     }
-                    let ((u0, u1), _) = host.domain();
-                    let period = u1 - u0;
-                    let split = hole_loop
-                        .host_uv
-                        .iter()
-                        .position(|p| {
-                            let r = (p.x - u0) / period;
-                            (r - r.round()).abs() < 1e-9
-                        })
-                        .ok_or_else(|| {
-                            fail(
-                                *k,
-                                "the loop round the pole has no sample on the host's seam",
-                            )
-                        })?;
                     round = Some((*k, split));
                 }
                 HostTrim::Hole => {}
@@ -238,7 +255,11 @@ pub fn vessel_brep(source: &VesselSource) -> Result<VesselBrep, ExchangeError> {
             }
         }
         // A plain hole across its closed host's seam: samples on the seam.
-        let mut splits: Vec<usize> = round.map(|r| vec![r.1]).unwrap_or_default();
+        let mut splits: Vec<usize> = match (pad_round, round) {
+            (Some((_, neck_split)), _) => vec![neck_split],
+            (None, Some((_, split))) => vec![split],
+            (None, None) => Vec::new(),
+        };
         let mut seam_host = None;
         if round.is_none() && cut.cut.pad.is_none() {
             if let [(k, HostTrim::Hole)] = cut.cut.hosts.as_slice() {
@@ -265,7 +286,10 @@ pub fn vessel_brep(source: &VesselSource) -> Result<VesselBrep, ExchangeError> {
         let neck_loop: &IntersectionLoop = seam_loops[c].as_ref().unwrap_or(&cut.cut.neck);
         let neck_edges = builder.loop_edges(neck_loop, &host_frame, &splits);
         let hole_edges = match &cut.cut.pad {
-            Some(pad_loop) => builder.loop_edges(pad_loop, &host_frame, &[]),
+            Some(pad_loop) => {
+                let pad_splits: Vec<usize> = pad_round.map(|r| vec![r.0]).unwrap_or_default();
+                builder.loop_edges(pad_loop, &host_frame, &pad_splits)
+            }
             None => neck_edges.clone(),
         };
         let hole_loop = cut.cut.pad.as_ref().unwrap_or(&cut.cut.neck);
@@ -290,7 +314,13 @@ pub fn vessel_brep(source: &VesselSource) -> Result<VesselBrep, ExchangeError> {
             }
         }
         if let Some(pad) = &cut.pad {
-            pad_faces.push((cut, pad, neck_edges.clone(), hole_edges));
+            pad_faces.push((
+                cut,
+                pad,
+                neck_edges.clone(),
+                hole_edges,
+                pad_round.is_some(),
+            ));
         }
         pairs.push((c, neck_edges));
     }
@@ -330,7 +360,47 @@ pub fn vessel_brep(source: &VesselSource) -> Result<VesselBrep, ExchangeError> {
             });
         }
     }
-    for (cut, pad, neck_edge, hole_edge) in pad_faces {
+    if close_bores {
+        for (n, node) in source.nodes.iter().enumerate() {
+            if node.kind != NodeKind::Nozzle {
+                continue;
+            }
+            let Some(gasket) = node.patches.iter().find(|p| p.name == GASKET_FACE) else {
+                continue;
+            };
+            let ((u0, u1), (v0, v1)) = gasket.surface.domain();
+            let bore = gasket.surface.point(u0, v1);
+            let centre = DVec3::new(0.0, 0.0, bore.z);
+            if bore.distance(centre) <= builder.tolerance {
+                continue; // a blind: closed already
+            }
+            let geometry = |source| ExchangeError::Geometry {
+                entity: entity(n),
+                source,
+            };
+            let profile = line(bore, centre).map_err(geometry)?;
+            let cap = revolve(&profile, DVec3::ZERO, DVec3::Z, TAU)
+                .and_then(|s| s.transformed(&node.frame))
+                .map_err(geometry)?;
+            let _ = (u1, v0);
+            let (outer, holes) =
+                builder
+                    .patch_face(&cap, None, None, &[], &[])
+                    .map_err(|rule| ExchangeError::Topology {
+                        entity: entity(n),
+                        patch: BORE_CAP.to_string(),
+                        rule,
+                    })?;
+            faces.push(Face {
+                node: n,
+                patch: BORE_CAP.to_string(),
+                surface: cap,
+                outer,
+                holes,
+            });
+        }
+    }
+    for (cut, pad, neck_edge, hole_edge, round) in pad_faces {
         let frame = source.nodes[cut.neck].frame;
         let surface =
             pad.patch
@@ -345,18 +415,25 @@ pub fn vessel_brep(source: &VesselSource) -> Result<VesselBrep, ExchangeError> {
             patch: pad.patch.name.to_string(),
             rule,
         };
-        let outer = builder
-            .hole_use(&surface, &hole_edge, &pad.outer.host_uv, true)
-            .map_err(fail)?;
-        let inner = builder
-            .hole_use(&surface, &neck_edge, &pad.inner.host_uv, false)
-            .map_err(fail)?;
+        let (outer, holes) = if round {
+            builder
+                .pad_round_pole(&surface, (&hole_edge, &pad.outer), (&neck_edge, &pad.inner))
+                .map_err(fail)?
+        } else {
+            let outer = builder
+                .hole_use(&surface, &hole_edge, &pad.outer.host_uv, true)
+                .map_err(fail)?;
+            let inner = builder
+                .hole_use(&surface, &neck_edge, &pad.inner.host_uv, false)
+                .map_err(fail)?;
+            (outer, vec![inner])
+        };
         faces.push(Face {
             node: cut.neck,
             patch: crate::export::patch_name(&pad.patch),
             surface,
             outer,
-            holes: vec![inner],
+            holes,
         });
     }
 
@@ -390,6 +467,16 @@ pub fn vessel_brep(source: &VesselSource) -> Result<VesselBrep, ExchangeError> {
         faces,
         shells,
         ports,
+    })
+}
+
+/// The index of the sample of `uv` on `surface`'s u-seam.
+fn seam_index(uv: &[DVec2], surface: &NurbsSurface) -> Option<usize> {
+    let ((u0, u1), _) = surface.domain();
+    let period = u1 - u0;
+    uv.iter().position(|p| {
+        let r = (p.x - u0) / period;
+        (r - r.round()).abs() < 1e-9
     })
 }
 
@@ -773,6 +860,45 @@ impl Builder {
             arcs.push((near_u1, enter, leave, uses));
         }
         Ok(arcs)
+    }
+
+    /// A pad round its host's pole: the band between its outer loop and the
+    /// neck's, both going round the pole, joined by the seam between their
+    /// seam samples: one outer loop, no hole.
+    fn pad_round_pole(
+        &mut self,
+        surface: &NurbsSurface,
+        pad: (&LoopEdges, &IntersectionLoop),
+        neck: (&LoopEdges, &IntersectionLoop),
+    ) -> Result<Loops, String> {
+        let ((u0, u1), (v0, _)) = surface.domain();
+        let pole_at_start = self.degenerate(&surface.isocurve_v(v0));
+        // The loop nearer the pole is the neck's.
+        let (bottom, top) = if pole_at_start {
+            (neck, pad)
+        } else {
+            (pad, neck)
+        };
+        let split = |curve: &IntersectionLoop| {
+            seam_index(&curve.host_uv, surface)
+                .ok_or_else(|| "a loop round the pole has no sample on the seam".to_string())
+        };
+        let (bottom_split, top_split) = (split(bottom.1)?, split(top.1)?);
+        let v_bottom = bottom.1.host_uv[bottom_split].y;
+        let v_top = top.1.host_uv[top_split].y;
+        let mut outer = Self::round_pole(surface, bottom.0, bottom.1, bottom_split, true);
+        let piece = |c: NurbsCurve| -> Result<NurbsCurve, String> {
+            let (low, high) = (v_bottom.min(v_top), v_bottom.max(v_top));
+            let (_, upper) = c.split_at(low).map_err(|e| e.to_string())?;
+            let (lower, _) = upper.split_at(high).map_err(|e| e.to_string())?;
+            Ok(lower)
+        };
+        let right = piece(surface.isocurve_u(u1))?;
+        outer.push(self.side_use(right, DVec2::new(u1, v_bottom), DVec2::new(u1, v_top), true));
+        outer.extend(Self::round_pole(surface, top.0, top.1, top_split, false));
+        let left = piece(surface.isocurve_u(u0))?;
+        outer.push(self.side_use(left, DVec2::new(u0, v_bottom), DVec2::new(u0, v_top), false));
+        Ok((outer, Vec::new()))
     }
 
     /// A patch's loops: its rectangle's sides (poles left out), the bottom

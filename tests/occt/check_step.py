@@ -72,7 +72,7 @@ def main():
     explorer = TopExp_Explorer(shape, TopAbs_SOLID)
     while explorer.More():
         props = GProp_GProps()
-        BRepGProp.VolumeProperties_s(explorer.Current(), props)
+        BRepGProp.VolumeProperties_s(explorer.Current(), props, 1e-10)
         solids.append(props.Mass())
         explorer.Next()
     out["solid_volumes"] = solids
