@@ -134,7 +134,7 @@ pub(super) fn vessel_source(
             kind: NodeKind::Nozzle,
             frame: nozzle.frame,
             patches,
-            nozzle: Some(nozzle.geometry.clone()),
+            nozzle: Some(nozzle.geometry),
         });
     }
     let parts = vessel.parts.len();

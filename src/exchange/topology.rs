@@ -206,13 +206,12 @@ pub fn vessel_brep_with(
 
     // Opening loops: one closed edge each, or two where the loop goes round
     // its host's pole (split at the sample on the host's seam).
-    let mut holes: HashMap<(usize, usize), Vec<(LoopEdges, Vec<DVec2>)>> = HashMap::new();
+    let mut holes: HashMap<(usize, usize), Vec<Hole>> = HashMap::new();
     let mut rounds: HashMap<(usize, usize), (LoopEdges, &IntersectionLoop, usize)> = HashMap::new();
     let mut pad_faces = Vec::new();
     // Loops with samples added on a host's seam, by cut.
     let mut seam_loops: Vec<Option<IntersectionLoop>> = vec![None; source.cuts.len()];
-    let mut seam_holes: HashMap<(usize, usize), Vec<(LoopEdges, Vec<DVec2>, Vec<usize>)>> =
-        HashMap::new();
+    let mut seam_holes: HashMap<(usize, usize), Vec<SeamHole>> = HashMap::new();
     let mut pairs = Vec::new();
     for (c, cut) in source.cuts.iter().enumerate() {
         let host_frame = source.nodes[cut.host].frame;
@@ -261,8 +260,11 @@ pub fn vessel_brep_with(
             (None, None) => Vec::new(),
         };
         let mut seam_host = None;
-        if round.is_none() && cut.cut.pad.is_none() {
-            if let [(k, HostTrim::Hole)] = cut.cut.hosts.as_slice() {
+        if round.is_none()
+            && cut.cut.pad.is_none()
+            && let [(k, HostTrim::Hole)] = cut.cut.hosts.as_slice()
+        {
+            {
                 let host = &source.nodes[cut.host].patches[*k].surface;
                 if closed_in_u(host) {
                     let neck_frame = host_frame.inverse() * source.nodes[cut.neck].frame;
@@ -545,6 +547,13 @@ struct Builder {
 struct LoopEdges {
     parts: Vec<(usize, usize, usize)>,
 }
+
+/// A hole: its loop's edges and (u, v) on the face.
+type Hole = (LoopEdges, Vec<DVec2>);
+
+/// A hole across the seam: its loop's edges, (u, v) on the face and the
+/// indices of its samples on the seam.
+type SeamHole = (LoopEdges, Vec<DVec2>, Vec<usize>);
 
 /// A face's outer loop and holes.
 type Loops = (Vec<OrientedEdge>, Vec<Vec<OrientedEdge>>);
@@ -908,8 +917,8 @@ impl Builder {
         surface: &NurbsSurface,
         bottom: Option<&(LoopEdges, &IntersectionLoop)>,
         round: Option<&(LoopEdges, &IntersectionLoop, usize)>,
-        holes: &[(LoopEdges, Vec<DVec2>)],
-        across: &[(LoopEdges, Vec<DVec2>, Vec<usize>)],
+        holes: &[Hole],
+        across: &[SeamHole],
     ) -> Result<Loops, String> {
         let ((u0, u1), (v0, v1)) = surface.domain();
         let mut outer = Vec::with_capacity(4);
