@@ -55,6 +55,7 @@ pub mod components;
 pub mod constraints;
 pub mod design;
 pub mod drawing;
+pub mod exchange;
 pub mod export;
 pub mod json_schema;
 pub mod mesh;

@@ -83,6 +83,9 @@ enum Command {
     Simulate(cli::simulate::SimulateArgs),
     /// Measure the plant-scale figures on this machine, beside their targets.
     Bench(cli::bench::BenchArgs),
+    /// Write the exact model as STEP (AP214): sewn B-spline faces, shells,
+    /// nozzle connection points.
+    Export(cli::export::ExportArgs),
 }
 
 /// Prints a design error and returns the exit code for it.
@@ -120,6 +123,7 @@ fn main() -> ExitCode {
             Err(e) => fail(&e),
         },
         Command::Plant(args) => cli::plant::run(args),
+        Command::Export(args) => cli::export::run(args),
         Command::Simulate(args) => cli::simulate::run(args),
         Command::Bench(args) => cli::bench::run(args),
         Command::Info {

@@ -6,6 +6,7 @@ pub mod alloc;
 pub mod bench;
 pub mod build;
 pub mod check;
+pub mod export;
 pub mod plant;
 pub mod progress;
 pub mod simulate;

@@ -1,0 +1,23 @@
+//! Exchange files of the exact model: STEP (AP214) for CAD and plant tools.
+//!
+//! Pipeline: design → [`vessel_sources`] (resolved vessels, exact patches in part
+//! frames, openings cut to the exchange tolerance) → [`vessel_brep`] (faces on
+//! the patches, shared edges with pcurves, shells, nozzle connection points, in
+//! the vessel frame) → [`vessel_block`] (one vessel's STEP entities, numbered
+//! locally) → [`write_step`] (header, the blocks rebased into one file, the plant
+//! assembly placing each vessel). [`export_step`] runs it all; [`StepBlocks`]
+//! keeps each vessel's block by the content of its design so that an export
+//! after an edit writes only the vessels that changed.
+
+mod blocks;
+mod error;
+mod seam;
+mod source;
+mod step;
+mod topology;
+
+pub use blocks::{ExchangeOptions, StepBlocks, export_step};
+pub use error::ExchangeError;
+pub use source::{CutSource, NodeKind, NodeSource, VesselSource, vessel_sources};
+pub use step::{LOCAL_BASE, PlacedBlock, StepBlock, rebase, vessel_block, write_step};
+pub use topology::{Edge, EdgeCurve, Face, OrientedEdge, Port, Shell, VesselBrep, vessel_brep};
