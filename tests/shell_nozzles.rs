@@ -35,7 +35,7 @@ fn design(size: f64, fields: &str) -> Design {
 /// The one violation a design is refused with.
 fn refused(text: &str) -> vesselcad::design::RuleViolation {
     let error: DesignError = match parse(text) {
-        Ok(d) => resolve(&d).err().expect("the design must be refused"),
+        Ok(d) => resolve(&d).expect_err("the design must be refused"),
         Err(e) => e,
     };
     let violations = error.violations();

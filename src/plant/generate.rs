@@ -286,7 +286,9 @@ fn column(rng: &mut SplitMix64, index: usize) -> VesselDesign {
             parts.push(PartDesign::Reducer(ReducerDesign {
                 id: format!("R{k}"),
                 length,
-                eccentric: (index % 2 == 0).then(|| 45.0 * ((index / 2 + k) % 8) as f64),
+                eccentric: index
+                    .is_multiple_of(2)
+                    .then(|| 45.0 * ((index / 2 + k) % 8) as f64),
                 thickness: Some(t),
             }));
             z += length;
