@@ -114,8 +114,9 @@ enum Mutation {
 }
 
 /// Optional numeric fields of the format, to add where they may or may not apply.
-const OPTIONAL_KEYS: [&str; 16] = [
+const OPTIONAL_KEYS: [&str; 17] = [
     "offset",
+    "inclination",
     "elevation",
     "eccentric",
     "position",

@@ -493,3 +493,113 @@ fn shell_nozzles_beside_the_boot_are_watertight() {
     ]);
     check_design(&design, 1.0);
 }
+
+/// A vessel of `kind` with an eccentric reducer `R1` (flat side at `flat_side`)
+/// between a course of OD `below` and one of OD `above`, closed by 2:1 heads, with
+/// a nozzle on the course above it, one on the reducer and one on the top head
+/// (the design of `../shared/repros/D3-eccentric-reducer-gap.json`, plus nozzles).
+fn eccentric_vessel(kind: &str, below: f64, above: f64, flat_side: f64) -> Design {
+    vesselcad::design::parse(&format!(
+        r#"{{"format": "vesselcad/1", "vessels": [{{"tag": "{kind}-{below}-{above}-{flat_side}", "kind": "{kind}",
+          "parts": [
+            {{"head": {{"id": "H1", "shape": "ellipsoidal"}}}},
+            {{"shell": {{"id": "S1", "od": {below}, "length": 2000}}}},
+            {{"reducer": {{"id": "R1", "length": 800, "eccentric": {flat_side}}}}},
+            {{"shell": {{"id": "S2", "od": {above}, "length": 2000}}}},
+            {{"head": {{"id": "H2", "shape": "ellipsoidal"}}}}
+          ],
+          "nozzles": [
+            {{"mark": "N1", "size": 4, "rating": 150, "host": "S2", "orientation": 30,
+              "elevation": 3800, "projection": 1200}},
+            {{"mark": "N2", "size": 2, "rating": 150, "host": "R1", "orientation": 200,
+              "elevation": 2400, "projection": 1300}},
+            {{"mark": "N3", "size": 3, "rating": 150, "host": "H2", "orientation": 45,
+              "offset": 200, "projection": 600}}
+          ]}}]}}"#
+    ))
+    .unwrap()
+}
+
+/// Every course and head beyond an eccentric reducer sits on the axis its small
+/// (or large) end leaves: the envelope is closed, whichever way the flat side
+/// faces, whichever end is the larger, on vertical and horizontal vessels. The
+/// courses above used to stay on the first axis, leaving a crescent-shaped hole
+/// (176 open edges in the repro).
+#[test]
+fn vessels_with_an_eccentric_reducer_are_watertight() {
+    for (kind, below, above, flat_side) in [
+        ("vertical", 2000.0, 1400.0, 90.0),
+        ("vertical", 2000.0, 1400.0, 0.0),
+        ("vertical", 2000.0, 1400.0, 217.5),
+        ("vertical", 1400.0, 2000.0, 300.0),
+        ("horizontal", 2000.0, 1400.0, 180.0),
+        ("horizontal", 1400.0, 2000.0, 45.0),
+    ] {
+        let design = eccentric_vessel(kind, below, above, flat_side);
+        check_design(&design, 1.0);
+    }
+}
+
+/// A generated plant holds columns with eccentric reducers (every other column):
+/// every vessel of it is closed.
+#[test]
+fn a_generated_plant_with_eccentric_reducers_is_watertight() {
+    let design = vesselcad::plant::generate_plant(12, 3).unwrap();
+    let eccentric = design
+        .vessels
+        .iter()
+        .flat_map(|v| &v.parts)
+        .filter(|p| matches!(p, PartDesign::Reducer(r) if r.eccentric.is_some()))
+        .count();
+    assert!(eccentric > 0);
+    check_design(&design, 5.0);
+}
+
+/// Hillside, near-tangential and inclined nozzles (with and without pads) on the
+/// drum's shell and on a column's courses leave the envelope closed.
+#[test]
+fn hillside_tangential_and_inclined_shell_nozzles_are_watertight() {
+    let mut design = example("horizontal-drum");
+    let v = &mut design.vessels[0];
+    let od = v
+        .parts
+        .iter()
+        .find_map(|p| match p {
+            PartDesign::Shell(s) => Some(s.od),
+            _ => None,
+        })
+        .unwrap();
+    let template = v.nozzles.iter().find(|n| n.mark == "N6").unwrap().clone();
+    v.nozzles.retain(|n| n.host != "S1" || n.mark == "N1");
+    v.notes.retain(|n| n.target != "N6");
+    let neck = |size: f64| {
+        vesselcad::parts::tables::pipe(vesselcad::parts::tables::Nps::try_new(size).unwrap())
+            .outside_diameter
+            / 2.0
+    };
+    // (mark, size, orientation, elevation, offset, inclination, pad OD)
+    let tangential = 0.98 * od / 2.0 - neck(4.0);
+    for (mark, size, orientation, elevation, offset, inclination, pad) in [
+        ("X1", 6.0, 60.0, 1500.0, 400.0, 0.0, None),
+        ("X2", 4.0, 300.0, 2200.0, -tangential, 0.0, None),
+        ("X3", 8.0, 90.0, 3000.0, 0.0, 30.0, Some(450.0)),
+        ("X4", 6.0, 270.0, 5200.0, 300.0, -45.0, None),
+        ("X5", 6.0, 20.0, 5600.0, -250.0, 20.0, Some(350.0)),
+    ] {
+        let mut n = template.clone();
+        n.mark = mark.into();
+        n.size = size;
+        n.orientation = orientation;
+        n.elevation = Some(elevation);
+        n.offset = Some(offset);
+        n.inclination = Some(inclination);
+        n.projection = od + 500.0;
+        n.pad = pad.map(|od| PadDesign {
+            od,
+            thickness: 12.0,
+        });
+        v.nozzles.push(n);
+    }
+    vesselcad::design::validate(&design).unwrap();
+    check_design(&design, 1.0);
+}

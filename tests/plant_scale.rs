@@ -21,6 +21,21 @@ fn options() -> TessellationOptions {
     TessellationOptions::chord(5.0)
 }
 
+/// How many reducers of the plant are eccentric and how many concentric.
+fn reducers(design: &vesselcad::design::Design) -> (usize, usize) {
+    let all = design.vessels.iter().flat_map(|v| &v.parts);
+    let (mut eccentric, mut concentric) = (0, 0);
+    for p in all {
+        if let PartDesign::Reducer(r) = p {
+            match r.eccentric {
+                Some(_) => eccentric += 1,
+                None => concentric += 1,
+            }
+        }
+    }
+    (eccentric, concentric)
+}
+
 #[test]
 fn generated_plants_are_valid_varied_and_deterministic() {
     let a = generate_plant(60, 7).unwrap();
@@ -46,6 +61,9 @@ fn generated_plants_are_valid_varied_and_deterministic() {
     assert!(a.vessels.iter().any(|v| v.kind == VesselKind::Vertical
         && v.parts.iter().filter(|p| p.kind() == "shell").count() >= 2
         && v.parts.iter().any(|p| p.kind() == "reducer")));
+    // Columns with eccentric reducers (courses on an offset axis) and concentric ones.
+    let (eccentric, concentric) = reducers(&a);
+    assert!(eccentric > 0 && concentric > 0, "{eccentric} {concentric}");
     for v in &a.vessels {
         assert!(
             (4..=20).contains(&v.nozzles.len()),
@@ -75,6 +93,7 @@ fn generated_plants_are_valid_varied_and_deterministic() {
 #[test]
 fn generated_plant_builds_without_failures_and_chunked_build_matches() {
     let design = generate_plant(12, 3).unwrap();
+    assert!(reducers(&design).0 > 0, "no eccentric reducer to build");
     let mut calls = Vec::new();
     let chunked = build_plant(&design, options(), &mut |done, total| {
         calls.push((done, total))
@@ -104,6 +123,7 @@ fn streaming_writer_matches_on_the_example_plant() {
 #[test]
 fn simulation_is_deterministic_and_incremental_equals_full_build() {
     let design = generate_plant(8, 11).unwrap();
+    assert!(reducers(&design).0 > 0, "no eccentric reducer to simulate");
     let run = || {
         let model = Model::from_design(&design, options()).unwrap();
         let mut sim = Simulation::new(model, &design, 5);

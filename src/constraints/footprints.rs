@@ -39,6 +39,17 @@ impl Footprint {
         }
     }
 
+    /// The footprint of nozzle `mark` whose opening is held by the ball of
+    /// `radius` about `centre` (a hillside or inclined nozzle's, worked out
+    /// from its opening's shape).
+    pub fn opening(mark: &str, centre: DVec3, radius: f64) -> Self {
+        Self {
+            name: format!("nozzle {mark}"),
+            centre,
+            radius,
+        }
+    }
+
     /// The footprint of a resolved boot, `None` for any other part. Its opening in
     /// the course (radius R) is where its cylinder (radius r) meets it: within r of
     /// the centre along the vessel axis, and across it down to the course's depth

@@ -26,6 +26,7 @@ mod geometry;
 mod notes;
 mod nozzles;
 mod operating;
+mod shell_nozzle;
 mod stack;
 mod supports;
 
@@ -34,6 +35,7 @@ pub use conditions::{
 };
 pub use frames::{orientation_direction, vessel_frame};
 pub use geometry::PartGeometry;
+pub use shell_nozzle::{MAX_HILLSIDE, MAX_INCLINATION};
 
 use glam::{DAffine3, DVec3};
 

@@ -67,7 +67,11 @@ pub(crate) fn place(
                 Some(NoteTarget::Vessel) => Some(DVec3::ZERO),
                 Some(NoteTarget::Part(i)) => parts[i]
                     .as_ref()
-                    .map(|p| DVec3::new(0.0, 0.0, 0.5 * (p.span.0 + p.span.1))),
+                    // On the part's own axis (offset beyond an eccentric reducer).
+                    .map(|p| {
+                        let t = p.frame.translation;
+                        DVec3::new(t.x, t.y, 0.5 * (p.span.0 + p.span.1))
+                    }),
                 Some(NoteTarget::Nozzle(i)) => Some(nozzles[i].frame.transform_point3(DVec3::new(
                     0.0,
                     0.0,

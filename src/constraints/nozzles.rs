@@ -14,6 +14,7 @@ use glam::{DAffine3, DMat3, DVec3};
 use super::footprints::Footprint;
 use super::frames::check_angle;
 use super::geometry::{PartGeometry, report_part_error};
+use super::shell_nozzle::{self, MAX_HILLSIDE, MAX_INCLINATION};
 use super::stack::Course;
 use super::{Report, ResolvedNozzle, ResolvedPart, ShowValue, orientation_direction};
 use crate::design::{FacingDesign, FlangeDesign, NozzleDesign, VesselDesign};
@@ -87,6 +88,89 @@ fn frame_along(origin: DVec3, axis: DVec3, x_hint: DVec3) -> DAffine3 {
         .unwrap_or_else(|| axis.any_orthonormal_vector());
     let y = axis.cross(x);
     DAffine3::from_mat3_translation(DMat3::from_cols(x, y, axis), origin)
+}
+
+/// Places a hillside or inclined nozzle `n` at elevation `z` on its cylindrical
+/// `course` (see `shell_nozzle`), checking that its opening (of diameter
+/// `reach`, the neck or pad OD) lies on the course's face and within its span
+/// and that its flange is clear of it; `None` after reporting.
+#[expect(
+    clippy::too_many_arguments,
+    reason = "one call site, all of its context"
+)]
+fn place_non_radial(
+    n: &NozzleDesign,
+    path: &str,
+    vessel: &VesselDesign,
+    course: &Course,
+    z: f64,
+    reach: f64,
+    reach_name: &str,
+    flange_length: f64,
+    report: &mut Report,
+) -> Option<shell_nozzle::Placement> {
+    let id = Some(n.mark.as_str());
+    let offset = n.offset.unwrap_or(0.0);
+    let radius = course.d_start / 2.0;
+    let rotation = vessel.placement.rotation;
+    let dir = orientation_direction(vessel.kind, rotation, n.orientation);
+    let side = orientation_direction(vessel.kind, rotation, n.orientation + 90.0);
+    if offset.abs() + reach / 2.0 > MAX_HILLSIDE * radius {
+        report.push(
+            format!("{path}.offset"),
+            id,
+            "offset",
+            offset,
+            format!(
+                "|offset| + half the {reach_name} ({} mm) must be at most {MAX_HILLSIDE} of \
+                 the host {}'s radius {radius} mm (a tangential nozzle's neck must still \
+                 cross the shell)",
+                reach / 2.0,
+                n.host
+            ),
+        );
+        return None;
+    }
+    let inclination = n.inclination.unwrap_or(0.0);
+    let placed = shell_nozzle::place(
+        course.axis_at(z),
+        radius,
+        dir,
+        side,
+        offset,
+        inclination,
+        reach / 2.0,
+    )?;
+    if placed.axial.0 < course.start - 1e-9 || placed.axial.1 > course.end + 1e-9 {
+        report.push(
+            format!("{path}.elevation"),
+            id,
+            "elevation",
+            z,
+            format!(
+                "the opening of the {reach_name} {reach} mm (offset {offset} mm, inclined \
+                 {inclination}°) spans {:.1} to {:.1} mm, which must lie within its host {}, \
+                 which spans {} to {} mm",
+                placed.axial.0, placed.axial.1, n.host, course.start, course.end
+            ),
+        );
+        return None;
+    }
+    if n.projection - flange_length <= placed.depth {
+        report.push(
+            format!("{path}.projection"),
+            id,
+            "projection",
+            n.projection,
+            format!(
+                "must exceed the opening's farthest point along the nozzle axis ({:.1} mm) \
+                 plus the flange length {flange_length} mm",
+                placed.depth
+            ),
+        );
+        return None;
+    }
+    Some(placed)
 }
 
 /// Resolves every nozzle against the resolved parts.
@@ -167,16 +251,45 @@ pub(crate) fn place(
         let dir = orientation_direction(vessel.kind, vessel.placement.rotation, n.orientation);
         // Height along the nozzle axis where it meets its host (for clearances).
         let surface_z: f64;
+        // A non-radial shell nozzle's footprint (centre, radius), from its opening.
+        let mut shell_footprint: Option<(DVec3, f64)> = None;
         let frame = match &resolved_host.geometry {
             PartGeometry::Shell(_) | PartGeometry::Reducer(_) => {
-                if n.offset.is_some() {
-                    report.push(
-                        format!("{path}.offset"),
-                        id,
-                        "offset",
-                        n.offset.unwrap_or(0.0),
-                        "applies to head nozzles only; shell nozzles take an elevation",
-                    );
+                let cylindrical = matches!(resolved_host.geometry, PartGeometry::Shell(_));
+                let mut non_radial = false;
+                let mut refused = false;
+                for (field, value) in [("offset", n.offset), ("inclination", n.inclination)] {
+                    let Some(value) = value else { continue };
+                    if !cylindrical {
+                        report.push(
+                            format!("{path}.{field}"),
+                            id,
+                            field,
+                            value,
+                            "hillside and inclined nozzles mount on cylindrical shell \
+                             courses only; a nozzle on a reducer is radial",
+                        );
+                        refused = true;
+                        continue;
+                    }
+                    let (limit, rule) = if field == "offset" {
+                        (1e6, "must be a finite number within ±1e6 mm".to_string())
+                    } else {
+                        (
+                            MAX_INCLINATION,
+                            format!(
+                                "must be a finite angle between -{MAX_INCLINATION} and \
+                                 {MAX_INCLINATION} degrees (from the course's cross-section)"
+                            ),
+                        )
+                    };
+                    if !(value.is_finite() && value.abs() <= limit) {
+                        report.push(format!("{path}.{field}"), id, field, value, rule);
+                        refused = true;
+                    }
+                    non_radial |= value != 0.0;
+                }
+                if refused {
                     continue;
                 }
                 let Some(z) = n.elevation.filter(|z| z.is_finite()) else {
@@ -213,16 +326,38 @@ pub(crate) fn place(
                     );
                     continue;
                 }
-                if z - reach / 2.0 < course.start - 1e-9 || z + reach / 2.0 > course.end + 1e-9 {
-                    report.push(format!("{path}.elevation"), id, "elevation", z, format!("the {reach_name} {reach} mm centred here must lie within its host {}, which spans {} to {} mm", n.host, course.start, course.end));
-                    continue;
+                if non_radial {
+                    let Some(placed) = place_non_radial(
+                        n,
+                        &path,
+                        vessel,
+                        course,
+                        z,
+                        reach,
+                        reach_name,
+                        flange_length,
+                        report,
+                    ) else {
+                        continue;
+                    };
+                    shell_footprint = Some((placed.centre, placed.radius));
+                    surface_z = (placed.centre - placed.frame.translation).length();
+                    placed.frame
+                } else {
+                    if z - reach / 2.0 < course.start - 1e-9 || z + reach / 2.0 > course.end + 1e-9
+                    {
+                        report.push(format!("{path}.elevation"), id, "elevation", z, format!("the {reach_name} {reach} mm centred here must lie within its host {}, which spans {} to {} mm", n.host, course.start, course.end));
+                        continue;
+                    }
+                    if n.projection - flange_length <= host_od / 2.0 {
+                        report.push(format!("{path}.projection"), id, "projection", n.projection, format!("must exceed the host radius {} mm plus the flange length {flange_length} mm", host_od / 2.0));
+                        continue;
+                    }
+                    surface_z = host_od / 2.0;
+                    // Radial from the course's own axis (offset beyond an eccentric
+                    // reducer; along an eccentric reducer, its cross-section's centre).
+                    frame_along(course.axis_at(z), dir, DVec3::Z)
                 }
-                if n.projection - flange_length <= host_od / 2.0 {
-                    report.push(format!("{path}.projection"), id, "projection", n.projection, format!("must exceed the host radius {} mm plus the flange length {flange_length} mm", host_od / 2.0));
-                    continue;
-                }
-                surface_z = host_od / 2.0;
-                frame_along(DVec3::new(0.0, 0.0, z), dir, DVec3::Z)
             }
             PartGeometry::Head(head) => {
                 if n.elevation.is_some() {
@@ -232,6 +367,17 @@ pub(crate) fn place(
                         "elevation",
                         n.elevation.unwrap_or(0.0),
                         "applies to shell nozzles only; head nozzles take an offset",
+                    );
+                    continue;
+                }
+                if let Some(inclination) = n.inclination {
+                    report.push(
+                        format!("{path}.inclination"),
+                        id,
+                        "inclination",
+                        inclination,
+                        "applies to shell nozzles only; a head nozzle is parallel to the \
+                         vessel axis",
                     );
                     continue;
                 }
@@ -290,8 +436,13 @@ pub(crate) fn place(
             continue;
         }
         nozzle.projection = n.projection;
-        let centre = frame.transform_point3(DVec3::new(0.0, 0.0, surface_z));
-        let footprint = Footprint::nozzle(&n.mark, centre, reach);
+        let footprint = match shell_footprint {
+            Some((centre, radius)) => Footprint::opening(&n.mark, centre, radius),
+            None => {
+                let centre = frame.transform_point3(DVec3::new(0.0, 0.0, surface_z));
+                Footprint::nozzle(&n.mark, centre, reach)
+            }
+        };
         if let Some(other) = footprints.iter().find(|f| f.overlaps(&footprint)) {
             report.push(
                 format!("{path}.mark"),

@@ -6,6 +6,11 @@
 //! starts where the previous one ends, so lengthening a course moves everything
 //! above it. Heads take the OD of the course they close; a reducer's ends take the
 //! ODs of the two courses it joins.
+//!
+//! An eccentric reducer moves the axis: its small end is offset (D − d)/2 towards
+//! its flat side, so every course and head beyond it sits on that offset axis
+//! (each [`Course`] carries where its axis runs, [`Course::axis_at`]). The datum
+//! stays on the first course's axis.
 
 use std::f64::consts::PI;
 
@@ -33,6 +38,12 @@ pub(crate) struct Course {
     pub d_start: f64,
     /// OD at the end.
     pub d_end: f64,
+    /// Where the course's axis crosses its start plane, vessel frame, mm (z = 0:
+    /// the lateral offset from the vessel axis, left by eccentric reducers below).
+    pub shift_start: DVec3,
+    /// Where the course's axis crosses its end plane (z = 0, as `shift_start`):
+    /// differs from `shift_start` only on an eccentric reducer.
+    pub shift_end: DVec3,
 }
 
 impl Course {
@@ -40,6 +51,14 @@ impl Course {
     pub fn diameter_at(&self, z: f64) -> f64 {
         let t = ((z - self.start) / (self.end - self.start)).clamp(0.0, 1.0);
         self.d_start + (self.d_end - self.d_start) * t
+    }
+
+    /// The centre of the course's cross-section at axial position `z`, vessel
+    /// frame (linear along a reducer: the sections of an oblique circular cone
+    /// parallel to its base are circles whose centres lie on a line).
+    pub fn axis_at(&self, z: f64) -> DVec3 {
+        let t = ((z - self.start) / (self.end - self.start)).clamp(0.0, 1.0);
+        self.shift_start + (self.shift_end - self.shift_start) * t + DVec3::Z * z
     }
 
     /// The larger end OD.
@@ -60,6 +79,11 @@ pub(crate) struct StackLayout {
 
 fn translate_z(z: f64) -> DAffine3 {
     DAffine3::from_translation(DVec3::new(0.0, 0.0, z))
+}
+
+/// The translation to `shift + z` along the vessel axis (`shift` lateral).
+fn translate_at(shift: DVec3, z: f64) -> DAffine3 {
+    DAffine3::from_translation(shift + DVec3::Z * z)
 }
 
 fn flipped_at(z: f64) -> DAffine3 {
@@ -134,6 +158,8 @@ pub(crate) fn layout(vessel: &VesselDesign, report: &mut Report) -> StackLayout 
     };
     // Courses.
     let mut z = first_head.map_or(0.0, |(_, h)| h.straight_flange.max(0.0));
+    // Lateral offset of the current course's axis (left by eccentric reducers).
+    let mut shift = DVec3::ZERO;
     let body: Vec<usize> = stack
         .iter()
         .copied()
@@ -156,10 +182,12 @@ pub(crate) fn layout(vessel: &VesselDesign, report: &mut Report) -> StackLayout 
                             end: z + s.length,
                             d_start: s.od,
                             d_end: s.od,
+                            shift_start: shift,
+                            shift_end: shift,
                         });
                         parts[i] = Some(ResolvedPart {
                             id: s.id.clone(),
-                            frame: translate_z(z),
+                            frame: translate_at(shift, z),
                             geometry: PartGeometry::Shell(shell),
                             span: (z, z + s.length),
                             host: None,
@@ -221,6 +249,8 @@ pub(crate) fn layout(vessel: &VesselDesign, report: &mut Report) -> StackLayout 
                 {
                     continue;
                 }
+                // The frame before its lateral placement (fixed below, once the
+                // small end's centre is known).
                 let (large, small, frame) = if below >= above {
                     (below, above, translate_z(z))
                 } else {
@@ -245,6 +275,18 @@ pub(crate) fn layout(vessel: &VesselDesign, report: &mut Report) -> StackLayout 
                 };
                 match reducer.validate() {
                     Ok(()) => {
+                        // Place the end that meets the course below on its axis:
+                        // the large end (the part's origin) or, turned over, the
+                        // small end's centre.
+                        let (frame, next_shift) = if below >= above {
+                            let frame = translate_at(shift, 0.0) * frame;
+                            let top = frame.transform_point3(reducer.small_end_center());
+                            (frame, DVec3::new(top.x, top.y, 0.0))
+                        } else {
+                            let bottom = frame.transform_point3(reducer.small_end_center());
+                            let delta = shift - DVec3::new(bottom.x, bottom.y, 0.0);
+                            (translate_at(delta, 0.0) * frame, delta)
+                        };
                         courses.push(Course {
                             part: i,
                             cylindrical: false,
@@ -252,7 +294,10 @@ pub(crate) fn layout(vessel: &VesselDesign, report: &mut Report) -> StackLayout 
                             end: z + r.length,
                             d_start: below,
                             d_end: above,
+                            shift_start: shift,
+                            shift_end: next_shift,
                         });
+                        shift = next_shift;
                         parts[i] = Some(ResolvedPart {
                             id: r.id.clone(),
                             frame,
@@ -301,7 +346,7 @@ pub(crate) fn layout(vessel: &VesselDesign, report: &mut Report) -> StackLayout 
             let height = head.height().unwrap_or(0.0);
             parts[i] = Some(ResolvedPart {
                 id: h.id.clone(),
-                frame: translate_z(z),
+                frame: translate_at(c.shift_end, z),
                 geometry: PartGeometry::Head(head),
                 span: (z, z + height),
                 host: None,

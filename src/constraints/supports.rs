@@ -204,7 +204,8 @@ pub(crate) fn place(
                 }
                 ResolvedPart {
                     id: id.to_string(),
-                    frame: translate_z(position),
+                    // On its course's axis (offset beyond an eccentric reducer).
+                    frame: DAffine3::from_translation(course.axis_at(position)),
                     geometry: PartGeometry::Saddle(saddle),
                     span: (position - s.width / 2.0, position + s.width / 2.0),
                     host: None,
@@ -305,7 +306,7 @@ pub(crate) fn place(
                 }
                 ResolvedPart {
                     id: id.to_string(),
-                    frame: translate_z(l.elevation),
+                    frame: DAffine3::from_translation(course.axis_at(l.elevation)),
                     geometry: PartGeometry::Lugs(lugs),
                     span: (l.elevation, l.elevation + l.height),
                     host: None,
@@ -363,7 +364,7 @@ pub(crate) fn place(
                 // Boot +Z points down (vessel −Y).
                 let frame = DAffine3::from_mat3_translation(
                     DMat3::from_rotation_x(FRAC_PI_2),
-                    DVec3::new(0.0, 0.0, b.position),
+                    course.axis_at(b.position),
                 );
                 ResolvedPart {
                     id: id.to_string(),

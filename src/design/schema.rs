@@ -424,11 +424,25 @@ pub struct NozzleDesign {
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub elevation: Option<f64>,
     /// Head nozzles: distance of the nozzle axis from the head centreline, mm;
-    /// default 0.
+    /// default 0. Shell nozzles (on a cylindrical course): the hillside offset,
+    /// the distance of the nozzle axis from the radial plane of its orientation,
+    /// mm, positive towards larger orientation angles; the axis stays parallel
+    /// to that plane. Default 0 (radial); a tangential nozzle has |offset| close
+    /// to the course radius minus half the neck OD. |offset| plus half the neck
+    /// (or pad) OD may reach 0.98 of the course's outside radius.
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub offset: Option<f64>,
-    /// Distance from the vessel axis (shell nozzles) or from the head tangent line
-    /// (head nozzles) to the flange face, mm.
+    /// Shell nozzles on a cylindrical course: inclination of the nozzle axis
+    /// from the course's cross-section plane, degrees, −45 to 45, positive
+    /// towards the vessel's top (vertical) or right end (horizontal); the axis
+    /// still crosses the vessel axis (or, with an offset, the plane through it)
+    /// at `elevation`. Default 0 (square to the axis).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub inclination: Option<f64>,
+    /// Distance from the vessel axis (shell nozzles; measured along the nozzle
+    /// axis from where it crosses the vessel axis, or for a hillside nozzle the
+    /// plane through it) or from the head tangent line (head nozzles) to the
+    /// flange face, mm.
     pub projection: f64,
     /// Reinforcing pad.
     #[serde(default, skip_serializing_if = "Option::is_none")]

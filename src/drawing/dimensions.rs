@@ -98,18 +98,27 @@ pub fn format_mm(v: f64) -> String {
     }
 }
 
-/// Outside radius of the stack at axial position `z` (largest course radius when
-/// `z` is outside every course).
-fn radius_at(data: &VesselData, z: f64) -> f64 {
+/// Outside radius of the stack at axial position `z` and the lateral offset of
+/// the course's axis there (beyond an eccentric reducer), vessel frame; the
+/// largest course radius on the vessel axis when `z` is outside every course.
+fn section_at(data: &VesselData, z: f64) -> (DVec3, f64) {
     data.parts
         .iter()
         .find_map(|p| match &p.geometry {
             PartGeometry::Shell(s) if p.span.0 <= z + 1e-6 && z <= p.span.1 + 1e-6 => {
-                Some(s.outside_diameter / 2.0)
+                let t = p.frame.translation;
+                Some((DVec3::new(t.x, t.y, 0.0), s.outside_diameter / 2.0))
             }
             _ => None,
         })
-        .unwrap_or(data.summary.max_diameter / 2.0)
+        .unwrap_or((DVec3::ZERO, data.summary.max_diameter / 2.0))
+}
+
+/// The point of the stack's outline at axial position `z` on the `radial`
+/// side (its course's axis offset plus its radius), vessel frame.
+fn outline_at(data: &VesselData, radial: DVec3, z: f64) -> DVec3 {
+    let (shift, r) = section_at(data, z);
+    shift + radial * r + DVec3::Z * z
 }
 
 /// Chooses the front view's dimensions from the model.
@@ -127,11 +136,10 @@ pub fn plan(data: &VesselData) -> Dimensions {
         (DimSide::Left, DimSide::Right, DimSide::Above)
     };
     // Overall tangent-to-tangent length.
-    let (r0, r1) = (radius_at(data, 0.0), radius_at(data, tt));
     dims.linear.push(LinearDim {
         side: axial_side,
-        a: p(radial * r0),
-        b: p(radial * r1 + DVec3::Z * tt),
+        a: p(outline_at(data, radial, 0.0)),
+        b: p(outline_at(data, radial, tt)),
         text: format!("T/T {}", format_mm(tt)),
     });
     for part in &data.parts {
@@ -139,19 +147,22 @@ pub fn plan(data: &VesselData) -> Dimensions {
             (PartDesign::Shell(s), PartGeometry::Shell(g)) => {
                 let z = 0.5 * (part.span.0 + part.span.1);
                 let r = g.outside_diameter / 2.0;
+                // About the course's own axis (offset beyond an eccentric reducer).
+                let t = part.frame.translation;
+                let centre = DVec3::new(t.x, t.y, z);
                 dims.linear.push(LinearDim {
                     side: if z < tt / 2.0 { low_side } else { high_side },
-                    a: p(-radial * r + DVec3::Z * z),
-                    b: p(radial * r + DVec3::Z * z),
+                    a: p(centre - radial * r),
+                    b: p(centre + radial * r),
                     text: format!("OD {} ({})", format_mm(g.outside_diameter), s.id),
                 });
             }
             (PartDesign::Skirt(_), _) => {
-                let r = radius_at(data, 0.0);
+                let edge = outline_at(data, radial, 0.0);
                 dims.linear.push(LinearDim {
                     side: DimSide::Right,
-                    a: p(radial * r + DVec3::Z * part.span.0),
-                    b: p(radial * r),
+                    a: p(edge + DVec3::Z * part.span.0),
+                    b: p(edge),
                     text: format!("SKIRT {}", format_mm(-part.span.0)),
                 });
             }
@@ -190,7 +201,9 @@ pub fn plan(data: &VesselData) -> Dimensions {
         let in_plane = true_length(&front, axis);
         let along_vessel = axis.cross(DVec3::Z).length() < 1e-6;
         if let Some(elevation) = n.design.elevation {
-            let foot = DVec3::Z * elevation;
+            // Where the projection is measured from: on the course's axis (offset
+            // beyond an eccentric reducer), and for a hillside nozzle beside it.
+            let foot = origin;
             let face = foot + axis * projection;
             if in_plane && !along_vessel {
                 dims.linear.push(LinearDim {
@@ -234,7 +247,7 @@ pub fn plan(data: &VesselData) -> Dimensions {
         for (z, name) in [(0.0, "BTL"), (tt, "TTL")] {
             dims.ordinates.push(Ordinate {
                 side: DimSide::Left,
-                at: p(-radial * radius_at(data, z) + DVec3::Z * z),
+                at: p(outline_at(data, -radial, z)),
                 text: format!("{name} EL {}", format_mm(z)),
             });
         }
@@ -540,5 +553,59 @@ pub fn place(
             text_box,
             line_box: Rect::new(pa, pb),
         });
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::drawing::vessel_data;
+    use crate::mesh::TessellationOptions;
+    use crate::model::Model;
+
+    /// The front view's dimensions of a column whose upper course S2 (OD 1400)
+    /// stands 300 mm east of the lower one beyond an eccentric reducer: its OD is
+    /// dimensioned across its own axis, and the T/T and TTL callouts reach its
+    /// outline, not the vessel axis's.
+    #[test]
+    fn dimensions_beyond_an_eccentric_reducer_follow_the_offset_axis() {
+        let design = crate::design::parse(
+            r#"{"format": "vesselcad/1", "vessels": [{"tag": "X", "kind": "vertical",
+              "parts": [
+                {"head": {"id": "H1", "shape": "ellipsoidal"}},
+                {"shell": {"id": "S1", "od": 2000, "length": 2000}},
+                {"reducer": {"id": "R1", "length": 800, "eccentric": 90}},
+                {"shell": {"id": "S2", "od": 1400, "length": 2000}},
+                {"head": {"id": "H2", "shape": "ellipsoidal"}}
+              ]}]}"#,
+        )
+        .unwrap();
+        let model = Model::from_design(&design, TessellationOptions::chord(5.0)).unwrap();
+        let data = vessel_data(&model, "X").unwrap();
+        let front = data.view(ViewKind::Front).projection;
+        let p = |v: DVec3| front.project(v);
+        let dims = plan(&data);
+        let find = |prefix: &str| {
+            dims.linear
+                .iter()
+                .find(|d| d.text.starts_with(prefix))
+                .unwrap_or_else(|| panic!("no {prefix} dimension in {dims:?}"))
+        };
+        let centre = DVec3::new(300.0, 0.0, 3800.0);
+        let od = find("OD 1400 (S2)");
+        let mid = (od.a + od.b) / 2.0;
+        assert!((mid - p(centre)).length() < 1e-9, "{mid} vs {}", p(centre));
+        assert!(((od.a - od.b).length() - 1400.0).abs() < 1e-9);
+        // The T/T dimension's top end lies on S2's outline at the top tangent line.
+        let tt = find("T/T ");
+        let top = DVec3::new(300.0, 0.0, 4800.0) + front.right * 700.0;
+        assert!((tt.b - p(top)).length() < 1e-9, "{} vs {}", tt.b, p(top));
+        let ttl = dims
+            .ordinates
+            .iter()
+            .find(|o| o.text.starts_with("TTL"))
+            .unwrap();
+        let left = DVec3::new(300.0, 0.0, 4800.0) - front.right * 700.0;
+        assert!((ttl.at - p(left)).length() < 1e-9);
     }
 }

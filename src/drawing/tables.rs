@@ -141,6 +141,22 @@ pub fn empty_weight(data: &VesselData) -> Option<f64> {
     Some(kg)
 }
 
+/// A nozzle's orientation as the schedule shows it: the angle, and for a
+/// hillside or inclined shell nozzle its offset (`OFS`, mm) and inclination
+/// (`INC`, degrees) when not zero.
+fn orientation_cell(n: &crate::design::NozzleDesign) -> String {
+    let mut cell = format!("{}°", format_mm(n.orientation));
+    if n.elevation.is_some() {
+        if let Some(offset) = n.offset.filter(|&o| o != 0.0) {
+            cell.push_str(&format!(" OFS {}", format_mm(offset)));
+        }
+        if let Some(inclination) = n.inclination.filter(|&i| i != 0.0) {
+            cell.push_str(&format!(" INC {}°", format_mm(inclination)));
+        }
+    }
+    cell
+}
+
 /// The nozzle schedule's rows, in design order.
 pub fn schedule(data: &VesselData) -> Vec<ScheduleRow> {
     let position = if data.design.kind == VesselKind::Horizontal {
@@ -177,7 +193,7 @@ pub fn schedule(data: &VesselData) -> Vec<ScheduleRow> {
                     } else {
                         n.service.clone()
                     },
-                    format!("{}°", format_mm(n.orientation)),
+                    orientation_cell(n),
                     elevation,
                     format_mm(n.projection),
                 ],

@@ -59,7 +59,7 @@ pub fn part_extras(design: &PartDesign, resolved: &ResolvedPart) -> Value {
 
 /// `extras` of a nozzle node: id (its mark), kind, the design entry as written (mark,
 /// service, size, rating, facing, flange, schedule, host, orientation,
-/// elevation or offset, projection, pad) and the resolved neck and flange
+/// elevation or offset, inclination, projection, pad) and the resolved neck and flange
 /// lengths, neck OD and bore, mm.
 pub fn nozzle_extras(design: &NozzleDesign, resolved: &ResolvedNozzle) -> Value {
     let nozzle = &resolved.geometry;

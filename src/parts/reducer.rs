@@ -105,10 +105,14 @@ impl Reducer {
                     half_angle: (r1 - r2).atan2(l),
                 },
             ),
-            ReducerAlignment::Eccentric { flat_side } => {
-                let a = flat_side.to_radians();
-                let large = circular_arc(DVec3::ZERO, DVec3::X, DVec3::Y, r1, a, a + TAU)?;
-                let small = circular_arc(top, DVec3::X, DVec3::Y, r2, a, a + TAU)?;
+            ReducerAlignment::Eccentric { .. } => {
+                // Both end circles start on +X, as a course's do, so that the
+                // reducer's end edges are the very curves of the courses it
+                // joins (sampled alike: the vessel stays closed whichever way
+                // the flat side faces). Points of equal angle on the two
+                // circles lie on one generatrix through the apex.
+                let large = circular_arc(DVec3::ZERO, DVec3::X, DVec3::Y, r1, 0.0, TAU)?;
+                let small = circular_arc(top, DVec3::X, DVec3::Y, r2, 0.0, TAU)?;
                 (
                     ruled(&large, &small)?,
                     Analytic::ObliqueCone {

@@ -4,7 +4,9 @@
 //! It sits before the whole data flow: its output is an ordinary [`Design`] that
 //! loads, saves and builds like a hand-written one. The mix is about half
 //! horizontal drums (two heads, saddles, sometimes a boot), a third vertical
-//! columns (two or three courses joined by concentric reducers, a skirt) and the
+//! columns (two or three courses joined by reducers, a skirt; the reducers of
+//! every other column by index are eccentric, so the courses above them stand on
+//! an offset axis) and the
 //! rest storage tanks (flat bottom, roof); heads cycle through every kind; each
 //! vessel has 4–20 nozzles including manways, and notes. Vessels stand on a square
 //! plot grid of [`PLOT_PITCH`] cells, so footprints never overlap.
@@ -257,7 +259,9 @@ fn drum(rng: &mut SplitMix64, index: usize) -> VesselDesign {
 }
 
 /// A vertical column: skirt, bottom head, two or three courses joined by
-/// concentric reducers, top head.
+/// reducers, top head. The reducers of a column of even `index` are eccentric,
+/// their flat sides at a multiple of 45° set by the index (drawn without the
+/// random stream, so every other figure of the plant stays as it was).
 fn column(rng: &mut SplitMix64, index: usize) -> VesselDesign {
     let n = rng.int(2, 3) as usize;
     let mut od = rng.stepped(1600.0, 3600.0, 100.0);
@@ -282,7 +286,9 @@ fn column(rng: &mut SplitMix64, index: usize) -> VesselDesign {
             parts.push(PartDesign::Reducer(ReducerDesign {
                 id: format!("R{k}"),
                 length,
-                eccentric: None,
+                eccentric: index
+                    .is_multiple_of(2)
+                    .then(|| 45.0 * ((index / 2 + k) % 8) as f64),
                 thickness: Some(t),
             }));
             z += length;
@@ -488,6 +494,7 @@ fn nozzles(
             orientation,
             elevation: Some(z),
             offset: None,
+            inclination: None,
             projection: (course.od / 2.0 + rng.stepped(400.0, 800.0, 50.0)).round(),
             pad,
         });
