@@ -13,7 +13,7 @@ use bevy_ecs::world::World;
 use rayon::prelude::*;
 
 use super::dirty::unique;
-use super::labels::stable_id;
+use super::labels::{json_path, stable_id};
 use super::{DirtyParts, DirtyPatches};
 use super::{ModelErrors, WorkCounters};
 use crate::components::{PatchOf, PatchSurface, Patches, Shape};
@@ -76,10 +76,11 @@ pub fn rebuild_dirty_patches(world: &mut World) {
             Err(e) => {
                 // Only reachable if the world was edited around `Model::apply`.
                 let id = stable_id(world, entity);
+                let path = json_path(world, entity);
                 world.resource_mut::<ModelErrors>().0.push((
                     id.clone(),
                     vec![crate::design::RuleViolation {
-                        path: String::new(),
+                        path,
                         entity: id,
                         field: "shape".into(),
                         value: String::new(),

@@ -15,7 +15,7 @@ use glam::DAffine3;
 use rayon::prelude::*;
 use rustc_hash::FxHashMap;
 
-use super::labels::stable_id;
+use super::labels::{json_path, stable_id};
 use super::opening_input::OpeningInput;
 use super::{DirtyParts, DirtyPatches};
 use super::{ModelErrors, Tessellation, WorkCounters};
@@ -59,7 +59,7 @@ fn violation(world: &World, entity: Entity, rule: String) -> (String, Vec<RuleVi
     (
         id.clone(),
         vec![RuleViolation {
-            path: String::new(),
+            path: json_path(world, entity),
             entity: id,
             field: "opening".into(),
             value: host,

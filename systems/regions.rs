@@ -28,7 +28,7 @@ use rayon::prelude::*;
 use rustc_hash::FxHashMap;
 
 use super::dirty::unique;
-use super::labels::patch_label;
+use super::labels::{json_path, patch_label};
 use super::{DirtyParts, DirtyPatches};
 use super::{ModelErrors, OpeningHosts, Tessellation, Views, WorkCounters};
 use crate::components::{Mounts, Opening, PadOf, PadPatch, PatchOf, PatchRegion, PatchSurface};
@@ -405,10 +405,11 @@ pub fn lay_out_regions(world: &mut World, all: &mut QueryState<Entity, With<Patc
             Err(e) => {
                 failures += 1;
                 let label = patch_label(world, patch);
+                let path = json_path(world, patch);
                 world.resource_mut::<ModelErrors>().0.push((
                     label.clone(),
                     vec![RuleViolation {
-                        path: String::new(),
+                        path,
                         entity: label,
                         field: "region".into(),
                         value: String::new(),

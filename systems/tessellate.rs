@@ -17,7 +17,7 @@ use rustc_hash::FxHashMap;
 
 use super::DirtyPatches;
 use super::biggest_first::map_biggest_first;
-use super::labels::patch_label;
+use super::labels::{json_path, patch_label};
 use super::{ModelErrors, WorkCounters};
 use crate::components::{PatchCavities, PatchMesh, PatchSurface};
 use crate::design::RuleViolation;
@@ -175,10 +175,11 @@ pub fn remesh_dirty_patches(world: &mut World, surfaces: &mut QueryState<&PatchS
             Err(rule) => {
                 failures += 1;
                 let label = patch_label(world, e);
+                let path = json_path(world, e);
                 world.resource_mut::<ModelErrors>().0.push((
                     label.clone(),
                     vec![RuleViolation {
-                        path: String::new(),
+                        path,
                         entity: label,
                         field: "mesh".into(),
                         value: String::new(),

@@ -136,6 +136,17 @@ pub(super) fn check_unique_ids(vessel: &VesselDesign, report: &mut Report) {
             report.push(path(at), None, field, "\"\"", "must not be empty");
             continue;
         }
+        if super::names::too_long(id) {
+            // Named by its place: the entity would repeat the whole id.
+            report.push(
+                path(at),
+                Some(""),
+                field,
+                super::names::shown(id),
+                super::names::rule(),
+            );
+            continue;
+        }
         if id == vessel.tag {
             report.push(
                 path(at),

@@ -19,10 +19,13 @@
 //! Every broken rule becomes a [`RuleViolation`] with its JSON path; all of them are
 //! reported, not only the first.
 
+mod clearances;
 mod conditions;
 mod footprints;
 mod frames;
 mod geometry;
+mod head_limits;
+mod names;
 mod notes;
 mod nozzles;
 mod operating;
@@ -236,6 +239,17 @@ pub fn resolve_vessel(
     vessel: &VesselDesign,
     index: usize,
 ) -> Result<ResolvedVessel, Vec<RuleViolation>> {
+    if names::too_long(&vessel.tag) {
+        // Checked first and alone: every other violation would repeat the tag.
+        let shown = names::shown(&vessel.tag);
+        return Err(vec![RuleViolation {
+            path: format!("vessels[{index}].tag"),
+            entity: format!("vessels[{index}]"),
+            field: "tag".into(),
+            value: shown,
+            rule: names::rule(),
+        }]);
+    }
     let mut report = Report {
         prefix: format!("vessels[{index}]"),
         tag: &vessel.tag,

@@ -11,6 +11,7 @@
 
 use glam::{DAffine3, DMat3, DVec3};
 
+use super::clearances::Body;
 use super::footprints::Footprint;
 use super::frames::check_angle;
 use super::geometry::{PartGeometry, report_part_error};
@@ -18,7 +19,8 @@ use super::shell_nozzle::{self, MAX_HILLSIDE, MAX_INCLINATION};
 use super::stack::Course;
 use super::{Report, ResolvedNozzle, ResolvedPart, ShowValue, orientation_direction};
 use crate::design::{FacingDesign, FlangeDesign, NozzleDesign, VesselDesign};
-use crate::parts::tables::{FlangeClass, Nps, PipeSchedule};
+use crate::parts::heads::HeadKind;
+use crate::parts::tables::{FlangeClass, Nps, PipeSchedule, flange, pipe};
 use crate::parts::{Facing, FlangeType, Nozzle};
 
 /// Parses a schedule name as written in design files.
@@ -78,6 +80,32 @@ fn nozzle_part(n: &NozzleDesign, path: &str, report: &mut Report) -> Option<Nozz
         flange,
         facing,
         projection: n.projection,
+    })
+}
+
+/// The least clearance, mm, between an opening of reach `reach` (neck or pad
+/// OD) and either end of its course: 5 % of the reach, at least 5 mm. An
+/// opening touching the end leaves the course's region pinched to a point at
+/// the seam, which cannot be meshed.
+pub(crate) fn end_gap(reach: f64) -> f64 {
+    (0.05 * reach).max(5.0)
+}
+
+/// The radii from the axis at which a head's patches meet (each patch's
+/// start but the first's: the straight flange's end, the knuckle–crown joint).
+fn head_seam_radii(head: &crate::parts::heads::Head) -> Vec<f64> {
+    head.patches().map_or(Vec::new(), |patches| {
+        patches
+            .iter()
+            .skip(1)
+            .filter_map(|p| {
+                let points = p
+                    .surface
+                    .boundary(crate::nurbs::Side::VMin)
+                    .control_points();
+                points.first().map(|q| q.truncate().length())
+            })
+            .collect()
     })
 }
 
@@ -141,7 +169,8 @@ fn place_non_radial(
         inclination,
         reach / 2.0,
     )?;
-    if placed.axial.0 < course.start - 1e-9 || placed.axial.1 > course.end + 1e-9 {
+    let gap = end_gap(reach);
+    if placed.axial.0 < course.start + gap || placed.axial.1 > course.end - gap {
         report.push(
             format!("{path}.elevation"),
             id,
@@ -150,7 +179,7 @@ fn place_non_radial(
             format!(
                 "the opening of the {reach_name} {reach} mm (offset {offset} mm, inclined \
                  {inclination}°) spans {:.1} to {:.1} mm, which must lie within its host {}, \
-                 which spans {} to {} mm",
+                 which spans {} to {} mm, at least {gap} mm clear of its ends",
                 placed.axial.0, placed.axial.1, n.host, course.start, course.end
             ),
         );
@@ -185,6 +214,8 @@ pub(crate) fn place(
     // placed nozzle's.
     let mut footprints: Vec<Footprint> =
         parts.iter().flatten().filter_map(Footprint::boot).collect();
+    // The bodies (neck, flange) of each placed nozzle, by mark.
+    let mut bodies: Vec<(String, [Body; 2])> = Vec::new();
     for (k, n) in vessel.nozzles.iter().enumerate() {
         let path = format!("nozzles[{k}]");
         let id = Some(n.mark.as_str());
@@ -344,9 +375,9 @@ pub(crate) fn place(
                     surface_z = (placed.centre - placed.frame.translation).length();
                     placed.frame
                 } else {
-                    if z - reach / 2.0 < course.start - 1e-9 || z + reach / 2.0 > course.end + 1e-9
-                    {
-                        report.push(format!("{path}.elevation"), id, "elevation", z, format!("the {reach_name} {reach} mm centred here must lie within its host {}, which spans {} to {} mm", n.host, course.start, course.end));
+                    let gap = end_gap(reach);
+                    if z - reach / 2.0 < course.start + gap || z + reach / 2.0 > course.end - gap {
+                        report.push(format!("{path}.elevation"), id, "elevation", z, format!("the {reach_name} {reach} mm centred here must lie within its host {}, which spans {} to {} mm, at least {gap} mm clear of its ends (an opening touching a course's end leaves no shell between it and the seam)", n.host, course.start, course.end));
                         continue;
                     }
                     if n.projection - flange_length <= host_od / 2.0 {
@@ -401,14 +432,54 @@ pub(crate) fn place(
                     report.push(format!("{path}.offset"), id, "offset", offset, format!("offset + half the {reach_name} ({} mm) must stay inside the head radius {radius} mm", reach / 2.0));
                     continue;
                 }
-                let rise = head.height_at_radius(offset).unwrap_or(0.0) - head.straight_flange;
+                if let Some((pad_od, _)) = pad
+                    && offset >= pipe_od / 2.0
+                    && offset <= pad_od / 2.0
+                {
+                    report.push(format!("{path}.offset"), id, "offset", offset, format!("a reinforcing pad round the head's centre (pad OD {pad_od} mm) needs its nozzle round the centre too: the offset must be below the neck radius {} mm, or above the pad radius {} mm", pipe_od / 2.0, pad_od / 2.0));
+                    continue;
+                }
+                // A head cut round its pole (a centred nozzle) cannot also be
+                // cut across the seam between two of its patches.
+                let centred_on_head = |m: &NozzleDesign| {
+                    m.host == n.host
+                        && Nps::try_new(m.size).is_ok_and(|nps| {
+                            m.offset.unwrap_or(0.0) < pipe(nps).outside_diameter / 2.0
+                        })
+                };
+                if offset >= pipe_od / 2.0
+                    && let Some(centre) = vessel.nozzles.iter().find(|m| centred_on_head(m))
+                    && let Some(seam) = head_seam_radii(head)
+                        .into_iter()
+                        .find(|&r| (offset - reach / 2.0).abs() <= r && r <= offset + reach / 2.0)
+                {
+                    report.push(format!("{path}.offset"), id, "offset", offset, format!("the opening (the {reach_name} {reach} mm) crosses the seam between the patches of head {} at {seam:.1} mm from its axis, and nozzle {} is centred on that head: a head cut round its centre cannot also be cut across a seam; move the opening clear of that radius", n.host, centre.mark));
+                    continue;
+                }
+                // The neck meets the head highest on its side nearest the axis
+                // (the head's height falls with the radius): it must end above
+                // that, not only above the centre of the opening.
+                let highest = (offset - pipe_od / 2.0).max(0.0);
+                let rise = head.height_at_radius(highest).unwrap_or(0.0) - head.straight_flange;
                 if n.projection - flange_length <= rise {
-                    report.push(format!("{path}.projection"), id, "projection", n.projection, format!("must exceed the head's height at that offset ({rise:.1} mm) plus the flange length {flange_length} mm"));
+                    report.push(format!("{path}.projection"), id, "projection", n.projection, format!("must exceed the head's height where the neck meets it highest ({rise:.1} mm, at {highest:.1} mm from the axis) plus the flange length {flange_length} mm"));
                     continue;
                 }
                 // Work in the head's local frame (dome towards +Z), then map.
                 let inverse = resolved_host.frame.matrix3.inverse();
                 let local_dir = inverse * dir;
+                if let HeadKind::Ellipsoidal { .. } = head.kind
+                    && offset > reach / 2.0
+                {
+                    // The opening's angle round the head's axis, from the head's
+                    // seam angle (its local +X, where the revolution starts).
+                    let angle = local_dir.y.atan2(local_dir.x).abs();
+                    let half = ((reach / 2.0 + end_gap(reach)) / offset).min(1.0).asin();
+                    if angle < half {
+                        report.push(format!("{path}.orientation"), id, "orientation", n.orientation, format!("the opening (the {reach_name} {reach} mm at offset {offset} mm) comes within {:.1}° of the seam of the ellipsoidal head {} ({:.1}° away, the gap included; the seam is where the head's revolution starts), which cannot be meshed yet: turn the nozzle away from it", half.to_degrees(), n.host, angle.to_degrees()));
+                        continue;
+                    }
+                }
                 let origin = DVec3::new(
                     local_dir.x * offset,
                     local_dir.y * offset,
@@ -456,6 +527,45 @@ pub(crate) fn place(
             );
             continue;
         }
+        let axis = frame.matrix3 * DVec3::Z;
+        let flange_od = flange(nozzle.nps, nozzle.class).map_or(pipe_od, |d| d.outside_diameter);
+        let back = n.projection - flange_length;
+        let body = |name, from, to, diameter: f64| Body {
+            name,
+            origin: frame.translation,
+            axis: axis.normalize(),
+            from,
+            to,
+            radius: diameter / 2.0,
+        };
+        let mine = [
+            body("neck", surface_z, back, pipe_od),
+            body("flange", back, n.projection, flange_od),
+        ];
+        if let Some((mark, theirs, ours)) =
+            bodies
+                .iter()
+                .find_map(|(mark, theirs): &(String, [Body; 2])| {
+                    theirs.iter().find_map(|t| {
+                        mine.iter()
+                            .find(|m| m.meets(t))
+                            .map(|m| (mark, t.name, m.name))
+                    })
+                })
+        {
+            report.push(
+                format!("{path}.mark"),
+                id,
+                "mark",
+                &n.mark,
+                format!(
+                    "its {ours} collides with the {theirs} of nozzle {mark}: move one of them \
+                     (change its orientation, elevation or offset, or its projection)"
+                ),
+            );
+            continue;
+        }
+        bodies.push((n.mark.clone(), mine));
         footprints.push(footprint);
         out.push(ResolvedNozzle {
             mark: n.mark.clone(),

@@ -13,6 +13,7 @@ mod memory;
 mod read;
 mod staging;
 mod sync;
+mod undo;
 
 pub use edit::Edit;
 pub use memory::MemoryBreakdown;
@@ -27,7 +28,7 @@ use bevy_ecs::world::World;
 use rayon::prelude::*;
 use thiserror::Error;
 
-use crate::design::{Design, DesignError};
+use crate::design::{Design, DesignError, RuleViolation};
 use crate::export::Scene;
 use crate::mesh::{OptionsError, TessellationOptions};
 pub use crate::systems::Views;
@@ -46,6 +47,11 @@ pub enum ModelError {
     /// Tessellation options are invalid.
     #[error(transparent)]
     Options(#[from] OptionsError),
+    /// The edit passes every rule but its geometry cannot be built: each failed
+    /// part or nozzle is listed with its JSON path, the stage that failed
+    /// (`shape`, `opening`, `region`, `mesh`) and why. The edit was undone.
+    #[error("the edit cannot be built, nothing changed: {} failure(s):\n{}", .0.len(), .0.iter().map(|v| format!("  - {v}")).collect::<Vec<_>>().join("\n"))]
+    Geometry(Vec<RuleViolation>),
     /// The edit names a vessel that does not exist.
     #[error("no vessel has the tag {tag:?}")]
     UnknownVessel {
@@ -186,10 +192,28 @@ impl Model {
         *self.world.resource::<WorkCounters>()
     }
 
-    /// [`apply`](Self::apply) then [`update`](Self::update).
+    /// [`apply`](Self::apply) then [`update`](Self::update), as one transaction
+    /// that covers the geometry too: when the update cannot build what the edit
+    /// changed (a patch that cannot be meshed, an opening that cannot be cut),
+    /// the edit is undone — the touched vessels are put back and built again,
+    /// the change log is as it was — and refused with
+    /// [`ModelError::Geometry`], naming each failure.
     pub fn edit(&mut self, edit: Edit) -> Result<WorkCounters, ModelError> {
-        self.apply(edit)?;
-        Ok(self.update())
+        let staged = staging::stage(&self.world, edit)?;
+        let undo = undo::Undo::record(&self.world, &staged);
+        let log = self.world.resource::<ChangeLog>().clone();
+        sync::commit(&mut self.world, staged);
+        let work = self.update();
+        let failed = std::mem::take(&mut self.world.resource_mut::<ModelErrors>().0);
+        if failed.is_empty() {
+            return Ok(work);
+        }
+        sync::commit(&mut self.world, undo.staged());
+        self.update();
+        *self.world.resource_mut::<ChangeLog>() = log;
+        Err(ModelError::Geometry(
+            failed.into_iter().flat_map(|(_, v)| v).collect(),
+        ))
     }
 
     /// Changes the tessellation options; every patch is re-meshed on the next update.

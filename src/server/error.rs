@@ -159,6 +159,7 @@ impl ApiError {
     fn violations(&self) -> &[RuleViolation] {
         match self {
             ApiError::Invalid(e) | ApiError::Refused(ModelError::Design(e)) => e.violations(),
+            ApiError::Refused(ModelError::Geometry(v)) => v,
             _ => &[],
         }
     }

@@ -77,6 +77,21 @@ pub enum CdtError {
         /// The vertex budget.
         limit: usize,
     },
+    /// Refinement would grow the mesh it was given many times over: the
+    /// surface's sizing does not describe it (a degenerate or nearly degenerate
+    /// patch), and going on would spend seconds and gigabytes before reaching
+    /// the vertex budget. Stopped early, at a bound set from the seeded mesh.
+    #[error(
+        "refinement does not converge: it needs more than {limit} vertices from the \
+         {seeded} the patch was seeded with (the patch is too thin or too curved for \
+         the tolerance)"
+    )]
+    RefinementRunaway {
+        /// Vertices of the mesh refinement started from.
+        seeded: usize,
+        /// The vertex count it was stopped at.
+        limit: usize,
+    },
     /// Refinement did not reach the tolerance within its pass limit.
     #[error("refinement did not converge in {passes} passes ({remaining} triangles still over)")]
     NotConverged {

@@ -37,6 +37,13 @@ const MAX_PASSES: usize = 200;
 const INITIAL_FLIPS_PER_TRIANGLE: usize = 20;
 /// Flips allowed after one insertion.
 const FLIPS_PER_INSERTION: usize = 2000;
+/// How many times over refinement may grow the mesh it starts from (with at
+/// least [`REFINEMENT_FLOOR`] vertices) before it is stopped as a runaway:
+/// seeding sizes the mesh from the surface's curvature, so a healthy
+/// refinement adds a small fraction of the vertices.
+const REFINEMENT_GROWTH: usize = 8;
+/// Vertices refinement may always reach, however few it starts from.
+const REFINEMENT_FLOOR: usize = 50_000;
 /// Relative twice-area (to the squared longest edge) below which a triangle is flat.
 const FLAT: f64 = 1e-10;
 
@@ -234,6 +241,18 @@ fn run(
     mut cache: Vec<Option<Candidate>>,
     mut assessed: Vec<u32>,
 ) -> Result<(), CdtError> {
+    let seeded = mesh.verts.len();
+    let cap = seeded
+        .saturating_mul(REFINEMENT_GROWTH)
+        .max(REFINEMENT_FLOOR);
+    let over = |limit: usize| {
+        if limit == budget {
+            CdtError::BudgetExceeded { limit }
+        } else {
+            CdtError::RefinementRunaway { seeded, limit }
+        }
+    };
+    let budget = budget.min(cap);
     for _ in 0..MAX_PASSES {
         mesh.pass += 1;
         add_shadows(info, mesh, budget, stats)?;
@@ -271,7 +290,7 @@ fn run(
                 continue;
             };
             if mesh.verts.len() >= budget {
-                return Err(CdtError::BudgetExceeded { limit: budget });
+                return Err(over(budget));
             }
             let edges = match candidate.insert {
                 Insert::Point(uv) => {

@@ -1,0 +1,124 @@
+//! Clearances between nozzle bodies: the neck from where it meets its host to
+//! the back of its flange, and the flange from there to the gasket face, each
+//! a solid cylinder along the nozzle's axis. Two nozzles whose openings are
+//! apart can still collide outside the vessel — a flange reaching over a
+//! neighbour's neck or flange (the storage tank's N2 and N4, 8″ and 3″ at one
+//! orientation 250 mm apart in elevation, overlapped by 17 mm) — which
+//! `footprints` cannot see.
+//!
+//! Two finite solid cylinders are convex, so whether they meet is decided by
+//! alternating projections (projecting onto a finite solid cylinder is a clamp
+//! of the axial coordinate and of the radius, exact): the iterates approach a
+//! common point when the solids meet, and a pair of closest points otherwise,
+//! each gap found an upper bound of the true distance.
+
+use glam::DVec3;
+
+/// A solid cylinder: the points within `radius` of the axis through `origin`
+/// along `axis` (unit), between `from` and `to` along it, mm (vessel frame).
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub(crate) struct Body {
+    /// What it is, for messages: `"flange"`, `"neck"`.
+    pub name: &'static str,
+    /// A point of the axis.
+    pub origin: DVec3,
+    /// The unit axis.
+    pub axis: DVec3,
+    /// Start along the axis from `origin`.
+    pub from: f64,
+    /// End along the axis from `origin`.
+    pub to: f64,
+    /// Radius.
+    pub radius: f64,
+}
+
+/// Alternating projections made at most.
+const STEPS: usize = 400;
+/// A gap below this (mm) is contact.
+const CONTACT: f64 = 1e-6;
+
+impl Body {
+    /// The centre of the cylinder.
+    fn centre(&self) -> DVec3 {
+        self.origin + self.axis * (0.5 * (self.from + self.to))
+    }
+
+    /// Radius of the ball round [`centre`](Self::centre) holding the cylinder.
+    fn reach(&self) -> f64 {
+        (0.5 * (self.to - self.from)).hypot(self.radius)
+    }
+
+    /// The point of the cylinder nearest `p`.
+    fn project(&self, p: DVec3) -> DVec3 {
+        let d = p - self.origin;
+        let t = d.dot(self.axis);
+        let radial = d - self.axis * t;
+        let rho = radial.length();
+        let radial = if rho > self.radius {
+            radial * (self.radius / rho)
+        } else {
+            radial
+        };
+        self.origin + self.axis * t.clamp(self.from, self.to) + radial
+    }
+
+    /// Whether the two solids share a point (within [`CONTACT`]).
+    pub fn meets(&self, other: &Body) -> bool {
+        let (a, b) = (self.centre(), other.centre());
+        if (a - b).length() >= self.reach() + other.reach() {
+            return false;
+        }
+        let mut p = 0.5 * (a + b);
+        for _ in 0..STEPS {
+            let q = self.project(p);
+            let r = other.project(q);
+            if (q - r).length() <= CONTACT {
+                return true;
+            }
+            if (r - p).length() <= 1e-12 * (1.0 + p.length()) {
+                // A fixed point with a gap: the closest points, apart.
+                return false;
+            }
+            p = r;
+        }
+        false
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn along(origin: DVec3, axis: DVec3, from: f64, to: f64, radius: f64) -> Body {
+        Body {
+            name: "neck",
+            origin,
+            axis,
+            from,
+            to,
+            radius,
+        }
+    }
+
+    #[test]
+    fn parallel_flanges_meet_only_when_they_overlap() {
+        // Two radial nozzles at one orientation, 250 mm apart along the vessel.
+        let a = along(DVec3::ZERO, DVec3::X, 4200.0, 4300.0, 171.5);
+        let b = along(DVec3::new(0.0, 0.0, 250.0), DVec3::X, 4150.0, 4250.0, 95.25);
+        assert!(a.meets(&b));
+        let c = along(DVec3::new(0.0, 0.0, 300.0), DVec3::X, 4150.0, 4250.0, 95.25);
+        assert!(!c.meets(&a));
+        // Apart along the axis: no overlap however close radially.
+        let d = along(DVec3::new(0.0, 0.0, 250.0), DVec3::X, 4310.0, 4400.0, 95.25);
+        assert!(!a.meets(&d));
+    }
+
+    #[test]
+    fn crossing_and_skew_cylinders() {
+        let a = along(DVec3::ZERO, DVec3::X, -100.0, 100.0, 10.0);
+        let b = along(DVec3::new(0.0, 0.0, 15.0), DVec3::Y, -100.0, 100.0, 10.0);
+        assert!(a.meets(&b));
+        let c = along(DVec3::new(0.0, 0.0, 25.0), DVec3::Y, -100.0, 100.0, 10.0);
+        assert!(!a.meets(&c));
+    }
+}
