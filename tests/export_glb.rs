@@ -265,6 +265,45 @@ fn assert_front_faces_outward(
     }
 }
 
+/// Supports are sheets (a skirt and its base ring, a saddle's web and plates,
+/// base plates): seen from both sides, so their material is double-sided, or
+/// back-face culling hides one side. The vessel and nozzles, seen from outside,
+/// stay single-sided.
+#[test]
+fn support_sheets_are_double_sided() {
+    let mut supports = 0;
+    for name in ["horizontal-drum", "vertical-column"] {
+        let example = example(name);
+        let gltf = Gltf::from_slice(&example.glb).unwrap();
+        for vessel in gltf
+            .default_scene()
+            .unwrap()
+            .nodes()
+            .flat_map(|n| n.children())
+        {
+            for part in vessel.children() {
+                let kind = extras(&part)["kind"].as_str().unwrap().to_string();
+                let support = matches!(kind.as_str(), "skirt" | "saddle" | "legs" | "lugs");
+                for patch in part.children() {
+                    for primitive in patch.mesh().unwrap().primitives() {
+                        let material = primitive.material();
+                        assert_eq!(
+                            material.double_sided(),
+                            support,
+                            "{name}/{}/{}: {kind} material {:?}",
+                            part.name().unwrap(),
+                            patch.name().unwrap(),
+                            material.name()
+                        );
+                        supports += usize::from(support);
+                    }
+                }
+            }
+        }
+    }
+    assert!(supports > 0, "no support in the examples");
+}
+
 #[test]
 fn glb_container_is_well_formed() {
     for example in examples() {

@@ -47,7 +47,12 @@ impl MaterialKind {
         self as usize
     }
 
-    /// The glTF material: opaque, single-sided, metal.
+    /// The glTF material: opaque, metal; single-sided for the vessel and its
+    /// nozzles (closed surfaces seen from outside), double-sided for supports,
+    /// whose parts are open sheets seen from both sides (a skirt from inside
+    /// through its opening, its base ring, a saddle's web and plates, base
+    /// plates): with back-face culling, the usual default, one side of a sheet
+    /// would vanish.
     pub fn material(self) -> json::Material {
         let (name, color, metallic, roughness) = match self {
             MaterialKind::Vessel => ("vessel", [0.70, 0.72, 0.74, 1.0], 0.6, 0.45),
@@ -56,7 +61,7 @@ impl MaterialKind {
         };
         json::Material {
             alpha_mode: Checked::Valid(AlphaMode::Opaque),
-            double_sided: false,
+            double_sided: self == MaterialKind::Support,
             name: Some(name.to_string()),
             pbr_metallic_roughness: json::material::PbrMetallicRoughness {
                 base_color_factor: PbrBaseColorFactor(color),

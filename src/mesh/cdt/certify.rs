@@ -14,18 +14,16 @@
 //! its two-sided distance to the surface, which the screen's probes only sample.
 //! On a plane the bound is the vertices' own distance to it (rounding).
 //!
-//! Sits inside `screen`: a triangle whose bound is within [`MARGIN`] of the
-//! tolerance is passed without probes; any other is probed as before. The margin
-//! keeps the shortcut to triangles the probes pass too (a probe's surface point
-//! to the triangle's plane is also bounded by the radial gap up to second-order
-//! terms), so the meshes are the ones the probes alone give.
+//! Sits inside `screen` and `refine::assess`: on these surfaces the bound is the
+//! verdict — a triangle is within exactly when its bound is, with no probes. (It
+//! used to pass only triangles within 0.99 of the tolerance and leave the rest
+//! to the centroid and midpoint probes, which see as little as 15/16 of the
+//! largest distance, see `peak`: hemispheres came out up to 1.035× the
+//! tolerance.)
 
 use glam::{DVec2, DVec3};
 
 use crate::parts::Analytic;
-
-/// Share of the tolerance a closed-form bound must stay under to pass a triangle.
-pub(super) const MARGIN: f64 = 0.99;
 
 /// The closed-form bound of one analytic surface (set up once per screen).
 #[derive(Clone, Copy, Debug)]

@@ -34,20 +34,33 @@ pub(super) fn deviation(
     origin: DVec3,
     unit: DVec3,
 ) -> f64 {
+    deviation_and_height(info, point, uv, origin, unit).0
+}
+
+/// [`deviation`] and the signed height of S at `uv` over the plane (along
+/// `unit`): what the triangle's quadratic model is built from (`peak`).
+pub(super) fn deviation_and_height(
+    info: &PatchInfo,
+    point: DVec3,
+    uv: DVec2,
+    origin: DVec3,
+    unit: DVec3,
+) -> (f64, f64) {
     if let Some(analytic) = &info.analytic {
         let s = info.surface.point(info.wrap_u(uv.x), uv.y);
-        return analytic.distance(point).max((s - origin).dot(unit).abs());
+        let height = (s - origin).dot(unit);
+        return (analytic.distance(point).max(height.abs()), height);
     }
     let ((u0, u1), (v0, v1)) = info.surface.domain();
     let mut at = uv;
-    let mut plane = None;
+    let mut height = None;
     let mut nearest = f64::INFINITY;
     for _ in 0..MAX_STEPS {
         let d = info.surface.derivatives(info.wrap_u(at.x), at.y);
         let r = d.point - point;
         let distance = r.length();
         nearest = nearest.min(distance);
-        plane.get_or_insert_with(|| (d.point - origin).dot(unit).abs());
+        height.get_or_insert_with(|| (d.point - origin).dot(unit));
         let (e, f, g) = (d.du.dot(d.du), d.du.dot(d.dv), d.dv.dot(d.dv));
         let det = e * g - f * f;
         if det.is_nan() || det <= 1e-12 * e * g {
@@ -64,5 +77,6 @@ pub(super) fn deviation(
             at.x = at.x.clamp(u0, u1);
         }
     }
-    nearest.max(plane.unwrap_or(0.0))
+    let height = height.unwrap_or(0.0);
+    (nearest.max(height.abs()), height)
 }

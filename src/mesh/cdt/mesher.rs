@@ -266,17 +266,17 @@ mod tests {
         assert!(4 * copied > 3 * total, "{copied} of {total}");
     }
 
-    /// The closed-form bound passes only triangles the probes pass too, so the
-    /// meshes are the probes' own: a course, a nozzle neck and a hemispherical
-    /// head (a sphere), at three tolerances, every triangle of their structured
-    /// meshes screened both ways. Most of them are passed by the bound. (Whole
-    /// plants, openings and flange faces included, gave byte-identical GLB files
-    /// with and without the bound when it came in.)
+    /// On a plane, cylinder or sphere the closed-form bound decides: a
+    /// triangle is screened within exactly when its largest distance to the
+    /// surface, sampled densely, is within the tolerance. A course, a nozzle neck
+    /// and a hemispherical head at three tolerances, every triangle of their
+    /// structured meshes. The probes alone pass some triangles beyond the
+    /// tolerance (they see as little as 15/16 of the peak): the bound does not.
     #[test]
-    fn the_closed_form_bound_passes_only_what_the_probes_pass() {
+    fn the_closed_form_bound_is_the_screen_verdict() {
         use super::super::screen::Screen;
         use crate::parts::Shell;
-        let (mut bounded, mut total) = (0usize, 0usize);
+        let (mut bounded, mut total, mut missed) = (0usize, 0usize, 0usize);
         let mut patches: Vec<crate::parts::Patch> = Vec::new();
         patches.extend(
             Shell {
@@ -311,13 +311,43 @@ mod tests {
                         .probes_only()
                         .triangles(&rings.mesh, &all);
                     for (t, (&b, &p)) in with_bound.iter().zip(&probes).enumerate() {
-                        assert!(!b || p, "triangle {t} passed by the bound, not the probes");
+                        let corners =
+                            rings.mesh.tris[t].map(|k| rings.mesh.verts[k as usize].point);
+                        let sampled = sampled_deviation(&patch.analytic, corners);
+                        let flat = (corners[1] - corners[0])
+                            .cross(corners[2] - corners[0])
+                            .length()
+                            == 0.0;
+                        if !flat && b {
+                            assert!(
+                                sampled <= tolerance * (1.0 + 1e-9),
+                                "triangle {t} passed at {sampled} > {tolerance}"
+                            );
+                        }
+                        if !flat && !b && p && sampled > tolerance {
+                            missed += 1;
+                        }
                     }
                     total += all.len();
                     bounded += with_bound.iter().filter(|&&b| b).count();
                 });
             }
         }
+        println!("{missed} triangles over the tolerance passed by the probes alone");
         assert!(10 * bounded > 9 * total, "{bounded} of {total}");
+    }
+
+    /// The largest distance to `analytic` over triangle `p`, 45 barycentric
+    /// points and more (the 8th subdivision).
+    fn sampled_deviation(analytic: &Analytic, p: [glam::DVec3; 3]) -> f64 {
+        let n = 16;
+        let mut worst: f64 = 0.0;
+        for i in 0..=n {
+            for j in 0..=n - i {
+                let l = [i, j, n - i - j].map(|x| x as f64 / n as f64);
+                worst = worst.max(analytic.distance(p[0] * l[0] + p[1] * l[1] + p[2] * l[2]));
+            }
+        }
+        worst
     }
 }

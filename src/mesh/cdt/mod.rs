@@ -30,6 +30,7 @@ mod mesher;
 mod metric;
 mod output;
 mod patch;
+mod peak;
 mod refine;
 mod region;
 mod ring;

@@ -6,8 +6,13 @@
 //! plane, and from the 3D point to the surface). For edges the plane is used rather
 //! than the 3D segment: the parametric midpoint of an edge along a parallel near a
 //! pole lies off the chord *within* the tangent plane (the parallel bends towards
-//! the pole), which is no deviation of the surface from the triangle. Interior
-//! edges are also checked against the angle tolerance (angle between the exact
+//! the pole), which is no deviation of the surface from the triangle. Those
+//! probes see as little as 15/16 of a triangle's largest deviation, so a
+//! triangle within at them but near the limit (or with a loop segment, whose
+//! midpoint is not probed) is also probed where a cubic model of the surface
+//! over it peaks (see `peak`); on a plane, cylinder or sphere the closed-form
+//! bound of `certify`, the largest distance over the whole triangle, decides
+//! instead. Interior edges are also checked against the angle tolerance (angle between the exact
 //! normals at its ends) and the maximum edge length. The worst of these, each as a
 //! fraction of its limit, is the triangle's badness; a triangle that is flat or
 //! turned over in 3D (its normal against a vertex normal) is infinitely bad. Each
@@ -24,9 +29,11 @@ use rayon::prelude::*;
 
 use super::MIN_VERTICES as MIN_TRIANGLES;
 
+use super::certify::Bound;
 use super::flip::{effective_uv, should_flip, strictly_ccw};
-use super::measure::deviation;
+use super::measure::{deviation, deviation_and_height};
 use super::patch::{PatchInfo, Vertex};
+use super::peak::{Cubic, PEAK_GATE, THIRDS, point_at, uv_at};
 use super::trimesh::TriMesh;
 use super::{CdtError, MeshStats};
 use crate::mesh::TessellationOptions;
@@ -75,6 +82,9 @@ struct Limits {
     /// segment comply). Cosines, so that the angle (an `acos`) is taken only for
     /// an edge that turns more than the angle limit.
     allowance: Vec<(f64, f64)>,
+    /// The closed-form bound of a plane, cylinder or sphere (`certify`): the
+    /// largest distance over the whole triangle, which then decides.
+    bound: Option<Bound>,
 }
 
 impl Limits {
@@ -197,12 +207,13 @@ pub(super) fn edge_within(
         angle: options.angle_tolerance.map(f64::to_radians),
         max_edge: options.max_edge_length,
         allowance: Vec::new(),
+        bound: None,
     };
     let tri = mesh.tris[t as usize];
     let p = tri.map(|k| mesh.verts[k as usize].point);
     let normal = (p[1] - p[0]).cross(p[2] - p[0]);
     normal.length() > 0.0
-        && edge_badness(info, mesh, tri, i, p[0], normal.normalize(), &limits) <= 1.0
+        && edge_badness(info, mesh, tri, i, p[0], normal.normalize(), &limits).0 <= 1.0
 }
 
 /// [`refine`] of a mesh already measured by [`assess_all`] (no initial flips: the
@@ -227,6 +238,7 @@ fn limits(info: &PatchInfo, mesh: &TriMesh, options: &TessellationOptions) -> Li
         angle: options.angle_tolerance.map(f64::to_radians),
         max_edge: options.max_edge_length,
         allowance: loop_allowances(info, mesh),
+        bound: info.analytic.as_ref().and_then(Bound::of),
     }
 }
 
@@ -369,18 +381,29 @@ fn shadow_at(mesh: &TriMesh, t: u32, i: usize) -> Option<DVec2> {
 /// The parameters probed on the edge between `x` and `y`: the midpoint, except
 /// that towards a pole the edge follows the meridian of its other end.
 pub(super) fn edge_probe_uv(x: &Vertex, y: &Vertex) -> DVec2 {
+    edge_uv_at(x, y, 0.5)
+}
+
+/// The parameters at share `s` of the way from `x` to `y` along the edge, as
+/// [`edge_probe_uv`] takes them.
+pub(super) fn edge_uv_at(x: &Vertex, y: &Vertex, s: f64) -> DVec2 {
     let (mut ux, mut uy) = (x.uv, y.uv);
     if x.pole && !y.pole {
         ux.x = uy.x;
     } else if y.pole && !x.pole {
         uy.x = ux.x;
     }
-    0.5 * (ux + uy)
+    if s == 0.5 {
+        0.5 * (ux + uy)
+    } else {
+        ux + (uy - ux) * s
+    }
 }
 
 /// The badness of edge `i` of triangle `tri` (plane through `origin` with unit
 /// normal `unit`): its midpoint's deviation, and the angle and length limits, each
-/// as a fraction of its limit.
+/// as a fraction of its limit; with the midpoint's deviation and signed height
+/// over the plane.
 fn edge_badness(
     info: &PatchInfo,
     mesh: &TriMesh,
@@ -389,12 +412,13 @@ fn edge_badness(
     origin: DVec3,
     unit: DVec3,
     limits: &Limits,
-) -> f64 {
+) -> (f64, f64, f64) {
     let j = (i + 1) % 3;
     let (x, y) = (&mesh.verts[tri[i] as usize], &mesh.verts[tri[j] as usize]);
     let mid = edge_probe_uv(x, y);
-    let mut badness =
-        deviation(info, 0.5 * (x.point + y.point), mid, origin, unit) / limits.tolerance;
+    let (deviation, height) =
+        deviation_and_height(info, 0.5 * (x.point + y.point), mid, origin, unit);
+    let mut badness = deviation / limits.tolerance;
     let (long, turn_cos) = limits.edge_allowance(tri[i], tri[j]);
     if let Some(angle) = limits.angle {
         let cos = end_normal(info, x, y.uv).dot(end_normal(info, y, x.uv));
@@ -410,7 +434,7 @@ fn edge_badness(
     if let Some(max) = limits.max_edge {
         badness = badness.max((x.point - y.point).length() / max.max(long));
     }
-    badness
+    (badness, deviation, height)
 }
 
 /// Whether `p` is strictly inside the (u, v) triangle `[a, b, c]`.
@@ -457,16 +481,23 @@ fn assess(info: &PatchInfo, mesh: &TriMesh, t: u32, limits: &Limits) -> Option<C
         });
     }
     let unit = normal.normalize();
-    let probe = |point: DVec3, at: DVec2| deviation(info, point, at, p[0], unit);
+    let tolerance = limits.tolerance;
+    let (centroid_deviation, centroid_height) =
+        deviation_and_height(info, (p[0] + p[1] + p[2]) / 3.0, centroid, p[0], unit);
     let mut worst = Candidate {
-        badness: probe((p[0] + p[1] + p[2]) / 3.0, centroid) / limits.tolerance,
+        badness: centroid_deviation / tolerance,
         insert: Insert::Point(inside),
     };
+    // The largest deviation the plain probes measured, and whether an edge is a
+    // loop segment (not probed).
+    let (mut probed, mut loop_edge) = (centroid_deviation, false);
     for i in 0..3 {
         if mesh.fixed[t as usize][i] {
+            loop_edge = true;
             continue;
         }
-        let badness = edge_badness(info, mesh, tri, i, p[0], unit, limits);
+        let (badness, deviation, _) = edge_badness(info, mesh, tri, i, p[0], unit, limits);
+        probed = probed.max(deviation);
         if badness > worst.badness {
             let (x, y) = (v[i], v[(i + 1) % 3]);
             let mid = edge_probe_uv(x, y);
@@ -475,6 +506,36 @@ fn assess(info: &PatchInfo, mesh: &TriMesh, t: u32, limits: &Limits) -> Option<C
                 Insert::Edge(i)
             } else if strictly_inside(mid, uv) {
                 Insert::Point(mid)
+            } else {
+                Insert::Point(inside)
+            };
+            worst = Candidate { badness, insert };
+        }
+    }
+    if let Some(bound) = &limits.bound {
+        // The closed form is the largest distance over the whole triangle.
+        let badness = bound.deviation(p) / tolerance;
+        if badness > worst.badness {
+            worst = Candidate {
+                badness,
+                insert: Insert::Point(inside),
+            };
+        }
+    } else if worst.badness <= 1.0 && (loop_edge || probed > PEAK_GATE * tolerance) {
+        // Within at the probes but near the limit: the peak of the cubic
+        // model (see `peak`).
+        let thirds = [0, 1, 2].map(|i| {
+            THIRDS.map(|s| {
+                let at = edge_uv_at(v[i], v[(i + 1) % 3], s);
+                (info.surface.point(info.wrap_u(at.x), at.y) - p[0]).dot(unit)
+            })
+        });
+        let (l, _) = Cubic::new(thirds, centroid_height).peak();
+        let at = uv_at(eff, l);
+        let badness = deviation(info, point_at(p, l), at, p[0], unit) / tolerance;
+        if badness > worst.badness {
+            let insert = if strictly_inside(at, uv) {
+                Insert::Point(at)
             } else {
                 Insert::Point(inside)
             };

@@ -8,7 +8,9 @@
 //! distance of the 3D probe point to the patch's analytic surface (here skipped
 //! when |P − S| is already within the tolerance: S lies on that surface, so
 //! |P − S| bounds the distance from above and the verdict is the same; it spares
-//! the Newton steps of a spheroid). Pointwise, that
+//! the Newton steps of a spheroid), then, for a triangle near the limit or on a
+//! loop, at the peak of its cubic model (`peak`); on a plane, cylinder or sphere
+//! the closed-form bound (`certify`) decides without probes. Pointwise, that
 //! is four independent NURBS evaluations per triangle, the bulk of the mesher's
 //! time. In a structured mesh (`rings`) the probes of one strip between two rows
 //! share a handful of v values — the rows' own for edges along them, the middle
@@ -25,9 +27,10 @@ use std::ops::Range;
 
 use glam::{DVec2, DVec3};
 
-use super::certify::{Bound, MARGIN};
+use super::certify::Bound;
 use super::patch::PatchInfo;
-use super::refine::{edge_probe_uv, end_normal};
+use super::peak::{Cubic, PEAK_GATE, THIRDS, point_at, uv_at};
+use super::refine::{edge_probe_uv, edge_uv_at, end_normal};
 use rustc_hash::FxHashMap;
 
 use super::trimesh::TriMesh;
@@ -42,6 +45,9 @@ struct Probe {
     /// The slot of the other triangle sharing the probed edge, when it was
     /// screened right after (`u32::MAX` for none).
     other: u32,
+    /// Which of the triangle's edges is probed, and of the other's ([`CENTROID`]
+    /// for the centroid).
+    edges: [u8; 2],
     /// Index of its v in [`Groups`].
     group: u32,
     point: DVec3,
@@ -183,6 +189,9 @@ impl Groups {
     }
 }
 
+/// [`Probe::edges`] of a centroid probe.
+const CENTROID: u8 = 3;
+
 /// Probes of one v beyond which they are evaluated along a row.
 const ROW_WORTH: usize = 2;
 
@@ -247,9 +256,15 @@ fn screen_triangles(
             planes.push(None);
             continue;
         }
-        planes.push(Some((p[0], normal / area)));
-        // Within by the closed form: no probes (the limits below still apply).
-        let certified = bound.is_some_and(|b| b.deviation(p) <= MARGIN * tolerance);
+        // The closed form decides: it is the largest distance over the whole
+        // triangle. Within, no probes (the limits below still apply).
+        let certified = bound.is_some_and(|b| {
+            if b.deviation(p) > tolerance {
+                within[slot] = false;
+            }
+            true
+        });
+        planes.push((!certified).then_some((p[0], normal / area)));
         // The vertices' own parameters: a pole vertex of the structured path
         // stands under the middle of its ring segment, where the full measure
         // puts it too.
@@ -260,6 +275,7 @@ fn screen_triangles(
                 Probe {
                     triangle: slot as u32,
                     other: u32::MAX,
+                    edges: [CENTROID; 2],
                     group: 0,
                     point: (p[0] + p[1] + p[2]) / 3.0,
                     uv: centroid,
@@ -287,6 +303,7 @@ fn screen_triangles(
             let (a, b) = (tri[i], tri[(i + 1) % 3]);
             if let Some(&(_, _, k)) = last.iter().find(|e| e.0 == b && e.1 == a) {
                 probes[k as usize].other = slot as u32;
+                probes[k as usize].edges[1] = i as u8;
                 continue;
             }
             let k = add(
@@ -294,6 +311,7 @@ fn screen_triangles(
                 Probe {
                     triangle: slot as u32,
                     other: u32::MAX,
+                    edges: [i as u8, CENTROID],
                     group: 0,
                     point: 0.5 * (x.point + y.point),
                     uv: edge_probe_uv(x, y),
@@ -303,11 +321,21 @@ fn screen_triangles(
             previous[i] = (a, b, k);
         }
     }
-    if let Some(swept) = &swept {
+    let mut judged = Judged {
+        planes: &planes,
+        within: &mut within,
+        probed: vec![0.0; count],
+        centroids: vec![0.0; count],
+    };
+    let point = |u: f64, v: f64| match &swept {
+        Some(swept) => swept.point(info.wrap_u(u), v),
+        None => info.surface.point(info.wrap_u(u), v),
+    };
+    if swept.is_some() {
         for q in &probes {
-            let s = swept.point(info.wrap_u(q.uv.x), q.uv.y);
-            judge(q, s, analytic, &planes, tolerance, &mut within);
+            judged.judge(q, point(q.uv.x, q.uv.y), analytic, tolerance);
         }
+        peaks(mesh, triangles, &point, analytic, tolerance, &mut judged);
         return within;
     }
     // Counting sort by group, then one row evaluator per group.
@@ -336,40 +364,100 @@ fn screen_triangles(
                 Some(row) => row.point(u),
                 None => info.surface.point(u, v),
             };
-            judge(q, s, analytic, &planes, tolerance, &mut within);
+            judged.judge(q, s, analytic, tolerance);
         }
     }
+    peaks(mesh, triangles, &point, analytic, tolerance, &mut judged);
     within
 }
 
-/// Marks the triangles of probe `q` (one or two) outside when the surface point
-/// `s` at its parameters strays from their planes, or the probe's point on them
-/// from the analytic surface, by more than `tolerance`.
-fn judge(
-    q: &Probe,
-    s: DVec3,
+/// What the probes found: per screened triangle, its plane (`None` when the
+/// full measure decides or the closed form did), whether it is within so far,
+/// the largest deviation its probes measured and the signed height of S over
+/// its plane at its centroid.
+struct Judged<'a> {
+    planes: &'a [Option<(DVec3, DVec3)>],
+    within: &'a mut [bool],
+    probed: Vec<f64>,
+    centroids: Vec<f64>,
+}
+
+/// Probes every triangle still within whose plain probes passed [`PEAK_GATE`]
+/// of the tolerance, or that has a loop segment (not probed), at the peak of
+/// its cubic model (see `peak`): its edges' third points and then the peak are
+/// evaluated. Few triangles come near the limit, so the surface is evaluated
+/// point by point.
+fn peaks(
+    mesh: &TriMesh,
+    triangles: &[u32],
+    point: &impl Fn(f64, f64) -> DVec3,
     analytic: &Analytic,
-    planes: &[Option<(DVec3, DVec3)>],
     tolerance: f64,
-    within: &mut [bool],
+    judged: &mut Judged,
 ) {
-    // S lies on the analytic surface, so |P − S| bounds P's distance to it from
-    // above: within the tolerance, the closed form (Newton steps on a spheroid)
-    // cannot change the verdict and is skipped.
-    let bound = (q.point - s).length();
-    let distance = if bound <= tolerance {
-        bound
-    } else {
-        analytic.distance(q.point)
-    };
-    for slot in [q.triangle, q.other] {
-        let Some(&Some((origin, unit))) = planes.get(slot as usize) else {
+    for (slot, &t) in triangles.iter().enumerate() {
+        let Some((origin, unit)) = judged.planes[slot] else {
             continue;
         };
-        let deviation = distance.max((s - origin).dot(unit).abs());
-        // NaN counts as outside.
-        if deviation.is_nan() || deviation > tolerance {
-            within[slot as usize] = false;
+        if !judged.within[slot] {
+            continue;
+        }
+        let loop_edge = mesh.fixed[t as usize].iter().any(|&f| f);
+        if !loop_edge && judged.probed[slot] <= PEAK_GATE * tolerance {
+            continue;
+        }
+        let tri = mesh.tris[t as usize];
+        let v = tri.map(|k| &mesh.verts[k as usize]);
+        let thirds = [0, 1, 2].map(|i| {
+            THIRDS.map(|s| {
+                let at = edge_uv_at(v[i], v[(i + 1) % 3], s);
+                (point(at.x, at.y) - origin).dot(unit)
+            })
+        });
+        let (l, _) = Cubic::new(thirds, judged.centroids[slot]).peak();
+        let at = uv_at(v.map(|x| x.uv), l);
+        let q = Probe {
+            triangle: slot as u32,
+            other: u32::MAX,
+            edges: [CENTROID; 2],
+            group: 0,
+            point: point_at(v.map(|x| x.point), l),
+            uv: at,
+        };
+        judged.judge(&q, point(at.x, at.y), analytic, tolerance);
+    }
+}
+
+impl Judged<'_> {
+    /// Marks the triangles of probe `q` (one or two) outside when the surface
+    /// point `s` at its parameters strays from their planes, or the probe's
+    /// point on them from the analytic surface, by more than `tolerance`; keeps
+    /// the heights of an edge probe.
+    fn judge(&mut self, q: &Probe, s: DVec3, analytic: &Analytic, tolerance: f64) {
+        // S lies on the analytic surface, so |P − S| bounds P's distance to it
+        // from above: within the tolerance, the closed form (Newton steps on a
+        // spheroid) cannot change the verdict and is skipped.
+        let bound = (q.point - s).length();
+        let distance = if bound <= tolerance {
+            bound
+        } else {
+            analytic.distance(q.point)
+        };
+        for (slot, edge) in [q.triangle, q.other].into_iter().zip(q.edges) {
+            let Some(&Some((origin, unit))) = self.planes.get(slot as usize) else {
+                continue;
+            };
+            let height = (s - origin).dot(unit);
+            if edge == CENTROID {
+                self.centroids[slot as usize] = height;
+            }
+            let deviation = distance.max(height.abs());
+            let probed = &mut self.probed[slot as usize];
+            *probed = probed.max(deviation);
+            // NaN counts as outside.
+            if deviation.is_nan() || deviation > tolerance {
+                self.within[slot as usize] = false;
+            }
         }
     }
 }
