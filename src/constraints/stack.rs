@@ -444,18 +444,18 @@ pub(crate) fn head_kind(
 fn head_part(i: usize, h: &HeadDesign, od: f64, report: &mut Report) -> Option<Head> {
     let path = format!("parts[{i}].head");
     let kind = head_kind(h, od, &path, report)?;
-    let before = report.violations.len();
-    super::head_limits::check(&kind, od, &path, &h.id, report);
-    if report.violations.len() > before {
-        return None;
-    }
     let head = Head {
         outside_diameter: od,
         straight_flange: h.straight_flange,
         kind,
     };
     match head.validate() {
-        Ok(()) => Some(head),
+        Ok(()) => {
+            // The head exists; then the ranges its geometry is built over.
+            let before = report.violations.len();
+            super::head_limits::check(&kind, od, &path, &h.id, report);
+            (report.violations.len() == before).then_some(head)
+        }
         Err(e) => {
             report_part_error(
                 report,
