@@ -16,7 +16,8 @@
 use serde_json::{Value, json};
 
 use crate::constraints::{
-    ABSOLUTE_ZERO, FULL_VACUUM, MAX_PRESSURE, MAX_REVISION, MAX_TEMPERATURE, MAX_TITLE_TEXT,
+    ABSOLUTE_ZERO, ELLIPSOIDAL_RATIO, FULL_VACUUM, MAX_INCLINATION, MAX_NAME_CHARS, MAX_PRESSURE,
+    MAX_REVISION, MAX_TEMPERATURE, MAX_TITLE_TEXT,
 };
 use crate::design::{Design, FORMAT};
 use crate::operating::MAX_DENSITY;
@@ -128,9 +129,10 @@ fn bounds() -> Vec<Bound> {
             "pattern",
             json!(r"^[0-9]{4}-[0-9]{2}-[0-9]{2}$"),
         ),
-        // Head shapes (parts::heads): ratio 0.1–100, cone half-angle 1–89°.
-        bound("HeadDesign", "ratio", "minimum", json!(0.1)),
-        bound("HeadDesign", "ratio", "maximum", json!(100.0)),
+        // Head shapes (constraints::head_limits, parts::heads): the ellipsoidal
+        // ratio the geometry is built and tested for, cone half-angle 1–89°.
+        bound("HeadDesign", "ratio", "minimum", json!(ELLIPSOIDAL_RATIO.0)),
+        bound("HeadDesign", "ratio", "maximum", json!(ELLIPSOIDAL_RATIO.1)),
         bound("HeadDesign", "half_angle", "minimum", json!(1.0)),
         bound("HeadDesign", "half_angle", "maximum", json!(89.0)),
         bound("HeadDesign", "crown_radius", "exclusiveMinimum", positive()),
@@ -152,7 +154,24 @@ fn bounds() -> Vec<Bound> {
         bound("LegsDesign", "size", "enum", json!(nps_sizes())),
         bound("NozzleDesign", "rating", "enum", json!(ratings())),
         bound("NozzleDesign", "schedule", "enum", json!(schedules())),
-        bound("NozzleDesign", "offset", "minimum", json!(0.0)),
+        // Shell nozzles (constraints::shell_nozzle): the inclination range; the
+        // hillside offset is signed (a head nozzle's offset, ≥ 0, is a rule).
+        bound(
+            "NozzleDesign",
+            "inclination",
+            "minimum",
+            json!(-MAX_INCLINATION),
+        ),
+        bound(
+            "NozzleDesign",
+            "inclination",
+            "maximum",
+            json!(MAX_INCLINATION),
+        ),
+        // Names (constraints::names).
+        bound("VesselDesign", "tag", "maxLength", json!(MAX_NAME_CHARS)),
+        bound("NozzleDesign", "mark", "maxLength", json!(MAX_NAME_CHARS)),
+        bound("NoteDesign", "id", "maxLength", json!(MAX_NAME_CHARS)),
     ];
     // Part ids: non-empty (they share one namespace with marks and note ids).
     for def in [
@@ -166,6 +185,7 @@ fn bounds() -> Vec<Bound> {
         "BootDesign",
     ] {
         b.push(bound(def, "id", "minLength", json!(1)));
+        b.push(bound(def, "id", "maxLength", json!(MAX_NAME_CHARS)));
     }
     // Angles: within one turn either way.
     for (def, field) in [

@@ -12,7 +12,7 @@ use std::collections::HashMap;
 
 use glam::{DAffine3, DVec3};
 use proptest::prelude::*;
-use vesselcad::design::{Design, HeadShape, NozzleDesign, PadDesign, PartDesign};
+use vesselcad::design::{Design, HeadShape, NozzleDesign, PadDesign, PartDesign, load};
 use vesselcad::export::{Scene, SceneNodeKind};
 use vesselcad::mesh::TessellationOptions;
 use vesselcad::model::{Edit, Model};

@@ -26,6 +26,8 @@ mod frames;
 mod geometry;
 mod head_limits;
 mod names;
+pub(crate) use head_limits::RATIO as ELLIPSOIDAL_RATIO;
+pub(crate) use names::MAX_NAME_CHARS;
 mod notes;
 mod nozzles;
 mod operating;
