@@ -50,6 +50,7 @@
 //! ([`mesh::TessellationOptions`]).
 
 pub mod allocator;
+pub mod calc;
 #[path = "../components/mod.rs"]
 pub mod components;
 pub mod constraints;

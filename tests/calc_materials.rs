@@ -1,0 +1,123 @@
+//! The materials table (`vesselcad::calc::materials`): the built-in table holds
+//! every specification issue 33 asks for with sourced values, its allowable
+//! stresses follow the II-D rule S = min(UTS/3.5, 2/3·Sy) they claim, lookup by
+//! alias, interpolation and its range error, and a user's table from a path.
+
+use std::io::Write;
+
+use vesselcad::calc::{CalcError, MaterialTable};
+
+const REQUIRED: [&str; 11] = [
+    "SA-516-70",
+    "SA-516-60",
+    "SA-285-C",
+    "SA-240-304",
+    "SA-240-304L",
+    "SA-240-316",
+    "SA-240-316L",
+    "SA-106-B",
+    "SA-105",
+    "SA-182-F316L",
+    "SA-36",
+];
+
+#[test]
+fn builtin_table_has_every_material_with_sources() {
+    let table = MaterialTable::builtin();
+    for name in REQUIRED {
+        let m = table.get(name).unwrap();
+        for source in [
+            &m.tensile_strength.source,
+            &m.yield_strength.source,
+            &m.density.source,
+            &m.modulus.source,
+            &m.allowable_stress.source,
+        ] {
+            assert!(source.len() > 20, "{name}: source {source:?}");
+        }
+        // The derivation the source claims: S = min(UTS/3.5, 2/3·Sy), rounded down
+        // to 0.1 MPa.
+        let rule = (m.tensile_strength.value / 3.5).min(m.yield_strength.value * 2.0 / 3.0);
+        let s = m.allowable_stress(20.0).unwrap();
+        assert!(
+            s <= rule && rule - s < 0.1 + 1e-9,
+            "{name}: S {s} vs rule {rule}"
+        );
+        assert!(m.allowable_stress.source.contains("min(UTS/3.5, 2/3 Sy)"));
+    }
+    let sa516 = table.get("SA-516-70").unwrap();
+    assert_eq!(sa516.tensile_strength.value, 485.0);
+    assert_eq!(sa516.b16_5_group.as_ref().unwrap().value, "1.1");
+    assert_eq!(table.get("SA-240-316L").unwrap().density.value, 8000.0);
+}
+
+#[test]
+fn lookup_by_alias_and_unknown_names() {
+    let table = MaterialTable::builtin();
+    assert_eq!(table.get("a516-70").unwrap().name, "SA-516-70");
+    assert_eq!(table.get("SA 516 70").unwrap().name, "SA-516-70");
+    assert_eq!(table.get("A36").unwrap().name, "SA-36");
+    let e = table.get("unobtainium").unwrap_err();
+    assert!(matches!(e, CalcError::UnknownMaterial { .. }));
+    assert!(e.to_string().contains("SA-516-70"), "{e}");
+}
+
+#[test]
+fn stress_interpolates_and_refuses_to_extrapolate() {
+    let json = r#"{"format": "vesselcad-materials/1", "materials": [{
+        "name": "X-1",
+        "tensile_strength": {"value": 485, "source": "test"},
+        "yield_strength": {"value": 260, "source": "test"},
+        "density": {"value": 7850, "source": "test"},
+        "modulus": {"value": 200000, "source": "test"},
+        "allowable_stress": {"points": [[20, 138], [100, 130], [300, 110]], "source": "test"}
+    }]}"#;
+    let mut file = tempfile::NamedTempFile::new().unwrap();
+    file.write_all(json.as_bytes()).unwrap();
+    let table = MaterialTable::from_path(file.path()).unwrap();
+    let m = table.get("X-1").unwrap();
+    assert_eq!(m.allowable_stress(20.0).unwrap(), 138.0);
+    assert!((m.allowable_stress(60.0).unwrap() - 134.0).abs() < 1e-12);
+    assert!((m.allowable_stress(200.0).unwrap() - 120.0).abs() < 1e-12);
+    assert_eq!(m.allowable_stress(300.0).unwrap(), 110.0);
+    let e = m.allowable_stress(301.0).unwrap_err();
+    let text = e.to_string();
+    assert!(
+        text.contains("X-1") && text.contains("temperature = 301"),
+        "{text}"
+    );
+    assert!(text.contains("20 to 300 °C"), "{text}");
+    // The built-in table stops at the II-D room-temperature column.
+    let e = MaterialTable::builtin()
+        .get("SA-516-70")
+        .unwrap()
+        .allowable_stress(150.0)
+        .unwrap_err();
+    assert!(e.to_string().contains("-29 to 38 °C"), "{e}");
+}
+
+#[test]
+fn bad_tables_name_path_and_rule() {
+    let e = MaterialTable::from_path(std::path::Path::new("/nonexistent/m.json")).unwrap_err();
+    assert!(e.to_string().contains("/nonexistent/m.json"), "{e}");
+    let e =
+        MaterialTable::from_json("m.json", r#"{"format": "other", "materials": []}"#).unwrap_err();
+    assert!(e.to_string().contains("vesselcad-materials/1"), "{e}");
+    let unsorted = r#"{"format": "vesselcad-materials/1", "materials": [{
+        "name": "X-2",
+        "tensile_strength": {"value": 485, "source": "t"},
+        "yield_strength": {"value": 260, "source": "t"},
+        "density": {"value": 7850, "source": "t"},
+        "modulus": {"value": 200000, "source": "t"},
+        "allowable_stress": {"points": [[100, 130], [20, 138]], "source": "t"}
+    }]}"#;
+    let e = MaterialTable::from_json("m.json", unsorted).unwrap_err();
+    let text = e.to_string();
+    assert!(
+        text.contains("m.json") && text.contains("materials[0] (X-2)"),
+        "{text}"
+    );
+    let typo = r#"{"format": "vesselcad-materials/1", "materials": [{"name": "X", "densty": 1}]}"#;
+    let e = MaterialTable::from_json("m.json", typo).unwrap_err();
+    assert!(e.to_string().contains("materials[0]"), "{e}");
+}
