@@ -19,6 +19,7 @@ mod openings;
 mod operating;
 mod project;
 mod regions;
+mod storage;
 mod tessellate;
 mod validate;
 
@@ -33,6 +34,7 @@ pub use openings::{CutTable, OpeningHosts, cut_openings};
 pub use operating::update_operating_states;
 pub use project::{Views, entity_input, project_dirty_views, views_kept};
 pub use regions::{HostSides, lay_out_regions};
+pub use storage::{RequestedTessellation, budget_storage_precision};
 pub use tessellate::{Instances, Tessellation, remesh_dirty_patches};
 pub use validate::{
     CheckedResolutions, EditedVessels, ModelErrors, PendingResolutions, resolve_dirty_vessels,
@@ -76,7 +78,11 @@ pub fn build_schedule() -> Schedule {
             .chain()
             .in_set(Stage::Validate),
         apply_resolutions.in_set(Stage::Constrain),
-        (rebuild_dirty_patches, cut_openings)
+        (
+            rebuild_dirty_patches,
+            budget_storage_precision,
+            cut_openings,
+        )
             .chain()
             .in_set(Stage::Geometry),
         (lay_out_regions, remesh_dirty_patches)

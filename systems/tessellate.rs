@@ -38,7 +38,9 @@ struct Meshed {
     reused: u64,
 }
 
-/// The tessellation options every patch is meshed with.
+/// The tessellation options every patch is meshed with: the requested ones
+/// ([`RequestedTessellation`](super::RequestedTessellation)) less the storage
+/// rounding (see `budget_storage_precision`).
 #[derive(Resource, Clone, Copy, Debug, PartialEq)]
 pub struct Tessellation(pub TessellationOptions);
 

@@ -20,7 +20,7 @@ use crate::design::{Design, resolve};
 use crate::mesh::cdt::mesh_patch_region;
 use crate::mesh::{
     HostTrim, Notch, PackedMesh, PadCut, TessellationOptions, cut_opening_reusing, host_region,
-    pad_region,
+    pad_region, patch_extent, storage_options,
 };
 use crate::nurbs::intersect::IntersectionLoop;
 use crate::parts::{Nozzle, PartError, Patch};
@@ -90,6 +90,16 @@ pub fn build_scene(design: &Design, options: &TessellationOptions) -> Result<Sce
             }
         }
     }
+
+    // Storage precision: mesh to the tolerance less the f32 rounding of the
+    // largest part (see `mesh::storage_options`), as the model does.
+    let extent = patches
+        .iter()
+        .flat_map(|(_, list)| list.iter())
+        .map(patch_extent)
+        .fold(0.0, f64::max);
+    let stored = storage_options(options, extent);
+    let options = &stored;
 
     // Openings: every boot's shell and every nozzle's neck cut against its host, in
     // parallel. Per vessel the boots come first, then the nozzles in design order:

@@ -24,6 +24,7 @@ mod packed;
 mod reach;
 mod seams;
 mod shared_cuts;
+mod storage;
 #[cfg(test)]
 mod test_parts;
 mod turn;
@@ -45,6 +46,7 @@ pub use options::{OptionsError, TessellationOptions};
 pub use packed::{OctNormal, PackedMesh};
 pub use seams::{HostTrim, Notch};
 pub use shared_cuts::SharedCuts;
+pub use storage::{f32_rounding_bound, patch_extent, storage_options};
 pub use weak_table::WeakTable;
 
 use glam::DVec3;

@@ -34,8 +34,8 @@ use crate::mesh::{OptionsError, TessellationOptions};
 pub use crate::systems::Views;
 use crate::systems::{
     ChangeLog, CheckedResolutions, CutTable, DirtyParts, DirtyPatches, EditedVessels, Instances,
-    ModelErrors, OpeningHosts, PendingResolutions, StageTimes, Tessellation, WorkCounters,
-    build_schedule,
+    ModelErrors, OpeningHosts, PendingResolutions, RequestedTessellation, StageTimes, Tessellation,
+    WorkCounters, build_schedule,
 };
 
 /// Why an edit or model construction was refused. The model is unchanged.
@@ -85,6 +85,9 @@ impl Model {
     pub fn new(options: TessellationOptions) -> Result<Self, ModelError> {
         options.validate()?;
         let mut world = World::new();
+        // The patches are meshed to the options less the storage rounding
+        // (`budget_storage_precision`), set on the first update.
+        world.insert_resource(RequestedTessellation(options));
         world.insert_resource(Tessellation(options));
         world.init_resource::<WorkCounters>();
         world.init_resource::<Instances>();
@@ -219,7 +222,7 @@ impl Model {
     /// Changes the tessellation options; every patch is re-meshed on the next update.
     pub fn set_tessellation(&mut self, options: TessellationOptions) -> Result<(), ModelError> {
         options.validate()?;
-        let mut t = self.world.resource_mut::<Tessellation>();
+        let mut t = self.world.resource_mut::<RequestedTessellation>();
         if t.0 != options {
             t.0 = options;
         }
