@@ -8,9 +8,12 @@
 //! rounded vertices as the exact point is of the exact ones, so it lies within
 //! the vertices' largest rounding `δ` of it: a mesh made within `t − δ` is
 //! stored within `t`. `δ` depends on the largest coordinate magnitude in a part's
-//! frame, and only through its binade (a power of two in metres), so
-//! [`storage_options`] changes the options only when the largest part of a plant
-//! crosses a power of two — then every patch is meshed again. The extent is taken
+//! frame, and only through its binade (a power of two in metres). The budget is
+//! taken for at least [`STORAGE_FLOOR_EXTENT`] (the binade of 16–32 m, 0.00165
+//! mm), so that a vessel's meshes do not depend on the other vessels of its plant
+//! unless some part reaches beyond 32 m: [`storage_options`] changes the options
+//! only when the largest part of such a plant crosses a power of two — then every
+//! patch is meshed again. The extent is taken
 //! over the patches' control points (a NURBS surface lies in their convex hull),
 //! in their parts' frames, over every patch of every part and nozzle (pads lie on
 //! their hosts, inside the hosts' extents).
@@ -20,6 +23,11 @@ use crate::parts::Patch;
 
 /// Millimetres per metre: glTF positions are metres.
 const MM_PER_M: f64 = 1e3;
+
+/// The extent, mm, the storage budget is taken for at least: parts up to 32 m
+/// (every part of the example designs and of generated plants) share one budget,
+/// so a vessel drawn or exported alone is meshed as it is in its plant.
+pub const STORAGE_FLOOR_EXTENT: f64 = 16_000.0;
 
 /// The largest distance, mm, that storing a point as `f32` metres moves it,
 /// for a point whose coordinates are all at most `extent` mm in magnitude:
@@ -47,7 +55,7 @@ pub fn f32_rounding_bound(extent: f64) -> f64 {
 /// `f32` cannot hold it: the mesh is then made to half the tolerance and the
 /// file holds `t/2 + δ`.
 pub fn storage_options(options: &TessellationOptions, extent: f64) -> TessellationOptions {
-    let rounding = f32_rounding_bound(extent);
+    let rounding = f32_rounding_bound(extent.max(STORAGE_FLOOR_EXTENT));
     let tolerance = if rounding < 0.5 * options.tolerance {
         options.tolerance - rounding
     } else {
@@ -106,5 +114,12 @@ mod tests {
         let fine = storage_options(&TessellationOptions::chord(1e-4), 25_000.0);
         assert_eq!(fine.tolerance, 0.5e-4);
         assert_eq!(fine.angle_tolerance, options.angle_tolerance);
+        // A small vessel's budget is the floor's: the same as in a plant of
+        // parts up to 32 m.
+        assert_eq!(
+            storage_options(&options, 800.0),
+            storage_options(&options, 31_000.0)
+        );
+        assert!(storage_options(&options, 40_000.0).tolerance < stored.tolerance);
     }
 }
