@@ -5,12 +5,14 @@
 //! The `f32` rounding of 25 m coordinates (about 0.001 mm each) used to take
 //! the triangles that meet the tolerance in `f64` past it.
 
+mod common;
+
+use common::triangle::largest_distance;
 use glam::DVec3;
 use gltf::Gltf;
 use vesselcad::design::{parse, resolve};
 use vesselcad::export::{build_scene, patch_name, write_glb};
 use vesselcad::mesh::TessellationOptions;
-use vesselcad::parts::Analytic;
 
 const TOLERANCE: f64 = 0.1;
 
@@ -32,49 +34,6 @@ const TANK: &str = r#"{
     }
   ]
 }"#;
-
-/// The largest distance from triangle `p` to `analytic`: 45 barycentric
-/// samples, then a pattern search down to a step of 1e-6.
-fn largest_distance(analytic: &Analytic, p: [DVec3; 3]) -> f64 {
-    const N: usize = 8;
-    let at = |l: [f64; 3]| analytic.distance(p[0] * l[0] + p[1] * l[1] + p[2] * l[2]);
-    let mut best = (f64::NEG_INFINITY, [0.0; 3]);
-    for i in 0..=N {
-        for j in 0..=N - i {
-            let l = [i, j, N - i - j].map(|x| x as f64 / N as f64);
-            let d = at(l);
-            if d > best.0 {
-                best = (d, l);
-            }
-        }
-    }
-    let directions: [[f64; 3]; 6] = [
-        [1.0, -1.0, 0.0],
-        [-1.0, 1.0, 0.0],
-        [0.0, 1.0, -1.0],
-        [0.0, -1.0, 1.0],
-        [-1.0, 0.0, 1.0],
-        [1.0, 0.0, -1.0],
-    ];
-    let mut step = 0.5 / N as f64;
-    while step > 1e-6 {
-        let mut moved = false;
-        for d in directions {
-            let l = [0, 1, 2].map(|k| best.1[k] + step * d[k]);
-            if l.iter().all(|&x| x >= 0.0) {
-                let value = at(l);
-                if value > best.0 {
-                    best = (value, l);
-                    moved = true;
-                }
-            }
-        }
-        if !moved {
-            step *= 0.5;
-        }
-    }
-    best.0
-}
 
 #[test]
 fn a_50_m_tank_holds_the_tolerance_in_f32() {

@@ -7,6 +7,9 @@
 //! designs (boots, pads and nozzles on heads included) at 1 mm. Triangle counts
 //! are printed, against the count of an ideal mesh (see [`ideal`]).
 
+mod common;
+
+use common::triangle::largest_distance;
 use glam::DVec3;
 use vesselcad::components::{PatchMesh, PatchSurface};
 use vesselcad::design::load;
@@ -15,55 +18,6 @@ use vesselcad::mesh::{TessellationOptions, patch_region};
 use vesselcad::model::Model;
 use vesselcad::parts::heads::{Head, HeadKind};
 use vesselcad::parts::{Analytic, Patch};
-
-/// Distance from the point of barycentric coordinates `l` of `p` to the surface.
-fn distance_at(analytic: &Analytic, p: [DVec3; 3], l: [f64; 3]) -> f64 {
-    analytic.distance(p[0] * l[0] + p[1] * l[1] + p[2] * l[2])
-}
-
-/// The largest distance from triangle `p` to `analytic`: the best of 45
-/// barycentric samples, then a pattern search in barycentric coordinates (six
-/// directions, the step halved when none climbs) down to a step of 1e-6.
-fn largest_distance(analytic: &Analytic, p: [DVec3; 3]) -> f64 {
-    const N: usize = 8;
-    let mut best = (f64::NEG_INFINITY, [0.0; 3]);
-    for i in 0..=N {
-        for j in 0..=N - i {
-            let l = [i, j, N - i - j].map(|x| x as f64 / N as f64);
-            let d = distance_at(analytic, p, l);
-            if d > best.0 {
-                best = (d, l);
-            }
-        }
-    }
-    let directions: [[f64; 3]; 6] = [
-        [1.0, -1.0, 0.0],
-        [-1.0, 1.0, 0.0],
-        [0.0, 1.0, -1.0],
-        [0.0, -1.0, 1.0],
-        [-1.0, 0.0, 1.0],
-        [1.0, 0.0, -1.0],
-    ];
-    let mut step = 0.5 / N as f64;
-    while step > 1e-6 {
-        let mut moved = false;
-        for d in directions {
-            let l = [0, 1, 2].map(|k| best.1[k] + step * d[k]);
-            if l.iter().any(|&x| x < 0.0) {
-                continue;
-            }
-            let value = distance_at(analytic, p, l);
-            if value > best.0 {
-                best = (value, l);
-                moved = true;
-            }
-        }
-        if !moved {
-            step *= 0.5;
-        }
-    }
-    best.0
-}
 
 /// The worst triangle of a mesh against `analytic` (as a share of the
 /// tolerance) and the share of triangles over the tolerance.

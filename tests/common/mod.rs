@@ -1,6 +1,6 @@
 //! Shared helpers of the integration tests: the example designs, the comparison of
 //! the incremental model with a full build, the head kinds every head suite sweeps,
-//! dense sampling of patches against their analytic surfaces, and continuity across
+//! dense sampling of patches and triangles against their analytic surfaces, and continuity across
 //! patch joints.
 
 #![expect(dead_code, reason = "each test binary uses a different subset")]
@@ -10,6 +10,7 @@ pub mod full_build;
 pub mod heads;
 pub mod numbers;
 pub mod supports;
+pub mod triangle;
 
 use glam::DVec3;
 use vesselcad::nurbs::NurbsSurface;
