@@ -7,6 +7,8 @@
 //! cascade. See `ARCHITECTURE.md` (*ECS stages*) for which system writes what.
 
 mod derived;
+mod opening_input;
+mod operating;
 mod params;
 mod relations;
 mod views;
@@ -15,6 +17,8 @@ pub use derived::{
     NoteAnchor, Opening, PartFrame, PartSpan, PatchCavities, PatchMesh, PatchRegion, PatchSurface,
     Shape, VesselFrame, VesselSummary,
 };
+pub use opening_input::OpeningInput;
+pub use operating::{OperatingProblem, OperatingState};
 pub use params::{
     DesignOrder, NoteSpec, NozzleSpec, OperatingSpec, PartSpec, VesselSpec, same_in_order,
 };

@@ -58,6 +58,7 @@ pub mod design;
 pub mod drawing;
 pub mod exchange;
 pub mod export;
+pub mod format;
 pub mod json_schema;
 pub mod mesh;
 pub mod model;

@@ -4,9 +4,9 @@
 
 use serde::Serialize;
 
+use crate::constraints::state_of_design;
 use crate::constraints::{PartGeometry, ResolvedVessel};
 use crate::design::{Design, DesignError, resolve};
-use crate::operating::state_of_design;
 use crate::parts::{PartError, enclosed_volume, surface_area};
 
 /// One part in a report.

@@ -16,11 +16,11 @@ use rayon::prelude::*;
 use rustc_hash::FxHashMap;
 
 use super::labels::{json_path, stable_id};
-use super::opening_input::OpeningInput;
 use super::{DirtyParts, DirtyPatches};
 use super::{ModelErrors, Tessellation, WorkCounters};
 use crate::components::{
-    MountedOn, Mounts, Opening, PadOf, PadPatch, PartFrame, PatchSurface, Patches, Shape,
+    MountedOn, Mounts, Opening, OpeningInput, PadOf, PadPatch, PartFrame, PatchSurface, Patches,
+    Shape,
 };
 use crate::design::RuleViolation;
 use crate::mesh::{AxialCut, Cut, HostTrim, OpeningPlan, PadCut, SharedCuts};
@@ -46,6 +46,21 @@ pub(super) struct Job {
     pub frame: DAffine3,
     pub host_frame: DAffine3,
     pub hosts: Vec<(Entity, Arc<Patch>)>,
+}
+
+impl Job {
+    /// What this opening is cut from, keeping `axial`.
+    fn input(&self, tolerance: f64, axial: Option<Arc<AxialCut>>) -> OpeningInput {
+        OpeningInput::new(
+            self.neck.clone(),
+            self.hosts.iter().map(|(_, p)| p.clone()).collect(),
+            self.pad_od,
+            tolerance,
+            self.frame,
+            self.host_frame,
+            axial,
+        )
+    }
 }
 
 /// The error of an opening that cannot be cut: the nozzle (or boot), and as value
@@ -168,7 +183,7 @@ fn run(
             Cutting {
                 nozzle: job.nozzle,
                 result,
-                input: OpeningInput::of(job, tolerance, axial),
+                input: job.input(tolerance, axial),
                 reused,
             }
         })
@@ -276,10 +291,10 @@ pub fn cut_openings(world: &mut World) {
                 .get::<OpeningInput>(nozzle)
                 .filter(|_| world_ref.get::<Opening>(nozzle).is_some());
             // Cut before from the same inputs (and it succeeded): nothing to do.
-            if last.is_some_and(|input| input.same(&OpeningInput::of(&job, tolerance, None))) {
+            if last.is_some_and(|input| input.same(&job.input(tolerance, None))) {
                 return Some(Gathered::Same);
             }
-            let kept = last.and_then(|input| input.kept_for(&job, tolerance));
+            let kept = last.and_then(|input| input.kept_for(&job.neck, job.pad_od, tolerance));
             Some(Gathered::Cut(job, kept))
         })
         .collect();

@@ -14,10 +14,13 @@ use glam::DAffine3;
 use rayon::prelude::*;
 
 use super::{PendingResolutions, WorkCounters};
-use crate::components::{OperatingSpec, PartFrame, PartSpec, Shape, VesselFrame, VesselSpec};
+use crate::components::{
+    OperatingProblem, OperatingSpec, OperatingState, PartFrame, PartSpec, Shape, VesselFrame,
+    VesselSpec,
+};
 use crate::constraints::PartGeometry;
 use crate::operating::{
-    OperatingProblem, OperatingState, metal_density, operating_state, profile::StackPart, thickness,
+    OperatingFigures, metal_density, operating_state, profile::StackPart, thickness,
 };
 
 /// What one vessel's figures are computed from.
@@ -59,7 +62,7 @@ pub fn update_operating_states(
     let mut jobs: Vec<Job> = Vec::new();
     // Figures worked out while the vessel was checked, from the very inputs a
     // job would take.
-    let mut known: Vec<(Entity, OperatingState)> = Vec::new();
+    let mut known: Vec<(Entity, OperatingFigures)> = Vec::new();
     for (entity, resolved) in &pending.0 {
         let Ok((_, spec, operating, _, children)) = vessels.get(*entity) else {
             continue;
@@ -147,8 +150,8 @@ pub fn update_operating_states(
         };
         match result {
             Ok(new) => {
-                if state != Some(&new) {
-                    commands.entity(entity).insert(new);
+                if state.map(|s| &s.0) != Some(&new) {
+                    commands.entity(entity).insert(OperatingState(new));
                 }
                 if problem.is_some() {
                     commands.entity(entity).remove::<OperatingProblem>();

@@ -115,8 +115,8 @@ fn an_edit_that_repeats_a_patch_in_use_meshes_nothing() {
 /// The canonical cut each nozzle of vessel `tag` was placed from, by mark.
 fn cuts_of(model: &mut Model, tag: &str) -> Vec<(String, *const vesselcad::mesh::AxialCut)> {
     use bevy_ecs::hierarchy::ChildOf;
+    use vesselcad::components::OpeningInput;
     use vesselcad::components::{NozzleSpec, VesselSpec};
-    use vesselcad::systems::OpeningInput;
     let world = model.world_mut();
     let mut q = world.query::<(&NozzleSpec, &ChildOf, &OpeningInput)>();
     let mut out: Vec<_> = q

@@ -9,11 +9,11 @@ use std::hint::black_box;
 use std::time::Duration;
 
 use criterion::{Criterion, criterion_group};
+use vesselcad::constraints::state_of_design;
 use vesselcad::design::resolve;
 use vesselcad::export::stream_glb;
 use vesselcad::mesh::{Mesh, PackedMesh, TessellationOptions};
 use vesselcad::model::{Model, Views};
-use vesselcad::operating::state_of_design;
 use vesselcad::plant::{Simulation, generate_plant};
 
 /// Vessels in the benchmark plant.

@@ -17,10 +17,10 @@
 //!   most [`MAX_TITLE_TEXT`] characters, the revision at most [`MAX_REVISION`], and
 //!   the date a calendar date `YYYY-MM-DD`.
 
-use super::geometry::PartGeometry;
 use super::{Report, ResolvedPart};
-use crate::design::{PartDesign, VesselDesign};
+use crate::format::{PartDesign, VesselDesign};
 use crate::parts::MIN_DIMENSION;
+use crate::parts::PartGeometry;
 
 /// Full vacuum as a gauge pressure, kPa.
 pub const FULL_VACUUM: f64 = -101.325;

@@ -10,7 +10,7 @@
 use glam::DVec3;
 
 use super::ResolvedPart;
-use super::geometry::PartGeometry;
+use crate::parts::PartGeometry;
 
 /// The ball an opening lies in: what it belongs to, its centre on the host
 /// surface (vessel frame) and its radius, mm.

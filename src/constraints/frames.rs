@@ -15,7 +15,7 @@ use rustc_hash::FxHashMap;
 use glam::{DAffine3, DMat3, DVec3};
 
 use super::Report;
-use crate::design::{VesselDesign, VesselKind};
+use crate::format::{VesselDesign, VesselKind};
 
 /// Vessel local frame → plant frame, for a placement already known to be finite.
 pub fn vessel_frame(kind: VesselKind, position: [f64; 3], rotation_deg: f64) -> DAffine3 {

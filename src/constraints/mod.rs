@@ -23,7 +23,6 @@ mod clearances;
 mod conditions;
 mod footprints;
 mod frames;
-mod geometry;
 mod head_limits;
 mod names;
 pub(crate) use head_limits::RATIO as ELLIPSOIDAL_RATIO;
@@ -31,20 +30,22 @@ pub(crate) use names::MAX_NAME_CHARS;
 mod notes;
 mod nozzles;
 mod operating;
+mod part_error;
 mod shell_nozzle;
 mod stack;
 mod supports;
 
+pub use crate::parts::PartGeometry;
 pub use conditions::{
     ABSOLUTE_ZERO, FULL_VACUUM, MAX_PRESSURE, MAX_REVISION, MAX_TEMPERATURE, MAX_TITLE_TEXT,
 };
 pub use frames::{orientation_direction, vessel_frame};
-pub use geometry::PartGeometry;
+pub use operating::{stack_of, state_of_design};
 pub use shell_nozzle::{MAX_HILLSIDE, MAX_INCLINATION};
 
 use glam::{DAffine3, DVec3};
 
-use crate::design::{RuleViolation, VesselDesign, VesselKind};
+use crate::format::{RuleViolation, VesselDesign, VesselKind};
 use crate::parts::Nozzle;
 
 /// A part with its resolved parameters and its place in the vessel.
@@ -136,11 +137,11 @@ pub struct ResolvedVessel {
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct KnownOperating {
     /// The vessel's operating data.
-    pub data: Option<crate::design::OperatingDesign>,
+    pub data: Option<crate::format::OperatingDesign>,
     /// The metal density, kg/m³.
     pub metal_density: f64,
     /// The figures.
-    pub state: crate::operating::OperatingState,
+    pub state: crate::operating::OperatingFigures,
 }
 
 /// Collects violations with a common path prefix and entity naming.

@@ -6,7 +6,7 @@ use glam::DVec3;
 use rustc_hash::{FxHashMap, FxHashSet};
 
 use super::{NoteTarget, Report, ResolvedNote, ResolvedNozzle, ResolvedPart};
-use crate::design::VesselDesign;
+use crate::format::VesselDesign;
 use crate::parts::MAX_DIMENSION;
 
 /// Resolves every note's target and anchor; reports unknown targets and cycles.
@@ -163,7 +163,7 @@ mod tests {
     use crate::constraints::resolve_vessel;
     use crate::design::{NoteDesign, parse_unchecked};
 
-    fn vessel() -> crate::design::VesselDesign {
+    fn vessel() -> crate::format::VesselDesign {
         let text = r#"{"format": "vesselcad/1", "vessels": [{"tag": "V-1", "kind": "vertical",
             "parts": [{"head": {"id": "H1", "shape": "ellipsoidal"}},
                       {"shell": {"id": "S1", "od": 1000, "length": 3000}},

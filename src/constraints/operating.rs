@@ -8,10 +8,10 @@
 
 use glam::DAffine3;
 
-use super::{KnownOperating, Report, ResolvedPart};
-use crate::design::VesselDesign;
+use super::{KnownOperating, Report, ResolvedPart, ResolvedVessel};
+use crate::format::VesselDesign;
 use crate::operating::{
-    OperatingError, metal_density, operating_state, profile::StackPart, thickness,
+    OperatingError, OperatingFigures, metal_density, operating_state, profile::StackPart, thickness,
 };
 
 /// Checks the operating data of `vessel` against its resolved stack; returns
@@ -98,4 +98,42 @@ pub(crate) fn check(
         ),
     }
     None
+}
+
+/// The stack parts of a resolved vessel with their wall thicknesses (0 where the
+/// design gives none).
+pub fn stack_of<'a>(design: &'a VesselDesign, resolved: &'a ResolvedVessel) -> Vec<StackPart<'a>> {
+    resolved
+        .parts
+        .iter()
+        .map(|p| StackPart {
+            id: &p.id,
+            geometry: &p.geometry,
+            frame: p.frame,
+            thickness: design
+                .parts
+                .iter()
+                .find(|d| d.id() == p.id)
+                .and_then(thickness)
+                .unwrap_or(0.0),
+        })
+        .collect()
+}
+
+/// [`operating_state`] of a design and its resolution.
+///
+/// # Errors
+///
+/// As [`operating_state`].
+pub fn state_of_design(
+    design: &VesselDesign,
+    resolved: &ResolvedVessel,
+) -> Result<OperatingFigures, OperatingError> {
+    operating_state(
+        design.kind,
+        resolved.frame,
+        &stack_of(design, resolved),
+        metal_density(&design.design),
+        design.operating,
+    )
 }

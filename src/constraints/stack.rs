@@ -17,9 +17,10 @@ use std::f64::consts::PI;
 use glam::{DAffine3, DMat3, DVec3};
 
 use super::frames::check_angle;
-use super::geometry::{PartGeometry, report_part_error};
+use super::part_error::report_part_error;
 use super::{Report, ResolvedPart, orientation_direction};
-use crate::design::{HeadDesign, HeadShape, PartDesign, VesselDesign};
+use crate::format::{HeadDesign, HeadShape, PartDesign, VesselDesign};
+use crate::parts::PartGeometry;
 use crate::parts::heads::{Head, HeadKind};
 use crate::parts::{Reducer, ReducerAlignment, Shell};
 

@@ -12,10 +12,11 @@ use std::f64::consts::FRAC_PI_2;
 use glam::{DAffine3, DMat3, DVec3};
 
 use super::frames::check_angle;
-use super::geometry::{PartGeometry, report_part_error};
+use super::part_error::report_part_error;
 use super::stack::Course;
 use super::{Report, ResolvedPart, orientation_direction};
-use crate::design::{HeadShape, PartDesign, VesselDesign, VesselKind};
+use crate::format::{HeadShape, PartDesign, VesselDesign, VesselKind};
+use crate::parts::PartGeometry;
 use crate::parts::heads::HeadKind;
 use crate::parts::tables::{Nps, pipe};
 use crate::parts::{Boot, Legs, Lugs, Saddle, Skirt};

@@ -9,10 +9,10 @@
 use std::io::Read;
 use std::path::Path;
 
-use super::error::{DesignError, RuleViolation};
-use super::schema::{Design, FORMAT, Units};
-use super::units::to_millimetres;
 use crate::constraints::ShowValue;
+use crate::format::error::{DesignError, RuleViolation};
+use crate::format::schema::{Design, FORMAT, Units};
+use crate::format::units::to_millimetres;
 
 /// The largest design file read, bytes (64 MiB: a 3,000-vessel plant is about
 /// 10 MB).

@@ -3,9 +3,9 @@
 
 use std::collections::HashMap;
 
-use super::error::{DesignError, RuleViolation};
-use super::schema::Design;
 use crate::constraints::{ResolvedVessel, resolve_vessel};
+use crate::format::error::{DesignError, RuleViolation};
+use crate::format::schema::Design;
 
 /// Resolves every vessel of a design; `Err` lists every broken rule.
 pub fn resolve(design: &Design) -> Result<Vec<ResolvedVessel>, DesignError> {

@@ -126,11 +126,11 @@ pub(crate) fn breakdown(world: &World) -> MemoryBreakdown {
     }
     // The inputs each opening was cut from, with the canonical cuts kept for
     // straight courses.
-    if let Some(mut q) = world.try_query::<&crate::systems::OpeningInput>() {
+    if let Some(mut q) = world.try_query::<&crate::components::OpeningInput>() {
         // Canonical cuts are shared by every opening cut from the same march.
         let mut cuts = std::collections::HashSet::new();
         for input in q.iter(world) {
-            out.openings += size_of::<crate::systems::OpeningInput>() + input.heap_bytes();
+            out.openings += size_of::<crate::components::OpeningInput>() + input.heap_bytes();
             let Some(cut) = input.axial() else {
                 continue;
             };

@@ -6,9 +6,10 @@
 //! [`profile`] builds the exact meridian of the inside surface and of the wall's
 //! mid-surface; [`liquid`] integrates the liquid below the level (vertical and
 //! horizontal vessels, every head kind); [`weight`] integrates the walls. The ECS
-//! system `systems::update_operating_states` keeps an [`OperatingState`] on every
-//! vessel, redone only when the vessel was resolved again or its
-//! `OperatingSpec` (level, liquid density) changed.
+//! system `systems::update_operating_states` keeps these [`OperatingFigures`] on
+//! every vessel (`components::OperatingState`), redone only when the vessel was
+//! resolved again or its `OperatingSpec` (level, liquid density) changed. The
+//! figures of a resolved vessel are `constraints::state_of_design`.
 //!
 //! Units: inputs mm and kg/m³; outputs m³, kg and mm (plant frame).
 
@@ -18,8 +19,8 @@ mod state;
 pub mod weight;
 
 pub use state::{
-    CARBON_STEEL_DENSITY, MAX_DENSITY, OperatingProblem, OperatingState, STAINLESS_DENSITY,
-    metal_density, operating_state, stack_of, state_of_design, thickness,
+    CARBON_STEEL_DENSITY, MAX_DENSITY, OperatingFigures, STAINLESS_DENSITY, metal_density,
+    operating_state, thickness,
 };
 
 use thiserror::Error;

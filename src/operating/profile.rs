@@ -21,7 +21,7 @@ use std::f64::consts::FRAC_PI_2;
 use glam::DAffine3;
 
 use super::OperatingError;
-use crate::constraints::PartGeometry;
+use crate::parts::PartGeometry;
 use crate::parts::ReducerAlignment;
 use crate::parts::heads::HeadKind;
 

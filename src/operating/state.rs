@@ -1,17 +1,13 @@
 //! A vessel's operating figures from its resolved stack: the pure function the
 //! ECS system, `vesselcad info` and the tests share.
 
-use bevy_ecs::component::Component;
 use glam::{DAffine3, DVec3};
 
 use super::OperatingError;
 use super::liquid::{self, Moments};
 use super::profile::{StackPart, Surface, stack_profile};
 use super::weight::walls;
-use crate::constraints::ResolvedVessel;
-use crate::design::{
-    DesignConditions, OperatingDesign, PartDesign, VesselDesign, VesselKind, WATER_DENSITY,
-};
+use crate::format::{DesignConditions, OperatingDesign, PartDesign, VesselKind, WATER_DENSITY};
 
 /// Density of carbon steel, the default metal, kg/m³.
 pub const CARBON_STEEL_DENSITY: f64 = 7850.0;
@@ -43,9 +39,10 @@ pub fn metal_density(conditions: &DesignConditions) -> f64 {
     }
 }
 
-/// Operating figures of one vessel.
-#[derive(Component, Clone, Copy, Debug, Default, PartialEq)]
-pub struct OperatingState {
+/// Operating figures of one vessel (kept on its entity as
+/// `components::OperatingFigures`).
+#[derive(Clone, Copy, Debug, Default, PartialEq)]
+pub struct OperatingFigures {
     /// Height of the interior (lowest to highest inside point), mm.
     pub interior_height: f64,
     /// Volume of the interior, m³.
@@ -64,26 +61,6 @@ pub struct OperatingState {
     pub centre_of_gravity: DVec3,
 }
 
-/// The stack parts of a resolved vessel with their wall thicknesses (0 where the
-/// design gives none).
-pub fn stack_of<'a>(design: &'a VesselDesign, resolved: &'a ResolvedVessel) -> Vec<StackPart<'a>> {
-    resolved
-        .parts
-        .iter()
-        .map(|p| StackPart {
-            id: &p.id,
-            geometry: &p.geometry,
-            frame: p.frame,
-            thickness: design
-                .parts
-                .iter()
-                .find(|d| d.id() == p.id)
-                .and_then(thickness)
-                .unwrap_or(0.0),
-        })
-        .collect()
-}
-
 /// The wall thickness a part design gives, if any.
 pub fn thickness(part: &PartDesign) -> Option<f64> {
     match part {
@@ -92,24 +69,6 @@ pub fn thickness(part: &PartDesign) -> Option<f64> {
         PartDesign::Reducer(r) => r.thickness,
         _ => None,
     }
-}
-
-/// [`operating_state`] of a design and its resolution.
-///
-/// # Errors
-///
-/// As [`operating_state`].
-pub fn state_of_design(
-    design: &VesselDesign,
-    resolved: &ResolvedVessel,
-) -> Result<OperatingState, OperatingError> {
-    operating_state(
-        design.kind,
-        resolved.frame,
-        &stack_of(design, resolved),
-        metal_density(&design.design),
-        design.operating,
-    )
 }
 
 /// Liquid volume, operating mass and centre of gravity of a vessel of `kind`
@@ -126,7 +85,7 @@ pub fn operating_state(
     stack: &[StackPart],
     metal_density: f64,
     operating: Option<OperatingDesign>,
-) -> Result<OperatingState, OperatingError> {
+) -> Result<OperatingFigures, OperatingError> {
     check_density("metal_density", metal_density)?;
     let horizontal = kind == VesselKind::Horizontal;
     let inside = stack_profile(stack, Surface::Inside, horizontal)?;
@@ -174,7 +133,7 @@ pub fn operating_state(
     } else {
         DVec3::new(0.0, 0.0, 0.5 * (z_min + z_max))
     };
-    Ok(OperatingState {
+    Ok(OperatingFigures {
         interior_height: height,
         interior_volume: full.volume * MM3_TO_M3,
         liquid_level: level,
@@ -198,8 +157,3 @@ fn check_density(what: &'static str, value: f64) -> Result<(), OperatingError> {
         })
     }
 }
-
-/// Why a vessel has no [`OperatingState`] (a wall too thick for its shape, an
-/// eccentric reducer in a horizontal vessel): kept on the vessel entity.
-#[derive(Component, Clone, Debug, PartialEq)]
-pub struct OperatingProblem(pub OperatingError);

@@ -14,6 +14,7 @@ mod analytic;
 mod boot;
 mod check;
 mod error;
+mod geometry;
 mod patch;
 
 pub mod heads;
@@ -31,6 +32,7 @@ pub use analytic::Analytic;
 pub use boot::Boot;
 pub use check::{MAX_DIMENSION, MIN_DIMENSION};
 pub use error::PartError;
+pub use geometry::PartGeometry;
 pub use legs::{Legs, MAX_LEGS};
 pub use lugs::{Lugs, MAX_LUGS};
 pub use measure::{enclosed_volume, surface_area};

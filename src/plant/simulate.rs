@@ -16,10 +16,10 @@ use std::time::{Duration, Instant};
 use bevy_ecs::entity::Entity;
 
 use super::rng::SplitMix64;
+use crate::components::OperatingState;
 use crate::components::VesselSpec;
 use crate::design::{Design, OperatingDesign, PartDesign, VesselDesign};
 use crate::model::{Edit, Model};
-use crate::operating::OperatingState;
 use crate::systems::{STAGES, WorkCounters};
 
 /// Draws tried for one edit before the tick moves on without it.

@@ -26,7 +26,7 @@ use axum::middleware::Next;
 use axum::response::{IntoResponse, Response};
 
 use super::error::ApiError;
-use super::routes::AppState;
+use super::state::AppState;
 
 /// Checks a request against the rules above, then runs it and adds the
 /// security headers to whatever it answers (refusals too).

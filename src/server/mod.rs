@@ -24,6 +24,7 @@ pub mod journal;
 pub mod limits;
 pub mod routes;
 pub mod session;
+pub mod state;
 
 use std::net::{IpAddr, Ipv4Addr, SocketAddr};
 use std::path::PathBuf;
@@ -36,8 +37,9 @@ pub use routes::MAX_BODY;
 
 use crate::mesh::TessellationOptions;
 use broadcast::Hub;
-use routes::{AppState, router};
+use routes::router;
 use session::Session;
+use state::AppState;
 use tokio::sync::watch;
 use tokio::task::JoinHandle;
 

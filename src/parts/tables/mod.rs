@@ -6,7 +6,6 @@
 //! [`TableError`] instead of a guess. All lengths are in millimetres.
 
 mod flange;
-mod flange_data;
 mod pipe;
 
 pub use flange::{FlangeClass, FlangeDimensions, flange, raised_face_height};

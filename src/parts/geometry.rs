@@ -1,9 +1,9 @@
-//! The resolved parameters of any part, as the part builders take them, and the
-//! mapping of builder errors back to design fields.
+//! The resolved parameters of any part, as the part builders take them: what the
+//! rules ([`crate::constraints`]) produce and the operating figures, exports and
+//! drawings read.
 
-use super::Report;
-use crate::parts::heads::Head;
-use crate::parts::{Boot, Legs, Lugs, PartError, Patch, Reducer, Saddle, Shell, Skirt};
+use super::heads::Head;
+use super::{Boot, Legs, Lugs, PartError, Patch, Reducer, Saddle, Shell, Skirt};
 
 /// Resolved parameters of one part (inherited diameters filled in).
 #[derive(Clone, Debug, PartialEq)]
@@ -53,42 +53,5 @@ impl PartGeometry {
             PartGeometry::Lugs(_) => "lugs",
             PartGeometry::Boot(_) => "boot",
         }
-    }
-}
-
-/// Records a part builder's error under the part's JSON path, renaming builder
-/// fields to design fields with `names` (`(builder, design)` pairs).
-pub(crate) fn report_part_error(
-    report: &mut Report,
-    path: &str,
-    id: &str,
-    error: &PartError,
-    names: &[(&str, &str)],
-) {
-    match error {
-        PartError::InvalidParameter {
-            field,
-            value,
-            rule,
-            part,
-        } => {
-            let design_field = names
-                .iter()
-                .find(|(b, _)| b == field)
-                .map_or(*field, |(_, d)| *d);
-            let path = if design_field.contains(' ') {
-                path.to_string()
-            } else {
-                format!("{path}.{design_field}")
-            };
-            report.push(
-                path,
-                Some(id),
-                design_field,
-                value,
-                format!("{part}: {rule}"),
-            );
-        }
-        other => report.push(path, Some(id), "", "", other.to_string()),
     }
 }

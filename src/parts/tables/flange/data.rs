@@ -1,4 +1,4 @@
-//! The ASME B16.5 flange rows behind [`flange`](super::flange::flange), one
+//! The ASME B16.5 flange rows behind [`flange`](super::flange), one
 //! table per class, transcribed from the metric dimension tables of
 //! B16.5-2013/-2017/-2020: for each class its flange-dimension table and its
 //! drilling-template table, plus the Class 1500 pair for the small Class 900
@@ -7,7 +7,7 @@
 //! in those editions, `tf` and both `Y` exclude the raised face (see the
 //! `flange` module documentation).
 
-use super::flange::{FlangeClass, FlangeDimensions};
+use super::{FlangeClass, FlangeDimensions};
 
 /// One tabulated size of one class.
 pub(super) struct FlangeRow {
@@ -174,7 +174,7 @@ static CLASS_900: [FlangeRow; 19] = [
 
 #[cfg(test)]
 mod tests {
-    use super::super::pipe::Nps;
+    use super::super::super::pipe::Nps;
     use super::*;
 
     #[test]

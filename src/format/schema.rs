@@ -1,7 +1,7 @@
 //! The design file's data model: what a designer writes, as serde types.
 //!
 //! This is the top of the data flow: a design file (or an edit) is parsed into these
-//! types, checked by [`super::validate`], and then becomes parameter components on
+//! types, checked by [`crate::design::validate`], and then becomes parameter components on
 //! ECS entities. Every entity has a stable id — the vessel `tag`, a part `id`, a
 //! nozzle `mark`, a note `id` — which edits and viewers use.
 //!

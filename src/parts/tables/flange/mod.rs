@@ -1,7 +1,7 @@
 //! ASME B16.5 pipe flange dimensions for Classes 150, 300, 600 and 900,
 //! NPS 1/2 through 24: the typed lookup [`flange`], the [`FlangeClass`] key
 //! and the [`raised_face_height`] rule. The numbers themselves live in
-//! `flange_data.rs`.
+//! `flange/data.rs`.
 //!
 //! # Edition and raised-face convention
 //!
@@ -27,7 +27,7 @@
 
 use std::fmt;
 
-use super::flange_data;
+mod data;
 use super::pipe::{Nps, TableError};
 
 /// A B16.5 pressure class covered by the tables.
@@ -128,7 +128,7 @@ pub struct FlangeDimensions {
 /// the sizes and classes here that is only NPS 3-1/2 in Class 900 (B16.5
 /// lists NPS 3-1/2 only up to Class 600).
 pub fn flange(nps: Nps, class: FlangeClass) -> Result<&'static FlangeDimensions, TableError> {
-    flange_data::rows(class)
+    data::rows(class)
         .iter()
         .find(|row| row.nps == nps.inches())
         .map(|row| &row.dims)

@@ -1,5 +1,5 @@
 //! What an opening was last cut from ([`OpeningInput`], a nozzle's component
-//! beside its `Opening`): the Geometry stage's `cut_openings` compares a dirty
+//! beside its `Opening`): the Geometry stage's `systems::cut_openings` compares a dirty
 //! opening's inputs with it to skip a cut that would come out the same, and takes
 //! its kept canonical cut to place an opening that only moved along its course.
 
@@ -8,7 +8,6 @@ use std::sync::Arc;
 use bevy_ecs::component::Component;
 use glam::DAffine3;
 
-use super::openings::Job;
 use crate::mesh::AxialCut;
 use crate::parts::Patch;
 
@@ -33,18 +32,28 @@ pub struct OpeningInput {
     /// `nozzle_frame⁻¹ · host_frame` (the pad patch's placement).
     host_in_nozzle: DAffine3,
     /// The loops on the canonical host, when the opening lies in a straight course.
-    pub(super) axial: Option<Arc<AxialCut>>,
+    pub(crate) axial: Option<Arc<AxialCut>>,
 }
 
 impl OpeningInput {
-    pub(super) fn of(job: &Job, tolerance: f64, axial: Option<Arc<AxialCut>>) -> Self {
+    /// The inputs of a cut of `neck` (placed by `frame`) into `hosts` (placed by
+    /// `host_frame`), with its pad and tolerance, keeping `axial`.
+    pub(crate) fn new(
+        neck: Arc<Patch>,
+        hosts: Vec<Arc<Patch>>,
+        pad_od: Option<f64>,
+        tolerance: f64,
+        frame: DAffine3,
+        host_frame: DAffine3,
+        axial: Option<Arc<AxialCut>>,
+    ) -> Self {
         Self {
-            neck: job.neck.clone(),
-            hosts: job.hosts.iter().map(|(_, p)| p.clone()).collect(),
-            pad_od: job.pad_od,
+            neck,
+            hosts,
+            pad_od,
             tolerance,
-            nozzle_in_host: job.host_frame.inverse() * job.frame,
-            host_in_nozzle: job.frame.inverse() * job.host_frame,
+            nozzle_in_host: host_frame.inverse() * frame,
+            host_in_nozzle: frame.inverse() * host_frame,
             axial,
         }
     }
@@ -53,11 +62,16 @@ impl OpeningInput {
     /// and tolerance, and the same neck or a kept cut marched on a canonical
     /// neck (which the cut compares with the new neck's: a projection edit keeps
     /// it). It then applies wherever the nozzle moved along the course's axis.
-    pub(super) fn kept_for(&self, job: &Job, tolerance: f64) -> Option<Arc<AxialCut>> {
+    pub(crate) fn kept_for(
+        &self,
+        neck: &Arc<Patch>,
+        pad_od: Option<f64>,
+        tolerance: f64,
+    ) -> Option<Arc<AxialCut>> {
         let axial = self.axial.as_ref()?;
-        let neck = Arc::ptr_eq(&self.neck, &job.neck) || axial.reach().is_some();
+        let neck = Arc::ptr_eq(&self.neck, neck) || axial.reach().is_some();
         let same = neck
-            && self.pad_od.map(f64::to_bits) == job.pad_od.map(f64::to_bits)
+            && self.pad_od.map(f64::to_bits) == pad_od.map(f64::to_bits)
             && self.tolerance.to_bits() == tolerance.to_bits();
         same.then(|| axial.clone())
     }
@@ -74,7 +88,7 @@ impl OpeningInput {
     }
 
     /// Same inputs: same patches (by identity), equal numbers, equal bits.
-    pub(super) fn same(&self, other: &Self) -> bool {
+    pub(crate) fn same(&self, other: &Self) -> bool {
         Arc::ptr_eq(&self.neck, &other.neck)
             && self.hosts.len() == other.hosts.len()
             && self
