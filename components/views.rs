@@ -7,6 +7,7 @@ use std::sync::Arc;
 
 use bevy_ecs::component::Component;
 use bevy_ecs::entity::Entity;
+use bevy_ecs::resource::Resource;
 use glam::DVec2;
 
 use crate::project::{EntityView, Projection, ViewSettings};
@@ -28,4 +29,17 @@ pub struct VesselViews {
     pub settings: ViewSettings,
     /// Footprint of every member entity in each view, as of its last rebuild.
     pub footprints: HashMap<Entity, [Footprint; 4]>,
+}
+
+/// Whether the Project stage keeps views. Drawings and live sessions need them; a
+/// plant build, simulation or benchmark that never draws should not pay for them
+/// (a view rebuild costs more than the re-meshing an edit causes).
+#[derive(Resource, Clone, Copy, Debug, Default, PartialEq, Eq)]
+pub enum Views {
+    /// Every vessel's views follow every edit (the default).
+    #[default]
+    Kept,
+    /// No views are built. Turning them back on builds, on the next update, the
+    /// views of every entity that has none or changed since the stage last ran.
+    Off,
 }

@@ -10,11 +10,11 @@ use bevy_ecs::hierarchy::Children;
 use bevy_ecs::world::World;
 use rayon::prelude::*;
 
-use super::{DirtyParts, PendingResolutions, WorkCounters};
 use crate::components::{
     Annotates, MountedOn, NoteAnchor, NoteSpec, NozzleSpec, Opening, PartFrame, PartSpan, PartSpec,
     Shape, VesselFrame, VesselSummary,
 };
+use crate::components::{DirtyParts, PendingResolutions, WorkCounters};
 use crate::constraints::{NoteTarget, ResolvedVessel};
 
 /// `value` if it differs from `entity`'s component `T` (or `entity` has none),

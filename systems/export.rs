@@ -2,30 +2,20 @@
 //! run — vessels whose frame changed, parts and nozzles whose frame or meshes
 //! changed — so exporters and viewers can send only those.
 
-use std::collections::BTreeSet;
+use crate::components::ChangeLog;
 
 use bevy_ecs::entity::Entity;
 use bevy_ecs::hierarchy::ChildOf;
-use bevy_ecs::resource::Resource;
 use bevy_ecs::system::{Query, ResMut};
 
 use rayon::prelude::*;
 
-use super::{DirtyParts, DirtyPatches};
+use crate::components::{DirtyParts, DirtyPatches};
 
 use crate::components::{NozzleSpec, PadOf, PartSpec, PatchOf, VesselSpec};
 
 /// Owners beyond which their ids are made in parallel.
 const PARALLEL_IDS: usize = 4096;
-
-/// Stable ids changed and removed since the log was last drained.
-#[derive(Resource, Default, Debug, Clone, PartialEq, Eq)]
-pub struct ChangeLog {
-    /// Ids of vessels, parts and nozzles whose frame or geometry changed.
-    pub changed: BTreeSet<String>,
-    /// Ids of entities that were removed.
-    pub removed: BTreeSet<String>,
-}
 
 /// Part or nozzle identity: its vessel and its spec.
 type Owner<'a> = (&'a ChildOf, Option<&'a PartSpec>, Option<&'a NozzleSpec>);

@@ -12,10 +12,10 @@ use bevy_ecs::entity::Entity;
 use bevy_ecs::world::World;
 use rayon::prelude::*;
 
-use super::dirty::unique;
 use super::labels::{json_path, stable_id};
-use super::{DirtyParts, DirtyPatches};
-use super::{ModelErrors, WorkCounters};
+use crate::components::unique;
+use crate::components::{DirtyParts, DirtyPatches};
+use crate::components::{ModelErrors, WorkCounters};
 use crate::components::{PatchOf, PatchSurface, Patches, Shape};
 use crate::parts::{PartError, Patch};
 

@@ -4,13 +4,12 @@
 //! Every stage reads what changed upstream and writes downstream only when the value
 //! really differs (`set_if_neq`), so untouched entities cost nothing but the
 //! change-detection scan. The heavy stages (Geometry, Tessellate) collect their
-//! dirty entities and process them in parallel with rayon.
+//! dirty entities and process them in parallel with rayon. The components and
+//! resources they read and write live in [`crate::components`].
 
 mod biggest_first;
 mod clock;
 mod constrain;
-mod counters;
-mod dirty;
 mod export;
 mod geometry;
 mod labels;
@@ -22,21 +21,22 @@ mod storage;
 mod tessellate;
 mod validate;
 
-pub use clock::{STAGES, StageTimes, stamp_stage};
+pub use clock::stamp_stage;
 pub use constrain::apply_resolutions;
-pub use counters::WorkCounters;
-pub use dirty::{DirtyParts, DirtyPatches};
-pub use export::{ChangeLog, collect_changes};
+pub use export::collect_changes;
 pub use geometry::rebuild_dirty_patches;
-pub use openings::{CutTable, OpeningHosts, cut_openings};
+pub use openings::cut_openings;
 pub use operating::update_operating_states;
-pub use project::{Views, entity_input, project_dirty_views, views_kept};
-pub use regions::{HostSides, lay_out_regions};
-pub use storage::{RequestedTessellation, budget_storage_precision};
-pub use tessellate::{Instances, Tessellation, remesh_dirty_patches};
-pub use validate::{
-    CheckedResolutions, EditedVessels, ModelErrors, PendingResolutions, resolve_dirty_vessels,
-};
+pub use project::{entity_input, project_dirty_views, views_kept};
+pub use regions::lay_out_regions;
+pub use storage::budget_storage_precision;
+pub use tessellate::remesh_dirty_patches;
+pub use validate::resolve_dirty_vessels;
+
+/// What [`Model::update`](crate::model::Model::update) returns and the length of
+/// [`Model::stage_times`](crate::model::Model::stage_times), named here as well
+/// as in [`crate::components`] for the library's users.
+pub use crate::components::{STAGES, WorkCounters};
 
 use bevy_ecs::schedule::{IntoScheduleConfigs, Schedule, SystemSet};
 

@@ -5,37 +5,27 @@
 //! its shell course. Runs in the Geometry stage after the patches are rebuilt, in
 //! parallel with rayon.
 
+use crate::components::CutTable;
 use std::collections::BTreeSet;
 use std::sync::Arc;
 
 use bevy_ecs::entity::Entity;
-use bevy_ecs::resource::Resource;
 use bevy_ecs::world::World;
 use glam::DAffine3;
 use rayon::prelude::*;
 use rustc_hash::FxHashMap;
 
 use super::labels::{json_path, stable_id};
-use super::{DirtyParts, DirtyPatches};
-use super::{ModelErrors, Tessellation, WorkCounters};
+use crate::components::{DirtyParts, DirtyPatches};
+use crate::components::{ModelErrors, Tessellation, WorkCounters};
 use crate::components::{
     MountedOn, Mounts, Opening, OpeningInput, PadOf, PadPatch, PartFrame, PatchSurface, Patches,
     Shape,
 };
 use crate::design::RuleViolation;
-use crate::mesh::{AxialCut, Cut, HostTrim, OpeningPlan, PadCut, SharedCuts};
+use crate::mesh::{AxialCut, Cut, HostTrim, OpeningPlan, PadCut};
 use crate::nurbs::intersect::IntersectionLoop;
 use crate::parts::Patch;
-
-/// The host patches each nozzle's opening was last cut in (to re-lay-out a host
-/// patch whose opening moved away or disappeared).
-#[derive(Resource, Default, Debug)]
-pub struct OpeningHosts(pub FxHashMap<Entity, Vec<Entity>>);
-
-/// The canonical cuts the model's openings keep, shared by every opening cut
-/// from the same march (see `mesh::shared_cuts`).
-#[derive(Resource, Default, Debug)]
-pub struct CutTable(pub SharedCuts);
 
 /// One opening to compute.
 pub(super) struct Job {

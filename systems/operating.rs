@@ -13,11 +13,11 @@ use bevy_ecs::system::{Commands, Query, Res, ResMut};
 use glam::DAffine3;
 use rayon::prelude::*;
 
-use super::{PendingResolutions, WorkCounters};
 use crate::components::{
     OperatingProblem, OperatingSpec, OperatingState, PartFrame, PartSpec, Shape, VesselFrame,
     VesselSpec,
 };
+use crate::components::{PendingResolutions, WorkCounters};
 use crate::constraints::PartGeometry;
 use crate::operating::{
     OperatingFigures, metal_density, operating_state, profile::StackPart, thickness,

@@ -15,19 +15,19 @@
 //! entity are re-binned (linear in its triangles); the line building runs in
 //! parallel with rayon.
 
+use crate::components::Views;
 use std::collections::{BTreeMap, BTreeSet, HashMap};
 use std::sync::Arc;
 
 use bevy_ecs::entity::Entity;
 use bevy_ecs::hierarchy::{ChildOf, Children};
 use bevy_ecs::query::{Changed, Or, QueryState, With, Without};
-use bevy_ecs::resource::Resource;
 use bevy_ecs::system::Res;
 use bevy_ecs::world::World;
 use glam::DVec2;
 use rayon::prelude::*;
 
-use super::{DirtyPatches, Tessellation, WorkCounters};
+use crate::components::{DirtyPatches, Tessellation, WorkCounters};
 use crate::components::{
     EntityViews, Footprint, NozzleSpec, PadOf, PadPatch, PartFrame, PartSpec, PatchMesh, PatchOf,
     PatchRegion, PatchSurface, Patches, Shape, VesselFrame, VesselSpec, VesselSummary, VesselViews,
@@ -136,19 +136,6 @@ fn segment_crosses_box(a: DVec2, b: DVec2, lo: DVec2, hi: DVec2) -> bool {
         }
     }
     true
-}
-
-/// Whether the Project stage keeps views. Drawings and live sessions need them; a
-/// plant build, simulation or benchmark that never draws should not pay for them
-/// (a view rebuild costs more than the re-meshing an edit causes).
-#[derive(Resource, Clone, Copy, Debug, Default, PartialEq, Eq)]
-pub enum Views {
-    /// Every vessel's views follow every edit (the default).
-    #[default]
-    Kept,
-    /// No views are built. Turning them back on builds, on the next update, the
-    /// views of every entity that has none or changed since the stage last ran.
-    Off,
 }
 
 /// Run condition of the Project stage: views are kept.

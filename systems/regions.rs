@@ -16,71 +16,24 @@
 //! again along its course (its loop's neck side is the canonical march's), the
 //! host of an opening whose host side did not change.
 
+use crate::components::{HostSides, Laid, Trim};
 use std::collections::BTreeSet;
 use std::sync::Arc;
 
 use bevy_ecs::entity::Entity;
 use bevy_ecs::query::{QueryState, With};
-use bevy_ecs::resource::Resource;
 use bevy_ecs::world::World;
-use glam::DVec2;
 use rayon::prelude::*;
-use rustc_hash::FxHashMap;
 
-use super::dirty::unique;
 use super::labels::{json_path, patch_label};
-use super::{DirtyParts, DirtyPatches};
-use super::{ModelErrors, OpeningHosts, Tessellation, Views, WorkCounters};
+use crate::components::unique;
+use crate::components::{DirtyParts, DirtyPatches};
+use crate::components::{ModelErrors, OpeningHosts, Tessellation, Views, WorkCounters};
 use crate::components::{Mounts, Opening, PadOf, PadPatch, PatchOf, PatchRegion, PatchSurface};
 use crate::design::RuleViolation;
 use crate::mesh::{HostTrim, Notch, PatchSides, host_region_with, pad_region};
 use crate::nurbs::intersect::IntersectionLoop;
 use crate::parts::Patch;
-
-/// The sampled sides of every patch an opening trims (a host, with openings or
-/// notches, or a nozzle neck) as last laid out, with the surface they were
-/// sampled from (held, so the pointer compared cannot be reused) and the trim.
-/// Cleared when the tessellation options change.
-#[derive(Resource, Default, Debug)]
-pub struct HostSides(FxHashMap<Entity, Laid>);
-
-/// A trimmed patch's last layout: what it was laid out from, and its sides.
-#[derive(Debug)]
-struct Laid {
-    surface: Arc<Patch>,
-    sides: Arc<PatchSides>,
-    trim: Trim,
-}
-
-impl HostSides {
-    /// Heap bytes held by the kept sides (not the surfaces, which the patches
-    /// hold, nor the loops, which the openings hold).
-    pub fn heap_bytes(&self) -> usize {
-        self.0.capacity() * std::mem::size_of::<(Entity, Laid)>()
-            + self
-                .0
-                .values()
-                .map(|l| l.sides.heap_bytes() + l.trim.heap_bytes())
-                .sum::<usize>()
-    }
-}
-
-/// How a patch is trimmed.
-#[derive(Debug)]
-enum Trim {
-    /// A part or nozzle patch: holes of the openings it hosts, notches of those
-    /// crossing its seams, and a nozzle neck's bottom loop.
-    Patch {
-        holes: Vec<Arc<IntersectionLoop>>,
-        notches: Vec<Arc<[Notch]>>,
-        bottom: Option<Arc<IntersectionLoop>>,
-    },
-    /// A reinforcing pad: between its outer loop and the neck's loop.
-    Pad {
-        outer: Arc<IntersectionLoop>,
-        inner: Arc<IntersectionLoop>,
-    },
-}
 
 /// One region to lay out.
 struct Job {
@@ -94,67 +47,6 @@ struct Job {
     /// Same surface, trim read the same as at the last layout: the region
     /// would come out the same, so it is not laid out.
     same: bool,
-}
-
-impl Trim {
-    /// Whether a layout within `self` reads the same numbers as one within
-    /// `last`: the holes' host (u, v), the notches' paths and the bottom's neck
-    /// (u, v), bit for bit (the layout reads nothing else of them), in order.
-    fn lays_out_as(&self, last: &Trim) -> bool {
-        let (
-            Trim::Patch {
-                holes,
-                notches,
-                bottom,
-            },
-            Trim::Patch {
-                holes: last_holes,
-                notches: last_notches,
-                bottom: last_bottom,
-            },
-        ) = (self, last)
-        else {
-            return false;
-        };
-        let same_holes = holes.len() == last_holes.len()
-            && holes
-                .iter()
-                .zip(last_holes)
-                .all(|(a, b)| Arc::ptr_eq(a, b) || same_bits(&a.host_uv, &b.host_uv));
-        let same_notches = notches.len() == last_notches.len()
-            && notches.iter().zip(last_notches).all(|(a, b)| {
-                Arc::ptr_eq(a, b)
-                    || (a.len() == b.len()
-                        && a.iter()
-                            .zip(b.iter())
-                            .all(|(x, y)| x.side == y.side && same_bits(&x.path, &y.path)))
-            });
-        let same_bottom = match (bottom, last_bottom) {
-            (Some(a), Some(b)) => Arc::ptr_eq(a, b) || same_bits(&a.neck_uv, &b.neck_uv),
-            (None, None) => true,
-            _ => false,
-        };
-        same_holes && same_notches && same_bottom
-    }
-
-    /// Heap bytes of the trim's own lists (the loops are the openings').
-    fn heap_bytes(&self) -> usize {
-        match self {
-            Trim::Patch { holes, notches, .. } => {
-                holes.capacity() * std::mem::size_of::<Arc<IntersectionLoop>>()
-                    + notches.capacity() * std::mem::size_of::<Arc<[Notch]>>()
-            }
-            Trim::Pad { .. } => 0,
-        }
-    }
-}
-
-/// Whether `a` and `b` hold the same points, bit for bit.
-fn same_bits(a: &[DVec2], b: &[DVec2]) -> bool {
-    a.len() == b.len()
-        && a.iter()
-            .zip(b)
-            .all(|(p, q)| p.x.to_bits() == q.x.to_bits() && p.y.to_bits() == q.y.to_bits())
 }
 
 impl Job {

@@ -8,18 +8,13 @@
 //! `build_scene` budgets the same way from the same patches, so a full build
 //! and an incremental one agree.
 
+use crate::components::RequestedTessellation;
 use bevy_ecs::query::{QueryState, With};
-use bevy_ecs::resource::Resource;
 use bevy_ecs::world::World;
 
-use super::Tessellation;
+use crate::components::Tessellation;
 use crate::components::{PatchOf, PatchSurface};
-use crate::mesh::{TessellationOptions, patch_extent, storage_options};
-
-/// The tessellation options asked for (the model's [`Tessellation`] is what
-/// the patches are meshed to).
-#[derive(Resource, Clone, Copy, Debug, PartialEq)]
-pub struct RequestedTessellation(pub TessellationOptions);
+use crate::mesh::{patch_extent, storage_options};
 
 /// Sets [`Tessellation`] from [`RequestedTessellation`] and the largest
 /// coordinate of any part or nozzle patch in its part's frame (pads lie on

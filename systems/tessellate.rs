@@ -6,29 +6,24 @@
 //! cavities its meshing triangulated round them ([`PatchCavities`]), and its next
 //! meshing takes those whose inputs come out the same.
 
+use crate::components::{Instances, Tessellation};
 use std::sync::Arc;
 
 use bevy_ecs::entity::Entity;
 use bevy_ecs::query::QueryState;
-use bevy_ecs::resource::Resource;
 use bevy_ecs::world::World;
 use rayon::prelude::*;
 use rustc_hash::FxHashMap;
 
-use super::DirtyPatches;
 use super::biggest_first::map_biggest_first;
 use super::labels::{json_path, patch_label};
-use super::{ModelErrors, WorkCounters};
+use crate::components::DirtyPatches;
+use crate::components::{ModelErrors, WorkCounters};
 use crate::components::{PatchCavities, PatchMesh, PatchSurface};
 use crate::design::RuleViolation;
 use crate::mesh::cdt::{KeptCavities, Region, mesh_patch_region_keeping};
-use crate::mesh::{MeshInstances, PackedMesh, TessellationOptions, mesh_key_of, surface_key};
+use crate::mesh::{PackedMesh, mesh_key_of, surface_key};
 use crate::parts::Patch;
-
-/// The meshes in use by content (see [`MeshInstances`]): the Tessellate stage's
-/// memory of what it has meshed.
-#[derive(Resource, Debug, Default)]
-pub struct Instances(pub MeshInstances);
 
 /// One patch meshed: its mesh, the cavities it met (none: `None`) and how many
 /// of them it took from its last meshing.
@@ -37,12 +32,6 @@ struct Meshed {
     cavities: Option<Arc<KeptCavities>>,
     reused: u64,
 }
-
-/// The tessellation options every patch is meshed with: the requested ones
-/// ([`RequestedTessellation`](super::RequestedTessellation)) less the storage
-/// rounding (see `budget_storage_precision`).
-#[derive(Resource, Clone, Copy, Debug, PartialEq)]
-pub struct Tessellation(pub TessellationOptions);
 
 /// Meshes every patch whose surface or region changed, within the region laid
 /// out in this run (every patch when the tessellation options changed: then

@@ -7,36 +7,17 @@
 //! when it checked the edit ([`CheckedResolutions`]). A vessel that fails (only possible if the world was edited
 //! around `Model::apply`) keeps its derived data and its violations are recorded.
 
+use crate::components::{CheckedResolutions, EditedVessels, ModelErrors, PendingResolutions};
 use bevy_ecs::change_detection::Ref;
 use bevy_ecs::entity::Entity;
 use bevy_ecs::hierarchy::Children;
-use bevy_ecs::resource::Resource;
 use bevy_ecs::system::{Query, ResMut};
 use rayon::prelude::*;
-use rustc_hash::FxHashMap;
 
-use super::WorkCounters;
+use crate::components::WorkCounters;
 use crate::components::{DesignOrder, NoteSpec, NozzleSpec, PartSpec, VesselSpec, same_in_order};
-use crate::constraints::{ResolvedVessel, resolve_vessel};
-use crate::design::{RuleViolation, VesselDesign};
-
-/// Vessels resolved by the Validate stage, waiting for the Constrain stage.
-#[derive(Resource, Default)]
-pub struct PendingResolutions(pub Vec<(Entity, ResolvedVessel)>);
-
-/// Resolutions `Model::apply` computed when it checked an edit, by vessel, each
-/// with the order and design (operating data left out, as `read_vessel` reads
-/// it) it was computed from. [`resolve_dirty_vessels`] takes a dirty vessel's
-/// resolution from here instead of resolving it a second time when the world
-/// still holds exactly that design, and drops the rest: resolving is a pure
-/// function of the design and its order, and the operating data only adds checks.
-#[derive(Resource, Default)]
-pub struct CheckedResolutions(pub FxHashMap<Entity, (u32, VesselDesign, ResolvedVessel)>);
-
-/// Rule violations found in the world by the last run (normally empty: edits are
-/// checked before they are written).
-#[derive(Resource, Default, Debug)]
-pub struct ModelErrors(pub Vec<(String, Vec<RuleViolation>)>);
+use crate::constraints::resolve_vessel;
+use crate::design::VesselDesign;
 
 /// Reads a vessel entity and its children back into the design form, children in
 /// design order.
@@ -96,15 +77,6 @@ fn same<T: bevy_ecs::component::Component, D: PartialEq>(
     let found = kids.iter().filter_map(|&e| query.get(e).ok());
     same_in_order(found.map(|(t, o)| (inner(t), *o)), wanted)
 }
-
-/// Vessels whose own or whose children's parameters were written (or whose
-/// children were added or removed) since the last update: pushed by the model's
-/// edit commit, the only writer of parameter components, and drained by
-/// [`resolve_dirty_vessels`]. A list instead of `Changed<…>` filters, which
-/// visit every part, nozzle and note of the plant on every update (0.3 ms at
-/// 10 000 vessels).
-#[derive(Resource, Default, Debug)]
-pub struct EditedVessels(pub Vec<Entity>);
 
 /// Resolves every vessel whose parameters (or whose children's) changed.
 #[expect(clippy::too_many_arguments, reason = "one query per parameter kind")]

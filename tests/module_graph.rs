@@ -540,3 +540,39 @@ fn print_top_level_graph() {
     }
     assert!(graph.contains_key("model"), "the graph was read: {graph:?}");
 }
+
+/// Every ECS component and resource is declared in `components/`: no
+/// `#[derive(Component)]`, `#[derive(Resource)]` or hand-written impl of either
+/// elsewhere in the library's code.
+#[test]
+fn components_and_resources_live_in_components() {
+    let root = root();
+    let mut files = Vec::new();
+    for dir in ["src", "systems"] {
+        rust_files(&root.join(dir), &mut files);
+    }
+    let mut found = Vec::new();
+    for file in files {
+        let code = strip_test_code(&strip_comments(&fs::read_to_string(&file).unwrap())).0;
+        for line in code.lines() {
+            let derives = line.trim_start().starts_with("#[derive(")
+                && line
+                    .split(|c: char| !(c.is_alphanumeric() || c == '_'))
+                    .any(|w| w == "Component" || w == "Resource");
+            let implements =
+                line.contains("impl Component for") || line.contains("impl Resource for");
+            if derives || implements {
+                found.push(format!(
+                    "{}: {}",
+                    file.strip_prefix(&root).unwrap().display(),
+                    line.trim()
+                ));
+            }
+        }
+    }
+    assert!(
+        found.is_empty(),
+        "outside components/:\n{}",
+        found.join("\n")
+    );
+}

@@ -2,7 +2,7 @@
 //! for viewers that already hold the rest.
 //!
 //! The streaming end of the data flow: after an edit the model's
-//! [`ChangeLog`](crate::systems::ChangeLog) names the stable ids that changed
+//! [`ChangeLog`](crate::components::ChangeLog) names the stable ids that changed
 //! (`tag` for a vessel whose frame changed, `tag/id` for a part or nozzle whose
 //! frame or meshes changed). [`delta_scene`] keeps, from the full scene, every
 //! vessel that holds a changed id and, under it, only the changed parts and

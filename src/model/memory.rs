@@ -30,7 +30,7 @@ pub struct MemoryBreakdown {
     /// Exact patch surfaces: control points and knots.
     pub surfaces: usize,
     /// Patch regions: the (u, v) loops meshed within, and the sampled sides kept
-    /// for host patches (`systems::HostSides`).
+    /// for host patches (`components::HostSides`).
     pub regions: usize,
     /// Openings: intersection loops (3D points and (u, v) on both surfaces),
     /// notches, and the inputs each was cut from (with the canonical loops kept
@@ -96,7 +96,7 @@ pub(crate) fn breakdown(world: &World) -> MemoryBreakdown {
             }
         }
     }
-    if let Some(sides) = world.get_resource::<crate::systems::HostSides>() {
+    if let Some(sides) = world.get_resource::<crate::components::HostSides>() {
         out.regions += sides.heap_bytes();
     }
     // Loops shared between openings, their pads' trims and the kept canonical

@@ -18,25 +18,24 @@ mod undo;
 pub use edit::Edit;
 pub use memory::MemoryBreakdown;
 
-use std::collections::{HashMap, HashSet};
+use std::collections::HashSet;
 
 use bevy_ecs::change_detection::DetectChangesMut;
-use bevy_ecs::entity::Entity;
-use bevy_ecs::resource::Resource;
 use bevy_ecs::schedule::Schedule;
 use bevy_ecs::world::World;
 use rayon::prelude::*;
 use thiserror::Error;
 
+pub use crate::components::Views;
+use crate::components::{
+    ChangeLog, CheckedResolutions, CutTable, DirtyParts, DirtyPatches, EditedVessels, Instances,
+    ModelErrors, OpeningHosts, PendingResolutions, RequestedTessellation, StageTimes, Tessellation,
+    VesselIndex, WorkCounters,
+};
 use crate::design::{Design, DesignError, RuleViolation};
 use crate::export::Scene;
 use crate::mesh::{OptionsError, TessellationOptions};
-pub use crate::systems::Views;
-use crate::systems::{
-    ChangeLog, CheckedResolutions, CutTable, DirtyParts, DirtyPatches, EditedVessels, Instances,
-    ModelErrors, OpeningHosts, PendingResolutions, RequestedTessellation, StageTimes, Tessellation,
-    WorkCounters, build_schedule,
-};
+use crate::systems::build_schedule;
 
 /// Why an edit or model construction was refused. The model is unchanged.
 #[derive(Debug, Error)]
@@ -69,10 +68,6 @@ pub enum ModelError {
         id: String,
     },
 }
-
-/// Vessel entities by tag.
-#[derive(Resource, Default, Debug)]
-pub(crate) struct VesselIndex(pub HashMap<String, Entity>);
 
 /// The plant model: world, schedule and edit API.
 pub struct Model {

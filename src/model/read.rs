@@ -5,7 +5,7 @@ use bevy_ecs::entity::Entity;
 use bevy_ecs::hierarchy::Children;
 use bevy_ecs::world::World;
 
-use super::VesselIndex;
+use crate::components::VesselIndex;
 use crate::components::{
     DesignOrder, MountedOn, NoteSpec, NozzleSpec, OperatingSpec, PadPatch, PartFrame, PartSpan,
     PartSpec, PatchMesh, PatchSurface, Patches, Shape, VesselFrame, VesselSpec, VesselSummary,

@@ -7,8 +7,9 @@ use std::collections::{BTreeMap, HashMap};
 use bevy_ecs::world::World;
 use rayon::prelude::*;
 
-use super::{Edit, ModelError, VesselIndex, read};
+use super::{Edit, ModelError, read};
 use crate::components::DesignOrder;
+use crate::components::VesselIndex;
 use crate::constraints::{ResolvedVessel, resolve_vessel};
 use crate::design::{DesignError, FORMAT, RuleViolation, VesselDesign, units};
 

@@ -7,11 +7,12 @@ use bevy_ecs::entity::Entity;
 use bevy_ecs::hierarchy::ChildOf;
 use bevy_ecs::world::World;
 
+use super::read;
 use super::staging::{Staged, StagedVessel};
-use super::{VesselIndex, read};
+use crate::components::VesselIndex;
+use crate::components::{ChangeLog, CheckedResolutions, EditedVessels};
 use crate::components::{DesignOrder, NoteSpec, NozzleSpec, OperatingSpec, PartSpec, VesselSpec};
 use crate::design::{PartDesign, VesselDesign};
-use crate::systems::{ChangeLog, CheckedResolutions, EditedVessels};
 
 /// Sets a component if it differs; returns whether it was written.
 fn put<T: Component<Mutability = Mutable> + PartialEq>(

@@ -9,9 +9,10 @@
 
 use bevy_ecs::world::World;
 
+use super::read;
 use super::staging::{Staged, StagedVessel};
-use super::{VesselIndex, read};
 use crate::components::DesignOrder;
+use crate::components::VesselIndex;
 use crate::constraints::resolve_vessel;
 use crate::design::VesselDesign;
 

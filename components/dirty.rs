@@ -97,3 +97,12 @@ pub fn unique(entities: impl IntoIterator<Item = Entity>) -> Vec<Entity> {
     out.dedup();
     out
 }
+
+/// Vessels whose own or whose children's parameters were written (or whose
+/// children were added or removed) since the last update: pushed by the model's
+/// edit commit, the only writer of parameter components, and drained by
+/// `systems::resolve_dirty_vessels`. A list instead of `Changed<…>` filters, which
+/// visit every part, nozzle and note of the plant on every update (0.3 ms at
+/// 10 000 vessels).
+#[derive(Resource, Default, Debug)]
+pub struct EditedVessels(pub Vec<Entity>);
