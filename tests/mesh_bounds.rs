@@ -20,8 +20,8 @@ fn every_triangle_is_within_the_tolerance() {
         let design = common::examples::example(name);
         let mut model = Model::from_design(&design, TessellationOptions::chord(TOLERANCE)).unwrap();
         assert!(model.errors().0.is_empty(), "{name}: {:?}", model.errors());
-        let world = model_world(&mut model);
-        let mut query = world.query::<(&PatchSurface, &PatchMesh)>();
+        let mut query = model.query::<(&PatchSurface, &PatchMesh)>();
+        let world = model.world();
         let mut worst = 0.0f64;
         let mut triangles = 0;
         for (surface, mesh) in query.iter(world) {
@@ -96,8 +96,8 @@ fn quality(
 ) -> (f64, f64, f64, usize) {
     let mut model = Model::from_design(design, options).unwrap();
     assert!(model.errors().0.is_empty(), "{:?}", model.errors());
-    let world = model_world(&mut model);
-    let mut query = world.query::<(&PatchSurface, &PatchMesh)>();
+    let mut query = model.query::<(&PatchSurface, &PatchMesh)>();
+    let world = model.world();
     let (mut slivers, mut total, mut smallest, mut worst) = (0usize, 0usize, f64::INFINITY, 0.0f64);
     for (surface, mesh) in query.iter(world) {
         let m = &mesh.0.unpack();
@@ -146,10 +146,4 @@ fn a_stretch_limit_removes_needles() {
         limited.1,
         plain.1
     );
-}
-
-/// Mutable access to the model's world for queries (queries need `&mut World` to
-/// initialise their state).
-fn model_world(model: &mut Model) -> &mut bevy_ecs::world::World {
-    model.world_mut()
 }

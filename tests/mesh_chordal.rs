@@ -162,8 +162,8 @@ fn every_patch_of_the_examples_holds_the_bound_on_every_point() {
         .unwrap();
         let mut model = Model::from_design(&design, TessellationOptions::chord(tolerance)).unwrap();
         assert!(model.errors().0.is_empty(), "{name}: {:?}", model.errors());
-        let world = model.world_mut();
-        let mut query = world.query::<(&PatchSurface, &PatchMesh)>();
+        let mut query = model.query::<(&PatchSurface, &PatchMesh)>();
+        let world = model.world();
         let (mut triangles, mut worst) = (0, 0.0f64);
         for (surface, mesh) in query.iter(world) {
             let m = mesh.0.unpack();

@@ -335,8 +335,8 @@ fn column_with_seam_nozzles(nozzles: &[(f64, f64, f64)]) -> Design {
 
 /// How many openings of the model's nozzles cross a seam between two host patches.
 fn openings_across_seams(mut model: Model) -> usize {
-    let world = model.world_mut();
-    let mut query = world.query::<&vesselcad::components::Opening>();
+    let mut query = model.query::<&vesselcad::components::Opening>();
+    let world = model.world();
     query.iter(world).filter(|o| o.hosts.len() == 2).count()
 }
 

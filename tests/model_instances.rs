@@ -24,8 +24,8 @@ fn small_plant() -> Design {
 
 /// Distinct meshes held by the model's patches, and the number of patches.
 fn distinct_meshes(model: &mut Model) -> (usize, usize) {
-    let world = model.world_mut();
-    let mut q = world.query::<&PatchMesh>();
+    let mut q = model.query::<&PatchMesh>();
+    let world = model.world();
     let all: Vec<*const _> = q.iter(world).map(|m| Arc::as_ptr(&m.0)).collect();
     let distinct: HashSet<_> = all.iter().collect();
     (distinct.len(), all.len())
@@ -117,8 +117,8 @@ fn cuts_of(model: &mut Model, tag: &str) -> Vec<(String, *const vesselcad::mesh:
     use bevy_ecs::hierarchy::ChildOf;
     use vesselcad::components::OpeningInput;
     use vesselcad::components::{NozzleSpec, VesselSpec};
-    let world = model.world_mut();
-    let mut q = world.query::<(&NozzleSpec, &ChildOf, &OpeningInput)>();
+    let mut q = model.query::<(&NozzleSpec, &ChildOf, &OpeningInput)>();
+    let world = model.world();
     let mut out: Vec<_> = q
         .iter(world)
         .filter(|(_, parent, _)| {

@@ -95,8 +95,8 @@ fn the_opening_lies_on_the_course_and_on_the_neck() {
             "{fields}: {:?}",
             model.errors()
         );
-        let world = model.world_mut();
-        let mut query = world.query::<&Opening>();
+        let mut query = model.query::<&Opening>();
+        let world = model.world();
         let openings: Vec<&Opening> = query.iter(world).collect();
         assert_eq!(openings.len(), 1, "{fields}");
         let points = &openings[0].curve.points;

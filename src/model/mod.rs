@@ -14,6 +14,8 @@ mod read;
 mod staging;
 mod sync;
 mod undo;
+#[cfg(test)]
+mod world_writes;
 
 pub use edit::Edit;
 pub use memory::MemoryBreakdown;
@@ -21,6 +23,7 @@ pub use memory::MemoryBreakdown;
 use std::collections::HashSet;
 
 use bevy_ecs::change_detection::DetectChangesMut;
+use bevy_ecs::query::{QueryState, ReadOnlyQueryData};
 use bevy_ecs::schedule::Schedule;
 use bevy_ecs::world::World;
 use rayon::prelude::*;
@@ -262,14 +265,40 @@ impl Model {
         memory::breakdown(&self.world)
     }
 
-    /// The ECS world, for queries.
+    /// The ECS world, to read. Nothing outside the model writes it: parameters
+    /// change through [`apply`](Self::apply) and [`edit`](Self::edit), which check
+    /// the edit and list what the next [`update`](Self::update) must redo (the
+    /// dirty lists); a write past them would be missed by every stage.
     pub fn world(&self) -> &World {
         &self.world
     }
 
-    /// The ECS world, mutably: for building query states. Writing parameter or
-    /// derived components here bypasses the edit checks; use [`apply`](Self::apply).
-    pub fn world_mut(&mut self) -> &mut World {
-        &mut self.world
+    /// A read-only query over the model's entities (building a query state
+    /// registers its components, which needs the model mutably):
+    ///
+    /// ```
+    /// # use vesselcad::components::PatchMesh;
+    /// # use vesselcad::mesh::TessellationOptions;
+    /// # use vesselcad::model::Model;
+    /// # let mut model = Model::new(TessellationOptions::DEFAULT).unwrap();
+    /// let mut meshes = model.query::<&PatchMesh>();
+    /// let triangles: usize = meshes
+    ///     .iter(model.world())
+    ///     .map(|m| m.0.triangle_count())
+    ///     .sum();
+    /// # assert_eq!(triangles, 0);
+    /// ```
+    ///
+    /// Components cannot be written through it:
+    ///
+    /// ```compile_fail,E0277
+    /// # use vesselcad::components::NozzleSpec;
+    /// # use vesselcad::mesh::TessellationOptions;
+    /// # use vesselcad::model::Model;
+    /// # let mut model = Model::new(TessellationOptions::DEFAULT).unwrap();
+    /// let mut specs = model.query::<&mut NozzleSpec>();
+    /// ```
+    pub fn query<D: ReadOnlyQueryData>(&mut self) -> QueryState<D> {
+        self.world.query::<D>()
     }
 }

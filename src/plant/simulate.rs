@@ -58,8 +58,8 @@ impl Simulation {
     pub fn new(model: Model, design: &Design, seed: u64) -> Self {
         let mut model = model;
         let by_tag: HashMap<String, Entity> = {
-            let world = model.world_mut();
-            let mut q = world.query::<(Entity, &VesselSpec)>();
+            let mut q = model.query::<(Entity, &VesselSpec)>();
+            let world = model.world();
             q.iter(world).map(|(e, s)| (s.tag.clone(), e)).collect()
         };
         let vessels = design.vessels.clone();
