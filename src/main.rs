@@ -5,8 +5,6 @@
 //! listed on stderr); 2 when a file cannot be read or written or the command line
 //! is wrong.
 
-mod drawing_command;
-
 use std::path::PathBuf;
 use std::process::ExitCode;
 use std::time::Instant;
@@ -17,7 +15,6 @@ use vesselcad::export::{stream_glb, stream_glb_to};
 use vesselcad::mesh::TessellationOptions;
 use vesselcad::model::ModelError;
 use vesselcad::report::report;
-use vesselcad::server::cli::{ServeArgs, serve_command};
 
 mod cli;
 
@@ -59,9 +56,9 @@ enum Command {
     },
     /// Serve a live redesign session: viewer page, JSON Patch edits, journal,
     /// glTF deltas over WebSocket (see `vesselcad::server`).
-    Serve(ServeArgs),
+    Serve(cli::serve::ServeArgs),
     /// Draw one vessel's sheet (views, dimensions, tables) as SVG and optionally DXF.
-    Drawing(drawing_command::DrawingArgs),
+    Drawing(cli::drawing::DrawingArgs),
     /// Report each vessel's parts, nozzles, lengths, OD, volume and area.
     Info {
         /// The design file.
@@ -105,8 +102,8 @@ fn main() -> ExitCode {
         vesselcad::allocator::hold_freed_memory();
     }
     match cli.command {
-        Command::Serve(args) => serve_command(args),
-        Command::Drawing(args) => drawing_command::run(args),
+        Command::Serve(args) => cli::serve::serve_command(args),
+        Command::Drawing(args) => cli::drawing::run(args),
         Command::Check { design, json: true } => cli::check::check_json(&design),
         Command::Check {
             design,

@@ -422,11 +422,7 @@ fn sources() -> Vec<Source> {
     let mut out = Vec::new();
     for file in files {
         let relative = file.strip_prefix(&root).unwrap().to_path_buf();
-        let (mut module, is_dir) = module_of(&relative);
-        if relative == Path::new("src/drawing_command.rs") {
-            // Declared by `main.rs`: part of the binary.
-            module.insert(0, BINARY.to_string());
-        }
+        let (module, is_dir) = module_of(&relative);
         let text = fs::read_to_string(&file).unwrap();
         let (code, tests) = strip_test_code(&strip_comments(&text));
         if is_dir {

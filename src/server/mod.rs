@@ -17,7 +17,6 @@
 
 pub mod assets;
 pub mod broadcast;
-pub mod cli;
 pub mod error;
 pub mod guard;
 pub mod journal;

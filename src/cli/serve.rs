@@ -8,10 +8,10 @@ use std::time::Duration;
 
 use clap::Args;
 
-use super::{ServeError, ServeOptions, VIEWER_SEND_TIMEOUT, run};
-use crate::design::DesignError;
-use crate::mesh::TessellationOptions;
-use crate::model::ModelError;
+use vesselcad::design::DesignError;
+use vesselcad::mesh::TessellationOptions;
+use vesselcad::model::ModelError;
+use vesselcad::server::{ServeError, ServeOptions, VIEWER_SEND_TIMEOUT, limits, run};
 
 /// Arguments of `vesselcad serve`.
 #[derive(Args, Debug)]
@@ -39,11 +39,11 @@ pub struct ServeArgs {
     #[arg(long, default_value_t = VIEWER_SEND_TIMEOUT.as_secs_f64(), value_parser = parse_timeout, allow_negative_numbers = true)]
     pub viewer_timeout: f64,
     /// Connections served at once; more wait until one closes.
-    #[arg(long, default_value_t = super::limits::MAX_CONNECTIONS as u16, value_parser = clap::value_parser!(u16).range(1..))]
+    #[arg(long, default_value_t = limits::MAX_CONNECTIONS as u16, value_parser = clap::value_parser!(u16).range(1..))]
     pub max_connections: u16,
     /// Seconds a connection may move no byte (idle keep-alive, unfinished
     /// headers, a silent viewer) before it is closed.
-    #[arg(long, default_value_t = super::limits::IDLE_TIMEOUT.as_secs_f64(), value_parser = parse_timeout, allow_negative_numbers = true)]
+    #[arg(long, default_value_t = limits::IDLE_TIMEOUT.as_secs_f64(), value_parser = parse_timeout, allow_negative_numbers = true)]
     pub idle_timeout: f64,
     /// On a clean shutdown (Ctrl-C, SIGTERM), write unsaved edits into the design
     /// file. Without it the file is written only by `POST /save`; unsaved edits
