@@ -6,6 +6,7 @@ use clap::Args;
 use vesselcad::plant::{BenchConfig, format_markdown, format_table, run_bench};
 
 use super::alloc::live_bytes;
+use super::output::out;
 
 /// `vesselcad bench …`.
 #[derive(Args)]
@@ -50,9 +51,9 @@ pub fn run(args: BenchArgs) -> ExitCode {
     match run_bench(&config, &heap, &mut progress, &std::env::temp_dir()) {
         Ok(rows) => {
             if args.markdown {
-                print!("{}", format_markdown(&rows));
+                out!("{}", format_markdown(&rows));
             } else {
-                print!("{}", format_table(&rows));
+                out!("{}", format_table(&rows));
             }
             ExitCode::SUCCESS
         }

@@ -1,17 +1,135 @@
-//! `vesselcad build` of large designs: the chunked build with a progress bar and
-//! the streaming GLB writer; `vesselcad info --memory`: the measured memory of a
-//! built model per vessel.
+//! `vesselcad build`: a design built (in chunks, with a progress bar on a
+//! terminal) and streamed as binary glTF to a file or standard output.
 
-use std::path::Path;
+use std::io::Write;
+use std::path::{Path, PathBuf};
 use std::process::ExitCode;
+use std::time::Instant;
 
-use vesselcad::design::Design;
+use clap::Args;
+use vesselcad::design::{Design, load};
+use vesselcad::export::{ExportError, stream_glb, stream_glb_to};
 use vesselcad::mesh::TessellationOptions;
 use vesselcad::model::{Model, ModelError};
 use vesselcad::plant::build_plant;
 
-use super::alloc::live_bytes;
+use super::fail;
+use super::output::{is_broken_pipe, outln};
 use super::progress::bar;
+
+/// Arguments of `vesselcad build`.
+#[derive(Args)]
+pub struct BuildArgs {
+    /// The design file (JSON, vesselcad/1).
+    design: PathBuf,
+    /// Output GLB file (`.glb`), or `-` for standard output.
+    #[arg(short, long)]
+    output: PathBuf,
+    /// Chordal tolerance of the meshes, mm.
+    #[arg(long, default_value_t = TessellationOptions::DEFAULT.tolerance, allow_negative_numbers = true)]
+    tolerance: f64,
+    /// Largest ratio between a triangle's sizes in two directions (≥ 1; e.g. 3
+    /// for analysis-quality triangles). No limit by default.
+    #[arg(long, allow_negative_numbers = true)]
+    max_stretch: Option<f64>,
+}
+
+/// Runs `vesselcad build`.
+pub fn run(args: BuildArgs) -> ExitCode {
+    let BuildArgs {
+        design,
+        output,
+        tolerance,
+        max_stretch,
+    } = args;
+    let start = Instant::now();
+    let to_stdout = output.as_os_str() == "-";
+    if !to_stdout
+        && output
+            .extension()
+            .is_some_and(|e| e.eq_ignore_ascii_case("gltf"))
+    {
+        eprintln!(
+            "error: {}: vesselcad writes binary glTF only; name the output .glb \
+             (a .gltf file would be read as JSON glTF and fail)",
+            output.display()
+        );
+        return ExitCode::from(2);
+    }
+    let d = match load(&design) {
+        Ok(d) => d,
+        Err(e) => return fail(&e),
+    };
+    let model = match build_with_progress(
+        &d,
+        TessellationOptions::chord(tolerance).with_max_stretch(max_stretch),
+    ) {
+        Ok(m) => m,
+        Err(ModelError::Design(e)) => return fail(&e),
+        Err(e) => {
+            eprintln!("error: {e}");
+            return ExitCode::from(2);
+        }
+    };
+    if !model.errors().0.is_empty() {
+        for (entity, violations) in &model.errors().0 {
+            for v in violations {
+                eprintln!("error: {entity}: {}", v.rule);
+            }
+        }
+        return ExitCode::from(1);
+    }
+    let scene = model.scene();
+    let triangles: usize = scene
+        .vessels
+        .iter()
+        .flat_map(|v| &v.nodes)
+        .flat_map(|n| &n.patches)
+        .map(|p| p.mesh.triangle_count())
+        .sum();
+    let written = if to_stdout {
+        let stdout = std::io::stdout().lock();
+        let mut out = std::io::BufWriter::new(stdout);
+        stream_glb(&scene, &mut out, Path::new("<stdout>")).and_then(|n| {
+            out.flush().map_err(|source| ExportError::Io {
+                path: "<stdout>".into(),
+                source,
+            })?;
+            Ok(n)
+        })
+    } else {
+        stream_glb_to(&scene, &output)
+    };
+    let bytes = match written {
+        Ok(bytes) => bytes,
+        // The reader of standard output went away: it had what it wanted.
+        Err(e) if to_stdout && is_broken_pipe(&e) => return ExitCode::SUCCESS,
+        Err(e) => {
+            eprintln!("error: {e}");
+            return ExitCode::from(2);
+        }
+    };
+    // On standard error when the GLB itself goes to standard output.
+    let summary = format!(
+        "{}: {} vessel(s), {} triangles at {} mm, {} bytes, {:.0} ms",
+        if to_stdout {
+            "<stdout>".into()
+        } else {
+            output.display().to_string()
+        },
+        scene.vessels.len(),
+        triangles,
+        tolerance,
+        bytes,
+        start.elapsed().as_secs_f64() * 1e3
+    );
+    if to_stdout {
+        eprintln!("{summary}");
+    } else {
+        outln!("{summary}");
+    }
+    ExitCode::SUCCESS
+}
 
 /// Builds `design` with a progress bar on a terminal.
 ///
@@ -28,56 +146,4 @@ pub fn build_with_progress(
     });
     progress.finish_and_clear();
     model
-}
-
-/// Prints the counts of a built plant and its measured memory per vessel.
-pub fn print_memory(design: &Design, path: &Path, tolerance: f64) -> ExitCode {
-    let options = TessellationOptions::chord(tolerance);
-    let before = live_bytes();
-    let model = match build_with_progress(design, options) {
-        Ok(m) => m,
-        Err(e) => {
-            eprintln!("error: {e}");
-            return ExitCode::from(1);
-        }
-    };
-    let heap = live_bytes().saturating_sub(before);
-    let world = model.world();
-    let entities = world.entities().len();
-    let meshes = model.mesh_bytes();
-    let n = design.vessels.len().max(1) as f64;
-    let parts: usize = design.vessels.iter().map(|v| v.parts.len()).sum();
-    let nozzles: usize = design.vessels.iter().map(|v| v.nozzles.len()).sum();
-    let notes: usize = design.vessels.iter().map(|v| v.notes.len()).sum();
-    println!("{} at {tolerance} mm:", path.display());
-    println!(
-        "  counts:            {} vessels, {parts} parts, {nozzles} nozzles, {notes} notes, {entities} entities",
-        design.vessels.len()
-    );
-    println!(
-        "  memory per vessel: {:.0} KB measured heap ({:.0} KB of it meshes); {:.1} MB in all",
-        heap as f64 / n / 1024.0,
-        meshes as f64 / n / 1024.0,
-        heap as f64 / 1e6
-    );
-    ExitCode::SUCCESS
-}
-
-/// Prints a vessel's operating figures (`vesselcad info`).
-pub fn print_operating(v: &vesselcad::report::VesselReport) {
-    match (&v.operating, &v.operating_problem) {
-        (Some(o), _) => {
-            println!(
-                "  liquid:           {:.3} m³ at level {:.0} mm (interior {:.3} m³)",
-                o.liquid_volume, o.liquid_level, o.interior_volume
-            );
-            let [x, y, z] = o.centre_of_gravity;
-            println!(
-                "  operating mass:   {:.0} kg ({:.0} kg metal), centre of gravity ({x:.0}, {y:.0}, {z:.0}) mm",
-                o.operating_mass, o.metal_mass
-            );
-        }
-        (None, Some(problem)) => println!("  operating:        not computed: {problem}"),
-        (None, None) => {}
-    }
 }

@@ -1,5 +1,4 @@
-//! `vesselcad check --json` and the envelope of `info --json`: machine-readable
-//! results that name their format version and units.
+//! `vesselcad check`: whether a design is valid, every problem listed otherwise.
 //!
 //! `check --json` prints one object on standard output, whatever the outcome:
 //!
@@ -11,31 +10,49 @@
 //!
 //! with the same exit codes as `check`: 0 valid, 1 invalid, 2 unreadable.
 
-use std::path::Path;
+use std::path::{Path, PathBuf};
 use std::process::ExitCode;
 
+use clap::Args;
 use serde_json::{Value, json};
 use vesselcad::design::{DesignError, load};
+
+use super::fail;
+use super::output::outln;
 
 /// The format tag of `check --json`.
 pub const CHECK_FORMAT: &str = "vesselcad-check/1";
 
-/// The format tag of `info --json`.
-pub const INFO_FORMAT: &str = "vesselcad-info/1";
+/// Arguments of `vesselcad check`.
+#[derive(Args)]
+pub struct CheckArgs {
+    /// The design file.
+    design: PathBuf,
+    /// Print the result as JSON (`vesselcad-check/1`) on standard output.
+    #[arg(long)]
+    json: bool,
+}
 
-/// The units of `info --json`'s figures.
-pub fn info_units() -> Value {
-    json!({
-        "length": "mm",
-        "volume": "m3",
-        "area": "m2",
-        "mass": "kg",
-        "angle": "deg",
-    })
+/// Runs `vesselcad check`: exit 0 when valid, 1 when invalid, 2 when unreadable.
+pub fn run(args: CheckArgs) -> ExitCode {
+    if args.json {
+        return check_json(&args.design);
+    }
+    match load(&args.design) {
+        Ok(d) => {
+            outln!(
+                "{}: valid ({} vessel(s))",
+                args.design.display(),
+                d.vessels.len()
+            );
+            ExitCode::SUCCESS
+        }
+        Err(e) => fail(&e),
+    }
 }
 
 /// Runs `check --json` on `path`.
-pub fn check_json(path: &Path) -> ExitCode {
+fn check_json(path: &Path) -> ExitCode {
     let file = path.display().to_string();
     let (report, code) = match load(path) {
         Ok(design) => (
@@ -80,7 +97,7 @@ pub fn check_json(path: &Path) -> ExitCode {
             (report, code)
         }
     };
-    println!(
+    outln!(
         "{}",
         serde_json::to_string_pretty(&report).unwrap_or_default()
     );

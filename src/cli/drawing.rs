@@ -6,13 +6,16 @@ use std::process::ExitCode;
 use std::time::Instant;
 
 use clap::{Args, ValueEnum};
-use vesselcad::design::{DesignError, load};
+use vesselcad::design::load;
 use vesselcad::drawing::{
     HiddenLines, SheetModelError, SheetOptions, SheetSize, sheet, sheet_model, to_dxf_bytes, to_svg,
 };
 use vesselcad::mesh::TessellationOptions;
 use vesselcad::model::ModelError;
 use vesselcad::project::ViewKind;
+
+use super::fail;
+use super::output::outln;
 
 /// Sheet sizes on the command line.
 #[derive(Clone, Copy, Debug, ValueEnum)]
@@ -65,20 +68,12 @@ pub struct DrawingArgs {
     tolerance: f64,
 }
 
-fn fail_design(e: &DesignError) -> ExitCode {
-    eprintln!("error: {e}");
-    match e {
-        DesignError::Io { .. } => ExitCode::from(2),
-        _ => ExitCode::from(1),
-    }
-}
-
 /// Runs the command.
 pub fn run(args: DrawingArgs) -> ExitCode {
     let start = Instant::now();
     let design = match load(&args.design) {
         Ok(d) => d,
-        Err(e) => return fail_design(&e),
+        Err(e) => return fail(&e),
     };
     // Only the vessel drawn is built: a sheet costs what its vessel costs.
     let (model, work) = match sheet_model(
@@ -87,7 +82,7 @@ pub fn run(args: DrawingArgs) -> ExitCode {
         TessellationOptions::chord(args.tolerance),
     ) {
         Ok(built) => built,
-        Err(SheetModelError::Model(ModelError::Design(e))) => return fail_design(&e),
+        Err(SheetModelError::Model(ModelError::Design(e))) => return fail(&e),
         Err(e @ SheetModelError::UnknownVessel { .. }) => {
             eprintln!("error: {e}");
             return ExitCode::from(1);
@@ -129,9 +124,14 @@ pub fn run(args: DrawingArgs) -> ExitCode {
     } else {
         std::fs::write(&args.output, to_svg(&sheet))
     };
-    if let Err(e) = written {
-        eprintln!("error: writing {}: {e}", args.output.display());
-        return ExitCode::from(2);
+    match written {
+        // The reader of standard output went away: it had what it wanted.
+        Err(e) if to_stdout && e.kind() == std::io::ErrorKind::BrokenPipe => {}
+        Err(e) => {
+            eprintln!("error: writing {}: {e}", args.output.display());
+            return ExitCode::from(2);
+        }
+        Ok(()) => {}
     }
     if let Some(path) = &args.dxf {
         let written = to_dxf_bytes(&sheet)
@@ -165,7 +165,7 @@ pub fn run(args: DrawingArgs) -> ExitCode {
     if to_stdout {
         eprintln!("{summary}");
     } else {
-        println!("{summary}");
+        outln!("{summary}");
     }
     ExitCode::SUCCESS
 }

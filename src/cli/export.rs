@@ -9,6 +9,8 @@ use clap::{Args, ValueEnum};
 use vesselcad::design::{DesignError, load};
 use vesselcad::exchange::{ExchangeError, ExchangeOptions, StepBlocks, export_step};
 
+use super::output::outln;
+
 /// An exchange format.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, ValueEnum)]
 pub enum Format {
@@ -103,7 +105,7 @@ pub fn run(args: ExportArgs) -> ExitCode {
         eprintln!("error: cannot write {}: {e}", args.output.display());
         return ExitCode::from(2);
     }
-    println!(
+    outln!(
         "{}: {} bytes, {:.0} ms",
         args.output.display(),
         text.len(),

@@ -1,6 +1,9 @@
-//! The command line's plant-scale subcommands — `plant generate`, `simulate`,
-//! `bench`, the chunked `build` with its progress bar and `info --memory` — each a
-//! thin layer over `vesselcad::plant` that parses, prints and picks exit codes.
+//! The `vesselcad` command line, one file per command, each a thin layer over
+//! the library that parses arguments, prints and picks the exit status: `build`,
+//! `check`, `serve`, `drawing`, `info`, `plant`, `simulate`, `bench`, `export`.
+//! [`output`] is their standard output (quiet on a closed pipe), [`progress`]
+//! the progress bar and [`alloc`] the heap measurement of `info --memory` and
+//! `bench`.
 
 pub mod alloc;
 pub mod bench;
@@ -8,7 +11,23 @@ pub mod build;
 pub mod check;
 pub mod drawing;
 pub mod export;
+pub mod info;
+pub mod output;
 pub mod plant;
 pub mod progress;
 pub mod serve;
 pub mod simulate;
+
+use std::process::ExitCode;
+
+use vesselcad::design::DesignError;
+
+/// Prints a design error and returns the exit status for it: 2 for a file that
+/// cannot be read, 1 otherwise.
+pub fn fail(error: &DesignError) -> ExitCode {
+    eprintln!("error: {error}");
+    match error {
+        DesignError::Io { .. } => ExitCode::from(2),
+        _ => ExitCode::from(1),
+    }
+}

@@ -7,6 +7,8 @@ use clap::{Args, Subcommand};
 use vesselcad::design::save;
 use vesselcad::plant::generate_plant;
 
+use super::output::outln;
+
 /// `vesselcad plant …`.
 #[derive(Args)]
 pub struct PlantArgs {
@@ -51,7 +53,7 @@ pub fn run(args: PlantArgs) -> ExitCode {
             }
             let nozzles: usize = design.vessels.iter().map(|v| v.nozzles.len()).sum();
             let parts: usize = design.vessels.iter().map(|v| v.parts.len()).sum();
-            println!(
+            outln!(
                 "{}: {} vessels, {parts} parts, {nozzles} nozzles (seed {seed})",
                 output.display(),
                 design.vessels.len()

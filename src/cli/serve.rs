@@ -11,7 +11,7 @@ use clap::Args;
 use vesselcad::design::DesignError;
 use vesselcad::mesh::TessellationOptions;
 use vesselcad::model::ModelError;
-use vesselcad::server::{ServeError, ServeOptions, VIEWER_SEND_TIMEOUT, limits, run};
+use vesselcad::server::{self, ServeError, ServeOptions, VIEWER_SEND_TIMEOUT, limits};
 
 /// Arguments of `vesselcad serve`.
 #[derive(Args, Debug)]
@@ -66,7 +66,7 @@ fn parse_timeout(text: &str) -> Result<f64, String> {
 
 /// Runs `vesselcad serve`; exit 1 for an invalid design or a journal that cannot
 /// be replayed, 2 for a file that cannot be read or written or a socket failure.
-pub fn serve_command(args: ServeArgs) -> ExitCode {
+pub fn run(args: ServeArgs) -> ExitCode {
     if !args.bind.is_loopback() && args.token.is_none() {
         eprintln!(
             "warning: listening on {} without --token: anyone who can reach it can edit",
@@ -84,7 +84,7 @@ pub fn serve_command(args: ServeArgs) -> ExitCode {
         max_connections: usize::from(args.max_connections),
         idle_timeout: Duration::from_secs_f64(args.idle_timeout),
     };
-    match run(options) {
+    match server::run(options) {
         Ok(()) => ExitCode::SUCCESS,
         Err(e) => {
             eprintln!("error: {e}");

@@ -11,6 +11,7 @@ use vesselcad::mesh::TessellationOptions;
 use vesselcad::plant::{Simulation, quantile};
 
 use super::build::build_with_progress;
+use super::output::outln;
 
 /// `vesselcad simulate …`.
 #[derive(Args)]
@@ -51,7 +52,7 @@ pub fn run(args: SimulateArgs) -> ExitCode {
             return ExitCode::from(1);
         }
     };
-    println!(
+    outln!(
         "{}: {} vessels built in {:.1} s",
         args.design.display(),
         design.vessels.len(),
@@ -63,7 +64,7 @@ pub fn run(args: SimulateArgs) -> ExitCode {
     } else {
         0
     };
-    println!(
+    outln!(
         "tick  latency ms (update)  edits refused levels  resolved shapes patches meshes triangles operating  operating mass t"
     );
     let mut latencies = Vec::with_capacity(args.ticks);
@@ -71,7 +72,7 @@ pub fn run(args: SimulateArgs) -> ExitCode {
         let r = sim.tick(args.edits_per_tick, levels);
         latencies.push(r.latency);
         let c = r.counters;
-        println!(
+        outln!(
             "{tick:>4}  {:>10.3} ({:>7.3})  {:>5} {:>7} {:>6}  {:>8} {:>6} {:>7} {:>6} {:>9} {:>9}  {:>16.3}",
             r.latency.as_secs_f64() * 1e3,
             r.update.as_secs_f64() * 1e3,
@@ -101,7 +102,7 @@ pub fn run(args: SimulateArgs) -> ExitCode {
     }
     let p50 = quantile(&mut latencies, 0.5);
     let p99 = quantile(&mut latencies, 0.99);
-    println!(
+    outln!(
         "latency per tick: p50 {:.3} ms, p99 {:.3} ms; plant operating mass {:.3} t",
         p50.as_secs_f64() * 1e3,
         p99.as_secs_f64() * 1e3,
