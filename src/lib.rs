@@ -21,8 +21,10 @@
 //!   intersections. Knows nothing of ECS or vessels.
 //! - [`parts`] — vessel-part parameters to their exact patches in the part's local
 //!   frame (axis +Z), with standard pipe and flange tables.
-//! - [`design`] — the `vesselcad/1` file format: serde types, loading with exact
-//!   error paths, unit conversion, rule checks, canonical save.
+//! - [`format`](mod@format) — the `vesselcad/1` types: serde types, errors
+//!   naming a value by its JSON path, unit conversion. A leaf: the rules read it.
+//! - [`design`] — design files: loading with exact error paths, rule checks,
+//!   canonical save; re-exports [`format`](mod@format)'s types.
 //! - [`constraints`] — one vessel's rules and resolution: the stack along the axis,
 //!   inherited diameters, nozzles on hosts, clearances, frames.
 //! - [`operating`] — liquid volume at a level, operating weight, centre of gravity.
@@ -30,8 +32,8 @@
 //!   constrained-Delaunay mesher and the content-keyed stores of meshes and cuts.
 //! - [`project`] — drawing views of each vessel (exact silhouettes, edges, hidden
 //!   lines).
-//! - [`components`] and [`systems`] — the ECS components and the staged schedule
-//!   that keeps derived data consistent.
+//! - [`components`] and [`systems`] — every ECS component and resource, and the
+//!   staged schedule that keeps derived data consistent.
 //! - [`model`] — the `World`, the schedule and transactional [`model::Edit`]s: the
 //!   front door.
 //! - [`export`] — scenes written as binary glTF (whole or deltas).

@@ -268,7 +268,15 @@ impl Model {
     /// The ECS world, to read. Nothing outside the model writes it: parameters
     /// change through [`apply`](Self::apply) and [`edit`](Self::edit), which check
     /// the edit and list what the next [`update`](Self::update) must redo (the
-    /// dirty lists); a write past them would be missed by every stage.
+    /// dirty lists); a write past them would be missed by every stage. There is
+    /// no mutable access:
+    ///
+    /// ```compile_fail,E0599
+    /// # use vesselcad::mesh::TessellationOptions;
+    /// # use vesselcad::model::Model;
+    /// # let mut model = Model::new(TessellationOptions::DEFAULT).unwrap();
+    /// let world = model.world_mut();
+    /// ```
     pub fn world(&self) -> &World {
         &self.world
     }
