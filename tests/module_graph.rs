@@ -9,7 +9,8 @@
 //! resolved to modules; comments, doc comments and `#[cfg(test)]` code are left out.
 //! An edge `a → b` joins the first modules where the file's path and the named path
 //! part, under their common parent. A pair of edges `a → b`, `b → a` under the same
-//! parent is a cycle.
+//! parent is a cycle. A second test holds every ECS `Component` and `Resource` in
+//! `components/`.
 
 use std::collections::{BTreeMap, BTreeSet};
 use std::fs;
