@@ -6,11 +6,13 @@
 //! Derived components are written with `set_if_neq`, so an unchanged value stops a
 //! cascade. See `ARCHITECTURE.md` (*ECS stages*) for which system writes what.
 
+mod calc;
 mod derived;
 mod params;
 mod relations;
 mod views;
 
+pub use calc::{NozzleCalculation, PartCalculation, VesselCalculation};
 pub use derived::{
     NoteAnchor, Opening, PartFrame, PartSpan, PatchCavities, PatchMesh, PatchRegion, PatchSurface,
     Shape, VesselFrame, VesselSummary,

@@ -7,6 +7,7 @@
 //! dirty entities and process them in parallel with rayon.
 
 mod biggest_first;
+mod calculate;
 mod clock;
 mod constrain;
 mod counters;
@@ -23,6 +24,7 @@ mod storage;
 mod tessellate;
 mod validate;
 
+pub use calculate::{Materials, update_calculations};
 pub use clock::{STAGES, StageTimes, stamp_stage};
 pub use constrain::apply_resolutions;
 pub use counters::WorkCounters;
@@ -82,6 +84,7 @@ pub fn build_schedule() -> Schedule {
             rebuild_dirty_patches,
             budget_storage_precision,
             cut_openings,
+            update_calculations,
         )
             .chain()
             .in_set(Stage::Geometry),

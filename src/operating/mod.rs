@@ -13,14 +13,18 @@
 //! Units: inputs mm and kg/m³; outputs m³, kg and mm (plant frame).
 
 pub mod liquid;
+pub mod metal;
 pub mod profile;
 mod state;
 pub mod weight;
+mod weights;
 
 pub use state::{
     CARBON_STEEL_DENSITY, MAX_DENSITY, OperatingProblem, OperatingState, STAINLESS_DENSITY,
     metal_density, operating_state, stack_of, state_of_design, thickness,
 };
+
+pub use weights::{Weights, weights};
 
 use thiserror::Error;
 
