@@ -56,7 +56,12 @@ enum Command {
         /// Print the result as JSON (`vesselcad-check/1`) on standard output.
         #[arg(long)]
         json: bool,
+        /// Also exit 1 when a part or nozzle is thinner than the code requires.
+        #[arg(long)]
+        strict: bool,
     },
+    /// The code calculation report (ASME VIII-1): text, JSON, HTML or PDF.
+    Calc(cli::calc::CalcArgs),
     /// Serve a live redesign session: viewer page, JSON Patch edits, journal,
     /// glTF deltas over WebSocket (see `vesselcad::server`).
     Serve(ServeArgs),
@@ -107,10 +112,16 @@ fn main() -> ExitCode {
     match cli.command {
         Command::Serve(args) => serve_command(args),
         Command::Drawing(args) => drawing_command::run(args),
-        Command::Check { design, json: true } => cli::check::check_json(&design),
+        Command::Calc(args) => cli::calc::run(args),
+        Command::Check {
+            design,
+            json: true,
+            strict,
+        } => cli::check::check_json(&design, strict),
         Command::Check {
             design,
             json: false,
+            strict,
         } => match load(&design) {
             Ok(d) => {
                 println!(
@@ -118,7 +129,7 @@ fn main() -> ExitCode {
                     design.display(),
                     d.vessels.len()
                 );
-                ExitCode::SUCCESS
+                cli::check::print_deficiencies(&d, strict)
             }
             Err(e) => fail(&e),
         },

@@ -17,6 +17,7 @@
 mod conditions;
 mod error;
 pub mod heads;
+pub mod html;
 pub mod materials;
 mod nozzle;
 mod part;

@@ -4,18 +4,20 @@
 //! `check --json` prints one object on standard output, whatever the outcome:
 //!
 //! ```text
-//! {"format": "vesselcad-check/1", "file": "...", "valid": true, "vessels": 3}
+//! {"format": "vesselcad-check/1", "file": "...", "valid": true, "vessels": 3,
+//!  "deficiencies": [{"vessel", "deficiency"}]}
 //! {"format": "vesselcad-check/1", "file": "...", "valid": false, "kind": "invalid",
 //!  "error": "<message>", "violations": [{"path", "entity", "field", "value", "rule"}]}
 //! ```
 //!
-//! with the same exit codes as `check`: 0 valid, 1 invalid, 2 unreadable.
+//! with the same exit codes as `check`: 0 valid, 1 invalid (or, with `--strict`,
+//! deficient), 2 unreadable.
 
 use std::path::Path;
 use std::process::ExitCode;
 
 use serde_json::{Value, json};
-use vesselcad::design::{DesignError, load};
+use vesselcad::design::{Design, DesignError, load};
 
 /// The format tag of `check --json`.
 pub const CHECK_FORMAT: &str = "vesselcad-check/1";
@@ -34,19 +36,47 @@ pub fn info_units() -> Value {
     })
 }
 
-/// Runs `check --json` on `path`.
-pub fn check_json(path: &Path) -> ExitCode {
+/// Prints the deficiencies of a valid design (parts or nozzles thinner than the
+/// code requires, see `vesselcad calc`) as warnings; exit 1 under `strict` when
+/// there is one, else 0.
+pub fn print_deficiencies(design: &Design, strict: bool) -> ExitCode {
+    let found = super::calc::deficiencies(design);
+    for (tag, d) in &found {
+        println!("deficiency: {tag}/{d}");
+    }
+    if strict && !found.is_empty() {
+        ExitCode::from(1)
+    } else {
+        ExitCode::SUCCESS
+    }
+}
+
+/// Runs `check --json` on `path`; with `strict`, a deficiency makes it exit 1.
+pub fn check_json(path: &Path, strict: bool) -> ExitCode {
     let file = path.display().to_string();
     let (report, code) = match load(path) {
-        Ok(design) => (
-            json!({
-                "format": CHECK_FORMAT,
-                "file": file,
-                "valid": true,
-                "vessels": design.vessels.len(),
-            }),
-            ExitCode::SUCCESS,
-        ),
+        Ok(design) => {
+            let found = super::calc::deficiencies(&design);
+            let code = if strict && !found.is_empty() {
+                ExitCode::from(1)
+            } else {
+                ExitCode::SUCCESS
+            };
+            let found: Vec<Value> = found
+                .into_iter()
+                .map(|(vessel, text)| json!({"vessel": vessel, "deficiency": text}))
+                .collect();
+            (
+                json!({
+                    "format": CHECK_FORMAT,
+                    "file": file,
+                    "valid": true,
+                    "vessels": design.vessels.len(),
+                    "deficiencies": found,
+                }),
+                code,
+            )
+        }
         Err(e) => {
             let (kind, code) = match &e {
                 DesignError::Io { .. } => ("unreadable", ExitCode::from(2)),

@@ -5,6 +5,7 @@
 pub mod alloc;
 pub mod bench;
 pub mod build;
+pub mod calc;
 pub mod check;
 pub mod export;
 pub mod plant;
