@@ -47,6 +47,14 @@ type PartRow<'a> = (
     Option<&'a PartCalculation>,
 );
 
+type VesselRow<'a> = (
+    Entity,
+    Ref<'a, VesselSpec>,
+    Ref<'a, OperatingSpec>,
+    Option<&'a Children>,
+    Option<&'a VesselCalculation>,
+);
+
 type NozzleRow<'a> = (
     Entity,
     Ref<'a, NozzleSpec>,
@@ -58,16 +66,9 @@ type NozzleRow<'a> = (
 );
 
 /// Recomputes the calculations an edit touched (see the module documentation).
-#[expect(clippy::too_many_arguments, reason = "one query per entity kind")]
 pub fn update_calculations(
     materials: Option<Res<Materials>>,
-    vessels: Query<(
-        Entity,
-        Ref<VesselSpec>,
-        Ref<OperatingSpec>,
-        Option<&Children>,
-        Option<&VesselCalculation>,
-    )>,
+    vessels: Query<VesselRow>,
     parts: Query<PartRow>,
     nozzles: Query<NozzleRow>,
     mut commands: Commands,

@@ -163,7 +163,7 @@ fn check_lists_deficiencies_and_strict_fails_on_them() {
     assert_eq!(strict.status.code(), Some(1));
     let j = json(&["check", "--json", &drum]);
     assert_eq!(j["valid"], true);
-    assert!(j["deficiencies"].as_array().unwrap().len() >= 1);
+    assert!(!j["deficiencies"].as_array().unwrap().is_empty());
     // A vessel without deficiencies passes --strict.
     vesselcad(&["check", "--strict", &example("storage-tank")]);
 }
