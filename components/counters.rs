@@ -50,6 +50,13 @@ pub struct WorkCounters {
     /// Vessels whose operating figures (liquid, weight, centre of gravity) were
     /// recomputed.
     pub operating_updated: u64,
+    /// Pressure parts whose code calculation was redone.
+    pub parts_calculated: u64,
+    /// Nozzles whose UG-45 check was redone.
+    pub nozzles_calculated: u64,
+    /// Vessels whose calculated figures (MAWP, hydrotest, deficiencies) were
+    /// gathered again.
+    pub vessels_calculated: u64,
     /// Patches or openings that failed to mesh or cut (details in `ModelErrors`).
     pub failures: u64,
 }

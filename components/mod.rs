@@ -8,6 +8,7 @@
 //! cascade. See `ARCHITECTURE.md` (*ECS stages*) for which system writes what.
 //! The systems that read and write them are in [`crate::systems`].
 
+mod calc;
 mod change_log;
 mod counters;
 mod derived;
@@ -23,6 +24,7 @@ mod stores;
 mod tessellation;
 mod views;
 
+pub use calc::{Materials, NozzleCalculation, PartCalculation, VesselCalculation};
 pub use change_log::ChangeLog;
 pub use counters::WorkCounters;
 pub use derived::{

@@ -96,6 +96,18 @@ fn bounds() -> Vec<Bound> {
         ),
         bound(
             "DesignConditions",
+            "joint_efficiency",
+            "exclusiveMinimum",
+            json!(0.0),
+        ),
+        bound(
+            "DesignConditions",
+            "joint_efficiency",
+            "maximum",
+            json!(1.0),
+        ),
+        bound(
+            "DesignConditions",
             "metal_density",
             "exclusiveMinimum",
             positive(),

@@ -30,6 +30,8 @@ enum Command {
     Build(cli::build::BuildArgs),
     /// Check a design: exit 0 when valid, 1 with every problem listed otherwise.
     Check(cli::check::CheckArgs),
+    /// The code calculation report (ASME VIII-1): text, JSON, HTML or PDF.
+    Calc(cli::calc::CalcArgs),
     /// Serve a live redesign session: viewer page, JSON Patch edits, journal,
     /// glTF deltas over WebSocket (see `vesselcad::server`).
     Serve(cli::serve::ServeArgs),
@@ -61,6 +63,7 @@ fn main() -> ExitCode {
         Command::Serve(args) => cli::serve::run(args),
         Command::Drawing(args) => cli::drawing::run(args),
         Command::Info(args) => cli::info::run(args),
+        Command::Calc(args) => cli::calc::run(args),
         Command::Plant(args) => cli::plant::run(args),
         Command::Simulate(args) => cli::simulate::run(args),
         Command::Bench(args) => cli::bench::run(args),

@@ -1,12 +1,16 @@
 //! Vessel reports: the figures `vesselcad info` prints — parts, nozzles, lengths,
-//! largest OD, enclosed volume and outside surface area of each vessel — computed
-//! from the resolved design and the exact NURBS.
+//! largest OD, enclosed volume and outside surface area of each vessel, its
+//! weights (the one weight model of `operating::weights`, which the sheet and
+//! the calculation report print too) and its code calculation's summary —
+//! computed from the resolved design and the exact NURBS.
 
 use serde::Serialize;
 
-use crate::constraints::state_of_design;
+use crate::calc::{MaterialTable, VesselCalc, calculate};
 use crate::constraints::{PartGeometry, ResolvedVessel};
 use crate::design::{Design, DesignError, resolve};
+use crate::operating::metal::MetalItem;
+use crate::operating::weights;
 use crate::parts::{PartError, enclosed_volume, surface_area};
 
 /// One part in a report.
@@ -47,23 +51,38 @@ pub struct VesselReport {
     /// Why there are no operating figures.
     #[serde(skip_serializing_if = "Option::is_none")]
     pub operating_problem: Option<String>,
+    /// The code calculation's vessel figures (pressures in MPa): MAWP,
+    /// hydrotest, deficiencies, and what could not be calculated.
+    pub calculation: VesselCalc,
 }
 
-/// The operating figures of a vessel in a report.
+/// The weights and operating figures of a vessel in a report (see
+/// [`crate::operating::Weights`]).
 #[derive(Clone, Debug, Serialize, PartialEq)]
 pub struct OperatingReport {
-    /// Inside volume, m³.
+    /// Capacity: the inside volume, m³.
     pub interior_volume: f64,
     /// Liquid level above the lowest inside point, mm.
     pub liquid_level: f64,
     /// Liquid volume, m³.
     pub liquid_volume: f64,
-    /// Metal of courses, reducers and heads, kg.
+    /// Walls of the pressure envelope (courses, reducers, heads), kg.
+    pub walls_mass: f64,
+    /// Every metal item beyond the walls: supports, boot, nozzles with their
+    /// flanges, pads, kg each.
+    pub metal_items: Vec<MetalItem>,
+    /// Empty weight: all metal (walls and items), kg.
     pub metal_mass: f64,
-    /// Metal + liquid, kg.
+    /// Operating weight: metal + liquid at its level, kg.
     pub operating_mass: f64,
-    /// Centre of gravity, plant frame, mm.
+    /// Test weight: metal + water filling the interior, kg.
+    pub test_mass: f64,
+    /// Centre of gravity empty, plant frame, mm.
+    pub centre_of_gravity_empty: [f64; 3],
+    /// Centre of gravity operating, plant frame, mm.
     pub centre_of_gravity: [f64; 3],
+    /// Centre of gravity full of water, plant frame, mm.
+    pub centre_of_gravity_test: [f64; 3],
 }
 
 /// Volume (mm³) and area (mm²) of the pressure envelope of a resolved vessel.
@@ -97,6 +116,7 @@ fn envelope(vessel: &ResolvedVessel) -> Result<(f64, f64), PartError> {
 /// Reports every vessel of a design.
 pub fn report(design: &Design) -> Result<Vec<VesselReport>, DesignError> {
     let resolved = resolve(design)?;
+    let table = &MaterialTable::builtin();
     let mut out = Vec::with_capacity(resolved.len());
     for (d, v) in design.vessels.iter().zip(&resolved) {
         let (volume, area) = envelope(v).map_err(|e| {
@@ -108,20 +128,29 @@ pub fn report(design: &Design) -> Result<Vec<VesselReport>, DesignError> {
                 rule: e.to_string(),
             }])
         })?;
-        let (operating, operating_problem) = match state_of_design(d, v) {
-            Ok(s) => (
+        let (operating, operating_problem) = match weights(d, v) {
+            Ok(w) => (
                 Some(OperatingReport {
-                    interior_volume: s.interior_volume,
-                    liquid_level: s.liquid_level,
-                    liquid_volume: s.liquid_volume,
-                    metal_mass: s.metal_mass,
-                    operating_mass: s.operating_mass,
-                    centre_of_gravity: s.centre_of_gravity.to_array(),
+                    interior_volume: w.capacity,
+                    liquid_level: d.operating.map_or(0.0, |o| o.liquid_level),
+                    liquid_volume: w.liquid
+                        / d.operating
+                            .and_then(|o| o.liquid_density)
+                            .unwrap_or(crate::design::WATER_DENSITY),
+                    walls_mass: w.walls,
+                    metal_items: w.items,
+                    metal_mass: w.empty,
+                    operating_mass: w.operating,
+                    test_mass: w.test,
+                    centre_of_gravity_empty: w.cog_empty,
+                    centre_of_gravity: w.cog_operating,
+                    centre_of_gravity_test: w.cog_test,
                 }),
                 None,
             ),
             Err(e) => (None, Some(e.to_string())),
         };
+        let calculation = calculate(d, v, table).vessel;
         out.push(VesselReport {
             tag: v.tag.clone(),
             kind: format!("{:?}", v.kind).to_lowercase(),
@@ -142,6 +171,7 @@ pub fn report(design: &Design) -> Result<Vec<VesselReport>, DesignError> {
             surface_area: area * 1e-6,
             operating,
             operating_problem,
+            calculation,
         });
     }
     Ok(out)

@@ -8,6 +8,7 @@
 //! resources they read and write live in [`crate::components`].
 
 mod biggest_first;
+mod calculate;
 mod clock;
 mod constrain;
 mod export;
@@ -21,6 +22,7 @@ mod storage;
 mod tessellate;
 mod validate;
 
+pub use calculate::update_calculations;
 pub use clock::stamp_stage;
 pub use constrain::apply_resolutions;
 pub use export::collect_changes;
@@ -80,6 +82,7 @@ pub fn build_schedule() -> Schedule {
             rebuild_dirty_patches,
             budget_storage_precision,
             cut_openings,
+            update_calculations,
         )
             .chain()
             .in_set(Stage::Geometry),

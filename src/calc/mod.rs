@@ -7,15 +7,29 @@
 //! [`Formula`] carrying its code paragraph and the formula's text, so a report can
 //! show what was computed. Internal-pressure results are hot and corroded: the
 //! inside dimensions grow by the corrosion allowance and the thickness shrinks by
-//! it ([`Shape::corroded`]). This is a pure library: no ECS wiring.
+//! it ([`Shape::corroded`]).
+//!
+//! On top of the formulas: a vessel's design conditions in calculation units
+//! ([`conditions`]), one pressure part ([`part_calc`]), UG-45 for a nozzle neck
+//! ([`nozzle_calc`]) and a whole vessel ([`calculate`]). The ECS system
+//! `systems::update_calculations` keeps the same figures live as components.
 
+mod conditions;
 mod error;
 pub mod heads;
+pub mod html;
 pub mod materials;
+mod nozzle;
+mod part;
 mod shape;
 pub mod shells;
+mod summary;
 pub mod vessel;
 
+pub use conditions::{Conditions, DEFAULT_JOINT_EFFICIENCY, TEST_TEMPERATURE, code_of, conditions};
 pub use error::CalcError;
 pub use materials::{Material, MaterialTable};
+pub use nozzle::{NozzleCalc, PIPE_UNDERTOLERANCE, nozzle_calc};
+pub use part::{Input, PartCalc, part_calc, pressure_shape};
 pub use shape::{Formula, Shape, Strength, mawp, required_thickness};
+pub use summary::{Calculation, Liquid, VesselCalc, calculate};

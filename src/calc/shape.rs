@@ -175,7 +175,7 @@ impl Strength {
 }
 
 /// One computed figure with the code paragraph and formula that gave it.
-#[derive(Clone, Debug, PartialEq)]
+#[derive(Clone, Debug, PartialEq, serde::Serialize)]
 pub struct Formula {
     /// The value: a thickness in mm (corrosion allowance included) or a pressure in MPa.
     pub value: f64,

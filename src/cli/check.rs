@@ -3,19 +3,21 @@
 //! `check --json` prints one object on standard output, whatever the outcome:
 //!
 //! ```text
-//! {"format": "vesselcad-check/1", "file": "...", "valid": true, "vessels": 3}
+//! {"format": "vesselcad-check/1", "file": "...", "valid": true, "vessels": 3,
+//!  "deficiencies": [{"vessel", "deficiency"}]}
 //! {"format": "vesselcad-check/1", "file": "...", "valid": false, "kind": "invalid",
 //!  "error": "<message>", "violations": [{"path", "entity", "field", "value", "rule"}]}
 //! ```
 //!
-//! with the same exit codes as `check`: 0 valid, 1 invalid, 2 unreadable.
+//! with the same exit codes as `check`: 0 valid, 1 invalid (or, with `--strict`,
+//! deficient), 2 unreadable.
 
 use std::path::{Path, PathBuf};
 use std::process::ExitCode;
 
 use clap::Args;
 use serde_json::{Value, json};
-use vesselcad::design::{DesignError, load};
+use vesselcad::design::{Design, DesignError, load};
 
 use super::fail;
 use super::output::outln;
@@ -31,12 +33,15 @@ pub struct CheckArgs {
     /// Print the result as JSON (`vesselcad-check/1`) on standard output.
     #[arg(long)]
     json: bool,
+    /// Also exit 1 when a part or nozzle is thinner than the code requires.
+    #[arg(long)]
+    strict: bool,
 }
 
 /// Runs `vesselcad check`: exit 0 when valid, 1 when invalid, 2 when unreadable.
 pub fn run(args: CheckArgs) -> ExitCode {
     if args.json {
-        return check_json(&args.design);
+        return check_json(&args.design, args.strict);
     }
     match load(&args.design) {
         Ok(d) => {
@@ -45,25 +50,53 @@ pub fn run(args: CheckArgs) -> ExitCode {
                 args.design.display(),
                 d.vessels.len()
             );
-            ExitCode::SUCCESS
+            print_deficiencies(&d, args.strict)
         }
         Err(e) => fail(&e),
     }
 }
 
-/// Runs `check --json` on `path`.
-fn check_json(path: &Path) -> ExitCode {
+/// Prints the deficiencies of a valid design (parts or nozzles thinner than the
+/// code requires, see `vesselcad calc`) as warnings; exit 1 under `strict` when
+/// there is one, else 0.
+fn print_deficiencies(design: &Design, strict: bool) -> ExitCode {
+    let found = super::calc::deficiencies(design);
+    for (tag, d) in &found {
+        outln!("deficiency: {tag}/{d}");
+    }
+    if strict && !found.is_empty() {
+        ExitCode::from(1)
+    } else {
+        ExitCode::SUCCESS
+    }
+}
+
+/// Runs `check --json` on `path`; with `strict`, a deficiency makes it exit 1.
+fn check_json(path: &Path, strict: bool) -> ExitCode {
     let file = path.display().to_string();
     let (report, code) = match load(path) {
-        Ok(design) => (
-            json!({
-                "format": CHECK_FORMAT,
-                "file": file,
-                "valid": true,
-                "vessels": design.vessels.len(),
-            }),
-            ExitCode::SUCCESS,
-        ),
+        Ok(design) => {
+            let found = super::calc::deficiencies(&design);
+            let code = if strict && !found.is_empty() {
+                ExitCode::from(1)
+            } else {
+                ExitCode::SUCCESS
+            };
+            let found: Vec<Value> = found
+                .into_iter()
+                .map(|(vessel, text)| json!({"vessel": vessel, "deficiency": text}))
+                .collect();
+            (
+                json!({
+                    "format": CHECK_FORMAT,
+                    "file": file,
+                    "valid": true,
+                    "vessels": design.vessels.len(),
+                    "deficiencies": found,
+                }),
+                code,
+            )
+        }
         Err(e) => {
             let (kind, code) = match &e {
                 DesignError::Io { .. } => ("unreadable", ExitCode::from(2)),

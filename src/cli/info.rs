@@ -149,19 +149,44 @@ fn print_operating(v: &VesselReport) {
     match (&v.operating, &v.operating_problem) {
         (Some(o), _) => {
             outln!(
-                "  liquid:           {:.3} m³ at level {:.0} mm (interior {:.3} m³)",
+                "  liquid:           {:.3} m³ at level {:.0} mm (capacity {:.3} m³)",
                 o.liquid_volume,
                 o.liquid_level,
                 o.interior_volume
             );
             let [x, y, z] = o.centre_of_gravity;
             outln!(
-                "  operating mass:   {:.0} kg ({:.0} kg metal), centre of gravity ({x:.0}, {y:.0}, {z:.0}) mm",
-                o.operating_mass,
-                o.metal_mass
+                "  weight empty:     {:.0} kg (all metal: walls {:.0} kg, supports, nozzles, flanges, pads {:.0} kg)",
+                o.metal_mass,
+                o.walls_mass,
+                o.metal_mass - o.walls_mass
             );
+            outln!(
+                "  operating mass:   {:.0} kg, centre of gravity ({x:.0}, {y:.0}, {z:.0}) mm",
+                o.operating_mass
+            );
+            outln!("  weight test:      {:.0} kg (full of water)", o.test_mass);
         }
         (None, Some(problem)) => outln!("  operating:        not computed: {problem}"),
         (None, None) => {}
+    }
+    let c = &v.calculation;
+    match (c.mawp, &c.hydrotest) {
+        (Some(m), Some(h)) => outln!(
+            "  {}:      MAWP {:.0} kPa(g) at the top ({}), hydrotest {:.0} kPa(g); {} deficienc(ies)",
+            c.code,
+            m * 1e3,
+            c.governing.as_deref().unwrap_or("—"),
+            h.value * 1e3,
+            c.deficiencies.len()
+        ),
+        _ => outln!(
+            "  {}:      not calculated: {}",
+            c.code,
+            c.problems.first().map_or("—", String::as_str)
+        ),
+    }
+    for d in &c.deficiencies {
+        outln!("  deficiency:       {d}");
     }
 }

@@ -8,6 +8,7 @@
 pub mod alloc;
 pub mod bench;
 pub mod build;
+pub mod calc;
 pub mod check;
 pub mod drawing;
 pub mod export;

@@ -138,6 +138,17 @@ pub(crate) fn check(vessel: &VesselDesign, parts: &[Option<ResolvedPart>], repor
             ),
         );
     }
+    if let Some(e) = c.joint_efficiency
+        && !(e.is_finite() && e > 0.0 && e <= 1.0)
+    {
+        report.push(
+            "design.joint_efficiency",
+            None,
+            "joint_efficiency",
+            e,
+            "must lie in (0, 1] (ASME VIII-1 UW-12)",
+        );
+    }
     if c.material.as_deref().is_some_and(|m| m.trim().is_empty()) {
         report.push(
             "design.material",

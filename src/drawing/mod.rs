@@ -36,7 +36,7 @@ pub use sheet::{
 };
 pub use single::{SheetModelError, sheet_model};
 pub use svg::to_svg;
-pub use tables::{SCHEDULE_COLUMNS, STEEL_DENSITY, empty_weight};
+pub use tables::{SCHEDULE_COLUMNS, design_data};
 
 use thiserror::Error;
 

@@ -2,20 +2,17 @@
 //! list, stacked bottom-up in the column at the sheet's right edge.
 //!
 //! Their content comes from the design file (drawing number, title, revision,
-//! date, design conditions, nozzles, notes) and from the model (volume, empty
-//! weight of the walls where every wall's thickness is known).
+//! date, design conditions, nozzles, notes) and from the calculations (MAWP,
+//! hydrotest, capacity, the weights of `operating::weights`, deficiencies).
 
 use glam::DVec2;
 
 use super::data::VesselData;
 use super::dimensions::format_mm;
 use super::sheet::{Align, Item, Layer, Rect, ScheduleRow, SheetSize, text_width};
-use crate::constraints::PartGeometry;
-use crate::design::{Design, FORMAT, PartDesign, Units, VesselKind};
-use crate::parts::surface_area;
-
-/// Density of carbon steel used for the empty weight, kg/mm³.
-pub const STEEL_DENSITY: f64 = 7.85e-6;
+use crate::calc::{DEFAULT_JOINT_EFFICIENCY, MaterialTable, calculate, code_of};
+use crate::design::{Design, FORMAT, Units, VesselKind};
+use crate::operating::weights;
 
 /// Titles of the nozzle schedule's columns.
 pub const SCHEDULE_COLUMNS: [&str; 8] = [
@@ -104,41 +101,72 @@ impl Table<'_> {
     }
 }
 
-/// Volume inside the outside surface of heads and courses, m³ (from the report).
-fn volume(data: &VesselData) -> Option<f64> {
+/// The design-data rows of a sheet after the design conditions: code, joint
+/// efficiency, MAWP, hydrotest, capacity, the three weights of the one weight
+/// model (`operating::weights`, the figures `info` and `calc` print) and the
+/// deficiencies, each labelled with what it includes.
+pub fn design_data(data: &VesselData) -> Vec<(&'static str, String)> {
     let design = Design {
         format: FORMAT.to_string(),
         units: Units::Mm,
         vessels: vec![data.design.clone()],
     };
-    crate::report::report(&design)
-        .ok()
-        .and_then(|r| r.first().map(|v| v.volume))
-}
-
-/// Empty weight of the walls (heads, courses, reducers, skirt: outside area ×
-/// thickness × steel density), kg; `None` when a wall's thickness is not given.
-pub fn empty_weight(data: &VesselData) -> Option<f64> {
-    let mut kg = 0.0;
-    for part in &data.parts {
-        let thickness = match &part.design {
-            PartDesign::Shell(s) => s.thickness,
-            PartDesign::Head(h) => h.thickness,
-            PartDesign::Reducer(r) => r.thickness,
-            PartDesign::Skirt(s) => s.thickness,
-            _ => continue,
-        };
-        let t = thickness?;
-        let patches = match &part.geometry {
-            PartGeometry::Shell(_)
-            | PartGeometry::Head(_)
-            | PartGeometry::Reducer(_)
-            | PartGeometry::Skirt(_) => part.geometry.patches().ok()?,
-            _ => continue,
-        };
-        kg += surface_area(&patches) * t * STEEL_DENSITY;
-    }
-    Some(kg)
+    let dash = || "—".to_string();
+    let kpa = |mpa: f64| format!("{} kPa(g)", format_mm((mpa * 1e3).round()));
+    let kg = |w: f64| format!("{} kg", format_mm(w.round()));
+    let resolved = crate::design::resolve(&design).ok();
+    let resolved = resolved.as_ref().and_then(|r| r.first());
+    let weights = resolved.and_then(|r| weights(&data.design, r).ok());
+    let calc = resolved.map(|r| calculate(&data.design, r, &MaterialTable::builtin()).vessel);
+    let e = match data.design.design.joint_efficiency {
+        Some(e) => format_mm(e),
+        None => format!("{} (default)", format_mm(DEFAULT_JOINT_EFFICIENCY)),
+    };
+    let deficiencies = calc.as_ref().map_or_else(dash, |c| {
+        if c.deficiencies.is_empty() {
+            "none".to_string()
+        } else {
+            let ids: Vec<&str> = c
+                .deficiencies
+                .iter()
+                .filter_map(|d| d.split(':').next())
+                .collect();
+            format!("{}: {}", ids.len(), ids.join(", "))
+        }
+    });
+    vec![
+        ("CODE", code_of(data.design.kind).to_string()),
+        ("JOINT EFFICIENCY", e),
+        (
+            "MAWP (HOT & CORRODED, TOP)",
+            calc.as_ref().and_then(|c| c.mawp).map_or_else(dash, kpa),
+        ),
+        (
+            "HYDROTEST (UG-99(b), TOP)",
+            calc.as_ref()
+                .and_then(|c| c.hydrotest.as_ref())
+                .map_or_else(dash, |h| kpa(h.value)),
+        ),
+        (
+            "CAPACITY (INSIDE)",
+            weights
+                .as_ref()
+                .map_or_else(dash, |w| format!("{:.2} m³", w.capacity)),
+        ),
+        (
+            "WEIGHT EMPTY (ALL METAL)",
+            weights.as_ref().map_or_else(dash, |w| kg(w.empty)),
+        ),
+        (
+            "WEIGHT OPERATING",
+            weights.as_ref().map_or_else(dash, |w| kg(w.operating)),
+        ),
+        (
+            "WEIGHT TEST (FULL OF WATER)",
+            weights.as_ref().map_or_else(dash, |w| kg(w.test)),
+        ),
+        ("DEFICIENCIES", deficiencies),
+    ]
 }
 
 /// A nozzle's orientation as the schedule shows it: the angle, and for a
@@ -280,7 +308,7 @@ pub fn draw(
     let opt = |v: Option<f64>, unit: &str| {
         v.map_or("—".to_string(), |v| format!("{} {unit}", format_mm(v)))
     };
-    let rows_data = [
+    let mut rows_data = vec![
         ("DESIGN PRESSURE", opt(c.pressure, "kPa(g)")),
         ("DESIGN TEMPERATURE", opt(c.temperature, "°C")),
         ("CORROSION ALLOWANCE", opt(c.corrosion_allowance, "mm")),
@@ -288,17 +316,8 @@ pub fn draw(
             "MATERIAL",
             c.material.clone().unwrap_or_else(|| "—".to_string()),
         ),
-        (
-            "VOLUME",
-            volume(data).map_or("—".to_string(), |v| format!("{v:.2} m³")),
-        ),
-        (
-            "EMPTY WEIGHT (WALLS)",
-            empty_weight(data).map_or("n/a (a wall thickness is missing)".to_string(), |w| {
-                format!("{} kg", format_mm(w.round()))
-            }),
-        ),
     ];
+    rows_data.extend(design_data(data));
     for (name, value) in rows_data.iter().rev() {
         t.row(&[name, value], &[0.45, 0.55]);
     }

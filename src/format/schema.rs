@@ -135,6 +135,10 @@ pub struct DesignConditions {
     /// `operating::metal_density`.
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub metal_density: Option<f64>,
+    /// Joint efficiency E of the longitudinal and circumferential welds (ASME
+    /// VIII-1 UW-12), 0 < E ≤ 1; default 0.85 (spot radiography).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub joint_efficiency: Option<f64>,
 }
 
 /// Title-block data of a vessel's drawing sheet; every field optional.

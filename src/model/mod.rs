@@ -232,6 +232,14 @@ impl Model {
         read::design(&self.world)
     }
 
+    /// The code calculation of vessel `tag` as the last update left it (parts
+    /// and nozzles in design order); `None` for an unknown tag or before the
+    /// first update.
+    pub fn calculation(&self, tag: &str) -> Option<crate::calc::Calculation> {
+        let entity = *self.world.resource::<VesselIndex>().0.get(tag)?;
+        read::calculation(&self.world, entity)
+    }
+
     /// The plant as a scene for the exporters (meshes as of the last update).
     pub fn scene(&self) -> Scene {
         read::scene(&self.world)

@@ -7,9 +7,9 @@ use bevy_ecs::world::World;
 
 use crate::components::VesselIndex;
 use crate::components::{
-    DesignOrder, MountedOn, NoteSpec, NozzleSpec, OperatingSpec, PadPatch, PartFrame, PartSpan,
-    PartSpec, PatchMesh, PatchSurface, Patches, Shape, VesselFrame, VesselSpec, VesselSummary,
-    same_in_order,
+    DesignOrder, MountedOn, NoteSpec, NozzleCalculation, NozzleSpec, OperatingSpec, PadPatch,
+    PartCalculation, PartFrame, PartSpan, PartSpec, PatchMesh, PatchSurface, Patches, Shape,
+    VesselCalculation, VesselFrame, VesselSpec, VesselSummary, same_in_order,
 };
 use crate::constraints::{ResolvedNozzle, ResolvedPart, ResolvedVessel};
 use crate::design::{Design, FORMAT, Units, VesselDesign};
@@ -107,6 +107,24 @@ fn same_children<T: bevy_ecs::component::Component, D: PartialEq>(
         .iter()
         .filter_map(|&e| Some((inner(world.get::<T>(e)?), *world.get::<DesignOrder>(e)?)));
     same_in_order(found, wanted)
+}
+
+/// A vessel's calculation from its calculation components, in design order.
+pub(crate) fn calculation(world: &World, entity: Entity) -> Option<crate::calc::Calculation> {
+    let vessel = world.get::<VesselCalculation>(entity)?.calc.clone();
+    let parts = children_with::<PartCalculation>(world, entity)
+        .into_iter()
+        .filter_map(|e| world.get::<PartCalculation>(e)?.0.clone().ok())
+        .collect();
+    let nozzles = children_with::<NozzleCalculation>(world, entity)
+        .into_iter()
+        .filter_map(|e| world.get::<NozzleCalculation>(e)?.0.clone().ok())
+        .collect();
+    Some(crate::calc::Calculation {
+        vessel,
+        parts,
+        nozzles,
+    })
 }
 
 /// Vessel entities in design order.

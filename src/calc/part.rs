@@ -1,0 +1,263 @@
+//! One pressure part of a vessel calculated: its shape for the formulas (inside
+//! dimensions from the resolved outside geometry less the wall), the pressure on
+//! it (design pressure plus the static head of the liquid above its lowest
+//! point), the required thickness hot and corroded, the UG-16(b) minimum, the
+//! MAWP hot and corroded and new and cold, and a deficiency when the nominal wall
+//! is thinner than required. Parts that carry no pressure (supports) have no
+//! calculation.
+
+use serde::Serialize;
+
+use super::vessel::minimum_thickness;
+use super::{Conditions, Formula, Shape, Strength, mawp, required_thickness};
+use crate::constraints::PartGeometry;
+use crate::parts::ReducerAlignment;
+use crate::parts::heads::HeadKind;
+
+/// One input of a calculation, for the report.
+#[derive(Clone, Debug, PartialEq, Serialize)]
+pub struct Input {
+    /// Symbol, e.g. `P`, `R`, `S`.
+    pub name: &'static str,
+    /// Value.
+    pub value: f64,
+    /// Unit, e.g. `MPa`.
+    pub unit: &'static str,
+}
+
+/// The calculation of one pressure part.
+#[derive(Clone, Debug, PartialEq, Serialize)]
+pub struct PartCalc {
+    /// Part id.
+    pub id: String,
+    /// Part kind (`shell`, `head`, `reducer`).
+    pub kind: &'static str,
+    /// The shape as the formulas see it (`cylinder`, `ellipsoidal head`, …).
+    pub shape: &'static str,
+    /// Pressure on the part: design pressure + static head, MPa.
+    pub pressure: f64,
+    /// Static head of the liquid at the part's lowest point, MPa.
+    pub static_head: f64,
+    /// Nominal wall thickness, mm (`None` when the design gives none).
+    pub thickness: Option<f64>,
+    /// Required thickness, hot and corroded, corrosion allowance included.
+    pub required: Formula,
+    /// Required thickness at E = 1 (seamless), mm: UG-45's t_b1 for its nozzles.
+    pub required_seamless: f64,
+    /// UG-16(b) minimum thickness, corrosion allowance included, mm.
+    pub minimum: f64,
+    /// MAWP at the part, hot and corroded, MPa.
+    pub mawp: Option<Formula>,
+    /// MAWP at the part, new and cold (no corrosion, stress at the test temperature), MPa.
+    pub mawp_new_cold: Option<f64>,
+    /// The formulas' inputs (corroded inside dimensions).
+    pub inputs: Vec<Input>,
+    /// Marks of the nozzles whose openings are in this part, in design order.
+    pub openings: Vec<String>,
+    /// Why the part fails, when it does.
+    pub deficiency: Option<String>,
+}
+
+/// A part's formula shape from its resolved geometry and wall `t` mm (0 when
+/// not given: the outside dimensions are taken). `None` for a part that carries
+/// no pressure (skirt, saddles, legs, lugs) or is not calculated (boot).
+///
+/// Choices where the code leaves them to the designer: an ellipsoidal head keeps
+/// its ratio D/2h on the inside; a flat head is attached as Fig. UG-34 sketch (a)
+/// (C = 0.17) when flanged and sketch (f) (C = 0.33) otherwise; a toriconical head
+/// and a reducer take the cone formula at the large end's inside diameter, an
+/// eccentric reducer with its steepest generatrix.
+pub fn pressure_shape(geometry: &PartGeometry, t: f64) -> Option<Shape> {
+    Some(match geometry {
+        PartGeometry::Shell(s) => Shape::Cylinder {
+            inside_radius: s.outside_diameter / 2.0 - t,
+        },
+        PartGeometry::Head(h) => {
+            let id = h.outside_diameter - 2.0 * t;
+            match h.kind {
+                HeadKind::Hemispherical => Shape::Sphere {
+                    inside_radius: id / 2.0,
+                },
+                HeadKind::Ellipsoidal { ratio } => Shape::Ellipsoidal {
+                    inside_diameter: id,
+                    inside_depth: id / (2.0 * ratio),
+                },
+                HeadKind::Torispherical {
+                    crown_radius,
+                    knuckle_radius,
+                } => Shape::Torispherical {
+                    crown_radius: crown_radius - t,
+                    knuckle_radius: knuckle_radius - t,
+                },
+                HeadKind::Toriconical { half_angle, .. } | HeadKind::Conical { half_angle, .. } => {
+                    Shape::Cone {
+                        inside_diameter: id,
+                        half_apex_angle: half_angle,
+                    }
+                }
+                HeadKind::Flat { knuckle_radius } => Shape::Flat {
+                    diameter: id,
+                    attachment_factor: if knuckle_radius > 0.0 { 0.17 } else { 0.33 },
+                },
+            }
+        }
+        PartGeometry::Reducer(r) => {
+            let drop = r.large_diameter - r.small_diameter;
+            let run = match r.alignment {
+                ReducerAlignment::Concentric => 2.0 * r.length,
+                ReducerAlignment::Eccentric { .. } => r.length,
+            };
+            Shape::Cone {
+                inside_diameter: r.large_diameter - 2.0 * t,
+                half_apex_angle: (drop / run).atan().to_degrees(),
+            }
+        }
+        _ => return None,
+    })
+}
+
+fn shape_inputs(shape: &Shape) -> Vec<Input> {
+    let i = |name, value| Input {
+        name,
+        value,
+        unit: "mm",
+    };
+    match *shape {
+        Shape::Cylinder { inside_radius } | Shape::Sphere { inside_radius } => {
+            vec![i("R", inside_radius)]
+        }
+        Shape::Ellipsoidal {
+            inside_diameter,
+            inside_depth,
+        } => vec![i("D", inside_diameter), i("h", inside_depth)],
+        Shape::Torispherical {
+            crown_radius,
+            knuckle_radius,
+        } => vec![i("L", crown_radius), i("r", knuckle_radius)],
+        Shape::Cone {
+            inside_diameter,
+            half_apex_angle,
+        } => vec![
+            i("D", inside_diameter),
+            Input {
+                name: "α",
+                value: half_apex_angle,
+                unit: "°",
+            },
+        ],
+        Shape::Flat {
+            diameter,
+            attachment_factor,
+        } => vec![
+            i("d", diameter),
+            Input {
+                name: "C",
+                value: attachment_factor,
+                unit: "",
+            },
+        ],
+    }
+}
+
+/// Calculates part `id` of `kind` with resolved `geometry`, nominal wall
+/// `thickness`, under `conditions` plus `static_head` MPa. `Ok(None)` for a part
+/// that carries no pressure; `Err` with the reason when a formula cannot be
+/// applied (out of its paragraph's scope, bad proportions).
+pub fn part_calc(
+    id: &str,
+    geometry: &PartGeometry,
+    thickness: Option<f64>,
+    static_head: f64,
+    openings: Vec<String>,
+    c: &Conditions,
+) -> Result<Option<PartCalc>, String> {
+    let Some(shape) = pressure_shape(geometry, thickness.unwrap_or(0.0)) else {
+        return Ok(None);
+    };
+    let fail = |e: super::CalcError| format!("{id}: {e}");
+    let hot = Strength {
+        stress: c.stress,
+        joint_efficiency: c.joint_efficiency,
+        corrosion_allowance: c.corrosion_allowance,
+    };
+    let pressure = c.pressure + static_head;
+    let required = required_thickness(&shape, pressure, &hot).map_err(fail)?;
+    let seamless = Strength {
+        joint_efficiency: 1.0,
+        ..hot
+    };
+    let required_seamless = required_thickness(&shape, pressure, &seamless)
+        .map_err(fail)?
+        .value;
+    let minimum = minimum_thickness(c.corrosion_allowance)
+        .map_err(fail)?
+        .value;
+    let (mawp_hot, mawp_cold) = match thickness {
+        Some(t) if t > c.corrosion_allowance => {
+            let cold = Strength {
+                stress: c.stress_test,
+                corrosion_allowance: 0.0,
+                ..hot
+            };
+            (
+                Some(mawp(&shape, t, &hot).map_err(fail)?),
+                Some(mawp(&shape, t, &cold).map_err(fail)?.value),
+            )
+        }
+        _ => (None, None),
+    };
+    let governing = required.value.max(minimum);
+    let deficiency = thickness.and_then(|t| {
+        (t < governing).then(|| {
+            let why = if required.value >= minimum {
+                format!("{} {}", required.paragraph, required.formula)
+            } else {
+                "UG-16(b) minimum".to_string()
+            };
+            format!(
+                "{id}: wall {t} mm is thinner than the required {governing:.2} mm ({why}, \
+                 P = {:.4} MPa incl. static head {:.4} MPa)",
+                pressure, static_head
+            )
+        })
+    });
+    let mut inputs = vec![
+        Input {
+            name: "P",
+            value: pressure,
+            unit: "MPa",
+        },
+        Input {
+            name: "S",
+            value: c.stress,
+            unit: "MPa",
+        },
+        Input {
+            name: "E",
+            value: c.joint_efficiency,
+            unit: "",
+        },
+        Input {
+            name: "CA",
+            value: c.corrosion_allowance,
+            unit: "mm",
+        },
+    ];
+    inputs.extend(shape_inputs(&shape.corroded(c.corrosion_allowance)));
+    Ok(Some(PartCalc {
+        id: id.to_string(),
+        kind: geometry.kind(),
+        shape: shape.name(),
+        pressure,
+        static_head,
+        thickness,
+        required,
+        required_seamless,
+        minimum,
+        mawp: mawp_hot,
+        mawp_new_cold: mawp_cold,
+        inputs,
+        openings,
+        deficiency,
+    }))
+}

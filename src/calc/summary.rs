@@ -1,0 +1,220 @@
+//! A whole vessel calculated: the static head on each part from the liquid at
+//! its level, every pressure part and nozzle, and the vessel's figures — MAWP at
+//! the top (the least part MAWP less its static head, UG-98), the UG-99(b)
+//! hydrotest pressure, and the list of deficiencies. [`calculate`] is the pure
+//! function `vesselcad calc`, `check` and `info` use; the ECS system
+//! `systems::update_calculations` computes the same figures part by part.
+
+use serde::Serialize;
+
+use super::vessel::{PartPressure, hydrotest_pressure, static_head, vessel_mawp};
+use super::{
+    Conditions, Formula, MaterialTable, NozzleCalc, PartCalc, code_of, conditions, nozzle_calc,
+    part_calc,
+};
+use crate::constraints::ResolvedVessel;
+use crate::design::{OperatingDesign, VesselDesign, VesselKind, WATER_DENSITY};
+use crate::operating::thickness;
+
+/// The liquid a vessel holds, as the static head needs it.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Liquid {
+    /// Density, kg/m³.
+    pub density: f64,
+    /// Horizontal vessel: the level above the lowest inside point, mm. Vertical:
+    /// the elevation of the surface in the vessel frame, mm.
+    pub surface: f64,
+    /// Vertical vessel: the lowest inside point in the vessel frame, mm.
+    pub bottom: f64,
+    /// Whether the vessel is horizontal.
+    pub horizontal: bool,
+}
+
+impl Liquid {
+    /// The liquid of a vessel of `kind` with `operating` data, whose pressure
+    /// parts span `parts` (`(start, end)` in the vessel frame, wall thickness)
+    /// along the axis; `None` when the vessel is empty.
+    pub fn of(
+        kind: VesselKind,
+        operating: Option<OperatingDesign>,
+        parts: impl IntoIterator<Item = ((f64, f64), f64)>,
+    ) -> Option<Liquid> {
+        let o = operating.filter(|o| o.liquid_level > 0.0)?;
+        let density = o.liquid_density.unwrap_or(WATER_DENSITY);
+        let lowest = parts.into_iter().min_by(|a, b| a.0.0.total_cmp(&b.0.0))?;
+        let bottom = lowest.0.0 + lowest.1;
+        let horizontal = kind == VesselKind::Horizontal;
+        Some(Liquid {
+            density,
+            surface: if horizontal {
+                o.liquid_level
+            } else {
+                bottom + o.liquid_level
+            },
+            bottom,
+            horizontal,
+        })
+    }
+
+    /// Static head at the lowest inside point of a part spanning from `start`
+    /// (vessel frame, mm), MPa.
+    pub fn head_at(&self, start: f64) -> f64 {
+        let depth = if self.horizontal {
+            self.surface
+        } else {
+            (self.surface - start.max(self.bottom)).max(0.0)
+        };
+        static_head(self.density, depth).unwrap_or(0.0)
+    }
+}
+
+/// The vessel-level figures.
+#[derive(Clone, Debug, PartialEq, Serialize)]
+pub struct VesselCalc {
+    /// Tag.
+    pub tag: String,
+    /// The code calculated to.
+    pub code: &'static str,
+    /// The conditions used, when the vessel could be calculated.
+    pub conditions: Option<Conditions>,
+    /// MAWP at the top, hot and corroded, MPa.
+    pub mawp: Option<f64>,
+    /// The part whose MAWP governs.
+    pub governing: Option<String>,
+    /// UG-99(b) hydrotest pressure at the top, MPa.
+    pub hydrotest: Option<Formula>,
+    /// Every deficiency of a part or nozzle.
+    pub deficiencies: Vec<String>,
+    /// What could not be calculated, and why.
+    pub problems: Vec<String>,
+}
+
+impl VesselCalc {
+    /// Gathers the vessel figures from its parts' and nozzles' calculations.
+    pub fn gather(
+        tag: &str,
+        kind: VesselKind,
+        conditions: Result<Conditions, String>,
+        parts: &[&PartCalc],
+        nozzles: &[&NozzleCalc],
+        mut problems: Vec<String>,
+    ) -> VesselCalc {
+        let mut deficiencies: Vec<String> =
+            parts.iter().filter_map(|p| p.deficiency.clone()).collect();
+        deficiencies.extend(nozzles.iter().filter_map(|n| n.deficiency.clone()));
+        let conditions = match conditions {
+            Ok(c) => Some(c),
+            Err(e) => {
+                problems.insert(0, e);
+                None
+            }
+        };
+        let pressures: Vec<PartPressure> = parts
+            .iter()
+            .filter_map(|p| {
+                Some(PartPressure {
+                    id: p.id.clone(),
+                    mawp: p.mawp.as_ref()?.value,
+                    static_head: p.static_head,
+                })
+            })
+            .collect();
+        let top = vessel_mawp(&pressures).ok().filter(|(m, _)| *m > 0.0);
+        let hydrotest = match (&top, &conditions) {
+            (Some((m, _)), Some(c)) => hydrotest_pressure(*m, &[(c.stress_test, c.stress)]).ok(),
+            _ => None,
+        };
+        VesselCalc {
+            tag: tag.to_string(),
+            code: code_of(kind),
+            conditions,
+            mawp: top.as_ref().map(|t| t.0),
+            governing: top.map(|t| t.1),
+            hydrotest,
+            deficiencies,
+            problems,
+        }
+    }
+}
+
+/// A vessel's calculation: the vessel figures, its pressure parts and nozzles in
+/// design order.
+#[derive(Clone, Debug, PartialEq, Serialize)]
+pub struct Calculation {
+    /// Vessel figures.
+    pub vessel: VesselCalc,
+    /// Pressure parts.
+    pub parts: Vec<PartCalc>,
+    /// Nozzles (UG-45).
+    pub nozzles: Vec<NozzleCalc>,
+}
+
+/// Calculates vessel `design` resolved as `resolved` with the materials of `table`.
+pub fn calculate(
+    design: &VesselDesign,
+    resolved: &ResolvedVessel,
+    table: &MaterialTable,
+) -> Calculation {
+    let conds = conditions(&design.design, design.kind, table);
+    let thickness_of = |id: &str| {
+        design
+            .parts
+            .iter()
+            .find(|p| p.id() == id)
+            .and_then(thickness)
+    };
+    let mut parts = Vec::new();
+    let mut nozzles = Vec::new();
+    let mut problems = Vec::new();
+    if let Ok(c) = &conds {
+        let liquid = Liquid::of(
+            design.kind,
+            design.operating,
+            resolved
+                .parts
+                .iter()
+                .filter(|p| super::pressure_shape(&p.geometry, 0.0).is_some())
+                .map(|p| (p.span, thickness_of(&p.id).unwrap_or(0.0))),
+        );
+        let mut host_calc: Vec<Option<usize>> = vec![None; resolved.parts.len()];
+        for (i, p) in resolved.parts.iter().enumerate() {
+            let openings = resolved
+                .nozzles
+                .iter()
+                .filter(|n| n.host == i)
+                .map(|n| n.mark.clone())
+                .collect();
+            let head = liquid.map_or(0.0, |l| l.head_at(p.span.0));
+            match part_calc(&p.id, &p.geometry, thickness_of(&p.id), head, openings, c) {
+                Ok(Some(calc)) => {
+                    host_calc[i] = Some(parts.len());
+                    parts.push(calc);
+                }
+                Ok(None) => {}
+                Err(e) => problems.push(e),
+            }
+        }
+        for n in &resolved.nozzles {
+            let Some(host) = host_calc.get(n.host).copied().flatten() else {
+                continue;
+            };
+            match nozzle_calc(&n.mark, &n.geometry, &parts[host], c) {
+                Ok(calc) => nozzles.push(calc),
+                Err(e) => problems.push(e),
+            }
+        }
+    }
+    let vessel = VesselCalc::gather(
+        &design.tag,
+        design.kind,
+        conds,
+        &parts.iter().collect::<Vec<_>>(),
+        &nozzles.iter().collect::<Vec<_>>(),
+        problems,
+    );
+    Calculation {
+        vessel,
+        parts,
+        nozzles,
+    }
+}

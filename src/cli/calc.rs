@@ -1,0 +1,278 @@
+//! `vesselcad calc`: the code calculation report of a design's vessels — text on
+//! standard output, JSON (`vesselcad-calc/1`), or an HTML or PDF file (PDF printed
+//! by headless Chromium). Also the deficiency list `check` prints.
+
+use std::path::{Path, PathBuf};
+use std::process::{Command, ExitCode};
+
+use clap::Args;
+use serde_json::json;
+use vesselcad::calc::html::{ReportVessel, html};
+use vesselcad::calc::{Calculation, MaterialTable, calculate};
+use vesselcad::design::{Design, DesignError, load, resolve};
+use vesselcad::operating::{Weights, weights};
+
+/// The format tag of `calc --json`.
+pub const CALC_FORMAT: &str = "vesselcad-calc/1";
+
+/// Where headless Chromium is looked for (Debian's package, as `.ci/run` installs it).
+pub const CHROMIUM: &str = "/usr/bin/chromium";
+
+/// Arguments of `vesselcad calc`.
+#[derive(Args)]
+pub struct CalcArgs {
+    /// The design file.
+    design: PathBuf,
+    /// Only this vessel (default: every vessel).
+    #[arg(long)]
+    vessel: Option<String>,
+    /// Print JSON (`vesselcad-calc/1`) instead of text.
+    #[arg(long)]
+    json: bool,
+    /// Write the report to this file: `.html`, or `.pdf` (headless Chromium).
+    #[arg(short, long)]
+    output: Option<PathBuf>,
+    /// A materials table in the built-in table's format (e.g. a licensed II-D table).
+    #[arg(long)]
+    materials: Option<PathBuf>,
+}
+
+/// One vessel's calculation and weights.
+pub struct Calculated {
+    /// Index in the design.
+    pub index: usize,
+    /// The calculation.
+    pub calculation: Calculation,
+    /// The weights, or why not.
+    pub weights: Result<Weights, String>,
+}
+
+/// Calculates the vessels of `design` (or only `only`).
+pub fn calculate_design(
+    design: &Design,
+    only: Option<&str>,
+    table: &MaterialTable,
+) -> Result<Vec<Calculated>, DesignError> {
+    let resolved = resolve(design)?;
+    Ok(design
+        .vessels
+        .iter()
+        .zip(&resolved)
+        .enumerate()
+        .filter(|(_, (d, _))| only.is_none_or(|t| t == d.tag))
+        .map(|(index, (d, r))| Calculated {
+            index,
+            calculation: calculate(d, r, table),
+            weights: weights(d, r).map_err(|e| e.to_string()),
+        })
+        .collect())
+}
+
+/// The deficiencies of every vessel of `design`, as `(tag, sentence)`.
+pub fn deficiencies(design: &Design) -> Vec<(String, String)> {
+    let Ok(all) = calculate_design(design, None, &MaterialTable::builtin()) else {
+        return Vec::new();
+    };
+    all.into_iter()
+        .flat_map(|c| {
+            let tag = c.calculation.vessel.tag.clone();
+            c.calculation
+                .vessel
+                .deficiencies
+                .into_iter()
+                .map(move |d| (tag.clone(), d))
+        })
+        .collect()
+}
+
+fn fail(message: impl std::fmt::Display, code: u8) -> ExitCode {
+    eprintln!("error: {message}");
+    ExitCode::from(code)
+}
+
+/// Runs `vesselcad calc`.
+pub fn run(args: CalcArgs) -> ExitCode {
+    let design = match load(&args.design) {
+        Ok(d) => d,
+        Err(e) => {
+            let code = if matches!(e, DesignError::Io { .. }) {
+                2
+            } else {
+                1
+            };
+            return fail(e, code);
+        }
+    };
+    let table = match &args.materials {
+        Some(p) => match MaterialTable::from_path(p) {
+            Ok(t) => t,
+            Err(e) => return fail(e, 2),
+        },
+        None => MaterialTable::builtin(),
+    };
+    if let Some(tag) = &args.vessel
+        && !design.vessels.iter().any(|v| &v.tag == tag)
+    {
+        let known: Vec<&str> = design.vessels.iter().map(|v| v.tag.as_str()).collect();
+        return fail(
+            format!(
+                "--vessel {tag}: no such vessel; the design has {}",
+                known.join(", ")
+            ),
+            1,
+        );
+    }
+    let all = match calculate_design(&design, args.vessel.as_deref(), &table) {
+        Ok(a) => a,
+        Err(e) => return fail(e, 1),
+    };
+    let source = args.design.display().to_string();
+    if let Some(out) = &args.output {
+        let report: Vec<ReportVessel> = all
+            .iter()
+            .map(|c| ReportVessel {
+                design: &design.vessels[c.index],
+                calculation: &c.calculation,
+                weights: c.weights.as_ref().map_err(Clone::clone),
+            })
+            .collect();
+        let page = html(&source, &report);
+        let pdf = out
+            .extension()
+            .is_some_and(|e| e.eq_ignore_ascii_case("pdf"));
+        let written = if pdf {
+            print_pdf(&page, out)
+        } else {
+            std::fs::write(out, page).map_err(|e| format!("{}: {e}", out.display()))
+        };
+        if let Err(e) = written {
+            return fail(e, 2);
+        }
+        eprintln!("wrote {}", out.display());
+    } else if args.json {
+        let vessels: Vec<_> = all
+            .iter()
+            .map(|c| {
+                json!({
+                    "calculation": c.calculation,
+                    "weights": c.weights.as_ref().ok(),
+                    "weights_problem": c.weights.as_ref().err(),
+                })
+            })
+            .collect();
+        let doc = json!({
+            "format": CALC_FORMAT,
+            "file": source,
+            "units": {"pressure": "MPa", "length": "mm", "mass": "kg", "volume": "m3", "stress": "MPa"},
+            "vessels": vessels,
+        });
+        println!("{}", serde_json::to_string_pretty(&doc).unwrap_or_default());
+    } else {
+        for c in &all {
+            print_text(c);
+        }
+    }
+    ExitCode::SUCCESS
+}
+
+fn print_text(c: &Calculated) {
+    let v = &c.calculation.vessel;
+    println!("{} ({})", v.tag, v.code);
+    for p in &v.problems {
+        println!("  not calculated:   {p}");
+    }
+    for p in &c.calculation.parts {
+        println!(
+            "  {:<8} {:<20} t req {:>7.2} mm  t {:>7} mm  MAWP {:>8} MPa  {}  {}",
+            p.id,
+            p.shape,
+            p.required.value.max(p.minimum),
+            p.thickness.map_or("—".into(), |t| format!("{t:.2}")),
+            p.mawp
+                .as_ref()
+                .map_or("—".into(), |m| format!("{:.4}", m.value)),
+            p.required.paragraph,
+            if p.deficiency.is_some() {
+                "DEFICIENT"
+            } else {
+                "ok"
+            }
+        );
+    }
+    for n in &c.calculation.nozzles {
+        println!(
+            "  {:<8} UG-45 neck {:>6.2} mm available, {:>6.2} mm required  {}",
+            n.mark,
+            n.available,
+            n.required,
+            if n.deficiency.is_some() {
+                "DEFICIENT"
+            } else {
+                "ok"
+            }
+        );
+    }
+    if let Some(m) = v.mawp {
+        println!(
+            "  MAWP (top):       {:.0} kPa(g), governed by {}",
+            m * 1e3,
+            v.governing.as_deref().unwrap_or("—")
+        );
+    }
+    if let Some(h) = &v.hydrotest {
+        println!(
+            "  hydrotest (top):  {:.0} kPa(g) ({})",
+            h.value * 1e3,
+            h.paragraph
+        );
+    }
+    match &c.weights {
+        Ok(w) => println!(
+            "  weights:          empty {:.0} kg, operating {:.0} kg, test {:.0} kg",
+            w.empty, w.operating, w.test
+        ),
+        Err(e) => println!("  weights:          not computed: {e}"),
+    }
+    for d in &v.deficiencies {
+        println!("  DEFICIENCY:       {d}");
+    }
+}
+
+/// Prints `page` to `out` as PDF with headless Chromium.
+fn print_pdf(page: &str, out: &Path) -> Result<(), String> {
+    if !Path::new(CHROMIUM).exists() {
+        return Err(format!(
+            "{CHROMIUM} is not installed (Debian: apt-get install chromium); write .html instead"
+        ));
+    }
+    let dir = std::env::temp_dir().join(format!("vesselcad-calc-{}", std::process::id()));
+    std::fs::create_dir_all(&dir).map_err(|e| e.to_string())?;
+    let html = dir.join("report.html");
+    std::fs::write(&html, page).map_err(|e| e.to_string())?;
+    let target = std::path::absolute(out).map_err(|e| e.to_string())?;
+    let result = Command::new(CHROMIUM)
+        .args([
+            "--headless",
+            "--no-sandbox",
+            "--disable-gpu",
+            "--no-first-run",
+            "--disable-background-networking",
+            "--disable-component-update",
+            "--disable-sync",
+            "--no-pdf-header-footer",
+        ])
+        .arg(format!("--user-data-dir={}", dir.join("profile").display()))
+        .arg(format!("--print-to-pdf={}", target.display()))
+        .arg(format!("file://{}", html.display()))
+        .output();
+    std::fs::remove_dir_all(&dir).ok();
+    match result {
+        Ok(o) if o.status.success() && target.exists() => Ok(()),
+        Ok(o) => Err(format!(
+            "chromium could not print {}: {}",
+            out.display(),
+            String::from_utf8_lossy(&o.stderr)
+        )),
+        Err(e) => Err(format!("could not run {CHROMIUM}: {e}")),
+    }
+}
