@@ -10,44 +10,32 @@
 //! normals, narrow indices); exporters convert them to `f32` buffers. [`tessellate`]
 //! is an older uniform-grid mesher that the pipeline no longer uses.
 
-mod axial;
 pub mod cdt;
-mod circles;
-mod edges;
+mod cut;
 mod grid;
-mod instances;
-mod key;
 mod layout;
-mod opening;
 mod options;
 mod packed;
-mod reach;
-mod seams;
-mod shared_cuts;
 mod storage;
+mod store;
+mod surface;
 #[cfg(test)]
 mod test_parts;
-mod turn;
-mod weak_table;
 
-pub use axial::AxialCut;
-pub(crate) use axial::Extrusion;
-pub use edges::{MAX_EDGE_SEGMENTS, edge_parameters, edge_segments};
-pub use grid::tessellate;
-pub use instances::{MeshInstances, mesh_key, mesh_key_of, surface_key};
-pub use layout::{
-    LayoutError, PatchSides, SEAM_CUTS, closed_in_u, host_region, host_region_with, pad_region,
-    patch_region,
+pub use cut::{
+    AxialCut, Cut, HostTrim, Notch, OpeningPlan, PAD_PATCH, PadCut, ReusableCut, cut_opening,
+    cut_opening_reusing,
 };
-pub use opening::{
-    Cut, OpeningPlan, PAD_PATCH, PadCut, ReusableCut, cut_opening, cut_opening_reusing,
+pub use grid::tessellate;
+pub use layout::{
+    LayoutError, MAX_EDGE_SEGMENTS, PatchSides, SEAM_CUTS, closed_in_u, edge_parameters,
+    edge_segments, host_region, host_region_with, pad_region, patch_region,
 };
 pub use options::{OptionsError, TessellationOptions};
 pub use packed::{OctNormal, PackedMesh};
-pub use seams::{HostTrim, Notch};
-pub use shared_cuts::SharedCuts;
 pub use storage::{f32_rounding_bound, patch_extent, storage_options};
-pub use weak_table::WeakTable;
+pub use store::{MeshInstances, SharedCuts, WeakTable, mesh_key, mesh_key_of, surface_key};
+pub(crate) use surface::Extrusion;
 
 use glam::DVec3;
 
