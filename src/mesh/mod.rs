@@ -7,12 +7,12 @@
 //! openings cut into it, [`cut_opening`]), driven by [`TessellationOptions`].
 //! Meshes equal by content are meshed once and shared ([`MeshInstances`]); the model
 //! keeps each finished mesh as a [`PackedMesh`] (fixed-point positions, octahedral
-//! normals, narrow indices); exporters convert them to `f32` buffers. [`tessellate`]
-//! is an older uniform-grid mesher that the pipeline no longer uses.
+//! normals, narrow indices); exporters convert them to `f32` buffers. By stage:
+//! `cut` (opening cuts), `layout` (regions), [`cdt`] (the mesher, whose
+//! `plan` is its decision table), `store` (content-keyed tables).
 
 pub mod cdt;
 mod cut;
-mod grid;
 mod layout;
 mod options;
 mod packed;
@@ -26,7 +26,6 @@ pub use cut::{
     AxialCut, Cut, HostTrim, Notch, OpeningPlan, PAD_PATCH, PadCut, ReusableCut, cut_opening,
     cut_opening_reusing,
 };
-pub use grid::tessellate;
 pub use layout::{
     LayoutError, MAX_EDGE_SEGMENTS, PatchSides, SEAM_CUTS, closed_in_u, edge_parameters,
     edge_segments, host_region, host_region_with, pad_region, patch_region,
