@@ -45,7 +45,8 @@ pub struct MeshStats {
     /// Cavities round openings whose triangles were taken from the patch's
     /// previous meshing (see [`mesh_patch_region_keeping`](super::mesh_patch_region_keeping)).
     pub cavities_reused: usize,
-    /// The path that meshed the region (see [`plan`](super::plan)'s table).
+    /// The path that meshed the region (see [`MeshPath`](super::MeshPath) and the
+    /// decision table of `cdt::plan`).
     pub path: MeshPath,
     /// Cavities round openings filled by each fill, indexed as
     /// [`CAVITY_FILLS`](super::CAVITY_FILLS) (all zero off the structured path).

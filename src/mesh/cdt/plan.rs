@@ -10,7 +10,8 @@ use super::patch::PatchInfo;
 use super::region::Region;
 use super::sector;
 
-/// How a patch region was meshed (the rows of [`plan`]'s table).
+/// How a patch region was meshed: the rows of the mesher's decision table (see
+/// `cdt::plan`).
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Hash)]
 pub enum MeshPath {
     /// A whole surface of revolution without openings, meshed on its first
