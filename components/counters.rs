@@ -45,6 +45,9 @@ pub struct WorkCounters {
     /// Cavities round openings whose triangles a meshing took from its patch's
     /// last meshing instead of triangulating them (see `PatchCavities`).
     pub cavities_reused: u64,
+    /// Patch meshes the mesher made (shared ones not counted) by the path that
+    /// made them: sector, structured, general (see `mesh::cdt::MeshPath`).
+    pub meshed_by_path: [u64; 3],
     /// Entity views (one part or nozzle in one view) rebuilt by the Project stage.
     pub views_rebuilt: u64,
     /// Vessels whose operating figures (liquid, weight, centre of gravity) were

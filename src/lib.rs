@@ -73,6 +73,7 @@ pub mod report;
 pub mod server;
 #[path = "../systems/mod.rs"]
 pub mod systems;
+pub mod weights;
 
 /// The README's Rust snippets, compiled and run as doctests.
 #[cfg(doctest)]

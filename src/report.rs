@@ -1,6 +1,6 @@
 //! Vessel reports: the figures `vesselcad info` prints — parts, nozzles, lengths,
 //! largest OD, enclosed volume and outside surface area of each vessel, its
-//! weights (the one weight model of `operating::weights`, which the sheet and
+//! weights (the one weight model of `weights`, which the sheet and
 //! the calculation report print too) and its code calculation's summary —
 //! computed from the resolved design and the exact NURBS.
 
@@ -9,9 +9,9 @@ use serde::Serialize;
 use crate::calc::{MaterialTable, VesselCalc, calculate};
 use crate::constraints::{PartGeometry, ResolvedVessel};
 use crate::design::{Design, DesignError, resolve};
-use crate::operating::metal::MetalItem;
-use crate::operating::weights;
 use crate::parts::{PartError, enclosed_volume, surface_area};
+use crate::weights::metal::MetalItem;
+use crate::weights::weights;
 
 /// One part in a report.
 #[derive(Clone, Debug, Serialize, PartialEq)]
@@ -57,7 +57,7 @@ pub struct VesselReport {
 }
 
 /// The weights and operating figures of a vessel in a report (see
-/// [`crate::operating::Weights`]).
+/// [`crate::weights::Weights`]).
 #[derive(Clone, Debug, Serialize, PartialEq)]
 pub struct OperatingReport {
     /// Capacity: the inside volume, m³.

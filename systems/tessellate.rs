@@ -21,7 +21,7 @@ use crate::components::DirtyPatches;
 use crate::components::{ModelErrors, WorkCounters};
 use crate::components::{PatchCavities, PatchMesh, PatchSurface};
 use crate::design::RuleViolation;
-use crate::mesh::cdt::{KeptCavities, Region, mesh_patch_region_keeping};
+use crate::mesh::cdt::{KeptCavities, MeshPath, Region, mesh_patch_region_keeping};
 use crate::mesh::{PackedMesh, mesh_key_of, surface_key};
 use crate::parts::Patch;
 
@@ -31,6 +31,7 @@ struct Meshed {
     mesh: Arc<PackedMesh>,
     cavities: Option<Arc<KeptCavities>>,
     reused: u64,
+    path: MeshPath,
 }
 
 /// Meshes every patch whose surface or region changed, within the region laid
@@ -110,6 +111,7 @@ pub fn remesh_dirty_patches(world: &mut World, surfaces: &mut QueryState<&PatchS
                         mesh: Arc::new(PackedMesh::pack_marked(&out.mesh, &out.on_loops)),
                         cavities: (!cavities.is_empty()).then(|| Arc::new(cavities)),
                         reused: out.stats.cavities_reused as u64,
+                        path: out.stats.path,
                     })
                     .map_err(|e| e.to_string());
             (keys[i], result)
@@ -119,6 +121,14 @@ pub fn remesh_dirty_patches(world: &mut World, surfaces: &mut QueryState<&PatchS
     let ok = || meshed.values().filter_map(|m| m.as_ref().ok());
     let triangles: u64 = ok().map(|m| m.mesh.triangle_count() as u64).sum();
     let cavities_reused: u64 = ok().map(|m| m.reused).sum();
+    let mut by_path = [0u64; 3];
+    for m in ok() {
+        by_path[match m.path {
+            MeshPath::Sector => 0,
+            MeshPath::Structured => 1,
+            MeshPath::General => 2,
+        }] += 1;
+    }
     {
         let mut instances = world.resource_mut::<Instances>();
         for (&key, meshed) in &meshed {
@@ -188,5 +198,8 @@ pub fn remesh_dirty_patches(world: &mut World, surfaces: &mut QueryState<&PatchS
     counters.meshes_shared += (work.len() - to_mesh.len()) as u64;
     counters.triangles_meshed += triangles;
     counters.cavities_reused += cavities_reused;
+    for (n, m) in counters.meshed_by_path.iter_mut().zip(by_path) {
+        *n += m;
+    }
     counters.failures += failures;
 }

@@ -43,6 +43,22 @@ fn every_patch_is_within_the_tolerance() {
     }
 }
 
+/// The same suite through the analytic entry point the pipeline uses, so the
+/// structured path's screen is held to the same checks.
+#[test]
+fn every_patch_is_within_the_tolerance_through_the_analytic_entry_point() {
+    for tol in [5.0, 1.0, 0.1] {
+        let mut paths = std::collections::BTreeMap::new();
+        for (what, patch) in all_patches() {
+            let stats = mesh_and_check_analytic(&patch, tol, &what);
+            *paths.entry(format!("{:?}", stats.path)).or_insert(0) += 1;
+        }
+        println!("all patches at {tol} mm through the analytic entry point: {paths:?}");
+        // The screen is exercised: the structured paths mesh patches here.
+        assert!(paths.get("Sector").is_some_and(|&n| n > 0), "{paths:?}");
+    }
+}
+
 #[test]
 fn a_head_at_a_hundredth_of_a_millimetre() {
     let head = Head::new(500.0, HeadKind::asme_fd(500.0)).with_straight_flange(20.0);

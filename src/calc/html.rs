@@ -9,7 +9,7 @@ use std::fmt::Write;
 
 use super::{Calculation, TEST_TEMPERATURE};
 use crate::design::VesselDesign;
-use crate::operating::Weights;
+use crate::weights::Weights;
 
 /// One vessel of the report.
 pub struct ReportVessel<'a> {

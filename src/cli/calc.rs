@@ -10,7 +10,7 @@ use serde_json::json;
 use vesselcad::calc::html::{ReportVessel, html};
 use vesselcad::calc::{Calculation, MaterialTable, calculate};
 use vesselcad::design::{Design, DesignError, load, resolve};
-use vesselcad::operating::{Weights, weights};
+use vesselcad::weights::{Weights, weights};
 
 /// The format tag of `calc --json`.
 pub const CALC_FORMAT: &str = "vesselcad-calc/1";

@@ -3,7 +3,7 @@
 //!
 //! Their content comes from the design file (drawing number, title, revision,
 //! date, design conditions, nozzles, notes) and from the calculations (MAWP,
-//! hydrotest, capacity, the weights of `operating::weights`, deficiencies).
+//! hydrotest, capacity, the weights of `weights`, deficiencies).
 
 use glam::DVec2;
 
@@ -12,7 +12,7 @@ use super::dimensions::format_mm;
 use super::sheet::{Align, Item, Layer, Rect, ScheduleRow, SheetSize, text_width};
 use crate::calc::{DEFAULT_JOINT_EFFICIENCY, MaterialTable, calculate, code_of};
 use crate::design::{Design, FORMAT, Units, VesselKind};
-use crate::operating::weights;
+use crate::weights::weights;
 
 /// Titles of the nozzle schedule's columns.
 pub const SCHEDULE_COLUMNS: [&str; 8] = [
@@ -103,7 +103,7 @@ impl Table<'_> {
 
 /// The design-data rows of a sheet after the design conditions: code, joint
 /// efficiency, MAWP, hydrotest, capacity, the three weights of the one weight
-/// model (`operating::weights`, the figures `info` and `calc` print) and the
+/// model (`weights`, the figures `info` and `calc` print) and the
 /// deficiencies, each labelled with what it includes.
 pub fn design_data(data: &VesselData) -> Vec<(&'static str, String)> {
     let design = Design {

@@ -7,47 +7,35 @@
 //! openings cut into it, [`cut_opening`]), driven by [`TessellationOptions`].
 //! Meshes equal by content are meshed once and shared ([`MeshInstances`]); the model
 //! keeps each finished mesh as a [`PackedMesh`] (fixed-point positions, octahedral
-//! normals, narrow indices); exporters convert them to `f32` buffers. [`tessellate`]
-//! is an older uniform-grid mesher that the pipeline no longer uses.
+//! normals, narrow indices); exporters convert them to `f32` buffers. By stage:
+//! `cut` (opening cuts), `layout` (regions), [`cdt`] (the mesher, whose
+//! `plan` is its decision table), `store` (content-keyed tables).
 
-mod axial;
 pub mod cdt;
-mod circles;
-mod edges;
-mod grid;
-mod instances;
-mod key;
+mod cut;
 mod layout;
-mod opening;
 mod options;
 mod packed;
-mod reach;
-mod seams;
-mod shared_cuts;
 mod storage;
+mod store;
+mod surface;
 #[cfg(test)]
 mod test_parts;
-mod turn;
-mod weak_table;
 
-pub use axial::AxialCut;
-pub(crate) use axial::Extrusion;
-pub use edges::{MAX_EDGE_SEGMENTS, edge_parameters, edge_segments};
-pub use grid::tessellate;
-pub use instances::{MeshInstances, mesh_key, mesh_key_of, surface_key};
-pub use layout::{
-    LayoutError, PatchSides, SEAM_CUTS, closed_in_u, host_region, host_region_with, pad_region,
-    patch_region,
+pub use cut::SharedCuts;
+pub use cut::{
+    AxialCut, Cut, HostTrim, Notch, OpeningPlan, PAD_PATCH, PadCut, ReusableCut, cut_opening,
+    cut_opening_reusing,
 };
-pub use opening::{
-    Cut, OpeningPlan, PAD_PATCH, PadCut, ReusableCut, cut_opening, cut_opening_reusing,
+pub use layout::{
+    LayoutError, MAX_EDGE_SEGMENTS, PatchSides, SEAM_CUTS, closed_in_u, edge_parameters,
+    edge_segments, host_region, host_region_with, pad_region, patch_region,
 };
 pub use options::{OptionsError, TessellationOptions};
 pub use packed::{OctNormal, PackedMesh};
-pub use seams::{HostTrim, Notch};
-pub use shared_cuts::SharedCuts;
 pub use storage::{f32_rounding_bound, patch_extent, storage_options};
-pub use weak_table::WeakTable;
+pub use store::{MeshInstances, WeakTable, mesh_key, mesh_key_of, surface_key};
+pub(crate) use surface::Extrusion;
 
 use glam::DVec3;
 

@@ -14,18 +14,14 @@
 //! Units: inputs mm and kg/m³; outputs m³, kg and mm (plant frame).
 
 pub mod liquid;
-pub mod metal;
 pub mod profile;
 mod state;
 pub mod weight;
-mod weights;
 
 pub use state::{
     CARBON_STEEL_DENSITY, MAX_DENSITY, OperatingFigures, STAINLESS_DENSITY, metal_density,
     operating_state, thickness,
 };
-
-pub use weights::{Weights, weights};
 
 use thiserror::Error;
 

@@ -11,7 +11,9 @@ use std::time::Instant;
 
 use glam::{DVec2, DVec3};
 use rayon::prelude::*;
-use vesselcad::mesh::cdt::{MeshStats, Region, RegionMesh, UvLoop, mesh_region_with_uvs, wrap_u};
+use vesselcad::mesh::cdt::{
+    MeshStats, Region, RegionMesh, UvLoop, mesh_patch_region, mesh_region_with_uvs, wrap_u,
+};
 use vesselcad::mesh::{Mesh, TessellationOptions};
 use vesselcad::nurbs::NurbsSurface;
 use vesselcad::parts::Patch;
@@ -329,6 +331,26 @@ pub fn mesh_and_check(patch: &Patch, tol: f64, what: &str) -> MeshStats {
         &out,
         tol,
         &format!("{what} {} at {tol}", patch.name),
+    );
+    assert!(out.stats.min_angle_deg > 0.0);
+    out.stats
+}
+
+/// [`mesh_and_check`] through the analytic entry point
+/// ([`mesh_patch_region`]: the pipeline's, whose structured path screens
+/// triangles in closed form and by the peak model instead of measuring each);
+/// the same checks.
+pub fn mesh_and_check_analytic(patch: &Patch, tol: f64, what: &str) -> MeshStats {
+    let s = &patch.surface;
+    let region = full_region(s, tol);
+    let out = mesh_patch_region(patch, &region, &options(tol))
+        .unwrap_or_else(|e| panic!("{what} ({}) at {tol}: {e}", patch.name));
+    check(
+        s,
+        &region,
+        &out,
+        tol,
+        &format!("{what} {} at {tol}, analytic", patch.name),
     );
     assert!(out.stats.min_angle_deg > 0.0);
     out.stats

@@ -25,12 +25,13 @@ use std::sync::Arc;
 use glam::DVec2;
 use rayon::prelude::*;
 
+use super::cavity_fill::{Loops, Triangle, numbering};
 use super::initial;
 use super::kept::{CavityInput, Kept, Memo};
+use super::lattice::{Chain, Kind};
 use super::patch::{PatchInfo, Vertex};
+use super::plan::{CAVITY_FILLS, CavityFill};
 use super::region::{Region, UvLoop, bounds_of};
-use super::ring::{Loops, Triangle, numbering};
-use super::rings::{Chain, Kind};
 use super::trimesh::{NONE, TriMesh};
 use super::{CdtError, MeshStats};
 
@@ -191,9 +192,10 @@ pub(super) struct Filled {
     pub kept: Option<Arc<Kept>>,
 }
 
-/// Triangulates every cavity into `mesh` (see `ring`: a zip for one hole, ear
-/// clipping for several, spade when neither gives a valid cover; or the
-/// triangles `memo` kept for a cavity with the same inputs, see `kept`):
+/// Triangulates every cavity into `mesh` by the first of [`CAVITY_FILLS`] that
+/// is accepted (see `plan`: the triangles `memo` kept for a cavity with the
+/// same inputs, a zip for one hole, the sweep or ear clipping for several,
+/// spade when none gives a valid cover):
 /// appends the holes' vertices and the cavities' triangles (hole segments
 /// fixed) and returns each cavity's range of triangles, in order, with what to
 /// keep of it (the caller records it in `memo` once screened). `None` when a
@@ -252,26 +254,34 @@ pub(super) fn fill(
                 return Some(Piece {
                     triangles,
                     found: Some(same.clone()),
-                    reused: true,
+                    fill: CavityFill::Kept,
                 });
             }
+            // The fills of the table after `Kept`, up to spade: the first that
+            // gives triangles is taken if they survive the flips to Delaunay.
             if let Some(loops) = Loops::numbered(mesh, map, starts, &metric)
-                && let Some(tris) = (loops.zip(mesh))
-                    .or_else(|| loops.sweep(mesh))
-                    .or_else(|| loops.ears(mesh))
+                && let Some((fill, tris)) = CAVITY_FILLS.iter().find_map(|&fill| {
+                    match fill {
+                        CavityFill::Zip => loops.zip(mesh),
+                        CavityFill::Sweep => loops.sweep(mesh),
+                        CavityFill::Ears => loops.ears(mesh),
+                        CavityFill::Kept | CavityFill::Spade => None,
+                    }
+                    .map(|tris| (fill, tris))
+                })
                 && let Some(local) = loops.finish_local(mesh, tris)
             {
                 return Some(Piece {
                     triangles: to_mesh(loops.map(), &local)?,
                     found: input.map(|input| Kept::new(input, local)),
-                    reused: false,
+                    fill,
                 });
             }
             let triangles = by_spade(info, mesh, &outer, cavity, region, &hole_first)?;
             Some(Piece {
                 triangles,
                 found: None,
-                reused: false,
+                fill: CavityFill::Spade,
             })
         })
         .collect();
@@ -286,7 +296,8 @@ pub(super) fn fill(
         let Some(piece) = piece else {
             return Ok(None);
         };
-        memo.reused += usize::from(piece.reused);
+        memo.reused += usize::from(piece.fill == CavityFill::Kept);
+        memo.fills[piece.fill.index()] += 1;
         let start = mesh.tris.len() as u32;
         for (tri, fixed) in piece.triangles {
             mesh.tris.push(tri);
@@ -315,12 +326,12 @@ fn to_mesh(map: &[u32], tris: &[Triangle]) -> Option<Vec<Triangle>> {
 }
 
 /// One cavity's triangles (mesh vertices), with its inputs and local triangles
-/// to keep (unless spade triangulated it), and whether they were taken from
-/// the kept ones.
+/// to keep (unless spade triangulated it), and the fill that gave them
+/// ([`CavityFill::Kept`]: taken from the kept ones).
 struct Piece {
     triangles: Vec<Triangle>,
     found: Option<Arc<Kept>>,
-    reused: bool,
+    fill: CavityFill,
 }
 
 /// The cavity triangulated by spade: the boundary as the outer loop, its holes as

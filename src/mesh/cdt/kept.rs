@@ -25,8 +25,9 @@ use std::sync::{Arc, OnceLock};
 use glam::DVec2;
 use rustc_hash::{FxHashMap, FxHasher};
 
+use super::cavity_fill::Triangle;
 use super::metric::Metric;
-use super::ring::Triangle;
+use super::plan::CAVITY_FILLS;
 
 /// The cavities met by one meshing of a patch (shared with the meshings that
 /// met them before).
@@ -186,6 +187,8 @@ pub(super) struct Memo<'k> {
     pub found: Vec<Arc<Kept>>,
     /// Cavities whose triangles were taken from `kept`.
     pub reused: usize,
+    /// Cavities filled, by fill (indexed as `plan::CAVITY_FILLS`).
+    pub fills: [usize; CAVITY_FILLS.len()],
 }
 
 impl<'k> Memo<'k> {
@@ -196,6 +199,7 @@ impl<'k> Memo<'k> {
             record,
             found: Vec::new(),
             reused: 0,
+            fills: [0; CAVITY_FILLS.len()],
         }
     }
 
@@ -217,6 +221,7 @@ impl<'k> Memo<'k> {
     pub fn restart(&mut self) {
         self.found.clear();
         self.reused = 0;
+        self.fills = [0; CAVITY_FILLS.len()];
     }
 }
 

@@ -6,24 +6,29 @@
 //! [`mesh_region`] returns a [`Mesh`](crate::mesh::Mesh) whose triangles all lie
 //! within the chordal tolerance of the exact surface.
 //!
-//! Pipeline: `region` (validate) → for a whole patch closed in u, `rings` (the
-//! lattice's rows zipped seam to seam round the `cavity` of each opening, each
-//! cavity zipped to its hole or swept round its holes (`sweep`) and flipped to
-//! Delaunay (`ring`), checked, refined only if needed); otherwise
-//! `seed` (curvature-sized lattice clipped to the
-//! region, in the size `metric` of the surface) → `initial` (spade's constrained
-//! Delaunay triangulation of loop vertices and seeds, inside found by flood fill) →
-//! `refine` (chordal refinement, deviations by `measure`, with metric-Delaunay
-//! `flip`s on a `trimesh`) →
-//! `output` (weld poles and seams, check every triangle, statistics). `patch` holds
-//! the facts about the surface every stage uses.
+//! Pipeline: `region` (validate) → `plan` (the decision table: which path
+//! meshes the region, and the order a cavity's fills are tried) → the sector or
+//! structured path (`structured`: the lattice's rows zipped seam to seam round
+//! the `cavity` of each opening, each cavity filled by `cavity_fill` (zip, `sweep`,
+//! ears) or taken from `kept`; `sector` turns a first quarter round; the types
+//! in `lattice`; triangles screened by `screen`, mended by `mend`) or the
+//! general path (`seed`: curvature-sized lattice clipped to the region, in the
+//! size `metric` of the surface → `initial`: spade's constrained Delaunay
+//! triangulation of loop vertices and seeds, inside found by flood fill →
+//! `refine`: chordal refinement, deviations by `measure`, with metric-Delaunay
+//! `flip`s on a `trimesh`) → `output` (weld poles and seams, check every
+//! triangle, statistics). The checks: `certify` (closed form on planes,
+//! cylinders, spheres), `peak` (the cubic deviation model). `patch` holds the
+//! facts about the surface every stage uses.
 
 mod cavity;
+mod cavity_fill;
 mod certify;
 mod error;
 mod flip;
 mod initial;
 mod kept;
+mod lattice;
 mod measure;
 mod mend;
 mod mesher;
@@ -31,13 +36,13 @@ mod metric;
 mod output;
 mod patch;
 mod peak;
+mod plan;
 mod refine;
 mod region;
-mod ring;
-mod rings;
 mod screen;
 mod sector;
 mod seed;
+mod structured;
 mod sweep;
 mod trimesh;
 
@@ -55,4 +60,5 @@ pub use mesher::{
 };
 pub use output::{MeshStats, RegionMesh};
 pub use patch::wrap_u;
+pub use plan::{CAVITY_FILLS, CavityFill, MeshPath};
 pub use region::{Region, UvLoop};

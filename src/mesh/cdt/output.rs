@@ -16,8 +16,9 @@ use rustc_hash::FxHashMap as HashMap;
 use glam::{DVec2, DVec3};
 
 use super::CdtError;
+use super::lattice::Copies;
 use super::patch::PatchInfo;
-use super::rings::Copies;
+use super::plan::{CAVITY_FILLS, MeshPath};
 use super::trimesh::TriMesh;
 use crate::mesh::Mesh;
 
@@ -44,6 +45,12 @@ pub struct MeshStats {
     /// Cavities round openings whose triangles were taken from the patch's
     /// previous meshing (see [`mesh_patch_region_keeping`](super::mesh_patch_region_keeping)).
     pub cavities_reused: usize,
+    /// The path that meshed the region (see [`MeshPath`](super::MeshPath) and the
+    /// decision table of `cdt::plan`).
+    pub path: MeshPath,
+    /// Cavities round openings filled by each fill, indexed as
+    /// [`CAVITY_FILLS`](super::CAVITY_FILLS) (all zero off the structured path).
+    pub cavity_fills: [usize; CAVITY_FILLS.len()],
 }
 
 /// A meshed region: the mesh, the parameters of its vertices and the statistics.

@@ -166,6 +166,12 @@ impl Assessment {
     pub fn all_good(&self) -> bool {
         self.cache.iter().all(Option::is_none)
     }
+
+    /// Whether triangle `t` is within the limits.
+    #[cfg(test)]
+    pub fn within(&self, t: usize) -> bool {
+        self.cache[t].is_none()
+    }
 }
 
 /// Measures every triangle of `mesh` (in parallel) without changing it; with

@@ -18,9 +18,9 @@
 use glam::{DVec2, DVec3, DVec4};
 
 use super::CdtError;
+use super::lattice::{Copies, Rings};
 use super::patch::PatchInfo;
 use super::region::{Region, UvLoop};
-use super::rings::{Copies, Rings};
 use super::trimesh::{NONE, TriMesh};
 use crate::nurbs::builders::FULL_TURN_KNOTS;
 

@@ -20,10 +20,12 @@ use glam::{DAffine3, DVec2, DVec3};
 
 use crate::nurbs::builders::{line, revolve};
 
-use super::axial::{AxialCut, Extrusion, Placement, axial_range, canonical_host, cut_key};
+use super::axial::{AxialCut, Placement, axial_range, canonical_host, cut_key};
+use super::outcome::{Cut, PAD_PATCH, PadCut};
 use super::reach::Reach;
 use super::seams::{HostTrim, Placed, insert_seam_samples, split_at_seams};
-use super::shared_cuts::shared_key;
+use super::shared_key;
+use crate::mesh::surface::Extrusion;
 use crate::nurbs::NurbsSurface;
 use crate::nurbs::intersect::{
     HostIsoline, IntersectionLoop, LoopSample, intersect_generator, loop_crossing,
@@ -33,21 +35,6 @@ use crate::parts::Patch;
 
 /// Bisection steps placing the seam sample.
 const SEAM_STEPS: usize = 80;
-
-/// A nozzle's (or boot's) cut in its host, in the host part's frame.
-#[derive(Clone, Debug, PartialEq)]
-pub struct Cut {
-    /// The host patches the opening cuts, by index, with how it trims each: one
-    /// patch holding the whole loop ([`HostTrim::Hole`]), or the neighbouring
-    /// patches whose seam the loop crosses ([`HostTrim::Notches`]).
-    pub hosts: Vec<(usize, HostTrim)>,
-    /// Where the neck meets the host. Its host (u, v) are those of the one host
-    /// patch holding it; for an opening across a seam, those of the host patches
-    /// joined in v (the notches carry each patch's own).
-    pub neck: IntersectionLoop,
-    /// Where the reinforcing pad's outside edge meets the host, if it has a pad.
-    pub pad: Option<IntersectionLoop>,
-}
 
 /// One loop against one host patch, with a seam sample if it goes round the pole.
 fn loop_on(
@@ -84,18 +71,6 @@ pub fn cut_opening(
         None,
     )
     .map(|c| c.cut)
-}
-
-/// A reinforcing pad's patch with the loops that trim it, in its own (u, v).
-#[derive(Clone, Debug, PartialEq)]
-pub struct PadCut {
-    /// The pad's patch, in the nozzle's frame: a host surface (the host patch
-    /// itself, or a straight course's canonical copy) moved there.
-    pub patch: Patch,
-    /// The pad's outer loop, host (u, v) on `patch`.
-    pub outer: Arc<IntersectionLoop>,
-    /// The neck's loop, host (u, v) on `patch`.
-    pub inner: Arc<IntersectionLoop>,
 }
 
 /// An opening as [`cut_opening_reusing`] gives it.
@@ -143,7 +118,7 @@ pub fn cut_opening_reusing(
 /// placement in its host (turned and moved from a canonical one in a straight
 /// course) and the neck the loops are marched on. Its [`shared_key`](Self::shared_key)
 /// names the canonical march it would be placed from, so that openings cut
-/// from one march find each other first (see `mesh::shared_cuts`).
+/// from one march find each other first (see `mesh::cut::SharedCuts`).
 pub struct OpeningPlan<'a> {
     pad_od: Option<f64>,
     nozzle_frame: DAffine3,
@@ -191,7 +166,7 @@ impl<'a> OpeningPlan<'a> {
     /// The key of the canonical march the opening would be placed from, when it
     /// lies in a one-patch straight course and its neck is plain (a canonical
     /// neck of its radius: then openings of any projection share the march); see
-    /// `mesh::shared_cuts`.
+    /// `mesh::cut::SharedCuts`.
     pub fn shared_key(&self) -> Option<u128> {
         let [host] = self.host_patches.as_slice() else {
             return None;
@@ -558,9 +533,6 @@ fn add_seam_sample(
     }
     Err("the loop round the pole does not cross the host's seam".into())
 }
-
-/// Name of the reinforcing pad's patch.
-pub const PAD_PATCH: &str = "reinforcing pad";
 
 /// The reinforcing pad's patch off a straight course: the host patch's surface
 /// moved into the nozzle's frame (its (u, v) unchanged, so the pad's loops trim it

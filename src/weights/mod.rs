@@ -1,17 +1,20 @@
 //! One weight model: the figures `vesselcad info`, the sheet's design data and
 //! the calculation report all print. Metal of every part — the envelope's walls
-//! exactly ([`super::weight`]), supports, boot, nozzles, flanges and pads by
-//! [`super::metal`] — at the vessel's metal density; liquid at its level; the
+//! exactly ([`crate::operating::weight`]), supports, boot, nozzles, flanges and pads by
+//! [`metal`] — at the vessel's metal density; liquid at its level; the
 //! test weight full of water. Each weight comes with its centre of gravity.
 
+pub mod metal;
+
 use glam::DVec3;
+
+use metal::{MetalItem, items};
 use serde::Serialize;
 
-use super::metal::{MetalItem, items};
-use super::{OperatingError, metal_density, operating_state};
 use crate::constraints::ResolvedVessel;
 use crate::constraints::stack_of;
 use crate::design::{OperatingDesign, VesselDesign, WATER_DENSITY};
+use crate::operating::{OperatingError, metal_density, operating_state};
 
 /// A vessel's weights, kg, and centres of gravity, plant frame, mm.
 #[derive(Clone, Debug, PartialEq, Serialize)]

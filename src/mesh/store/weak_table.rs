@@ -2,7 +2,7 @@
 //! references: an entry lives as long as something else keeps its value.
 //!
 //! The Tessellate stage's meshes in use ([`MeshInstances`](super::MeshInstances))
-//! and the Geometry stage's canonical cuts ([`SharedCuts`](super::SharedCuts))
+//! and the Geometry stage's canonical cuts ([`SharedCuts`](crate::mesh::SharedCuts))
 //! are such tables: a patch (an opening) equal by key to one already built takes
 //! the value in use instead of building it again, and the table never keeps a
 //! value alive on its own.

@@ -17,7 +17,7 @@ use super::key::Key;
 use glam::DVec3;
 
 use super::weak_table::WeakTable;
-use super::{PackedMesh, TessellationOptions};
+use crate::mesh::{PackedMesh, TessellationOptions};
 use crate::parts::{Analytic, Patch};
 
 /// A 128-bit key of everything the mesh of `patch` within the region with

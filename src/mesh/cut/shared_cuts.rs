@@ -16,10 +16,10 @@
 //! opening keeps it, and sharing never changes a bit of any opening (placing a
 //! kept cut gives what a fresh march gives).
 
-use super::key::Key;
+use crate::mesh::store::Key;
 
-use super::axial::AxialCut;
-use super::weak_table::WeakTable;
+use super::AxialCut;
+use crate::mesh::store::WeakTable;
 
 /// A 128-bit key of the canonical march an opening in a one-patch straight
 /// course is placed from: the course and canonical placement (`course`, by
@@ -28,7 +28,7 @@ use super::weak_table::WeakTable;
 /// [`OpeningPlan::shared_key`](crate::mesh::OpeningPlan::shared_key)). Two
 /// openings with one key are cut from the same march; the cut itself still
 /// checks, when placed, that it fits the opening (`AxialCut::fits`).
-pub(super) fn shared_key(
+pub(in crate::mesh) fn shared_key(
     course: u128,
     (radius, height): (u64, u64),
     pad_od: Option<f64>,

@@ -155,8 +155,8 @@ mod tests {
     use glam::DVec3;
 
     use super::*;
+    use crate::mesh::cut::turn::split_turn;
     use crate::mesh::test_parts::{OD, course, frame};
-    use crate::mesh::turn::split_turn;
 
     #[test]
     fn a_course_is_round_and_its_u_is_its_angle() {

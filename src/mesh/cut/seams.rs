@@ -15,7 +15,7 @@ use std::sync::Arc;
 
 use glam::DVec2;
 
-use super::layout::closed_in_u;
+use crate::mesh::surface::closed_in_u;
 use crate::nurbs::intersect::{
     HostIsoline, IntersectionLoop, LoopSample, intersect_generator, loop_crossing,
 };

@@ -2,9 +2,9 @@
 //! saddles, legs, lugs, boot, nozzles (neck and flange) and reinforcing pads —
 //! each as a mass with its centre, from thickness × density.
 //!
-//! The envelope's walls are weighed exactly by [`super::weight`]; these items use
+//! The envelope's walls are weighed exactly by [`crate::operating::weight`]; these items use
 //! closed forms of their plates and pipes (stated per item below), and
-//! [`super::weights`] adds them up. Plate thicknesses the design does not give
+//! [`super::weights`](super::weights()) adds them up. Plate thicknesses the design does not give
 //! are the 12 mm the supports are built with (`constraints::supports`).
 
 use std::f64::consts::PI;
@@ -204,7 +204,7 @@ pub fn items(
             .host
             .and_then(|h| parts.get(h))
             .and_then(|h| design.parts.iter().find(|d| d.id() == h.id))
-            .and_then(super::thickness)
+            .and_then(crate::operating::thickness)
             .unwrap_or(DEFAULT_PLATE);
         let Some(volume) = support_volume(d, part, host_t) else {
             continue;

@@ -27,7 +27,9 @@ use rayon::prelude::*;
 
 use super::cavity::{self, Cavity};
 use super::kept::Memo;
+use super::lattice::{Chain, Kind, Rings};
 use super::patch::{PatchInfo, Vertex};
+use super::plan::{MeshPath, Plan};
 use super::region::Region;
 use super::screen::Screen;
 use super::trimesh::{NONE, TriMesh};
@@ -46,50 +48,6 @@ enum Side {
     Pole,
 }
 
-/// A structured mesh of a whole closed patch.
-pub(super) struct Rings {
-    /// The triangles, strip by strip from the bottom chain up.
-    pub mesh: TriMesh,
-    /// The seam edges, as `(triangle, edge)`: left unfixed so that the checks probe
-    /// them; the caller fixes them (with [`fix_seam`]) before output or refinement.
-    pub seam: Vec<(u32, usize)>,
-    /// For every triangle, whether the screen found it within the limits (`false`:
-    /// measure it in full); `None` when the patch has no screen.
-    pub within: Option<Vec<bool>>,
-    /// Vertices added by mending (counted as refinement insertions).
-    pub insertions: usize,
-    /// For a whole turn of quarters (`sector`): which triangles of the later
-    /// quarters are exact turned copies of the first quarter's.
-    pub copies: Option<Copies>,
-}
-
-/// The triangles of a whole turn that are exact quarter turns of the first
-/// quarter's: triangle `t` (past the first quarter) is one when
-/// `exact[t % per_quarter]`, so the output's checks, which give a triangle and
-/// its exact quarter turn the same verdict, need only the first quarter's.
-pub(super) struct Copies {
-    pub per_quarter: usize,
-    pub exact: Vec<bool>,
-}
-
-/// What a chain of the structured mesh is: a row of vertices at constant v running
-/// seam to seam, or a pole — one pole vertex under the middle of each segment of
-/// the neighbouring row (they weld into one on output).
-#[derive(Clone, Copy, Debug)]
-pub(super) enum Kind {
-    Row,
-    Pole,
-}
-
-/// One chain: its vertices `first..first + len` of the mesh's vertices.
-#[derive(Clone, Copy, Debug)]
-pub(super) struct Chain {
-    pub v: f64,
-    pub kind: Kind,
-    pub first: u32,
-    pub len: usize,
-}
-
 /// The structured mesh of `region` when it is a whole patch closed in u, holes
 /// included; `None` for any other region, or when a hole's cavity would reach the
 /// seam or a pole (see `cavity`).
@@ -101,16 +59,17 @@ pub(super) struct Chain {
 pub(super) fn triangulate(
     info: &PatchInfo,
     region: &Region,
+    plan: &Plan,
     options: &TessellationOptions,
     budget: usize,
     memo: &mut Memo,
-) -> Result<Option<Rings>, CdtError> {
+) -> Result<Option<(MeshPath, Rings)>, CdtError> {
     // A whole surface of revolution: its first quarter, turned round (within a
     // quarter of the budget, as the whole turn has four times its vertices).
-    if let Some(quarter) = sector::quarter(info, region)
+    if let Some(quarter) = &plan.quarter
         && let Some(part) = structured(
             info,
-            &quarter,
+            quarter,
             options,
             budget / sector::QUARTERS,
             sector::QUARTERS,
@@ -120,11 +79,14 @@ pub(super) fn triangulate(
             CdtError::BudgetExceeded { .. } => CdtError::BudgetExceeded { limit: budget },
             e => e,
         })?
-        && let Some(whole) = sector::whole_turn(info, &quarter, part)?
+        && let Some(whole) = sector::whole_turn(info, quarter, part)?
     {
-        return Ok(Some(whole));
+        return Ok(Some((MeshPath::Sector, whole)));
     }
-    structured(info, region, options, budget, 1, memo)
+    if !plan.structured {
+        return Ok(None);
+    }
+    Ok(structured(info, region, options, budget, 1, memo)?.map(|r| (MeshPath::Structured, r)))
 }
 
 /// [`triangulate`] of a region spanning `1 / parts` of the patch's period.

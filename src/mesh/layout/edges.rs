@@ -35,9 +35,9 @@
 
 use std::sync::OnceLock;
 
-use super::TessellationOptions;
 use super::circles::Circle;
 use crate::MODEL_EPSILON;
+use crate::mesh::TessellationOptions;
 use crate::nurbs::{GaussLegendre, NurbsCurve};
 
 /// Most segments an edge gets. Beyond it the tolerance is not met (an absurdly fine

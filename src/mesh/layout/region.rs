@@ -12,9 +12,11 @@
 use glam::DVec2;
 use thiserror::Error;
 
-use super::cdt::{Region, UvLoop};
-use super::seams::Notch;
-use super::{TessellationOptions, edge_parameters};
+use super::edge_parameters;
+use crate::mesh::TessellationOptions;
+use crate::mesh::cdt::{Region, UvLoop};
+use crate::mesh::cut::Notch;
+pub use crate::mesh::surface::closed_in_u;
 use crate::nurbs::intersect::IntersectionLoop;
 use crate::nurbs::{NurbsCurve, NurbsSurface, Side};
 
@@ -60,17 +62,6 @@ fn degenerate(curve: &NurbsCurve) -> bool {
     let pts = curve.control_points();
     let s = size(curve);
     pts.iter().all(|p| (*p - pts[0]).length() <= SAME * s)
-}
-
-/// True when the surface is closed in u: its u0 and u1 edges coincide.
-pub fn closed_in_u(surface: &NurbsSurface) -> bool {
-    let a = surface.boundary(Side::UMin).control_points();
-    let b = surface.boundary(Side::UMax).control_points();
-    let s = a.iter().fold(1.0f64, |m, p| m.max(p.abs().max_element()));
-    a.len() == b.len()
-        && a.iter()
-            .zip(&b)
-            .all(|(p, q)| (*p - *q).length() <= 1e-9 * s)
 }
 
 /// Whether two curves have the same knots and homogeneous control points, bit for

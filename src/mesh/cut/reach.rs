@@ -21,7 +21,7 @@ use std::sync::Arc;
 
 use glam::{DAffine3, DVec3};
 
-use super::{Cut, PadCut};
+use super::outcome::{Cut, PadCut};
 use crate::nurbs::NurbsSurface;
 use crate::nurbs::builders::{line, revolve};
 use crate::nurbs::intersect::IntersectionLoop;
@@ -170,7 +170,7 @@ mod tests {
     use glam::{DAffine3, DVec3};
 
     use super::Reach;
-    use crate::mesh::opening::cut_opening;
+    use crate::mesh::cut::opening::cut_opening;
     use crate::mesh::test_parts::{OD, course, frame, neck, nozzle};
     use crate::parts::Patch;
     use crate::parts::heads::{Head, HeadKind};

@@ -24,80 +24,18 @@
 //! the incremental model stays byte-identical to a full build. The neck's region
 //! is then unchanged too, and the Tessellate stage shares its old mesh.
 
-use super::key::Key;
+use crate::mesh::store::Key;
 use std::sync::Arc;
 
 use glam::{DAffine3, DVec2, DVec3, DVec4};
 
-use super::opening::{PAD_PATCH, PadCut};
+use super::outcome::{Cut, PAD_PATCH, PadCut};
 use super::seams::HostTrim;
 use super::turn::{Turn, is_round, round_u, split_turn};
+use crate::mesh::surface::Extrusion;
 use crate::nurbs::intersect::IntersectionLoop;
 use crate::nurbs::{KnotVector, NurbsSurface};
 use crate::parts::Patch;
-
-/// How far the two rows' axial coordinates may stray from one value, relative to
-/// the course's length (rounding of z·w / w).
-const ROW_SLACK: f64 = 1e-12;
-
-/// A host patch swept straight along part-frame Z: degree 1 and two control rows
-/// in v, equal x·w, y·w and w in both rows, each row at one z.
-#[derive(Clone, Copy, Debug, PartialEq)]
-pub(crate) struct Extrusion {
-    /// Axial coordinate of the v0 row.
-    z0: f64,
-    /// Axial coordinate of the v1 row.
-    z1: f64,
-    /// The v-domain.
-    v: (f64, f64),
-}
-
-impl Extrusion {
-    /// The extrusion `surface` is, if it is one.
-    pub(crate) fn of(surface: &NurbsSurface) -> Option<Self> {
-        if surface.v_degree() != 1 || surface.v_count() != 2 {
-            return None;
-        }
-        let points = surface.homogeneous_points();
-        let z = |p: DVec4| p.z / p.w;
-        let (z0, z1) = (z(points[0]), z(points[1]));
-        if !(z0.is_finite() && z1.is_finite()) || z0 == z1 {
-            return None;
-        }
-        let slack = ROW_SLACK * (z1 - z0).abs().max(z0.abs()).max(z1.abs());
-        let swept = points.chunks_exact(2).all(|row| {
-            let (a, b) = (row[0], row[1]);
-            a.x.to_bits() == b.x.to_bits()
-                && a.y.to_bits() == b.y.to_bits()
-                && a.w.to_bits() == b.w.to_bits()
-                && (z(a) - z0).abs() <= slack
-                && (z(b) - z1).abs() <= slack
-        });
-        swept.then_some(Self {
-            z0,
-            z1,
-            v: surface.v_knots().domain(),
-        })
-    }
-
-    /// The axial coordinate at `v` (linear: both rows share weights), so that
-    /// S(u, v) is the v0 row's point at u moved to it.
-    pub(crate) fn z_at(&self, v: f64) -> f64 {
-        let (v0, v1) = self.v;
-        self.z0 + (v - v0) / (v1 - v0) * (self.z1 - self.z0)
-    }
-
-    /// The v at axial coordinate `z` (v is linear in z: both rows share weights).
-    fn v_at(&self, z: f64) -> f64 {
-        let (v0, v1) = self.v;
-        v0 + (z - self.z0) / (self.z1 - self.z0) * (v1 - v0)
-    }
-
-    /// Whether `v` lies strictly inside the v-domain.
-    fn holds(&self, v: f64) -> bool {
-        v > self.v.0 && v < self.v.1
-    }
-}
 
 /// A 128-bit key of everything a canonical cut depends on besides the neck, the
 /// pad and the tolerance: the host's cross-section (u knots, x·w, y·w, w of its
@@ -322,18 +260,14 @@ impl AxialCut {
     /// (turned and moved from the canonical one): `None` when a loop does not
     /// lie strictly within the patch's v-domain (it crosses an end of the
     /// course).
-    pub(super) fn place(
-        &self,
-        surface: &NurbsSurface,
-        placement: &Placement,
-    ) -> Option<super::Cut> {
+    pub(super) fn place(&self, surface: &NurbsSurface, placement: &Placement) -> Option<Cut> {
         let ext = Extrusion::of(surface)?;
         let neck = placed(&self.neck, &ext, placement)?;
         let pad = match self.pad.as_deref() {
             Some(p) => Some(placed(p, &ext, placement)?),
             None => None,
         };
-        Some(super::Cut {
+        Some(Cut {
             hosts: vec![(self.host, HostTrim::Hole)],
             neck,
             pad,
@@ -399,7 +333,7 @@ mod tests {
     use glam::{DAffine3, DVec3};
 
     use super::Extrusion;
-    use crate::mesh::opening::{ReusableCut, cut_opening_reusing};
+    use crate::mesh::cut::opening::{ReusableCut, cut_opening_reusing};
     use crate::mesh::test_parts::{OD, course, frame};
     use crate::nurbs::intersect::IntersectionLoop;
     use crate::parts::Patch;
