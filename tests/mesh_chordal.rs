@@ -145,21 +145,21 @@ fn hemisphere_triangle_counts_stay_within_the_ideal_budget() {
     }
 }
 
+/// Every patch of the example designs, and of the conical roof whose opening
+/// near the apex made refinement run away (issue 30 §1: spade's fan from the
+/// pole's two corners held triangles turned over on the cone).
 #[test]
 fn every_patch_of_the_examples_holds_the_bound_on_every_point() {
     let tolerance = 1.0;
     let mut failures = Vec::new();
     for name in [
-        "horizontal-drum",
-        "vertical-column",
-        "storage-tank",
-        "small-plant",
+        "examples/designs/horizontal-drum.json",
+        "examples/designs/vertical-column.json",
+        "examples/designs/storage-tank.json",
+        "examples/designs/small-plant.json",
+        "tests/repros/tank-N3-orientation-25.37.json",
     ] {
-        let design = load(format!(
-            "{}/examples/designs/{name}.json",
-            env!("CARGO_MANIFEST_DIR")
-        ))
-        .unwrap();
+        let design = load(format!("{}/{name}", env!("CARGO_MANIFEST_DIR"))).unwrap();
         let mut model = Model::from_design(&design, TessellationOptions::chord(tolerance)).unwrap();
         assert!(model.errors().0.is_empty(), "{name}: {:?}", model.errors());
         let mut query = model.query::<(&PatchSurface, &PatchMesh)>();

@@ -15,7 +15,7 @@ use proptest::prelude::*;
 use vesselcad::design::{Design, HeadShape, NozzleDesign, PadDesign, PartDesign, load};
 use vesselcad::export::{Scene, SceneNodeKind};
 use vesselcad::mesh::TessellationOptions;
-use vesselcad::model::{Edit, Model};
+use vesselcad::model::Model;
 
 /// Welds positions on a fine grid (1e-6 mm cells, neighbours checked) into ids.
 struct Welder {
@@ -379,6 +379,9 @@ proptest! {
     }
 }
 
+/// A pad reaching across a head's knuckle–crown seam is refused by `check`,
+/// naming the nozzle's offset (it used to pass `check` and fail to cut, issue 30
+/// §1); without the pad the same nozzle builds.
 #[test]
 fn a_pad_across_a_head_seam_is_refused_clearly() {
     let mut design = column_with_seam_nozzles(&[(3.0, 30.0, -0.5)]);
@@ -387,31 +390,21 @@ fn a_pad_across_a_head_seam_is_refused_clearly() {
         od: 120.0,
         thickness: 10.0,
     });
-    vesselcad::design::validate(&design).unwrap();
-    let model = Model::from_design(&design, TessellationOptions::chord(1.0)).unwrap();
-    let errors = &model.errors().0;
-    assert_eq!(errors.len(), 1, "{errors:?}");
-    let v = &errors[0].1[0];
+    let refused = vesselcad::design::validate(&design).unwrap_err();
+    let violations = refused.violations();
+    assert_eq!(violations.len(), 1, "{violations:?}");
+    let v = &violations[0];
     assert_eq!(
-        (v.entity.as_str(), v.field.as_str(), v.value.as_str()),
-        ("C-201/X0", "opening", "C-201/H2")
+        (v.path.as_str(), v.entity.as_str(), v.field.as_str()),
+        ("vessels[0].nozzles[9].offset", "C-201/X0", "offset")
     );
     assert!(
-        v.rule.contains("\"knuckle\", \"crown\"") && v.rule.contains("reinforcing pad"),
+        v.rule.contains("pad") && v.rule.contains("seam") && v.rule.contains("H2"),
         "{v}"
     );
-    // An edit that cuts the opening again is refused for it (the model stays as
-    // it was), and once the pad is gone nothing is left.
-    let mut model = model;
-    let mut edited = design.clone();
-    edited.vessels[0].nozzles.last_mut().unwrap().projection += 50.0;
-    let refused = model.edit(Edit::ReplaceDesign(edited.clone()));
-    assert!(
-        matches!(&refused, Err(vesselcad::model::ModelError::Geometry(v)) if v.len() == 1),
-        "{refused:?}"
-    );
-    edited.vessels[0].nozzles.last_mut().unwrap().pad = None;
-    model.edit(Edit::ReplaceDesign(edited)).unwrap();
+    design.vessels[0].nozzles.last_mut().unwrap().pad = None;
+    vesselcad::design::validate(&design).unwrap();
+    let model = Model::from_design(&design, TessellationOptions::chord(1.0)).unwrap();
     assert!(model.errors().0.is_empty(), "{:?}", model.errors());
 }
 
@@ -628,11 +621,6 @@ fn every_repro_is_refused_clearly_or_builds_closed() {
         let outcome = std::panic::catch_unwind(|| repro_outcome(&path));
         let took = start.elapsed().as_secs_f64();
         match outcome {
-            Ok(Err(problem))
-                if OPEN.contains(&name.as_str()) && problem.contains("path: \"vessels[") =>
-            {
-                eprintln!("{name}: still open, fails naming its path: {problem} ({took:.2} s)")
-            }
             Ok(Ok(what)) => eprintln!("{name}: {what} ({took:.2} s)"),
             Ok(Err(problem)) => broken.push(format!("{name}: {problem} ({took:.2} s)")),
             Err(_) => broken.push(format!("{name}: not closed ({took:.2} s)")),
@@ -640,15 +628,6 @@ fn every_repro_is_refused_clearly_or_builds_closed() {
     }
     assert!(broken.is_empty(), "\n{}", broken.join("\n"));
 }
-
-/// Repros not yet refused or built (issue 30 §1, open): a conical roof that
-/// refinement cannot bring within the tolerance. They must fail naming the
-/// part by its JSON path; refinement stops them early (about a second, where
-/// they ran to 4,000,000 vertices over 9 s and 1.4 GB before).
-const OPEN: [&str; 2] = [
-    "fuzz-seed1-accepted-edit-roof-4M-vertices.json",
-    "tank-N3-orientation-25.37.json",
-];
 
 /// What one repro does: refused clearly or built closed (panics when not closed).
 fn repro_outcome(path: &std::path::Path) -> Result<String, String> {

@@ -457,6 +457,20 @@ pub(crate) fn place(
                     report.push(format!("{path}.offset"), id, "offset", offset, format!("the opening (the {reach_name} {reach} mm) crosses the seam between the patches of head {} at {seam:.1} mm from its axis, and nozzle {} is centred on that head: a head cut round its centre cannot also be cut across a seam; move the opening clear of that radius", n.host, centre.mark));
                     continue;
                 }
+                // A pad is laid out on one patch of its head: its footprint may
+                // not reach across (nor to within the end gap of) a seam between
+                // two of the dished patches, such as the knuckle–crown joint.
+                if let Some((pad_od, _)) = pad
+                    && let Some(seam) = head_seam_radii(head).into_iter().find(|&r| {
+                        let gap = end_gap(pad_od);
+                        r < radius * (1.0 - 1e-9)
+                            && (offset - pad_od / 2.0).max(0.0) - gap <= r
+                            && r <= offset + pad_od / 2.0 + gap
+                    })
+                {
+                    report.push(format!("{path}.offset"), id, "offset", offset, format!("the reinforcing pad (OD {pad_od} mm) reaches across or within {} mm of the seam between the patches of head {} at {seam:.1} mm from its axis; a pad must lie on one patch: move the nozzle clear of that radius or make the pad smaller", end_gap(pad_od), n.host));
+                    continue;
+                }
                 // The neck meets the head highest on its side nearest the axis
                 // (the head's height falls with the radius): it must end above
                 // that, not only above the centre of the opening.

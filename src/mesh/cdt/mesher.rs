@@ -184,6 +184,8 @@ fn mesh_oriented(
     // The general path: no cavity of the structured attempt is in this mesh.
     memo.restart();
     let seeds = seed::seeds(&info, region, budget)?;
+    let poled = seed::with_pole_vertices(&info, region, &seeds);
+    let region = poled.as_ref().unwrap_or(region);
     let mut mesh = initial::triangulate(&info, region, &seeds, &mut stats)?;
     refine::refine(&info, &mut mesh, options, VERTEX_BUDGET, &mut stats)?;
     finish(&info, &mesh, None, stats)

@@ -223,6 +223,82 @@ pub(super) fn seeds(
     Ok(per_row.into_iter().flatten().collect())
 }
 
+/// The region with vertices added along each side of its outer loop that
+/// collapses to a pole: one under the middle of every two neighbouring seeds of
+/// the seed row nearest the pole (as the structured path's pole chains), or of
+/// the opposite side's loop vertices when there are no seeds, in the loop's
+/// order; `None` when nothing is added.
+///
+/// A pole side comes from the layout as one segment from seam to seam. spade
+/// then joins the interior vertices near the pole to its two ends, a fan whose
+/// raw (u, v) order is not the order of the vertices round the pole: a vertex
+/// nearer the pole at a smaller u can sit on the wrong side of the (u, v) line from
+/// the corner to one farther away. Such a triangle is valid in (u, v) and turned
+/// over on the surface, and splitting it only ever adds vertices on that line,
+/// so refinement ran away (a conical roof with an opening near its apex reached
+/// millions of vertices). With a pole vertex under every gap of the nearest row,
+/// the row and the pole are zipped like any two rows instead.
+pub(super) fn with_pole_vertices(
+    info: &PatchInfo,
+    region: &Region,
+    seeds: &[DVec2],
+) -> Option<Region> {
+    let (_, (v0, v1)) = info.surface.domain();
+    let eps = 1e-12 * (v1 - v0).abs().max(f64::MIN_POSITIVE);
+    let at = |v: f64, w: f64| (v - w).abs() <= eps;
+    let pole_v = |a: DVec2, b: DVec2| {
+        [(info.collapsed[2], v0), (info.collapsed[3], v1)]
+            .into_iter()
+            .find(|&(collapsed, v)| collapsed && at(a.y, v) && at(b.y, v))
+            .map(|(_, v)| v)
+    };
+    let loop_uv = &region.outer.uv;
+    let n = loop_uv.len();
+    let mut outer = Vec::with_capacity(n);
+    let mut added = false;
+    for k in 0..n {
+        let (a, b) = (loop_uv[k], loop_uv[(k + 1) % n]);
+        outer.push(a);
+        let Some(v) = pole_v(a, b) else {
+            continue;
+        };
+        // Without seeds (a cone: straight generators need no rows) the row is
+        // the opposite side's loop vertices.
+        let other = if v == v0 { v1 } else { v0 };
+        let row_of: &[DVec2] = if seeds.is_empty() { loop_uv } else { seeds };
+        let nearest = if seeds.is_empty() {
+            (other - v).abs()
+        } else {
+            seeds
+                .iter()
+                .map(|s| (s.y - v).abs())
+                .fold(f64::INFINITY, f64::min)
+        };
+        let mut row: Vec<f64> = row_of
+            .iter()
+            .filter(|s| ((s.y - v).abs() - nearest).abs() <= eps)
+            .map(|s| s.x)
+            .collect();
+        row.sort_by(f64::total_cmp);
+        let (lo, hi) = (a.x.min(b.x), a.x.max(b.x));
+        let margin = 1e-9 * (hi - lo);
+        let mut mids: Vec<f64> = row
+            .windows(2)
+            .map(|w| 0.5 * (w[0] + w[1]))
+            .filter(|&u| u > lo + margin && u < hi - margin)
+            .collect();
+        if a.x > b.x {
+            mids.reverse();
+        }
+        added |= !mids.is_empty();
+        outer.extend(mids.into_iter().map(|u| DVec2::new(u, v)));
+    }
+    added.then(|| Region {
+        outer: super::region::UvLoop::new(outer),
+        holes: region.holes.clone(),
+    })
+}
+
 /// The lattice's rows strictly inside `lo.y..hi.y` across the whole u range of the
 /// region, as `(v, u values)`: every row runs from `lo.x` to `hi.x` (the ends
 /// included), every other one shifted by half a step in between. The rows of the
