@@ -388,10 +388,14 @@ fn a_pad_across_a_head_seam_is_refused_clearly() {
         thickness: 10.0,
     });
     vesselcad::design::validate(&design).unwrap();
-    let model = Model::from_design(&design, TessellationOptions::chord(1.0)).unwrap();
-    let errors = &model.errors().0;
+    let err = Model::from_design(&design, TessellationOptions::chord(1.0))
+        .err()
+        .expect("refused");
+    let vesselcad::model::ModelError::Geometry(errors) = &err else {
+        panic!("{err}");
+    };
     assert_eq!(errors.len(), 1, "{errors:?}");
-    let v = &errors[0].1[0];
+    let v = &errors[0];
     assert_eq!(
         (v.entity.as_str(), v.field.as_str(), v.value.as_str()),
         ("C-201/X0", "opening", "C-201/H2")
@@ -402,7 +406,9 @@ fn a_pad_across_a_head_seam_is_refused_clearly() {
     );
     // An edit that cuts the opening again is refused for it (the model stays as
     // it was), and once the pad is gone nothing is left.
-    let mut model = model;
+    let mut built = design.clone();
+    built.vessels[0].nozzles.last_mut().unwrap().pad = None;
+    let mut model = Model::from_design(&built, TessellationOptions::chord(1.0)).unwrap();
     let mut edited = design.clone();
     edited.vessels[0].nozzles.last_mut().unwrap().projection += 50.0;
     let refused = model.edit(Edit::ReplaceDesign(edited.clone()));
