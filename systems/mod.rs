@@ -34,7 +34,7 @@ pub use openings::{CutTable, OpeningHosts, cut_openings};
 pub use operating::update_operating_states;
 pub use project::{Views, entity_input, project_dirty_views, views_kept};
 pub use regions::{HostSides, lay_out_regions};
-pub use storage::{RequestedTessellation, budget_storage_precision};
+pub use storage::{RequestedTessellation, StorageExtents, budget_storage_precision};
 pub use tessellate::{Instances, Tessellation, remesh_dirty_patches};
 pub use validate::{
     CheckedResolutions, EditedVessels, ModelErrors, PendingResolutions, resolve_dirty_vessels,

@@ -224,7 +224,8 @@ fn a_slow_but_active_request_is_not_cut_while_an_idle_one_is() {
     assert!(answer.starts_with("HTTP/1.1 200"), "{answer}");
     // The silent socket, older than the timeout by now, was closed by the
     // server: end of stream (or a reset), not the client's own timeout.
-    idle.set_read_timeout(Some(server_support::TIMEOUT)).unwrap();
+    idle.set_read_timeout(Some(server_support::TIMEOUT))
+        .unwrap();
     let mut rest = Vec::new();
     let waited = Instant::now();
     match idle.read_to_end(&mut rest) {

@@ -41,8 +41,8 @@ use crate::mesh::{OptionsError, TessellationOptions};
 pub use crate::systems::Views;
 use crate::systems::{
     ChangeLog, CheckedResolutions, CutTable, DirtyParts, DirtyPatches, EditedVessels, Instances,
-    ModelErrors, OpeningHosts, PendingResolutions, RequestedTessellation, StageTimes, Tessellation,
-    WorkCounters, build_schedule,
+    ModelErrors, OpeningHosts, PendingResolutions, RequestedTessellation, StageTimes,
+    StorageExtents, Tessellation, WorkCounters, build_schedule,
 };
 
 /// Why an edit or model construction was refused. The model is unchanged.
@@ -92,6 +92,8 @@ pub struct Model {
     /// then holds only theirs and the next run's): put back if the update fails,
     /// merged with the world's once it builds.
     log_before: Option<ChangeLog>,
+    /// Schedule runs since the model was made.
+    runs: u64,
 }
 
 impl Model {
@@ -104,6 +106,7 @@ impl Model {
         world.insert_resource(RequestedTessellation(options));
         world.insert_resource(Tessellation(options));
         world.init_resource::<WorkCounters>();
+        world.init_resource::<StorageExtents>();
         world.init_resource::<Instances>();
         world.init_resource::<PendingResolutions>();
         world.init_resource::<ModelErrors>();
@@ -122,6 +125,7 @@ impl Model {
             schedule: build_schedule(),
             undo: undo::Undo::default(),
             log_before: None,
+            runs: 0,
         })
     }
 
@@ -290,6 +294,7 @@ impl Model {
 
     /// Runs the schedule once.
     fn run(&mut self) -> WorkCounters {
+        self.runs += 1;
         *self.world.resource_mut::<WorkCounters>() = WorkCounters::default();
         // Errors describe the last run only, like the counters.
         self.world.resource_mut::<ModelErrors>().0.clear();
@@ -334,6 +339,13 @@ impl Model {
     /// The plant as a scene for the exporters (meshes as of the last update).
     pub fn scene(&self) -> Scene {
         read::scene(&self.world)
+    }
+
+    /// How many times the schedule ran since the model was made (an update
+    /// that fails and is undone runs it twice): what a caller that must build
+    /// once, such as a session replaying its journal, is checked by.
+    pub fn runs(&self) -> u64 {
+        self.runs
     }
 
     /// The ids changed and removed since the last call.
