@@ -72,7 +72,7 @@ fn an_edit_reads_the_extents_of_what_it_rebuilt_only() {
             tag: design.vessels[0].tag.clone(),
             placement: vesselcad::design::Placement {
                 rotation: design.vessels[0].placement.rotation + 15.0,
-                ..design.vessels[0].placement.clone()
+                ..design.vessels[0].placement
             },
         })
         .unwrap();

@@ -57,7 +57,7 @@ pub enum ModelError {
     /// The edit passes every rule but its geometry cannot be built: each failed
     /// part or nozzle is listed with its JSON path, the stage that failed
     /// (`shape`, `opening`, `region`, `mesh`) and why. The edit was undone.
-    #[error("the edit cannot be built, nothing changed: {} failure(s):\n{}", .0.len(), .0.iter().map(|v| format!("  - {v}")).collect::<Vec<_>>().join("\n"))]
+    #[error("the geometry cannot be built, nothing changed: {} failure(s):\n{}", .0.len(), .0.iter().map(|v| format!("  - {v}")).collect::<Vec<_>>().join("\n"))]
     Geometry(Vec<RuleViolation>),
     /// The edit names a vessel that does not exist.
     #[error("no vessel has the tag {tag:?}")]
