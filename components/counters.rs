@@ -34,6 +34,9 @@ pub struct WorkCounters {
     pub regions_unchanged: u64,
     /// Patches rebuilt.
     pub patches_rebuilt: u64,
+    /// Patches whose extent the storage budget read (those rebuilt in this
+    /// run; see `budget_storage_precision`).
+    pub storage_extents_read: u64,
     /// Patch meshes rebuilt (replaced).
     pub meshes_rebuilt: u64,
     /// Of the rebuilt meshes, those taken from another patch with the same

@@ -45,5 +45,5 @@ pub use resolutions::{CheckedResolutions, ModelErrors, PendingResolutions};
 pub use stage_times::{STAGES, StageTimes};
 pub(crate) use stores::VesselIndex;
 pub use stores::{CutTable, Instances, OpeningHosts};
-pub use tessellation::{RequestedTessellation, Tessellation};
+pub use tessellation::{RequestedTessellation, StorageExtents, Tessellation};
 pub use views::{EntityViews, Footprint, VesselViews, Views};

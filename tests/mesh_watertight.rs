@@ -649,11 +649,13 @@ fn repro_outcome(path: &std::path::Path) -> Result<String, String> {
             Ok(format!("refused: {}", violations[0]))
         }
         Ok(design) => {
-            let model = Model::from_design(&design, TessellationOptions::DEFAULT)
-                .map_err(|e| e.to_string())?;
-            if !model.errors().0.is_empty() {
-                return Err(format!("accepted but fails to build: {:?}", model.errors()));
-            }
+            let model =
+                Model::from_design(&design, TessellationOptions::DEFAULT).map_err(|e| match e {
+                    vesselcad::model::ModelError::Geometry(v) => {
+                        format!("accepted but fails to build: {v:?}")
+                    }
+                    e => e.to_string(),
+                })?;
             let scene = model.scene();
             for v in &design.vessels {
                 check_vessel(&scene, &v.tag, &bores(&design, &v.tag));

@@ -1,7 +1,10 @@
 //! An edit is one transaction with its geometry (issue 30 §1): an edit that
 //! passes every rule but whose geometry cannot be built is refused by
 //! `Model::edit`, naming the part or nozzle by its JSON path, and leaves the
-//! model as it was — design, meshes, errors and change log.
+//! model as it was — design, meshes, errors and change log. The library's other
+//! path, `Model::apply` then `Model::update` (or `try_update`), is the same
+//! transaction: a failed update puts back every edit applied since the last
+//! update that built.
 
 use vesselcad::design::{Design, PadDesign, load, validate};
 use vesselcad::export::write_glb;
@@ -92,18 +95,80 @@ fn an_edit_whose_geometry_fails_is_refused_and_changes_nothing() {
 }
 
 /// A geometry failure names the part by its JSON path, never an ECS entity
-/// (a pad's patch was named `103v0`).
+/// (a pad's patch was named `103v0`); a design that cannot be built is refused
+/// by `from_design` with every failure.
 #[test]
 fn a_failure_is_named_by_the_design_not_by_the_entity() {
     let design = column();
     let (edited, k) = pad_across_the_seam(&design);
-    let model = Model::from_design(&edited, TessellationOptions::chord(1.0)).unwrap();
-    let errors = &model.errors().0;
-    assert!(!errors.is_empty());
-    for (label, violations) in errors {
-        assert!(label.starts_with("C-201/"), "{label}");
-        for v in violations {
-            assert_eq!(v.path, format!("vessels[0].nozzles[{k}]"), "{v}");
-        }
+    let err = Model::from_design(&edited, TessellationOptions::chord(1.0))
+        .err()
+        .expect("the design cannot be built");
+    let ModelError::Geometry(failures) = &err else {
+        panic!("expected a geometry refusal, got {err}");
+    };
+    assert!(!failures.is_empty());
+    for v in failures {
+        assert!(v.entity.starts_with("C-201/"), "{v}");
+        assert_eq!(v.path, format!("vessels[0].nozzles[{k}]"), "{v}");
     }
+}
+
+/// `apply` then `update`: the update that cannot build puts back every edit
+/// applied since the last update that built (here a valid move and the pad
+/// across the seam), keeps the failures in `errors()` and counts them; the next
+/// update builds nothing and reports nothing.
+#[test]
+fn apply_then_update_rolls_back_a_failed_build() {
+    let design = column();
+    let mut model = Model::from_design(&design, TessellationOptions::chord(1.0)).unwrap();
+    model.take_changes();
+    let before = model.design();
+    let glb = write_glb(&model.scene()).unwrap();
+    let mut moved = design.clone();
+    moved.vessels[0].placement.rotation += 10.0;
+    model.apply(Edit::ReplaceDesign(moved)).unwrap();
+    let (edited, k) = pad_across_the_seam(&design);
+    model.apply(Edit::ReplaceDesign(edited)).unwrap();
+    let work = model.update();
+    assert!(work.failures > 0, "{work:?}");
+    let errors = &model.errors().0;
+    assert_eq!(errors.len(), 1, "{errors:?}");
+    assert_eq!(errors[0].1[0].path, format!("vessels[0].nozzles[{k}]"));
+    assert_eq!(model.design(), before, "both edits are undone");
+    assert_eq!(write_glb(&model.scene()).unwrap(), glb);
+    let changes = model.take_changes();
+    assert!(
+        changes.changed.is_empty() && changes.removed.is_empty(),
+        "{changes:?}"
+    );
+    assert_eq!(model.update(), Default::default());
+    assert!(model.errors().0.is_empty());
+    // `try_update` returns the failure instead, with the same rollback.
+    let (edited, _) = pad_across_the_seam(&design);
+    model.apply(Edit::ReplaceDesign(edited)).unwrap();
+    let err = model.try_update().unwrap_err();
+    assert!(
+        matches!(&err, ModelError::Geometry(v) if v.len() == 1),
+        "{err}"
+    );
+    assert!(model.errors().0.is_empty(), "{:?}", model.errors());
+    assert_eq!(model.design(), before);
+    // An update that builds keeps its edits and reports what changed,
+    // including what was removed before it.
+    let mut fewer = design.clone();
+    let n1 = fewer.vessels[0].nozzles.remove(0).mark;
+    fewer.vessels[0].notes.retain(|n| n.target != n1);
+    model.apply(Edit::ReplaceDesign(fewer.clone())).unwrap();
+    model.update();
+    assert!(model.errors().0.is_empty(), "{:?}", model.errors());
+    assert_eq!(
+        model.design().vessels[0].nozzles.len(),
+        fewer.vessels[0].nozzles.len()
+    );
+    let changes = model.take_changes();
+    assert!(
+        changes.removed.contains(&format!("C-201/{n1}")),
+        "{changes:?}"
+    );
 }

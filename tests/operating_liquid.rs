@@ -389,3 +389,48 @@ fn a_level_changed_after_a_resolving_edit_in_one_update_counts() {
         1800.0
     );
 }
+
+/// Parts above an eccentric reducer stand on an axis shifted by
+/// e = (D₁ − D₂)/2: the centre of gravity moves sideways with them (it was
+/// reported on the vessel's axis). Empty vertical vessel, flat plain heads, walls
+/// 10 mm: each wall's volume is its mid-surface area times 10 (Pappus), the
+/// reducer's cross-sections centred on the line joining its end centres, so its
+/// lateral moment is e times its volume times the height fraction of its wall's
+/// centroid, (r_a + 2 r_b) / 3 (r_a + r_b).
+#[test]
+fn the_centre_of_gravity_follows_the_parts_above_an_eccentric_reducer() {
+    let text = format!(
+        r#"{{"format": "vesselcad/1", "vessels": [{{"tag": "V-1", "kind": "vertical",
+        "parts": [
+          {{"head": {{"id": "H1", "thickness": {T}, "shape": "flat"}}}},
+          {{"shell": {{"id": "S1", "od": 2000, "length": 2000, "thickness": {T}}}}},
+          {{"reducer": {{"id": "R1", "length": 800, "eccentric": 90, "thickness": {T}}}}},
+          {{"shell": {{"id": "S2", "od": 1400, "length": 2000, "thickness": {T}}}}},
+          {{"head": {{"id": "H2", "thickness": {T}, "shape": "flat"}}}}
+        ]}}]}}"#
+    );
+    let design = parse(&text).unwrap();
+    let resolved = resolve(&design).unwrap();
+    let s2 = resolved[0].parts.iter().find(|p| p.id == "S2").unwrap();
+    let shift = s2.frame.translation.truncate();
+    let e = 300.0;
+    assert!((shift.length() - e).abs() < 1e-9, "{shift}");
+    let h = T / 2.0;
+    let head1 = PI * (1000.0 - h).powi(2) * T;
+    let shell1 = 2.0 * PI * (1000.0 - h) * 2000.0 * T;
+    let radial = h * (1.0 + (300.0f64 / 800.0).powi(2)).sqrt();
+    let (ra, rb) = (1000.0 - radial, 700.0 - radial);
+    let reducer = PI * (ra + rb) * (ra - rb).hypot(800.0) * T;
+    let fraction = (ra + 2.0 * rb) / (3.0 * (ra + rb));
+    let shell2 = 2.0 * PI * (700.0 - h) * 2000.0 * T;
+    let head2 = PI * (700.0 - h).powi(2) * T;
+    let total = head1 + shell1 + reducer + shell2 + head2;
+    let sideways = e * (reducer * fraction + shell2 + head2) / total;
+    let s = state_of_design(&design.vessels[0], &resolved[0]).unwrap();
+    assert!(close(s.metal_mass, total * M3 * 7850.0, 1e-9));
+    let cog = s.centre_of_gravity.truncate();
+    let along = cog.dot(shift / e);
+    let across = cog.perp_dot(shift / e);
+    assert!(close(along, sideways, 1e-9), "{along} vs {sideways}");
+    assert!(across.abs() < 1e-9, "{cog}");
+}

@@ -297,6 +297,41 @@ fn static_files_cannot_escape_their_folder_and_unknown_routes_are_404() {
     assert!(r.json()["error"].as_str().unwrap().contains("NOPE"));
 }
 
+/// An unknown vessel's error lists the design's tags, like the CLI's: the first
+/// 20 in the message and in `vessels`, then how many more.
+#[test]
+fn an_unknown_vessel_lists_the_tags() {
+    let design = design_copy("horizontal-drum.json", "api-unknown-tag");
+    let mut value: Value = serde_json::from_slice(&std::fs::read(&*design).unwrap()).unwrap();
+    let drum = value["vessels"][0].clone();
+    value["vessels"] = (0..23)
+        .map(|k| {
+            let mut v = drum.clone();
+            v["tag"] = json!(format!("D-{k:02}"));
+            v["placement"]["position"] = json!([0, 10_000 * k, 2000]);
+            v
+        })
+        .collect();
+    std::fs::write(&*design, value.to_string()).unwrap();
+    let server = ServerProcess::start(&design, &[]);
+    let r = server.request("GET", "/drawing.svg?vessel=NOPE", &[], b"");
+    assert_eq!(r.status, 404, "{}", r.text());
+    let body = r.json();
+    assert_eq!(body["kind"], "unknown_vessel");
+    let message = body["error"].as_str().unwrap();
+    assert!(
+        message.contains("\"NOPE\"") && message.contains("D-00, D-01") && message.contains("D-19"),
+        "{message}"
+    );
+    assert!(
+        message.ends_with("and 3 more") && !message.contains("D-20"),
+        "{message}"
+    );
+    let listed = body["vessels"].as_array().unwrap();
+    assert_eq!(listed.len(), 20, "{body}");
+    assert_eq!(listed[0], "D-00");
+}
+
 #[test]
 fn the_drawing_route_serves_the_current_sheet() {
     let design = design_copy("horizontal-drum.json", "api-drawing");

@@ -104,3 +104,33 @@ fn a_failed_save_says_so_and_changes_nothing() {
     assert_eq!(load(&*design).unwrap().vessels[0].placement.rotation, 20.0);
     assert!(!design.with_file_name("design.json.tmp").exists());
 }
+
+/// A design file deleted while serving is written again by a save, and the
+/// answer says so (it failed reading the file to back it up).
+#[test]
+fn a_save_recreates_a_deleted_file_and_says_so() {
+    let design = design_copy("horizontal-drum.json", "files-deleted");
+    let server = ServerProcess::start(&design, &[]);
+    rotate(&server, 25.0);
+    std::fs::remove_file(&*design).unwrap();
+    let r = server.request("POST", "/save", &[], b"");
+    assert_eq!(r.status, 200, "{}", r.text());
+    let body = r.json();
+    assert_eq!(body["written"], true, "{body}");
+    assert_eq!(body["recreated"], true, "{body}");
+    assert!(
+        body["message"].as_str().unwrap().contains("deleted"),
+        "{body}"
+    );
+    assert_eq!(load(&*design).unwrap().vessels[0].placement.rotation, 25.0);
+    // Deleted again with nothing left to save: a save still writes it.
+    std::fs::remove_file(&*design).unwrap();
+    let r = server.request("POST", "/save", &[], b"");
+    assert_eq!(r.status, 200, "{}", r.text());
+    assert_eq!(r.json()["recreated"], true);
+    assert_eq!(load(&*design).unwrap().vessels[0].placement.rotation, 25.0);
+    // An ordinary save says nothing was recreated.
+    rotate(&server, 35.0);
+    let r = server.request("POST", "/save", &[], b"");
+    assert_eq!(r.json()["recreated"], false, "{}", r.text());
+}

@@ -129,3 +129,32 @@ fn a_design_changed_behind_the_journal_is_refused_at_start() {
     let stderr = String::from_utf8_lossy(&output.stderr);
     assert!(stderr.contains("changed outside the server"), "{stderr}");
 }
+
+/// A restart with a journal of N edits replays them on the design and builds
+/// the model once, not once per edit (issue 30 §4: 400 edits took 12 s).
+#[test]
+fn a_restart_builds_the_model_once_whatever_the_journal_holds() {
+    let design = design_copy("horizontal-drum.json", "journal-once");
+    let original = load(&design).unwrap();
+    let mut server = ServerProcess::start(&design, &[]);
+    for k in 0..EDITS {
+        let r = server.edit(&edit(k));
+        assert_eq!(r.status, 200, "edit {k}: {}", r.text());
+    }
+    server.kill9();
+    let session = vesselcad::server::session::Session::open(
+        &design,
+        vesselcad::mesh::TessellationOptions::DEFAULT,
+    )
+    .unwrap();
+    assert_eq!(session.revision(), EDITS as u64);
+    assert_eq!(session.model().runs(), 1, "one build for {EDITS} edits");
+    let nozzles = &session.model().design().vessels[0].nozzles;
+    for (n, nozzle) in nozzles.iter().enumerate().take(7) {
+        assert_eq!(
+            nozzle.projection,
+            expected(n, EDITS, original.vessels[0].nozzles[n].projection),
+            "nozzle {n}"
+        );
+    }
+}

@@ -189,3 +189,54 @@ fn idle_connections_are_closed_and_cannot_starve_the_server() {
         }
     }
 }
+
+/// The idle timeout cuts sockets that move no byte, not slow ones: a request
+/// whose body is trickled in for well over the timeout (a byte group every
+/// tenth of it) is answered, while a socket opened beside it and left silent
+/// is closed.
+#[test]
+fn a_slow_but_active_request_is_not_cut_while_an_idle_one_is() {
+    use std::io::{Read, Write};
+    use std::time::{Duration, Instant};
+    let design = design_copy("storage-tank.json", "security-slow");
+    let server = ServerProcess::start(&design, &["--idle-timeout", "2"]);
+    let mut idle = std::net::TcpStream::connect(server.address).unwrap();
+    let mut slow = std::net::TcpStream::connect(server.address).unwrap();
+    let body = patch();
+    let head = format!(
+        "POST /edit HTTP/1.1\r\nHost: {}\r\nContent-Type: application/json\r\n\
+         Content-Length: {}\r\nConnection: close\r\n\r\n",
+        server.address,
+        body.len()
+    );
+    slow.write_all(head.as_bytes()).unwrap();
+    let start = Instant::now();
+    for chunk in body.chunks(body.len().div_ceil(25)) {
+        std::thread::sleep(Duration::from_millis(200));
+        slow.write_all(chunk).unwrap();
+    }
+    let trickled = start.elapsed();
+    assert!(trickled > Duration::from_secs(4), "{trickled:?}");
+    slow.set_read_timeout(Some(server_support::TIMEOUT))
+        .unwrap();
+    let mut answer = String::new();
+    slow.read_to_string(&mut answer).unwrap();
+    assert!(answer.starts_with("HTTP/1.1 200"), "{answer}");
+    // The silent socket, older than the timeout by now, was closed by the
+    // server: end of stream (or a reset), not the client's own timeout.
+    idle.set_read_timeout(Some(server_support::TIMEOUT))
+        .unwrap();
+    let mut rest = Vec::new();
+    let waited = Instant::now();
+    match idle.read_to_end(&mut rest) {
+        Ok(_) => assert!(rest.is_empty(), "{}", String::from_utf8_lossy(&rest)),
+        Err(e) => assert!(
+            !matches!(
+                e.kind(),
+                std::io::ErrorKind::WouldBlock | std::io::ErrorKind::TimedOut
+            ),
+            "the idle socket stayed open: {e}"
+        ),
+    }
+    assert!(waited.elapsed() < server_support::TIMEOUT);
+}

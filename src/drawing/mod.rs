@@ -34,7 +34,7 @@ pub use sheet::{
     Align, HiddenLines, Item, Layer, PlacedDimension, Rect, ScheduleRow, Sheet, SheetOptions,
     SheetSize, text_width,
 };
-pub use single::{SheetModelError, sheet_model};
+pub use single::{LISTED_TAGS, SheetModelError, list_tags, sheet_model};
 pub use svg::to_svg;
 pub use tables::{SCHEDULE_COLUMNS, design_data};
 

@@ -27,9 +27,13 @@ pub enum SheetModelError {
     Model(#[from] ModelError),
 }
 
-/// At most 20 tags, then how many more.
-fn list_tags(tags: &[String]) -> String {
-    const SHOWN: usize = 20;
+/// How many tags an unknown-vessel error lists.
+pub const LISTED_TAGS: usize = 20;
+
+/// The first [`LISTED_TAGS`] tags, comma-separated, then how many more (for an
+/// unknown-vessel error in a plant of thousands).
+pub fn list_tags(tags: &[String]) -> String {
+    const SHOWN: usize = LISTED_TAGS;
     let mut text = tags
         .iter()
         .take(SHOWN)
@@ -71,6 +75,6 @@ pub fn sheet_model(
     let mut model = Model::new(options)?;
     model.set_views(Views::Kept);
     model.apply(Edit::ReplaceDesign(single))?;
-    let work = model.update();
+    let work = model.try_update()?;
     Ok((model, work))
 }

@@ -7,6 +7,13 @@
 //! [`Model::apply_each`] applies many, checking those on distinct vessels in
 //! parallel; [`Model::update`] runs the schedule, which redoes only the work that
 //! depends on what changed, and returns the [`WorkCounters`] of that run.
+//!
+//! The edits applied between two updates and the update that builds them are one
+//! transaction over geometry too: when the run cannot cut or mesh what they
+//! changed, every vessel they touched is put back as the last update that built
+//! left it ([`Model::try_update`] returns [`ModelError::Geometry`];
+//! [`Model::update`] keeps the failures in [`Model::errors`]). [`Model::edit`]
+//! is one edit and its update.
 
 mod edit;
 mod memory;
@@ -32,8 +39,8 @@ use thiserror::Error;
 pub use crate::components::Views;
 use crate::components::{
     ChangeLog, CheckedResolutions, CutTable, DirtyParts, DirtyPatches, EditedVessels, Instances,
-    ModelErrors, OpeningHosts, PendingResolutions, RequestedTessellation, StageTimes, Tessellation,
-    VesselIndex, WorkCounters,
+    ModelErrors, OpeningHosts, PendingResolutions, RequestedTessellation, StageTimes,
+    StorageExtents, Tessellation, VesselIndex, WorkCounters,
 };
 use crate::design::{Design, DesignError, RuleViolation};
 use crate::export::Scene;
@@ -52,7 +59,7 @@ pub enum ModelError {
     /// The edit passes every rule but its geometry cannot be built: each failed
     /// part or nozzle is listed with its JSON path, the stage that failed
     /// (`shape`, `opening`, `region`, `mesh`) and why. The edit was undone.
-    #[error("the edit cannot be built, nothing changed: {} failure(s):\n{}", .0.len(), .0.iter().map(|v| format!("  - {v}")).collect::<Vec<_>>().join("\n"))]
+    #[error("the geometry cannot be built, nothing changed: {} failure(s):\n{}", .0.len(), .0.iter().map(|v| format!("  - {v}")).collect::<Vec<_>>().join("\n"))]
     Geometry(Vec<RuleViolation>),
     /// The edit names a vessel that does not exist.
     #[error("no vessel has the tag {tag:?}")]
@@ -76,6 +83,15 @@ pub enum ModelError {
 pub struct Model {
     world: World,
     schedule: Schedule,
+    /// The vessels the edits applied since the last update touched, as that
+    /// update left them: what a failed update puts back.
+    undo: undo::Undo,
+    /// The change log as it was before the first of those edits (the world's log
+    /// then holds only theirs and the next run's): put back if the update fails,
+    /// merged with the world's once it builds.
+    log_before: Option<ChangeLog>,
+    /// Schedule runs since the model was made.
+    runs: u64,
 }
 
 impl Model {
@@ -88,6 +104,7 @@ impl Model {
         world.insert_resource(RequestedTessellation(options));
         world.insert_resource(Tessellation(options));
         world.init_resource::<WorkCounters>();
+        world.init_resource::<StorageExtents>();
         world.init_resource::<Instances>();
         world.init_resource::<PendingResolutions>();
         world.init_resource::<ModelErrors>();
@@ -104,10 +121,19 @@ impl Model {
         Ok(Self {
             world,
             schedule: build_schedule(),
+            undo: undo::Undo::default(),
+            log_before: None,
+            runs: 0,
         })
     }
 
     /// A model holding `design` (checked first), fully built, views included.
+    ///
+    /// # Errors
+    ///
+    /// [`ModelError::Design`] for a design that breaks a rule,
+    /// [`ModelError::Geometry`] for one whose geometry cannot be built (every
+    /// failed part or nozzle listed).
     pub fn from_design(design: &Design, options: TessellationOptions) -> Result<Self, ModelError> {
         Self::from_design_with(design, options, Views::Kept)
     }
@@ -121,7 +147,7 @@ impl Model {
         let mut model = Self::new(options)?;
         model.set_views(views);
         model.apply(Edit::ReplaceDesign(design.clone()))?;
-        model.update();
+        model.try_update()?;
         Ok(model)
     }
 
@@ -132,11 +158,21 @@ impl Model {
     }
 
     /// Checks `edit` against every rule and, if it passes, writes it into the
-    /// world. Derived data follows on the next [`update`](Self::update).
+    /// world. Derived data follows on the next [`update`](Self::update), which
+    /// puts the edit back if its geometry cannot be built.
     pub fn apply(&mut self, edit: Edit) -> Result<(), ModelError> {
         let staged = staging::stage(&self.world, edit)?;
-        sync::commit(&mut self.world, staged);
+        self.commit(staged);
         Ok(())
+    }
+
+    /// Writes a checked edit, recording first what it overwrites.
+    fn commit(&mut self, staged: staging::Staged) {
+        if self.log_before.is_none() {
+            self.log_before = Some(std::mem::take(&mut *self.world.resource_mut::<ChangeLog>()));
+        }
+        self.undo.record(&self.world, &staged);
+        sync::commit(&mut self.world, staged);
     }
 
     /// Applies `edits` in order, each as [`apply`](Self::apply) would after the
@@ -170,14 +206,93 @@ impl Model {
                 .map(|edit| staging::stage(world, edit))
                 .collect();
             for staged in staged {
-                out.push(staged.map(|staged| sync::commit(&mut self.world, staged)));
+                out.push(staged.map(|staged| self.commit(staged)));
             }
         }
         out
     }
 
     /// Runs the schedule once and returns the work it did.
+    ///
+    /// Transactional like [`try_update`](Self::try_update): when the run cannot
+    /// build what the edits applied since the last update changed, those edits
+    /// are undone (the model is as the last update that built left it) and the
+    /// failures are kept in [`errors`](Self::errors) and counted in the returned
+    /// counters' `failures`.
     pub fn update(&mut self) -> WorkCounters {
+        match self.try_update_inner() {
+            Ok(work) => work,
+            Err(failed) => {
+                let (work, failed) = *failed;
+                self.world.resource_mut::<ModelErrors>().0 = failed;
+                work
+            }
+        }
+    }
+
+    /// Runs the schedule once and returns the work it did, or, when the run
+    /// cannot build what the edits applied since the last update changed (a
+    /// patch that cannot be meshed, an opening that cannot be cut), undoes those
+    /// edits and returns [`ModelError::Geometry`] naming each failure. Undone:
+    /// every vessel they touched is put back and built again, and the change log
+    /// is as it was, so the model is as the last update that built left it.
+    /// Failures with no edit to undo (new tessellation options) are returned
+    /// too, the model keeping what it could build.
+    pub fn try_update(&mut self) -> Result<WorkCounters, ModelError> {
+        self.try_update_inner().map_err(|failed| {
+            let (_, failed) = *failed;
+            ModelError::Geometry(failed.into_iter().flat_map(|(_, v)| v).collect())
+        })
+    }
+
+    /// [`try_update`](Self::try_update), failures kept by entity with the
+    /// counters of the failed run.
+    #[expect(
+        clippy::type_complexity,
+        reason = "private: the failed run's counters and errors, boxed"
+    )]
+    fn try_update_inner(
+        &mut self,
+    ) -> Result<WorkCounters, Box<(WorkCounters, Vec<(String, Vec<RuleViolation>)>)>> {
+        let undo = std::mem::take(&mut self.undo);
+        let work = self.run();
+        let failed = std::mem::take(&mut self.world.resource_mut::<ModelErrors>().0);
+        if failed.is_empty() {
+            self.merge_log();
+            return Ok(work);
+        }
+        if !undo.is_empty() {
+            sync::commit(&mut self.world, undo.staged());
+            self.run();
+            self.world.resource_mut::<ModelErrors>().0.clear();
+            *self.world.resource_mut::<ChangeLog>() = self.log_before.take().unwrap_or_default();
+        }
+        Err(Box::new((work, failed)))
+    }
+
+    /// Puts the log kept before the transaction's first edit back under the
+    /// world's: the smaller is merged into the larger, so the cost is that of
+    /// the smaller (an edit's few ids, not the plant's).
+    fn merge_log(&mut self) {
+        let Some(mut before) = self.log_before.take() else {
+            return;
+        };
+        let mut log = self.world.resource_mut::<ChangeLog>();
+        let log = &mut *log;
+        for (into, from) in [
+            (&mut log.changed, &mut before.changed),
+            (&mut log.removed, &mut before.removed),
+        ] {
+            if into.len() < from.len() {
+                std::mem::swap(into, from);
+            }
+            into.append(from);
+        }
+    }
+
+    /// Runs the schedule once.
+    fn run(&mut self) -> WorkCounters {
+        self.runs += 1;
         *self.world.resource_mut::<WorkCounters>() = WorkCounters::default();
         // Errors describe the last run only, like the counters.
         self.world.resource_mut::<ModelErrors>().0.clear();
@@ -193,28 +308,15 @@ impl Model {
         *self.world.resource::<WorkCounters>()
     }
 
-    /// [`apply`](Self::apply) then [`update`](Self::update), as one transaction
-    /// that covers the geometry too: when the update cannot build what the edit
-    /// changed (a patch that cannot be meshed, an opening that cannot be cut),
-    /// the edit is undone — the touched vessels are put back and built again,
-    /// the change log is as it was — and refused with
-    /// [`ModelError::Geometry`], naming each failure.
+    /// [`apply`](Self::apply) then [`try_update`](Self::try_update), as one
+    /// transaction that covers the geometry too: when the update cannot build
+    /// what the edit changed, the edit is undone — the touched vessels are put
+    /// back and built again, the change log is as it was — and refused with
+    /// [`ModelError::Geometry`], naming each failure. Edits applied before it and
+    /// not yet updated are part of the same transaction.
     pub fn edit(&mut self, edit: Edit) -> Result<WorkCounters, ModelError> {
-        let staged = staging::stage(&self.world, edit)?;
-        let undo = undo::Undo::record(&self.world, &staged);
-        let log = self.world.resource::<ChangeLog>().clone();
-        sync::commit(&mut self.world, staged);
-        let work = self.update();
-        let failed = std::mem::take(&mut self.world.resource_mut::<ModelErrors>().0);
-        if failed.is_empty() {
-            return Ok(work);
-        }
-        sync::commit(&mut self.world, undo.staged());
-        self.update();
-        *self.world.resource_mut::<ChangeLog>() = log;
-        Err(ModelError::Geometry(
-            failed.into_iter().flat_map(|(_, v)| v).collect(),
-        ))
+        self.apply(edit)?;
+        self.try_update()
     }
 
     /// Changes the tessellation options; every patch is re-meshed on the next update.
@@ -245,8 +347,16 @@ impl Model {
         read::scene(&self.world)
     }
 
+    /// How many times the schedule ran since the model was made (an update
+    /// that fails and is undone runs it twice): what a caller that must build
+    /// once, such as a session replaying its journal, is checked by.
+    pub fn runs(&self) -> u64 {
+        self.runs
+    }
+
     /// The ids changed and removed since the last call.
     pub fn take_changes(&mut self) -> ChangeLog {
+        self.merge_log();
         std::mem::take(&mut *self.world.resource_mut::<ChangeLog>())
     }
 

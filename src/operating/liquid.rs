@@ -17,6 +17,8 @@
 use std::f64::consts::PI;
 use std::sync::OnceLock;
 
+use glam::DVec2;
+
 use super::profile::{Piece, Profile};
 use crate::nurbs::GaussLegendre;
 
@@ -38,6 +40,9 @@ pub struct Moments {
     pub axial: f64,
     /// ∫ y dV: first moment above the axis (horizontal vessels), mm⁴.
     pub vertical: f64,
+    /// ∫ (x, y) dV of the cross-sections' centres in the vessel frame (vertical
+    /// vessels with parts off the axis, above an eccentric reducer), mm⁴.
+    pub lateral: DVec2,
 }
 
 impl Moments {
@@ -45,18 +50,20 @@ impl Moments {
         self.volume += sign * other.volume;
         self.axial += sign * other.axial;
         self.vertical += sign * other.vertical;
+        self.lateral += sign * other.lateral;
     }
 }
 
 /// Liquid below axial position `h` in a vertical vessel whose inside is `profile`.
 pub fn vertical(profile: &Profile, h: f64) -> Moments {
     let mut total = Moments::default();
-    for (piece, _) in &profile.pieces {
+    for (k, (piece, _)) in profile.pieces.iter().enumerate() {
         let (s0, s1) = piece.range();
         let (z0, z1) = (piece.point(s0).1, piece.point(s1).1);
         if z0 == z1 {
             continue;
         }
+        let centre = profile.centre(k);
         // The part of the piece below h.
         let sh = piece.at_z(h);
         let (a, b) = if z1 > z0 { (s0, sh) } else { (sh, s1) };
@@ -70,6 +77,7 @@ pub fn vertical(profile: &Profile, h: f64) -> Moments {
             let area = PI * r * r * dz * w;
             moments.volume += area;
             moments.axial += area * z;
+            moments.lateral += area * centre.at(z);
         }
         total.add(moments, (z1 - z0).signum());
     }

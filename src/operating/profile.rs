@@ -15,10 +15,17 @@
 //! head's inside is the ellipsoid with both semi-axes reduced by d (the usual
 //! convention of a head specified on its inside diameter); a plain flat plate's
 //! thickness lies outside the tangent line.
+//!
+//! Parts above an eccentric reducer stand on an axis shifted sideways: each piece
+//! carries the centre of its cross-sections ([`Lateral`]), constant on a course
+//! or head, moving linearly along an eccentric reducer (whose cross-sections
+//! are circles on the line joining its end centres; its inside and mid-surfaces
+//! are taken on the same centre line, within the wall's thickness times the
+//! reducer's slope of the exact offset).
 
 use std::f64::consts::FRAC_PI_2;
 
-use glam::DAffine3;
+use glam::{DAffine3, DVec2, DVec3};
 
 use super::OperatingError;
 use crate::parts::PartGeometry;
@@ -158,14 +165,54 @@ pub struct StackPart<'a> {
     pub thickness: f64,
 }
 
+/// Where the cross-sections of a piece are centred, in the vessel frame's
+/// (x, y): `origin + slope · z` at axial position z.
+#[derive(Clone, Copy, Debug, Default, PartialEq)]
+pub struct Lateral {
+    /// The centre the line reaches at z = 0, mm.
+    pub origin: DVec2,
+    /// Change of the centre per mm of z.
+    pub slope: DVec2,
+}
+
+impl Lateral {
+    /// The centre of the cross-section at axial position `z`, mm.
+    pub fn at(&self, z: f64) -> DVec2 {
+        self.origin + self.slope * z
+    }
+
+    /// The line through the points `a` and `b` of the vessel frame (`b` higher).
+    fn through(a: DVec3, b: DVec3) -> Lateral {
+        let dz = b.z - a.z;
+        if dz.abs() <= f64::EPSILON * (a.z.abs() + b.z.abs()) {
+            return Lateral {
+                origin: a.truncate(),
+                slope: DVec2::ZERO,
+            };
+        }
+        let slope = (b - a).truncate() / dz;
+        Lateral {
+            origin: a.truncate() - slope * a.z,
+            slope,
+        }
+    }
+}
+
 /// A profile: its pieces with the wall thickness of the part each belongs to.
 #[derive(Clone, Debug, Default, PartialEq)]
 pub struct Profile {
     /// The pieces and their part's wall thickness, mm.
     pub pieces: Vec<(Piece, f64)>,
+    /// The centre line of each piece's cross-sections (same order as `pieces`).
+    pub centres: Vec<Lateral>,
 }
 
 impl Profile {
+    /// The centre line of piece `k` (on the axis if none was recorded).
+    pub fn centre(&self, k: usize) -> Lateral {
+        self.centres.get(k).copied().unwrap_or_default()
+    }
+
     /// Lowest and highest axial positions, mm.
     pub fn axial_extent(&self) -> (f64, f64) {
         self.pieces
@@ -272,6 +319,17 @@ pub fn stack_profile(
         }
         let offset = part.frame.translation.z;
         let scale = part.frame.matrix3.z_axis.z;
+        // Cross-sections centred on the part's axis, or on the line joining an
+        // eccentric reducer's end centres.
+        let top = match part.geometry {
+            PartGeometry::Reducer(c) => c.small_end_center(),
+            _ => DVec3::Z,
+        };
+        let centre = Lateral::through(
+            part.frame.transform_point3(DVec3::ZERO),
+            part.frame.transform_point3(top),
+        );
+        out.centres.extend(std::iter::repeat_n(centre, local.len()));
         out.pieces.extend(
             local
                 .into_iter()

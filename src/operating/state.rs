@@ -123,7 +123,11 @@ pub fn operating_state(
     let total = liquid_mass + metal_mass;
     let centroid = |m: &Moments| {
         if m.volume > 0.0 {
-            DVec3::new(0.0, m.vertical / m.volume, m.axial / m.volume)
+            DVec3::new(
+                m.lateral.x / m.volume,
+                (m.vertical + m.lateral.y) / m.volume,
+                m.axial / m.volume,
+            )
         } else {
             DVec3::ZERO
         }

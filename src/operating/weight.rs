@@ -16,16 +16,17 @@ use crate::nurbs::GaussLegendre;
 /// Gauss–Legendre order per piece.
 const ORDER: usize = 24;
 
-/// Volume (mm³) and axial first moment (mm⁴) of the walls whose mid-surface is
+/// Volume (mm³), axial and lateral first moments (mm⁴) of the walls whose mid-surface is
 /// `profile` (each piece carrying its wall thickness).
 pub fn walls(profile: &Profile) -> Moments {
     static RULE: OnceLock<GaussLegendre> = OnceLock::new();
     let rule = RULE.get_or_init(|| GaussLegendre::new(ORDER));
     let mut total = Moments::default();
-    for (piece, thickness) in &profile.pieces {
+    for (k, (piece, thickness)) in profile.pieces.iter().enumerate() {
         if *thickness <= 0.0 {
             continue;
         }
+        let centre = profile.centre(k);
         let (s0, s1) = piece.range();
         for (s, w) in rule.points_on(s0, s1) {
             let (r, z) = piece.point(s);
@@ -33,6 +34,7 @@ pub fn walls(profile: &Profile) -> Moments {
             let dv = TAU * r * dr.hypot(dz) * thickness * w;
             total.volume += dv;
             total.axial += dv * z;
+            total.lateral += dv * centre.at(z);
         }
     }
     total

@@ -15,8 +15,9 @@ use crate::model::{Edit, Model, ModelError, Views};
 ///
 /// # Errors
 ///
-/// As [`Model::from_design`]: the first invalid chunk's violations (nothing is
-/// built past it).
+/// As [`Model::from_design`]: the first invalid chunk's violations, or the
+/// geometry failures of the first chunk that cannot be built (nothing is built
+/// past it).
 pub fn build_plant(
     design: &Design,
     options: TessellationOptions,
@@ -41,7 +42,7 @@ pub fn build_plant(
         model.apply(Edit::Batch(
             vessels.iter().cloned().map(Edit::SetVessel).collect(),
         ))?;
-        model.update();
+        model.try_update()?;
         done += vessels.len();
         progress(done, total);
     }

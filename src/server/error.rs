@@ -14,6 +14,7 @@ use serde_json::json;
 use thiserror::Error;
 
 use crate::design::{DesignError, RuleViolation};
+use crate::drawing::{LISTED_TAGS, list_tags};
 use crate::model::ModelError;
 
 /// Why `vesselcad serve` could not start or stopped.
@@ -93,9 +94,15 @@ pub enum ApiError {
     /// A POST whose body is not declared JSON. 415.
     #[error("unsupported content type: {0}")]
     UnsupportedType(String),
-    /// No such vessel (e.g. in `/drawing.svg?vessel=`). 404.
-    #[error("no vessel has the tag {0:?}")]
-    UnknownVessel(String),
+    /// No such vessel (e.g. in `/drawing.svg?vessel=`); the design's tags are
+    /// listed (the first 20, then how many more). 404.
+    #[error("no vessel has the tag {tag:?}; the design's vessels are: {}", list_tags(.known))]
+    UnknownVessel {
+        /// The tag asked for.
+        tag: String,
+        /// Every tag of the design, in design order.
+        known: Vec<String>,
+    },
     /// No such file or route. 404.
     #[error("not found: {0}")]
     NotFound(String),
@@ -128,7 +135,7 @@ impl ApiError {
             ApiError::Unauthorized => StatusCode::UNAUTHORIZED,
             ApiError::Forbidden(_) => StatusCode::FORBIDDEN,
             ApiError::UnsupportedType(_) => StatusCode::UNSUPPORTED_MEDIA_TYPE,
-            ApiError::UnknownVessel(_) | ApiError::NotFound(_) => StatusCode::NOT_FOUND,
+            ApiError::UnknownVessel { .. } | ApiError::NotFound(_) => StatusCode::NOT_FOUND,
             ApiError::Drawing(_) => StatusCode::UNPROCESSABLE_ENTITY,
             ApiError::Storage(_) | ApiError::SaveFailed(_) => StatusCode::INTERNAL_SERVER_ERROR,
         }
@@ -146,7 +153,7 @@ impl ApiError {
             ApiError::Unauthorized => "unauthorized",
             ApiError::Forbidden(_) => "forbidden",
             ApiError::UnsupportedType(_) => "unsupported_type",
-            ApiError::UnknownVessel(_) => "unknown_vessel",
+            ApiError::UnknownVessel { .. } => "unknown_vessel",
             ApiError::NotFound(_) => "not_found",
             ApiError::BadQuery(_) => "bad_query",
             ApiError::Drawing(_) => "drawing",
@@ -179,6 +186,9 @@ impl IntoResponse for ApiError {
                     })
                 })
                 .collect();
+        }
+        if let ApiError::UnknownVessel { known, .. } = &self {
+            body["vessels"] = json!(known.iter().take(LISTED_TAGS).collect::<Vec<_>>());
         }
         if let ApiError::TooLarge { limit } = self {
             body["limit"] = json!(limit);

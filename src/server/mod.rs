@@ -177,8 +177,10 @@ impl Server {
         let saved = tokio::task::spawn_blocking(move || {
             let mut s = session.lock().unwrap_or_else(|p| p.into_inner());
             let path = s.path().display().to_string();
-            if !save_on_exit {
-                if s.has_unsaved_edits() {
+            // Only edits are saved on exit (a file deleted with nothing to save
+            // stays deleted).
+            if !save_on_exit || !s.has_unsaved_edits() {
+                if s.has_unsaved_edits() && !save_on_exit {
                     println!(
                         "vesselcad serve: {path} not written: its unsaved edits are kept in \
                          the journal and replayed on the next start (POST /save or \

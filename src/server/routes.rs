@@ -6,7 +6,8 @@
 //! GET  /model.glb             the current model (header x-vesselcad-revision)
 //! GET  /design.json           the current design, canonical JSON (mm)
 //! POST /edit                  a JSON Patch (RFC 6902) → {"revision", "changed", ...}
-//! POST /save                  write the design file, start a fresh journal
+//! POST /save                  write the design file (again, if it was deleted),
+//!                              start a fresh journal
 //! GET  /drawing.svg?vessel=T  the vessel's drawing sheet
 //! GET  /ws                    the viewer stream (see `broadcast`)
 //! ```
@@ -142,13 +143,19 @@ async fn edit(
 }
 
 async fn save(State(state): State<AppState>) -> Result<Response, ApiError> {
-    let ((revision, written), path) = state
+    let (saved, path) = state
         .with_session(|s, _| Ok::<_, ApiError>((s.save()?, s.path().display().to_string())))
         .await?;
-    Ok(
-        axum::Json(json!({ "saved": path, "revision": revision, "written": written }))
-            .into_response(),
-    )
+    let mut answer = json!({
+        "saved": path, "revision": saved.revision, "written": saved.written,
+        "recreated": saved.recreated,
+    });
+    if saved.recreated {
+        answer["message"] = json!(format!(
+            "{path} had been deleted while serving; it was written again"
+        ));
+    }
+    Ok(axum::Json(answer).into_response())
 }
 
 /// The `vessel` query parameter.
@@ -168,14 +175,9 @@ async fn drawing_svg(
             "expected /drawing.svg?vessel=<tag>".into(),
         ));
     };
-    let known = state
-        .with_session({
-            let tag = tag.clone();
-            move |s, _| s.has_vessel(&tag)
-        })
-        .await;
-    if !known {
-        return Err(ApiError::UnknownVessel(tag));
+    let known = state.with_session(|s, _| s.vessel_tags()).await;
+    if !known.contains(&tag) {
+        return Err(ApiError::UnknownVessel { tag, known });
     }
     let svg = state
         .with_session(move |s, _| {

@@ -260,9 +260,13 @@ impl Session {
     /// [`ApiError::SaveFailed`] when the file or the journal cannot be written:
     /// the file is as it was, no temp file is left, and the journal still holds
     /// every edit, so nothing is lost.
-    pub fn save(&mut self) -> Result<(u64, bool), ApiError> {
-        if self.revision == self.saved_revision {
-            return Ok((self.revision, false));
+    pub fn save(&mut self) -> Result<Saved, ApiError> {
+        if self.revision == self.saved_revision && self.path_holds_a_file() {
+            return Ok(Saved {
+                revision: self.revision,
+                written: false,
+                recreated: false,
+            });
         }
         let mut design = self.model.design();
         if self.units == Units::In {
@@ -273,13 +277,28 @@ impl Session {
         let failed = |what: &Path, e: &dyn std::fmt::Display| {
             ApiError::SaveFailed(format!("cannot write {}: {e}", what.display()))
         };
-        // Through a link to the file it names.
-        let target = std::fs::canonicalize(&self.path).unwrap_or_else(|_| self.path.clone());
+        // Through a link to the file it names (a link left dangling by a
+        // deleted target included).
+        let target = link_target(&self.path);
         let mut backup = target.file_name().unwrap_or_default().to_os_string();
         backup.push(".bak");
         let backup = target.with_file_name(backup);
-        let previous = std::fs::read(&target).map_err(|e| failed(&target, &e))?;
-        write_atomically(&backup, &previous).map_err(|e| failed(&backup, &e))?;
+        // A file deleted while serving is written again (there is nothing to
+        // back up), and the answer says so.
+        let recreated = match std::fs::read(&target) {
+            Ok(previous) => {
+                write_atomically(&backup, &previous).map_err(|e| failed(&backup, &e))?;
+                false
+            }
+            Err(e) if e.kind() == std::io::ErrorKind::NotFound => {
+                eprintln!(
+                    "vesselcad serve: {} was deleted while serving; the save writes it again",
+                    target.display()
+                );
+                true
+            }
+            Err(e) => return Err(failed(&target, &e)),
+        };
         self.journal
             .mark_saved(&print, self.revision)
             .map_err(|e| failed(self.journal.path(), &e))?;
@@ -288,7 +307,16 @@ impl Session {
         self.journal
             .reset(&print, self.revision)
             .map_err(|e| failed(&self.path, &e))?;
-        Ok((self.revision, true))
+        Ok(Saved {
+            revision: self.revision,
+            written: true,
+            recreated,
+        })
+    }
+
+    /// Whether the design file (or the file its link names) still exists.
+    fn path_holds_a_file(&self) -> bool {
+        link_target(&self.path).exists()
     }
 
     /// Whether there are edits the design file does not hold yet.
@@ -330,6 +358,16 @@ impl Session {
         self.model.design().vessels.iter().any(|v| v.tag == tag)
     }
 
+    /// Every vessel's tag, in design order.
+    pub fn vessel_tags(&self) -> Vec<String> {
+        self.model
+            .design()
+            .vessels
+            .into_iter()
+            .map(|v| v.tag)
+            .collect()
+    }
+
     /// The model, for read-only outputs (e.g. drawings).
     pub fn model(&self) -> &Model {
         &self.model
@@ -338,6 +376,29 @@ impl Session {
     /// The design file.
     pub fn path(&self) -> &Path {
         &self.path
+    }
+}
+
+/// The outcome of [`Session::save`].
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub struct Saved {
+    /// The revision the design file holds.
+    pub revision: u64,
+    /// Whether the file was written (there were unsaved edits, or it was gone).
+    pub written: bool,
+    /// Whether the file had been deleted while serving and was written again.
+    pub recreated: bool,
+}
+
+/// The file `path` names: a symbolic link's target (resolved even when the
+/// target no longer exists), else `path` itself.
+fn link_target(path: &Path) -> PathBuf {
+    if let Ok(resolved) = std::fs::canonicalize(path) {
+        return resolved;
+    }
+    match std::fs::read_link(path) {
+        Ok(to) => path.parent().unwrap_or(Path::new(".")).join(to),
+        Err(_) => path.to_path_buf(),
     }
 }
 
