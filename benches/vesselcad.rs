@@ -1,11 +1,13 @@
 //! Benchmarks of vesselcad: one criterion entry point, one module per topic.
 //!
-//! Run with `cargo bench --bench vesselcad` (or `-- grid` / `-- mesh` / `-- model` / `-- opening` / `-- plant` / `-- project` / `-- server` for one
+//! Run with `cargo bench --bench vesselcad` (or `-- exchange` / `-- grid` / `-- mesh` / `-- model` / `-- opening` / `-- plant` / `-- project` / `-- server` for one
 //! topic); each topic keeps its measurement short so the whole run takes a few
 //! minutes.
 
 use criterion::criterion_main;
 
+#[path = "vesselcad/exchange.rs"]
+mod exchange;
 #[path = "vesselcad/grid.rs"]
 mod grid;
 #[path = "vesselcad/mesh.rs"]
@@ -24,6 +26,7 @@ mod project;
 mod server;
 
 criterion_main!(
+    exchange::group,
     grid::group,
     mesh::group,
     model::group,

@@ -7,9 +7,11 @@
 //! of each face's surface. Where no OCCT is found the OCCT tests say so and
 //! pass, except under CI (`CI` set), where they fail.
 
-use std::path::{Path, PathBuf};
-use std::process::Command;
+mod common;
 
+use std::path::Path;
+
+use common::occt::{occt_python, occt_report};
 use glam::{DAffine3, DVec2};
 use serde_json::Value;
 use vesselcad::design::{Design, load, parse};
@@ -155,49 +157,6 @@ fn export_is_deterministic_and_reuses_unchanged_vessels() {
     ));
 }
 
-/// The Python with OCP, or None (with the reason printed).
-fn occt_python() -> Option<PathBuf> {
-    let candidates = [
-        std::env::var_os("VESSELCAD_OCCT_PYTHON").map(PathBuf::from),
-        Some(Path::new(env!("CARGO_MANIFEST_DIR")).join("target/occt-venv/bin/python")),
-    ];
-    for python in candidates.into_iter().flatten() {
-        let ok = Command::new(&python)
-            .args(["-c", "import OCP"])
-            .status()
-            .is_ok_and(|s| s.success());
-        if ok {
-            return Some(python);
-        }
-    }
-    assert!(
-        std::env::var_os("CI").is_none(),
-        "OpenCASCADE (cadquery-ocp) not found: .ci/run installs it into target/occt-venv"
-    );
-    eprintln!("skipped: no OpenCASCADE (pip install cadquery-ocp into target/occt-venv)");
-    None
-}
-
-/// OCCT's report on a STEP file.
-fn occt_report(python: &Path, text: &str, name: &str) -> Value {
-    let dir = Path::new(env!("CARGO_TARGET_TMPDIR"));
-    let path = dir.join(name);
-    std::fs::write(&path, text).expect("write step");
-    let script = Path::new(env!("CARGO_MANIFEST_DIR")).join("tests/occt/check_step.py");
-    let out = Command::new(python)
-        .arg(script)
-        .arg(&path)
-        .arg("3")
-        .output()
-        .expect("python runs");
-    assert!(
-        out.status.success(),
-        "check_step.py failed: {}",
-        String::from_utf8_lossy(&out.stderr)
-    );
-    serde_json::from_slice(&out.stdout).expect("json report")
-}
-
 /// OCCT reads the file with no failure, finds every shape valid, the free edges
 /// exactly where vesselcad leaves openings and nothing to sew; face and product
 /// names round-trip; each untrimmed face's area is vesselcad's to 1e-6
@@ -224,7 +183,7 @@ fn occt_reads_valid_sewn_named_faces() {
             &mut StepBlocks::default(),
         )
         .expect("export");
-        let report = occt_report(&python, &text, &format!("{label}.step"));
+        let report = occt_report(&python, &text, &format!("{label}.step"), 3);
         let breps = breps(&design);
         assert_eq!(report["read"], true, "{label}");
         assert_eq!(report["read_failures"], 0, "{label}");
@@ -355,7 +314,7 @@ fn occt_displacement_solid_volume() {
             &mut StepBlocks::default(),
         )
         .expect("export");
-        let report = occt_report(&python, &text, &format!("solid-{label}.step"));
+        let report = occt_report(&python, &text, &format!("solid-{label}.step"), 0);
         assert_eq!(report["valid"], true, "{label}");
         assert_eq!(report["solids"], 1, "{label}");
         assert_eq!(report["free_edges"], 0, "{label}");

@@ -10,14 +10,19 @@
 //! after an edit writes only the vessels that changed.
 
 mod blocks;
+mod brep;
 mod error;
+mod loops;
+mod measure;
 mod seam;
 mod source;
 mod step;
 mod topology;
 
 pub use blocks::{ExchangeOptions, StepBlocks, export_step};
+pub use brep::{Edge, EdgeCurve, Face, OrientedEdge, Port, Shell, VesselBrep};
 pub use error::ExchangeError;
+pub use measure::{FaceMeasures, ORDER, face_measures, face_measures_with};
 pub use source::{CutSource, NodeKind, NodeSource, VesselSource, vessel_sources};
 pub use step::{LOCAL_BASE, PlacedBlock, StepBlock, rebase, vessel_block, write_step};
-pub use topology::{Edge, EdgeCurve, Face, OrientedEdge, Port, Shell, VesselBrep, vessel_brep};
+pub use topology::{vessel_brep, vessel_brep_with};

@@ -10,10 +10,20 @@
 //! chord between the two samples round it), and the crossings are inserted as
 //! samples. Each arc between two crossings then lies within the domain, and the
 //! face's outer loop runs up the seam, round the arc, and on.
+//!
+//! A reinforcing pad round such an opening puts its outer loop across the seam
+//! instead: the crossings are solved on the pad's outside cylinder
+//! ([`on_pad_cylinder`]), and the pad's own face, on a copy of the host
+//! surface, is written on that surface with its seam moved half a turn
+//! ([`seam_moved`]), its inserted samples' (u, v) found by projection
+//! ([`uv_with_inserted`]).
 
-use glam::DVec2;
+use std::f64::consts::TAU;
+
+use glam::{DAffine3, DVec2, DVec3};
 
 use crate::nurbs::NurbsSurface;
+use crate::nurbs::builders::{line, revolve};
 use crate::nurbs::intersect::{HostIsoline, IntersectionLoop, LoopSample, loop_crossing};
 
 /// Relative distance from the seam within which a sample counts as on it.
@@ -84,4 +94,114 @@ pub fn with_seam_samples(
         return Ok((curve.clone(), Vec::new()));
     }
     Ok((out, seam))
+}
+
+/// A reinforcing pad's outer loop (host frame) with its neck (u, v) put on the
+/// pad's outside cylinder: radius `radius` about the nozzle's axis, the nozzle
+/// frame being `nozzle_in_host` in the host's frame, spanning the loop's height
+/// along the axis. Returns the cylinder (host frame) and the loop, ready for
+/// [`with_seam_samples`]. Each sample's neck u is the loop's own where it maps
+/// onto the sample, the point's projection on the cylinder otherwise.
+///
+/// # Errors
+///
+/// The kernel's message where the cylinder cannot be built or a sample not
+/// projected.
+pub fn on_pad_cylinder(
+    curve: &IntersectionLoop,
+    radius: f64,
+    nozzle_in_host: &DAffine3,
+) -> Result<(NurbsSurface, IntersectionLoop), String> {
+    let to_nozzle = nozzle_in_host.inverse();
+    let local: Vec<DVec3> = curve
+        .points
+        .iter()
+        .map(|p| to_nozzle.transform_point3(*p))
+        .collect();
+    let (lo, hi) = local
+        .iter()
+        .fold((f64::INFINITY, f64::NEG_INFINITY), |(lo, hi), p| {
+            (lo.min(p.z), hi.max(p.z))
+        });
+    let margin = (hi - lo).max(radius) * 0.5;
+    let (z0, z1) = (lo - margin, hi + margin);
+    let generator = line(DVec3::new(radius, 0.0, z0), DVec3::new(radius, 0.0, z1))
+        .map_err(|e| e.to_string())?;
+    let cylinder = revolve(&generator, DVec3::ZERO, DVec3::Z, TAU)
+        .and_then(|c| c.transformed(nozzle_in_host))
+        .map_err(|e| e.to_string())?;
+    let size = radius.max(1.0);
+    let mut out = curve.clone();
+    for (k, p) in local.iter().enumerate() {
+        let v = (p.z - z0) / (z1 - z0);
+        let u = curve.neck_uv[k].x;
+        let u = if cylinder.point(u, v).distance(curve.points[k]) <= 1e-9 * size {
+            u
+        } else {
+            cylinder
+                .closest_point(curve.points[k])
+                .map_err(|e| e.to_string())?
+                .u
+        };
+        out.neck_uv[k] = DVec2::new(u, v);
+    }
+    Ok((cylinder, out))
+}
+
+/// `surface` (closed in u over [u0, u1]) with its seam moved half a turn: the
+/// same points over u in [m, u1 + (m − u0)], m the middle of the domain, equal
+/// to `surface` at u in [m, u1] and to `surface` at u − (u1 − u0) beyond. A
+/// face whose loops cross the seam is written on it with its (u, v) shifted by
+/// whole periods, so that they run within the domain.
+///
+/// # Errors
+///
+/// The kernel's message where the surface cannot be split or joined.
+pub fn seam_moved(surface: &NurbsSurface) -> Result<NurbsSurface, String> {
+    let ((u0, u1), _) = surface.domain();
+    let (lower, upper) = surface
+        .split_u(0.5 * (u0 + u1))
+        .map_err(|e| e.to_string())?;
+    let (joined, _) = upper
+        .transposed()
+        .joined_v(&[&lower.transposed()])
+        .map_err(|e| e.to_string())?;
+    Ok(joined.transposed())
+}
+
+/// The (u, v) on `surface` (in the frame of `to_surface`'s target) of each
+/// sample of `augmented`, a copy of `original` with samples inserted: the
+/// original samples keep `uv` (theirs on `surface`), each inserted one is
+/// projected and unwrapped by whole periods next to the sample before it.
+///
+/// # Errors
+///
+/// The kernel's message where a sample cannot be projected.
+pub fn uv_with_inserted(
+    original: &IntersectionLoop,
+    uv: &[DVec2],
+    augmented: &IntersectionLoop,
+    surface: &NurbsSurface,
+    to_surface: &DAffine3,
+) -> Result<Vec<DVec2>, String> {
+    let ((u0, u1), _) = surface.domain();
+    let period = u1 - u0;
+    let mut out: Vec<DVec2> = Vec::with_capacity(augmented.points.len());
+    let mut j = 0;
+    for p in &augmented.points {
+        if j < original.points.len() && original.points[j] == *p {
+            out.push(uv[j]);
+            j += 1;
+            continue;
+        }
+        let q = surface
+            .closest_point(to_surface.transform_point3(*p))
+            .map_err(|e| e.to_string())?;
+        let mut u = q.u;
+        if let Some(before) = out.last().or(uv.get(j)) {
+            u += ((before.x - u) / period).round() * period;
+        }
+        out.push(DVec2::new(u, q.v));
+    }
+    Ok(out)
 }

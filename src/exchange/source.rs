@@ -13,7 +13,7 @@ use glam::DAffine3;
 use rayon::prelude::*;
 
 use super::error::ExchangeError;
-use crate::constraints::ResolvedVessel;
+use crate::constraints::{PartGeometry, ResolvedVessel};
 use crate::design::{Design, resolve};
 use crate::mesh::{Cut, PadCut, cut_opening_reusing};
 use crate::parts::{Nozzle, Patch};
@@ -21,8 +21,11 @@ use crate::parts::{Nozzle, Patch};
 /// Whether a node is a part of the vessel or a nozzle.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub enum NodeKind {
-    /// A part (course, head, support…).
+    /// A part of the envelope (course, head, reducer, boot).
     Part,
+    /// A support (skirt, saddle, legs, lugs): its own shells, apart from the
+    /// envelope even where an edge of it lies on one of the envelope's.
+    Support,
     /// A nozzle.
     Nozzle,
 }
@@ -53,6 +56,8 @@ pub struct CutSource {
     pub cut: Cut,
     /// The reinforcing pad, nozzle frame.
     pub pad: Option<PadCut>,
+    /// The reinforcing pad's outside diameter, mm.
+    pub pad_od: Option<f64>,
 }
 
 /// A vessel's exact model, as the writers read it.
@@ -115,7 +120,17 @@ pub(super) fn vessel_source(
             })?;
         nodes.push(NodeSource {
             id: part.id.clone(),
-            kind: NodeKind::Part,
+            kind: if matches!(
+                part.geometry,
+                PartGeometry::Skirt(_)
+                    | PartGeometry::Saddle(_)
+                    | PartGeometry::Legs(_)
+                    | PartGeometry::Lugs(_)
+            ) {
+                NodeKind::Support
+            } else {
+                NodeKind::Part
+            },
             frame: part.frame,
             patches,
             nozzle: None,
@@ -172,6 +187,7 @@ pub(super) fn vessel_source(
             host,
             cut: cut.cut,
             pad: cut.pad,
+            pad_od,
         });
     }
     Ok(VesselSource {

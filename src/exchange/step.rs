@@ -24,7 +24,7 @@ use std::fmt::Write as _;
 
 use glam::{DAffine3, DVec2, DVec3};
 
-use super::topology::{EdgeCurve, Face, OrientedEdge, VesselBrep};
+use super::brep::{EdgeCurve, Face, OrientedEdge, VesselBrep};
 use crate::nurbs::{NurbsCurve, NurbsSurface};
 
 /// First id of a vessel block's own entities; smaller ids are the header

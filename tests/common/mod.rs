@@ -9,6 +9,7 @@ pub mod examples;
 pub mod full_build;
 pub mod heads;
 pub mod numbers;
+pub mod occt;
 pub mod supports;
 pub mod triangle;
 

@@ -8,7 +8,7 @@ failed, BRepCheck_Analyzer's verdict on the whole shape and per shell, the
 free edges OCCT finds (ShapeAnalysis_FreeBounds) and what BRepBuilderAPI_Sewing
 would still sew, each face's name (from the STEP entity it came from), area
 and SAMPLES x SAMPLES points of its surface (u, v, x, y, z) over the face's
-parameter box, and each product's name. The Rust test compares these with
+parameter box (no face list for SAMPLES 0), and each product's name. The Rust test compares these with
 vesselcad's own NURBS.
 """
 
@@ -82,7 +82,7 @@ def main():
     transfer = reader.WS().TransferReader()
     faces = []
     explorer = TopExp_Explorer(shape, TopAbs_FACE)
-    while explorer.More():
+    while samples > 0 and explorer.More():
         face = TopoDS.Face(explorer.Current())
         explorer.Next()
         entity = transfer.EntityFromShapeResult(face, -1)
