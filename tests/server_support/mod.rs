@@ -61,10 +61,17 @@ pub struct ServerProcess {
 impl ServerProcess {
     /// Starts the real binary on a free loopback port and waits for its URL.
     pub fn start(design: &Path, extra: &[&str]) -> ServerProcess {
+        // 2 mm unless the test asks for another tolerance.
+        let tolerance: &[&str] = if extra.contains(&"--tolerance") {
+            &[]
+        } else {
+            &["--tolerance", "2"]
+        };
         let mut child = Command::new(env!("CARGO_BIN_EXE_vesselcad"))
             .arg("serve")
             .arg(design)
-            .args(["--port", "0", "--bind", "127.0.0.1", "--tolerance", "2"])
+            .args(["--port", "0", "--bind", "127.0.0.1"])
+            .args(tolerance)
             .args(extra)
             .stdout(Stdio::piped())
             .stderr(Stdio::inherit())
