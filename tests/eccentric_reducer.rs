@@ -3,32 +3,17 @@
 //! side, and the figures that depend on where they stand (frames, dimensions,
 //! volumes) follow. The envelope's closure is checked in `mesh_watertight.rs`.
 
+mod common;
+
+use common::eccentric::eccentric_vessel;
 use glam::DVec3;
-use vesselcad::design::{Design, parse, resolve};
+use vesselcad::design::{Design, resolve};
 use vesselcad::mesh::TessellationOptions;
 use vesselcad::model::{Edit, Model};
 
-/// A vessel of `kind` with an eccentric reducer between a course of OD `below`
-/// and one of OD `above`, flat side at `flat_side`; a nozzle on each course and
-/// one on the top head.
+/// The test vessel, tagged `X`, without a nozzle on the reducer.
 fn design(kind: &str, below: f64, above: f64, flat_side: f64) -> Design {
-    parse(&format!(
-        r#"{{"format": "vesselcad/1", "vessels": [{{"tag": "X", "kind": "{kind}",
-          "parts": [
-            {{"head": {{"id": "H1", "shape": "ellipsoidal"}}}},
-            {{"shell": {{"id": "S1", "od": {below}, "length": 2000}}}},
-            {{"reducer": {{"id": "R1", "length": 800, "eccentric": {flat_side}}}}},
-            {{"shell": {{"id": "S2", "od": {above}, "length": 2000}}}},
-            {{"head": {{"id": "H2", "shape": "ellipsoidal"}}}}
-          ],
-          "nozzles": [
-            {{"mark": "N1", "size": 4, "rating": 150, "host": "S2", "orientation": 30,
-              "elevation": 3800, "projection": 1200}},
-            {{"mark": "N3", "size": 3, "rating": 150, "host": "H2", "orientation": 45,
-              "offset": 200, "projection": 600}}
-          ]}}]}}"#
-    ))
-    .unwrap()
+    eccentric_vessel("X", kind, below, above, flat_side, false)
 }
 
 fn close(a: DVec3, b: DVec3) -> bool {

@@ -7,6 +7,7 @@
 
 mod common;
 
+use common::eccentric::eccentric_vessel;
 use common::examples::example;
 use std::collections::HashMap;
 
@@ -490,32 +491,6 @@ fn shell_nozzles_beside_the_boot_are_watertight() {
     check_design(&design, 1.0);
 }
 
-/// A vessel of `kind` with an eccentric reducer `R1` (flat side at `flat_side`)
-/// between a course of OD `below` and one of OD `above`, closed by 2:1 heads, with
-/// a nozzle on the course above it, one on the reducer and one on the top head
-/// (the design of `../shared/repros/D3-eccentric-reducer-gap.json`, plus nozzles).
-fn eccentric_vessel(kind: &str, below: f64, above: f64, flat_side: f64) -> Design {
-    vesselcad::design::parse(&format!(
-        r#"{{"format": "vesselcad/1", "vessels": [{{"tag": "{kind}-{below}-{above}-{flat_side}", "kind": "{kind}",
-          "parts": [
-            {{"head": {{"id": "H1", "shape": "ellipsoidal"}}}},
-            {{"shell": {{"id": "S1", "od": {below}, "length": 2000}}}},
-            {{"reducer": {{"id": "R1", "length": 800, "eccentric": {flat_side}}}}},
-            {{"shell": {{"id": "S2", "od": {above}, "length": 2000}}}},
-            {{"head": {{"id": "H2", "shape": "ellipsoidal"}}}}
-          ],
-          "nozzles": [
-            {{"mark": "N1", "size": 4, "rating": 150, "host": "S2", "orientation": 30,
-              "elevation": 3800, "projection": 1200}},
-            {{"mark": "N2", "size": 2, "rating": 150, "host": "R1", "orientation": 200,
-              "elevation": 2400, "projection": 1300}},
-            {{"mark": "N3", "size": 3, "rating": 150, "host": "H2", "orientation": 45,
-              "offset": 200, "projection": 600}}
-          ]}}]}}"#
-    ))
-    .unwrap()
-}
-
 /// Every course and head beyond an eccentric reducer sits on the axis its small
 /// (or large) end leaves: the envelope is closed, whichever way the flat side
 /// faces, whichever end is the larger, on vertical and horizontal vessels. The
@@ -531,7 +506,14 @@ fn vessels_with_an_eccentric_reducer_are_watertight() {
         ("horizontal", 2000.0, 1400.0, 180.0),
         ("horizontal", 1400.0, 2000.0, 45.0),
     ] {
-        let design = eccentric_vessel(kind, below, above, flat_side);
+        let design = eccentric_vessel(
+            &format!("{kind}-{below}-{above}-{flat_side}"),
+            kind,
+            below,
+            above,
+            flat_side,
+            true,
+        );
         check_design(&design, 1.0);
     }
 }

@@ -5,6 +5,7 @@
 
 #![expect(dead_code, reason = "each test binary uses a different subset")]
 
+pub mod eccentric;
 pub mod examples;
 pub mod full_build;
 pub mod heads;
