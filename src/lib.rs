@@ -59,6 +59,7 @@ pub mod constraints;
 pub mod design;
 pub mod drawing;
 pub mod exchange;
+pub mod fem;
 pub mod export;
 pub mod format;
 pub mod json_schema;

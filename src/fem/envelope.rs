@@ -1,0 +1,271 @@
+//! The conforming shell mesh of a vessel's pressure envelope: the stations of
+//! [`super::meridian`] swept about the axis into rings of quadrilaterals, one
+//! circumferential division count for the whole vessel (so every junction ring
+//! is shared node for node), poles closed by [`super::cap`]. Corner and
+//! mid-side nodes are exact points of the mid-surface: mid-side nodes at the
+//! parameter midpoint of their piece and the angle midpoint.
+
+use std::collections::HashMap;
+use std::f64::consts::TAU;
+
+use glam::{DVec2, DVec3};
+
+use super::meridian::{self, Segment};
+use super::{Element, ElementKind, FeMesh, FePart, FemError};
+use crate::constraints::{ResolvedVessel, stack_of};
+use crate::design::VesselDesign;
+use crate::operating::profile::{Surface, stack_profile};
+
+/// Meshing options.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct FemOptions {
+    /// Target element size away from junctions, mm (`None`: √(R·t) of the
+    /// widest part, R its mid-surface radius).
+    pub size: Option<f64>,
+    /// Element order: 1 (S4R) or 2 (S8R).
+    pub order: u8,
+}
+
+impl Default for FemOptions {
+    fn default() -> Self {
+        FemOptions {
+            size: None,
+            order: 2,
+        }
+    }
+}
+
+/// Accumulates nodes and elements; mid-side nodes are keyed by their edge so
+/// neighbouring elements share them.
+#[derive(Default)]
+pub struct Builder {
+    /// The mesh so far.
+    pub mesh: FeMesh,
+    /// Plane coordinates of cap nodes (offset from the axis).
+    plane: Vec<Option<DVec2>>,
+    mids: HashMap<(usize, usize), usize>,
+    /// Whether elements get mid-side nodes.
+    pub quadratic: bool,
+}
+
+impl Builder {
+    /// Adds a node.
+    pub fn node(&mut self, p: DVec3, plane: Option<DVec2>) -> usize {
+        self.mesh.nodes.push(p);
+        self.plane.push(plane);
+        self.mesh.nodes.len() - 1
+    }
+
+    /// Plane coordinates of node `i` (zero if it has none).
+    pub fn plane(&self, i: usize) -> DVec2 {
+        self.plane[i].unwrap_or(DVec2::ZERO)
+    }
+
+    /// The mid-side node of edge (a, b), made at `at()` if new.
+    pub fn mid(&mut self, a: usize, b: usize, at: impl FnOnce() -> DVec3) -> usize {
+        let key = (a.min(b), a.max(b));
+        if let Some(&id) = self.mids.get(&key) {
+            return id;
+        }
+        let id = self.node(at(), None);
+        self.mids.insert(key, id);
+        id
+    }
+
+    /// Whether edge (a, b) has a mid-side node already.
+    pub fn has_mid(&self, a: usize, b: usize) -> bool {
+        self.mids.contains_key(&(a.min(b), a.max(b)))
+    }
+
+    /// Adds a quadrilateral with corners `c`; `mid(b, x, y)` gives the mid-side
+    /// node of edge (x, y) when the mesh is quadratic.
+    pub fn quad(
+        &mut self,
+        part: usize,
+        c: [usize; 4],
+        mid: &mut dyn FnMut(&mut Builder, usize, usize) -> usize,
+    ) {
+        let mut nodes = c.to_vec();
+        let kind = if self.quadratic {
+            for k in 0..4 {
+                let id = mid(self, c[k], c[(k + 1) % 4]);
+                nodes.push(id);
+            }
+            ElementKind::Quad8
+        } else {
+            ElementKind::Quad4
+        };
+        self.mesh.elements.push(Element { kind, nodes, part });
+    }
+}
+
+/// The part list and the chain of a vessel's envelope.
+fn parts_and_chain(
+    design: &VesselDesign,
+    resolved: &ResolvedVessel,
+) -> Result<(Vec<FePart>, Vec<Segment>), FemError> {
+    let stack = stack_of(design, resolved);
+    let horizontal = design.kind == crate::design::VesselKind::Horizontal;
+    let mut parts = Vec::new();
+    let mut pieces = Vec::new();
+    for sp in &stack {
+        let one = stack_profile(std::slice::from_ref(sp), Surface::Middle, horizontal).map_err(
+            |e| FemError::Profile {
+                vessel: design.tag.clone(),
+                message: e.to_string(),
+            },
+        )?;
+        if one.pieces.is_empty() {
+            continue;
+        }
+        if sp.thickness <= 0.0 {
+            let index = design.parts.iter().position(|p| p.id() == sp.id).unwrap_or(0);
+            return Err(FemError::NoThickness {
+                vessel: design.tag.clone(),
+                index,
+                id: sp.id.to_string(),
+            });
+        }
+        let k = parts.len();
+        parts.push(FePart {
+            name: format!("{}/{}", design.tag, sp.id),
+            id: sp.id.to_string(),
+            thickness: sp.thickness,
+        });
+        pieces.push((
+            k,
+            one.pieces.iter().map(|p| p.0).collect::<Vec<_>>(),
+            one.centre(0),
+            sp.thickness,
+        ));
+    }
+    if parts.is_empty() {
+        return Err(FemError::Empty {
+            vessel: design.tag.clone(),
+        });
+    }
+    Ok((parts, meridian::chain(&pieces)))
+}
+
+/// The conforming shell mesh of the pressure envelope (courses, reducers,
+/// heads) of `design`, resolved as `resolved`, in the plant frame.
+///
+/// # Errors
+///
+/// [`FemError`] for a part without thickness, a wall too thick for its shape,
+/// a vessel with nothing to mesh, or options out of range.
+pub fn build_envelope(
+    design: &VesselDesign,
+    resolved: &ResolvedVessel,
+    options: &FemOptions,
+) -> Result<FeMesh, FemError> {
+    if !matches!(options.order, 1 | 2) {
+        return Err(FemError::Option {
+            field: "order",
+            value: options.order.to_string(),
+            rule: "element order is 1 (S4R) or 2 (S8R)".into(),
+        });
+    }
+    let (parts, chain) = parts_and_chain(design, resolved)?;
+    let r_max = chain
+        .iter()
+        .map(|s| s.rz(s.s0).x.max(s.rz(s.s1).x))
+        .fold(0.0, f64::max);
+    let size = match options.size {
+        Some(s) if s.is_finite() && s > 0.0 => s,
+        Some(s) => {
+            return Err(FemError::Option {
+                field: "size",
+                value: s.to_string(),
+                rule: "the element size is a positive length in mm".into(),
+            });
+        }
+        None => {
+            let t = chain.iter().map(|s| s.thickness).fold(0.0, f64::max);
+            (r_max * t).sqrt()
+        }
+    };
+    if size < 1e-4 * r_max {
+        return Err(FemError::Option {
+            field: "size",
+            value: size.to_string(),
+            rule: format!("below 1e-4 of the vessel radius {r_max} mm"),
+        });
+    }
+    let mer = meridian::stations(chain, size);
+    let n = ((TAU * r_max / size).ceil() as usize).div_ceil(8).max(2) * 8;
+    let theta = |k: f64| TAU * k / n as f64;
+    let mut b = Builder {
+        quadratic: options.order == 2,
+        ..Builder::default()
+    };
+    b.mesh.parts = parts;
+    // Rings of corner nodes; the rims of caps carry plane coordinates.
+    let mut rings = Vec::with_capacity(mer.stations.len());
+    for (i, &(seg, s)) in mer.stations.iter().enumerate() {
+        let segment = mer.segments[seg];
+        let capped = (i == 0 && mer.start_cap.is_some())
+            || (i + 1 == mer.stations.len() && mer.end_cap.is_some());
+        let ring: Vec<usize> = (0..n)
+            .map(|k| {
+                let th = theta(k as f64);
+                let r = segment.rz(s).x;
+                let plane = capped.then(|| DVec2::new(th.cos(), th.sin()) * r);
+                b.node(segment.point(s, th), plane)
+            })
+            .collect();
+        rings.push(ring);
+    }
+    for (i, iv) in mer.intervals.iter().enumerate() {
+        let seg = mer.segments[iv.seg];
+        let (lower, upper) = (mer.stations[i], mer.stations[i + 1]);
+        let smid = 0.5 * (iv.sa + iv.sb);
+        for k in 0..n {
+            let k1 = (k + 1) % n;
+            let c = [rings[i][k], rings[i][k1], rings[i + 1][k1], rings[i + 1][k]];
+            let segs = &mer.segments;
+            b.quad(seg.part, c, &mut |b, x, y| {
+                // Which edge: along a ring (same station) or along the meridian.
+                let (kx, ky) = (
+                    c.iter().position(|&q| q == x).unwrap_or(0),
+                    c.iter().position(|&q| q == y).unwrap_or(0),
+                );
+                let station = |corner: usize| if corner < 2 { lower } else { upper };
+                let kk = |corner: usize| if corner == 0 || corner == 3 { k } else { k + 1 };
+                if station(kx) == station(ky) && kx / 2 == ky / 2 {
+                    let (sg, s) = station(kx);
+                    let th = theta(kk(kx).min(kk(ky)) as f64 + 0.5);
+                    b.mid(x, y, || segs[sg].point(s, th))
+                } else {
+                    let th = theta(kk(kx) as f64);
+                    b.mid(x, y, || seg.point(smid, th))
+                }
+            });
+        }
+    }
+    let last = rings.len() - 1;
+    if let Some(cap) = mer.start_cap {
+        let seg = mer.segments[cap.seg];
+        let ring = rings[0].clone();
+        super::cap::cap(&mut b, &ring, cap.radius, seg.part, false, &|p| seg.point_over(p));
+    } else {
+        b.mesh.boundary.extend(rings[0].iter().copied());
+    }
+    if let Some(cap) = mer.end_cap {
+        let seg = mer.segments[cap.seg];
+        let ring = rings[last].clone();
+        super::cap::cap(&mut b, &ring, cap.radius, seg.part, true, &|p| seg.point_over(p));
+    } else {
+        b.mesh.boundary.extend(rings[last].iter().copied());
+    }
+    // Vessel frame → plant frame.
+    let frame = resolved.frame;
+    for p in &mut b.mesh.nodes {
+        *p = frame.transform_point3(*p);
+    }
+    b.mesh.axis = (
+        frame.transform_point3(DVec3::ZERO),
+        frame.transform_vector3(DVec3::Z).normalize(),
+    );
+    Ok(b.mesh)
+}

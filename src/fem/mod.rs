@@ -1,0 +1,155 @@
+//! Finite-element shell models of a vessel's pressure envelope, for analysis
+//! rather than display: the same exact geometry as the render meshes, but
+//! meshed conformingly (parts share the nodes of their junction rings), with
+//! quadratic shell elements on each part's mid-surface, loads, supports and
+//! materials, written for CalculiX/Abaqus (`.inp`), Gmsh (`.msh` 4.1) and
+//! ParaView (`.vtu`), and read back from CalculiX's `.frd` results.
+//!
+//! The pipeline: [`meridian`] walks the vessel's mid-surface profile (closed
+//! form, from [`crate::operating::profile`]) and places stations along it,
+//! graded towards every junction; [`envelope`] sweeps the stations into rings of
+//! 8-node quadrilaterals (S8R) and closes each pole with a quadrilateral O-grid
+//! ([`cap`]); [`conditions`] attaches a load case; [`inp`], [`msh`] and [`vtu`]
+//! write it; [`frd`] and [`results`] read a CalculiX run back and classify the
+//! stresses per part; [`quality`] measures the mesh.
+
+pub mod cap;
+pub mod conditions;
+pub mod envelope;
+pub mod error;
+pub mod frd;
+pub mod inp;
+pub mod meridian;
+pub mod msh;
+pub mod quality;
+pub mod results;
+pub mod vtu;
+
+pub use conditions::{FeModel, LoadCase, Support};
+pub use envelope::{FemOptions, build_envelope};
+pub use error::FemError;
+
+use glam::DVec3;
+
+/// The kind of a shell element. Node order is Abaqus's: corners counter-clockwise
+/// about the outward normal, then the mid-side nodes of edges 1-2, 2-3, ...
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
+pub enum ElementKind {
+    /// 4-node quadrilateral (S4R).
+    Quad4,
+    /// 8-node quadrilateral (S8R).
+    Quad8,
+    /// 3-node triangle (S3).
+    Tri3,
+    /// 6-node triangle (S6).
+    Tri6,
+}
+
+impl ElementKind {
+    /// Number of corner nodes.
+    pub fn corners(self) -> usize {
+        match self {
+            ElementKind::Quad4 | ElementKind::Quad8 => 4,
+            ElementKind::Tri3 | ElementKind::Tri6 => 3,
+        }
+    }
+
+    /// Whether the element has mid-side nodes.
+    pub fn quadratic(self) -> bool {
+        matches!(self, ElementKind::Quad8 | ElementKind::Tri6)
+    }
+}
+
+/// One shell element: its kind, node indices (0-based, Abaqus order) and part.
+#[derive(Clone, Debug, PartialEq)]
+pub struct Element {
+    /// Kind.
+    pub kind: ElementKind,
+    /// Node indices.
+    pub nodes: Vec<usize>,
+    /// Index into [`FeMesh::parts`].
+    pub part: usize,
+}
+
+/// A part of the mesh: a design part (`V-101/S1`) with its shell thickness.
+#[derive(Clone, Debug, PartialEq)]
+pub struct FePart {
+    /// Set name: vessel tag and part id, `V-101/S1`.
+    pub name: String,
+    /// Design part id.
+    pub id: String,
+    /// Shell thickness, mm.
+    pub thickness: f64,
+}
+
+/// A conforming shell mesh in the plant frame, mm.
+#[derive(Clone, Debug, Default, PartialEq)]
+pub struct FeMesh {
+    /// Node positions.
+    pub nodes: Vec<DVec3>,
+    /// Elements.
+    pub elements: Vec<Element>,
+    /// Parts (element sets).
+    pub parts: Vec<FePart>,
+    /// Nodes on a real boundary of the shell (an open end), by index.
+    pub boundary: Vec<usize>,
+    /// The vessel axis in the plant frame: a point and a unit direction.
+    pub axis: (DVec3, DVec3),
+}
+
+impl FeMesh {
+    /// The node indices used by the elements of part `part`, sorted.
+    pub fn part_nodes(&self, part: usize) -> Vec<usize> {
+        let mut out: Vec<usize> = self
+            .elements
+            .iter()
+            .filter(|e| e.part == part)
+            .flat_map(|e| e.nodes.iter().copied())
+            .collect();
+        out.sort_unstable();
+        out.dedup();
+        out
+    }
+}
+
+/// The FE model of vessel `tag` of `design`: its envelope mesh with load case
+/// `case` attached.
+///
+/// # Errors
+///
+/// [`FemError`]: an unknown tag, an invalid design (its rule violations, as
+/// text), or what [`build_envelope`] and [`conditions::conditions`] refuse.
+pub fn vessel_model(
+    design: &crate::design::Design,
+    tag: &str,
+    options: &FemOptions,
+    case: LoadCase,
+    table: &crate::calc::MaterialTable,
+) -> Result<FeModel, FemError> {
+    let index = design
+        .vessels
+        .iter()
+        .position(|v| v.tag == tag)
+        .ok_or_else(|| FemError::NoVessel {
+            tag: tag.into(),
+            known: design
+                .vessels
+                .iter()
+                .map(|v| v.tag.as_str())
+                .collect::<Vec<_>>()
+                .join(", "),
+        })?;
+    let vessel = &design.vessels[index];
+    let resolved = crate::constraints::resolve_vessel(vessel, index).map_err(|violations| {
+        FemError::Profile {
+            vessel: tag.into(),
+            message: violations
+                .iter()
+                .map(|v| v.to_string())
+                .collect::<Vec<_>>()
+                .join("; "),
+        }
+    })?;
+    let mesh = build_envelope(vessel, &resolved, options)?;
+    conditions::conditions(mesh, vessel, &resolved, case, table)
+}
