@@ -76,8 +76,13 @@ pub fn run(args: FemArgs) -> ExitCode {
         size: args.size,
         order: args.order,
     };
-    let model = match vessel_model(&design, &args.vessel, &options, case, &MaterialTable::builtin())
-    {
+    let model = match vessel_model(
+        &design,
+        &args.vessel,
+        &options,
+        case,
+        &MaterialTable::builtin(),
+    ) {
         Ok(m) => m,
         Err(e) => {
             eprintln!("error: {e}");
@@ -133,7 +138,10 @@ fn write_and_run(args: &FemArgs, model: &vesselcad::fem::FeModel) -> Result<(), 
     let frd_path = run_ccx(&args.output)?;
     let frd = frd::read(&frd_path)?;
     let results = nodal(model, &frd);
-    write(&beside("vtu"), vtu::to_vtu(&model.mesh, Some(&results)).as_bytes())?;
+    write(
+        &beside("vtu"),
+        vtu::to_vtu(&model.mesh, Some(&results)).as_bytes(),
+    )?;
     let umax = results
         .iter()
         .map(|r| r.displacement.length())

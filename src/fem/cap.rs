@@ -39,7 +39,10 @@ pub fn cap(
     debug_assert!(n % 8 == 0);
     let a = INNER * rim;
     let inner = |i: usize, j: usize| -> DVec2 {
-        let u = DVec2::new(2.0 * i as f64 / m as f64 - 1.0, 2.0 * j as f64 / m as f64 - 1.0);
+        let u = DVec2::new(
+            2.0 * i as f64 / m as f64 - 1.0,
+            2.0 * j as f64 / m as f64 - 1.0,
+        );
         u * a * (1.0 - ROUND) + disk(u) * a * 1.2 * ROUND
     };
     // Inner grid nodes (the outline included).
@@ -69,7 +72,9 @@ pub fn cap(
         outline.push((full, j));
     }
     debug_assert_eq!(outline.len(), n);
-    let layers = ((1.0 - INNER) * rim / (1.2 * rim / m as f64)).round().max(1.0) as usize;
+    let layers = ((1.0 - INNER) * rim / (1.2 * rim / m as f64))
+        .round()
+        .max(1.0) as usize;
     let mut rows: Vec<Vec<usize>> = vec![outline.iter().map(|&(i, j)| grid[i][j]).collect()];
     for l in 1..layers {
         let lambda = l as f64 / layers as f64;
@@ -96,13 +101,24 @@ pub fn cap(
     };
     for i in 0..m {
         for j in 0..m {
-            quad(b, [grid[i][j], grid[i + 1][j], grid[i + 1][j + 1], grid[i][j + 1]]);
+            quad(
+                b,
+                [
+                    grid[i][j],
+                    grid[i + 1][j],
+                    grid[i + 1][j + 1],
+                    grid[i][j + 1],
+                ],
+            );
         }
     }
     for l in 0..layers {
         for k in 0..n {
             let k1 = (k + 1) % n;
-            quad(b, [rows[l][k], rows[l + 1][k], rows[l + 1][k1], rows[l][k1]]);
+            quad(
+                b,
+                [rows[l][k], rows[l + 1][k], rows[l + 1][k1], rows[l][k1]],
+            );
         }
     }
 }

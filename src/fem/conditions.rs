@@ -24,7 +24,7 @@ use glam::DVec3;
 use super::{FeMesh, FemError};
 use crate::calc::{MaterialTable, calculate};
 use crate::constraints::ResolvedVessel;
-use crate::design::{VesselDesign, VesselKind};
+use crate::design::VesselDesign;
 use crate::format::WATER_DENSITY;
 use crate::operating::metal_density;
 use crate::parts::PartGeometry;
@@ -122,11 +122,7 @@ fn ring_at(mesh: &FeMesh, a: f64) -> Vec<usize> {
 fn extreme(mesh: &FeMesh, ring: &[usize], dir: DVec3) -> usize {
     ring.iter()
         .copied()
-        .max_by(|&i, &j| {
-            mesh.nodes[i]
-                .dot(dir)
-                .total_cmp(&mesh.nodes[j].dot(dir))
-        })
+        .max_by(|&i, &j| mesh.nodes[i].dot(dir).total_cmp(&mesh.nodes[j].dot(dir)))
         .unwrap_or(0)
 }
 
@@ -176,10 +172,18 @@ fn three_two_one(mesh: &FeMesh, ring: &[usize]) -> Vec<Support> {
 
 /// Supports where the vessel rests, or the 3-2-1 restraints and why.
 fn resting(mesh: &FeMesh, resolved: &ResolvedVessel) -> (Vec<Support>, String) {
-    let to_plant = |z: f64| axial(mesh, resolved.frame.transform_point3(DVec3::new(0.0, 0.0, z)));
+    let to_plant = |z: f64| {
+        axial(
+            mesh,
+            resolved.frame.transform_point3(DVec3::new(0.0, 0.0, z)),
+        )
+    };
     for part in &resolved.parts {
         if let PartGeometry::Skirt(s) = &part.geometry {
-            let top = part.frame.transform_point3(DVec3::new(0.0, 0.0, s.height)).z;
+            let top = part
+                .frame
+                .transform_point3(DVec3::new(0.0, 0.0, s.height))
+                .z;
             let ring = ring_at(mesh, to_plant(top));
             let axis = mesh.axis.1;
             let across = axis.any_orthonormal_vector();
@@ -198,11 +202,18 @@ fn resting(mesh: &FeMesh, resolved: &ResolvedVessel) -> (Vec<Support>, String) {
             });
             out.push(Support {
                 node: b,
-                dofs: vec![if across.x.abs() > across.y.abs() { 2 } else { 1 }],
+                dofs: vec![if across.x.abs() > across.y.abs() {
+                    2
+                } else {
+                    1
+                }],
             });
             return (
                 out,
-                format!("skirt {}: axial displacement held on the ring at its top", part.id),
+                format!(
+                    "skirt {}: axial displacement held on the ring at its top",
+                    part.id
+                ),
             );
         }
     }
@@ -278,7 +289,11 @@ pub fn conditions(
         rule: rule.into(),
     };
     let pressure_kpa = design.design.pressure.ok_or_else(|| {
-        missing("design.pressure", "missing".into(), "every load case needs the design pressure")
+        missing(
+            "design.pressure",
+            "missing".into(),
+            "every load case needs the design pressure",
+        )
     })?;
     if !(pressure_kpa.is_finite() && pressure_kpa > 0.0) {
         return Err(missing(
@@ -287,7 +302,11 @@ pub fn conditions(
             "internal pressure only: a positive kPa(g)",
         ));
     }
-    let material = design.design.material.as_deref().and_then(|m| table.get(m).ok());
+    let material = design
+        .design
+        .material
+        .as_deref()
+        .and_then(|m| table.get(m).ok());
     let modulus = material.map_or(DEFAULT_MODULUS, |m| m.modulus.value);
     let allowable = material.and_then(|m| {
         design
@@ -296,21 +315,20 @@ pub fn conditions(
             .and_then(|t| m.allowable_stress(t).ok())
     });
     let density = metal_density(&design.design) * 1e-12;
-    let axis = mesh.axis.1;
-    let top = mesh.nodes.iter().map(|p| p.z).fold(f64::NEG_INFINITY, f64::max);
+    let top = mesh
+        .nodes
+        .iter()
+        .map(|p| p.z)
+        .fold(f64::NEG_INFINITY, f64::max);
     let bottom = mesh.nodes.iter().map(|p| p.z).fold(f64::INFINITY, f64::min);
     let (p_top, liquid): (f64, Option<(f64, f64)>) = match case {
         LoadCase::Design => (pressure_kpa * 1e-3, None),
         LoadCase::Operating => {
             let liquid = design.operating.map(|o| {
                 let rho = o.liquid_density.unwrap_or(WATER_DENSITY) * 1e-12;
-                let level = if design.kind == VesselKind::Horizontal {
-                    // Level measured from the lowest inside point: the mesh's
-                    // lowest point is on the mid-surface, within t/2.
-                    bottom + o.liquid_level
-                } else {
-                    bottom + o.liquid_level
-                };
+                // Level above the lowest point of the mid-surface (within t/2
+                // of the lowest inside point).
+                let level = bottom + o.liquid_level;
                 (rho, level)
             });
             (pressure_kpa * 1e-3, liquid)
@@ -330,7 +348,6 @@ pub fn conditions(
             (test.value, Some((WATER_DENSITY * 1e-12, top)))
         }
     };
-    let _ = axis;
     let pressure = mesh
         .elements
         .iter()
@@ -364,7 +381,11 @@ pub fn conditions(
     Ok(FeModel {
         tag: design.tag.clone(),
         case,
-        material: design.design.material.clone().unwrap_or_else(|| "steel".into()),
+        material: design
+            .design
+            .material
+            .clone()
+            .unwrap_or_else(|| "steel".into()),
         modulus,
         poisson: POISSON,
         density,

@@ -109,17 +109,22 @@ fn parts_and_chain(
     let mut parts = Vec::new();
     let mut pieces = Vec::new();
     for sp in &stack {
-        let one = stack_profile(std::slice::from_ref(sp), Surface::Middle, horizontal).map_err(
-            |e| FemError::Profile {
-                vessel: design.tag.clone(),
-                message: e.to_string(),
-            },
-        )?;
+        let one =
+            stack_profile(std::slice::from_ref(sp), Surface::Middle, horizontal).map_err(|e| {
+                FemError::Profile {
+                    vessel: design.tag.clone(),
+                    message: e.to_string(),
+                }
+            })?;
         if one.pieces.is_empty() {
             continue;
         }
         if sp.thickness <= 0.0 {
-            let index = design.parts.iter().position(|p| p.id() == sp.id).unwrap_or(0);
+            let index = design
+                .parts
+                .iter()
+                .position(|p| p.id() == sp.id)
+                .unwrap_or(0);
             return Err(FemError::NoThickness {
                 vessel: design.tag.clone(),
                 index,
@@ -247,14 +252,18 @@ pub fn build_envelope(
     if let Some(cap) = mer.start_cap {
         let seg = mer.segments[cap.seg];
         let ring = rings[0].clone();
-        super::cap::cap(&mut b, &ring, cap.radius, seg.part, false, &|p| seg.point_over(p));
+        super::cap::cap(&mut b, &ring, cap.radius, seg.part, false, &|p| {
+            seg.point_over(p)
+        });
     } else {
         b.mesh.boundary.extend(rings[0].iter().copied());
     }
     if let Some(cap) = mer.end_cap {
         let seg = mer.segments[cap.seg];
         let ring = rings[last].clone();
-        super::cap::cap(&mut b, &ring, cap.radius, seg.part, true, &|p| seg.point_over(p));
+        super::cap::cap(&mut b, &ring, cap.radius, seg.part, true, &|p| {
+            seg.point_over(p)
+        });
     } else {
         b.mesh.boundary.extend(rings[last].iter().copied());
     }

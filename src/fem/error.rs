@@ -17,7 +17,9 @@ pub enum FemError {
         known: String,
     },
     /// A pressure part gives no wall thickness: a shell section needs one.
-    #[error("vessels[{vessel}].parts[{index}] ({id}): thickness is not given; a shell section needs the wall thickness")]
+    #[error(
+        "vessels[{vessel}].parts[{index}] ({id}): thickness is not given; a shell section needs the wall thickness"
+    )]
     NoThickness {
         /// Vessel tag.
         vessel: String,

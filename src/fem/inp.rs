@@ -23,7 +23,13 @@ pub fn element_type(kind: ElementKind) -> &'static str {
 /// than letters, digits, `_` and `-` replaced by `_` (`V-101/S1` → `V-101_S1`).
 pub fn set_name(name: &str) -> String {
     name.chars()
-        .map(|c| if c.is_ascii_alphanumeric() || c == '_' || c == '-' { c } else { '_' })
+        .map(|c| {
+            if c.is_ascii_alphanumeric() || c == '_' || c == '-' {
+                c
+            } else {
+                '_'
+            }
+        })
         .collect()
 }
 

@@ -132,10 +132,7 @@ pub fn chain(parts: &[(usize, Vec<Piece>, Lateral, f64)]) -> Vec<Segment> {
         let last = pieces[pieces.len() - 1];
         let (a, _) = first.range();
         let (_, b) = last.range();
-        (
-            DVec2::from(first.point(a)),
-            DVec2::from(last.point(b)),
-        )
+        (DVec2::from(first.point(a)), DVec2::from(last.point(b)))
     };
     let mut out: Vec<Segment> = Vec::new();
     let parts: Vec<_> = parts.iter().filter(|p| !p.1.is_empty()).collect();
@@ -224,7 +221,10 @@ pub fn stations(segments: Vec<Segment>, size: f64) -> Meridian {
         });
     }
     let tables: Vec<Vec<(f64, f64)>> = segs.iter().map(|s| arc_table(s, s.s0, s.s1)).collect();
-    let lengths: Vec<f64> = tables.iter().map(|t| t.last().map_or(0.0, |x| x.1)).collect();
+    let lengths: Vec<f64> = tables
+        .iter()
+        .map(|t| t.last().map_or(0.0, |x| x.1))
+        .collect();
     // Junctions: every interior segment boundary, at arc position σ.
     let mut junctions = Vec::new();
     let mut sigma = 0.0;

@@ -33,7 +33,10 @@ pub fn to_msh(mesh: &FeMesh) -> String {
             .filter(|e| e.part == k)
             .flat_map(|e| e.nodes.iter().map(|&n| mesh.nodes[n]))
             .fold(
-                (glam::DVec3::splat(f64::INFINITY), glam::DVec3::splat(f64::NEG_INFINITY)),
+                (
+                    glam::DVec3::splat(f64::INFINITY),
+                    glam::DVec3::splat(f64::NEG_INFINITY),
+                ),
                 |(lo, hi), p| (lo.min(p), hi.max(p)),
             );
         let _ = writeln!(

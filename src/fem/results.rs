@@ -37,7 +37,10 @@ pub fn solver_available() -> bool {
 ///
 /// [`FemError::Solver`] when `ccx` is missing, fails, or writes no results.
 pub fn run_ccx(inp: &Path) -> Result<PathBuf, FemError> {
-    let dir = inp.parent().filter(|d| !d.as_os_str().is_empty()).unwrap_or(Path::new("."));
+    let dir = inp
+        .parent()
+        .filter(|d| !d.as_os_str().is_empty())
+        .unwrap_or(Path::new("."));
     let stem = inp
         .file_stem()
         .and_then(|s| s.to_str())
@@ -52,7 +55,11 @@ pub fn run_ccx(inp: &Path) -> Result<PathBuf, FemError> {
     let text = String::from_utf8_lossy(&output.stdout);
     let frd = dir.join(format!("{stem}.frd"));
     if !output.status.success() || text.contains("*ERROR") || !frd.exists() {
-        let errors: Vec<&str> = text.lines().filter(|l| l.contains("ERROR")).take(5).collect();
+        let errors: Vec<&str> = text
+            .lines()
+            .filter(|l| l.contains("ERROR"))
+            .take(5)
+            .collect();
         return Err(FemError::Solver(format!(
             "{} failed ({}): {}",
             inp.display(),

@@ -29,7 +29,9 @@ pub fn to_vtu(mesh: &FeMesh, results: Option<&[NodeResult]>) -> String {
         mesh.nodes.len(),
         mesh.elements.len()
     );
-    out.push_str("<Points>\n<DataArray type=\"Float64\" NumberOfComponents=\"3\" format=\"ascii\">\n");
+    out.push_str(
+        "<Points>\n<DataArray type=\"Float64\" NumberOfComponents=\"3\" format=\"ascii\">\n",
+    );
     for p in &mesh.nodes {
         let _ = writeln!(out, "{} {} {}", p.x, p.y, p.z);
     }
@@ -52,7 +54,9 @@ pub fn to_vtu(mesh: &FeMesh, results: Option<&[NodeResult]>) -> String {
     for e in &mesh.elements {
         let _ = writeln!(out, "{}", e.part);
     }
-    out.push_str("</DataArray>\n<DataArray type=\"Float64\" Name=\"thickness\" format=\"ascii\">\n");
+    out.push_str(
+        "</DataArray>\n<DataArray type=\"Float64\" Name=\"thickness\" format=\"ascii\">\n",
+    );
     for e in &mesh.elements {
         let _ = writeln!(out, "{}", mesh.parts[e.part].thickness);
     }
@@ -63,7 +67,9 @@ pub fn to_vtu(mesh: &FeMesh, results: Option<&[NodeResult]>) -> String {
             let u = r.displacement;
             let _ = writeln!(out, "{} {} {}", u.x, u.y, u.z);
         }
-        out.push_str("</DataArray>\n<DataArray type=\"Float64\" Name=\"von_mises\" format=\"ascii\">\n");
+        out.push_str(
+            "</DataArray>\n<DataArray type=\"Float64\" Name=\"von_mises\" format=\"ascii\">\n",
+        );
         for r in results {
             let _ = writeln!(out, "{}", r.von_mises);
         }
