@@ -36,7 +36,7 @@ pub fn cap(
 ) {
     let n = ring.len();
     let m = n / 4;
-    debug_assert!(n % 8 == 0);
+    debug_assert!(n.is_multiple_of(8));
     let a = INNER * rim;
     let inner = |i: usize, j: usize| -> DVec2 {
         let u = DVec2::new(

@@ -57,8 +57,8 @@ pub fn parse(path: &Path, text: &str) -> Result<Frd, FemError> {
             block = Block::Nodes;
             continue;
         }
-        if t.starts_with("-4") {
-            let name = t[2..].split_whitespace().next().unwrap_or("");
+        if let Some(rest) = t.strip_prefix("-4") {
+            let name = rest.split_whitespace().next().unwrap_or("");
             block = match name {
                 "DISP" => Block::Disp,
                 "STRESS" => Block::Stress,
