@@ -13,6 +13,7 @@ mod change_log;
 mod counters;
 mod derived;
 mod dirty;
+mod failures;
 mod host_sides;
 mod opening_input;
 mod operating;
@@ -33,6 +34,7 @@ pub use derived::{
 };
 pub(crate) use dirty::unique;
 pub use dirty::{DirtyParts, DirtyPatches, EditedVessels};
+pub use failures::{BuildCause, BuildFailure, ModelErrors, ModelFailure};
 pub use host_sides::HostSides;
 pub(crate) use host_sides::{Laid, Trim};
 pub use opening_input::OpeningInput;
@@ -41,7 +43,7 @@ pub use params::{
     DesignOrder, NoteSpec, NozzleSpec, OperatingSpec, PartSpec, VesselSpec, same_in_order,
 };
 pub use relations::{AnnotatedBy, Annotates, MountedOn, Mounts, PadOf, PadPatch, PatchOf, Patches};
-pub use resolutions::{CheckedResolutions, ModelErrors, PendingResolutions};
+pub use resolutions::{CheckedResolutions, PendingResolutions};
 pub use stage_times::{STAGES, StageTimes};
 pub(crate) use stores::VesselIndex;
 pub use stores::{CutTable, Instances, OpeningHosts};

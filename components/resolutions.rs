@@ -1,12 +1,11 @@
-//! Resolutions handed between the model and the Validate and Constrain stages,
-//! and the rule violations the last run found.
+//! Resolutions handed between the model and the Validate and Constrain stages.
 
 use bevy_ecs::entity::Entity;
 use bevy_ecs::resource::Resource;
 use rustc_hash::FxHashMap;
 
 use crate::constraints::ResolvedVessel;
-use crate::format::{RuleViolation, VesselDesign};
+use crate::format::VesselDesign;
 
 /// Vessels resolved by the Validate stage, waiting for the Constrain stage.
 #[derive(Resource, Default)]
@@ -20,8 +19,3 @@ pub struct PendingResolutions(pub Vec<(Entity, ResolvedVessel)>);
 /// function of the design and its order, and the operating data only adds checks.
 #[derive(Resource, Default)]
 pub struct CheckedResolutions(pub FxHashMap<Entity, (u32, VesselDesign, ResolvedVessel)>);
-
-/// Rule violations found in the world by the last run (normally empty: edits are
-/// checked before they are written).
-#[derive(Resource, Default, Debug)]
-pub struct ModelErrors(pub Vec<(String, Vec<RuleViolation>)>);

@@ -132,10 +132,8 @@ fn report(design: &vesselcad::design::Design, tolerance: f64) -> Result<Report, 
         .map_err(|e| e.to_string())?;
     let build_ms = start.elapsed().as_secs_f64() * 1e3;
     let failures = model.errors().0.len();
-    for (entity, violations) in &model.errors().0 {
-        for v in violations {
-            eprintln!("  model error at {tolerance} mm, {entity}: {}", v.rule);
-        }
+    for failure in &model.errors().0 {
+        eprintln!("  model error at {tolerance} mm, {failure}");
     }
     let patches = meshed(&model);
     let triangles: usize = patches.iter().map(|p| p.mesh.triangle_count()).sum();

@@ -12,10 +12,10 @@ use bevy_ecs::entity::Entity;
 use bevy_ecs::world::World;
 use rayon::prelude::*;
 
-use super::labels::{json_path, stable_id};
+use super::labels::build_failure;
 use crate::components::unique;
+use crate::components::{BuildCause, ModelErrors, WorkCounters};
 use crate::components::{DirtyParts, DirtyPatches};
-use crate::components::{ModelErrors, WorkCounters};
 use crate::components::{PatchOf, PatchSurface, Patches, Shape};
 use crate::parts::{PartError, Patch};
 
@@ -75,18 +75,8 @@ pub fn rebuild_dirty_patches(world: &mut World) {
             Ok(p) => p,
             Err(e) => {
                 // Only reachable if the world was edited around `Model::apply`.
-                let id = stable_id(world, entity);
-                let path = json_path(world, entity);
-                world.resource_mut::<ModelErrors>().0.push((
-                    id.clone(),
-                    vec![crate::design::RuleViolation {
-                        path,
-                        entity: id,
-                        field: "shape".into(),
-                        value: String::new(),
-                        rule: e.to_string(),
-                    }],
-                ));
+                let failure = build_failure(world, entity, BuildCause::Shape(e));
+                world.resource_mut::<ModelErrors>().0.push(failure);
                 continue;
             }
         };

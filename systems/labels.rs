@@ -10,7 +10,8 @@ use bevy_ecs::query::With;
 use bevy_ecs::world::World;
 
 use crate::components::{
-    DesignOrder, NozzleSpec, PadOf, PartSpec, PatchOf, PatchSurface, VesselSpec,
+    BuildCause, BuildFailure, DesignOrder, ModelFailure, NozzleSpec, PadOf, PartSpec, PatchOf,
+    PatchSurface, VesselSpec,
 };
 
 /// The stable id (`tag/id`) of a part or nozzle, or the entity where it has none.
@@ -29,22 +30,25 @@ pub(crate) fn stable_id(world: &World, entity: Entity) -> String {
     }
 }
 
-/// A patch as `tag/id patch-name` (e.g. `V-101/S1 shell`), from the part or
-/// nozzle it belongs to; the entity where that is unknown.
-pub(crate) fn patch_label(world: &World, patch: Entity) -> String {
-    let owner = patch_owner(world, patch).map(|p| stable_id(world, p));
-    let name = world.get::<PatchSurface>(patch).map(|s| {
-        if s.0.index == 0 {
-            s.0.name.to_string()
-        } else {
-            format!("{} {}", s.0.name, s.0.index)
-        }
-    });
-    match (owner, name) {
-        (Some(owner), Some(name)) => format!("{owner} {name}"),
-        (Some(owner), None) => owner,
-        _ => format!("{patch}"),
+/// A patch's name within its part (`crown`, or `leg 2` for the second of
+/// several same-named patches); the entity where it has no surface.
+pub(crate) fn patch_name(world: &World, patch: Entity) -> String {
+    match world.get::<PatchSurface>(patch) {
+        Some(s) if s.0.index == 0 => s.0.name.to_string(),
+        Some(s) => format!("{} {}", s.0.name, s.0.index),
+        None => format!("{patch}"),
     }
+}
+
+/// The failure of `entity` (a part, nozzle or boot, or one of their patches,
+/// which is named by its owner) from `cause`: its design path and stable id.
+pub(crate) fn build_failure(world: &World, entity: Entity, cause: BuildCause) -> ModelFailure {
+    let owner = patch_owner(world, entity).unwrap_or(entity);
+    ModelFailure::Build(BuildFailure {
+        path: json_path(world, owner),
+        entity: stable_id(world, owner),
+        cause,
+    })
 }
 
 /// The part or nozzle a patch belongs to: its `PatchOf`, or for a reinforcing

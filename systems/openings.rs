@@ -15,15 +15,14 @@ use glam::DAffine3;
 use rayon::prelude::*;
 use rustc_hash::FxHashMap;
 
-use super::labels::{json_path, stable_id};
+use super::labels::{build_failure, stable_id};
+use crate::components::{BuildCause, ModelErrors, ModelFailure, Tessellation, WorkCounters};
 use crate::components::{DirtyParts, DirtyPatches};
-use crate::components::{ModelErrors, Tessellation, WorkCounters};
 use crate::components::{
     MountedOn, Mounts, Opening, OpeningInput, PadOf, PadPatch, PartFrame, PatchSurface, Patches,
     Shape,
 };
-use crate::design::RuleViolation;
-use crate::mesh::{AxialCut, Cut, HostTrim, OpeningPlan, PadCut};
+use crate::mesh::{AxialCut, Cut, CutError, HostTrim, OpeningPlan, PadCut};
 use crate::nurbs::intersect::IntersectionLoop;
 use crate::parts::Patch;
 
@@ -53,24 +52,14 @@ impl Job {
     }
 }
 
-/// The error of an opening that cannot be cut: the nozzle (or boot), and as value
-/// the host it is mounted on.
-fn violation(world: &World, entity: Entity, rule: String) -> (String, Vec<RuleViolation>) {
-    let id = stable_id(world, entity);
+/// The failure of an opening that cannot be cut: the nozzle (or boot), the
+/// host it is mounted on and the cutter's reason.
+fn cut_failure(world: &World, entity: Entity, source: CutError) -> ModelFailure {
     let host = world
         .get::<MountedOn>(entity)
         .map(|m| stable_id(world, m.0))
         .unwrap_or_default();
-    (
-        id.clone(),
-        vec![RuleViolation {
-            path: json_path(world, entity),
-            entity: id,
-            field: "opening".into(),
-            value: host,
-            rule,
-        }],
-    )
+    build_failure(world, entity, BuildCause::Opening { host, source })
 }
 
 /// One opening cut: the nozzle, its neck patch, the cut (made into the
@@ -78,7 +67,7 @@ fn violation(world: &World, entity: Entity, rule: String) -> (String, Vec<RuleVi
 /// whether it was placed from a kept cut.
 struct Cutting {
     nozzle: Entity,
-    result: Result<Made, String>,
+    result: Result<Made, CutError>,
     input: OpeningInput,
     reused: bool,
 }
@@ -409,11 +398,11 @@ pub fn cut_openings(world: &mut World) {
                     world.resource_mut::<DirtyParts>().openings.push(nozzle);
                 }
             }
-            Err(rule) => {
+            Err(cause) => {
                 failures += 1;
                 world.entity_mut(nozzle).remove::<(Opening, OpeningInput)>();
-                let error = violation(world, nozzle, rule);
-                world.resource_mut::<ModelErrors>().0.push(error);
+                let failure = cut_failure(world, nozzle, cause);
+                world.resource_mut::<ModelErrors>().0.push(failure);
             }
         }
     }

@@ -25,12 +25,12 @@ use bevy_ecs::query::{QueryState, With};
 use bevy_ecs::world::World;
 use rayon::prelude::*;
 
-use super::labels::{json_path, patch_label};
+use super::labels::{build_failure, patch_name};
+use crate::components::BuildCause;
 use crate::components::unique;
 use crate::components::{DirtyParts, DirtyPatches};
 use crate::components::{ModelErrors, OpeningHosts, Tessellation, Views, WorkCounters};
 use crate::components::{Mounts, Opening, PadOf, PadPatch, PatchOf, PatchRegion, PatchSurface};
-use crate::design::RuleViolation;
 use crate::mesh::{HostTrim, Notch, PatchSides, host_region_with, pad_region};
 use crate::nurbs::intersect::IntersectionLoop;
 use crate::parts::Patch;
@@ -296,18 +296,12 @@ pub fn lay_out_regions(world: &mut World, all: &mut QueryState<Entity, With<Patc
             }
             Err(e) => {
                 failures += 1;
-                let label = patch_label(world, patch);
-                let path = json_path(world, patch);
-                world.resource_mut::<ModelErrors>().0.push((
-                    label.clone(),
-                    vec![RuleViolation {
-                        path,
-                        entity: label,
-                        field: "region".into(),
-                        value: String::new(),
-                        rule: e.to_string(),
-                    }],
-                ));
+                let cause = BuildCause::Region {
+                    patch: patch_name(world, patch),
+                    source: e,
+                };
+                let failure = build_failure(world, patch, cause);
+                world.resource_mut::<ModelErrors>().0.push(failure);
             }
         }
     }

@@ -16,12 +16,11 @@ use rayon::prelude::*;
 use rustc_hash::FxHashMap;
 
 use super::biggest_first::map_biggest_first;
-use super::labels::{json_path, patch_label};
+use super::labels::{build_failure, patch_name};
 use crate::components::DirtyPatches;
-use crate::components::{ModelErrors, WorkCounters};
+use crate::components::{BuildCause, ModelErrors, WorkCounters};
 use crate::components::{PatchCavities, PatchMesh, PatchSurface};
-use crate::design::RuleViolation;
-use crate::mesh::cdt::{KeptCavities, MeshPath, Region, mesh_patch_region_keeping};
+use crate::mesh::cdt::{CdtError, KeptCavities, MeshPath, Region, mesh_patch_region_keeping};
 use crate::mesh::{PackedMesh, mesh_key_of, surface_key};
 use crate::parts::Patch;
 
@@ -100,20 +99,20 @@ pub fn remesh_dirty_patches(world: &mut World, surfaces: &mut QueryState<&PatchS
             .get::<PatchMesh>(work[i].0)
             .map_or(0, |m| m.0.triangle_count() as u64)
     };
-    let meshed: FxHashMap<u128, Result<Meshed, String>> =
+    let meshed: FxHashMap<u128, Result<Meshed, CdtError>> =
         map_biggest_first(&to_mesh, previous, |&i| {
             let (_, p, r, _) = &work[i];
             // Kept for the model's lifetime: packed (exact positions, 4-byte
             // normals, narrow indices, no growth slack).
             let result =
-                mesh_patch_region_keeping(p, r, &options, kept[i].as_deref(), surface_keys[i])
-                    .map(|(out, cavities)| Meshed {
+                mesh_patch_region_keeping(p, r, &options, kept[i].as_deref(), surface_keys[i]).map(
+                    |(out, cavities)| Meshed {
                         mesh: Arc::new(PackedMesh::pack_marked(&out.mesh, &out.on_loops)),
                         cavities: (!cavities.is_empty()).then(|| Arc::new(cavities)),
                         reused: out.stats.cavities_reused as u64,
                         path: out.stats.path,
-                    })
-                    .map_err(|e| e.to_string());
+                    },
+                );
             (keys[i], result)
         })
         .into_iter()
@@ -147,12 +146,12 @@ pub fn remesh_dirty_patches(world: &mut World, surfaces: &mut QueryState<&PatchS
     for (((e, ..), key), held) in work.iter().zip(&keys).zip(in_use) {
         let e = *e;
         // A mesh in use elsewhere is shared with its cavities left as they were.
+        // Every key not in use was meshed (`to_mesh` holds its first patch).
         let result = match held {
             Some(mesh) => Ok((mesh, None)),
-            None => match meshed.get(key) {
-                Some(Ok(m)) => Ok((m.mesh.clone(), Some(m.cavities.clone()))),
-                Some(Err(e)) => Err(e.clone()),
-                None => Err("the mesh of an equal patch is missing".into()),
+            None => match &meshed[key] {
+                Ok(m) => Ok((m.mesh.clone(), Some(m.cavities.clone()))),
+                Err(e) => Err(e.clone()),
             },
         };
         match result {
@@ -173,20 +172,19 @@ pub fn remesh_dirty_patches(world: &mut World, surfaces: &mut QueryState<&PatchS
                 }
                 written.push(e);
             }
-            Err(rule) => {
+            Err(source) => {
                 failures += 1;
-                let label = patch_label(world, e);
-                let path = json_path(world, e);
-                world.resource_mut::<ModelErrors>().0.push((
-                    label.clone(),
-                    vec![RuleViolation {
-                        path,
-                        entity: label,
-                        field: "mesh".into(),
-                        value: String::new(),
-                        rule,
-                    }],
-                ));
+                // No stale mesh stands for the patch: the failed update is
+                // undone, and what is built again meshes it afresh.
+                if world.get::<PatchMesh>(e).is_some() {
+                    world.entity_mut(e).remove::<(PatchMesh, PatchCavities)>();
+                }
+                let cause = BuildCause::Mesh {
+                    patch: patch_name(world, e),
+                    source,
+                };
+                let failure = build_failure(world, e, cause);
+                world.resource_mut::<ModelErrors>().0.push(failure);
             }
         }
     }

@@ -7,7 +7,9 @@
 //! when it checked the edit ([`CheckedResolutions`]). A vessel that fails (only possible if the world was edited
 //! around `Model::apply`) keeps its derived data and its violations are recorded.
 
-use crate::components::{CheckedResolutions, EditedVessels, ModelErrors, PendingResolutions};
+use crate::components::{
+    CheckedResolutions, EditedVessels, ModelErrors, ModelFailure, PendingResolutions,
+};
 use bevy_ecs::change_detection::Ref;
 use bevy_ecs::entity::Entity;
 use bevy_ecs::hierarchy::Children;
@@ -123,7 +125,9 @@ pub fn resolve_dirty_vessels(
     for (e, tag, result, _) in results {
         match result {
             Ok(resolved) => pending.0.push((e, resolved)),
-            Err(violations) => errors.0.push((tag.unwrap_or_default(), violations)),
+            Err(violations) => errors
+                .0
+                .push(ModelFailure::Rules(tag.unwrap_or_default(), violations)),
         }
     }
 }

@@ -244,3 +244,73 @@ fn check_json_names_its_format_and_every_problem() {
     assert_eq!(o.status.code(), Some(1));
     assert!(String::from_utf8_lossy(&o.stderr).contains("after the design's JSON object"));
 }
+
+/// A design that passes every rule but cannot be built is not valid to `check`,
+/// and `build` refuses it; both report what failed as a build failure, not as a
+/// broken rule: the part's design path, its stable id, the stage and patch that
+/// failed and the mesher's typed cause. The fixture is the fuzz plant of
+/// `tests/repros/` whose storage tank's conical roof cannot be meshed at 1 mm
+/// (an open defect, as in `model_transaction`: when the roof is fixed, this
+/// test needs another design).
+#[test]
+fn check_and_build_report_what_cannot_be_built_by_design_path() {
+    let roof = format!(
+        "{}/tests/repros/fuzz-seed1-accepted-edit-roof-4M-vertices.json",
+        env!("CARGO_MANIFEST_DIR")
+    );
+    let o = vesselcad(&["check", &roof, "--json", "--tolerance", "1"]);
+    assert_eq!(o.status.code(), Some(1));
+    let v: serde_json::Value = serde_json::from_slice(&o.stdout).unwrap();
+    assert_eq!(
+        (v["valid"].clone(), v["kind"].clone()),
+        (false.into(), "geometry".into()),
+        "{v}"
+    );
+    assert!(v.get("violations").is_none(), "not a rule: {v}");
+    let f = &v["failures"][0];
+    assert_eq!(f["path"], "vessels[3].parts[2]", "{v}");
+    assert_eq!(f["entity"], "TK-301/ROOF", "{v}");
+    assert_eq!(
+        (f["stage"].clone(), f["patch"].clone()),
+        ("mesh".into(), "cone".into()),
+        "{v}"
+    );
+    assert!(f["cause"].as_str().unwrap().contains("refinement"), "{v}");
+    // Text: one line per failure, by design path.
+    let o = vesselcad(&["check", &roof, "--tolerance", "1"]);
+    assert_eq!(o.status.code(), Some(1));
+    let err = String::from_utf8_lossy(&o.stderr);
+    assert!(
+        err.contains("every rule holds, but the geometry cannot be built at 1 mm"),
+        "{err}"
+    );
+    assert!(
+        err.contains("vessels[3].parts[2]: TK-301/ROOF: its patch \"cone\" cannot be meshed"),
+        "{err}"
+    );
+    // The rules alone hold.
+    assert!(
+        vesselcad(&["check", &roof, "--rules-only"])
+            .status
+            .success()
+    );
+    let glb =
+        std::env::temp_dir().join(format!("vesselcad-unbuildable-{}.glb", std::process::id()));
+    let o = vesselcad(&[
+        "build",
+        &roof,
+        "-o",
+        glb.to_str().unwrap(),
+        "--tolerance",
+        "1",
+    ]);
+    assert_eq!(o.status.code(), Some(2));
+    let err = String::from_utf8_lossy(&o.stderr);
+    assert!(
+        err.contains(
+            "error: vessels[3].parts[2]: TK-301/ROOF: its patch \"cone\" cannot be meshed"
+        ),
+        "{err}"
+    );
+    assert!(!glb.exists());
+}

@@ -9,7 +9,8 @@
 use vesselcad::design::{Design, load, validate};
 use vesselcad::export::write_glb;
 use vesselcad::mesh::TessellationOptions;
-use vesselcad::model::{Edit, Model, ModelError};
+use vesselcad::mesh::cdt::CdtError;
+use vesselcad::model::{BuildCause, Edit, Model, ModelError, ModelFailure};
 
 /// A plant that passes every rule but whose storage tank's conical roof cannot
 /// be meshed at 1 mm: nozzle N3 (`vessels[3].nozzles[1]`) leaves a loop segment
@@ -53,10 +54,25 @@ fn an_edit_whose_geometry_fails_is_refused_and_changes_nothing() {
     let v = &failures[0];
     assert_eq!(
         (v.path.as_str(), v.entity.as_str()),
-        ("vessels[3].parts[2]", "TK-301/ROOF cone"),
+        ("vessels[3].parts[2]", "TK-301/ROOF"),
         "{v}"
     );
-    assert!(v.rule.contains("refinement"), "{v}");
+    // A mesher failure, typed, of the roof's cone: not a broken rule.
+    assert_eq!(
+        (v.cause.stage(), v.cause.patch()),
+        ("mesh", Some("cone")),
+        "{v}"
+    );
+    assert!(
+        matches!(
+            &v.cause,
+            BuildCause::Mesh {
+                source: CdtError::RefinementRunaway { .. } | CdtError::NotConverged { .. },
+                ..
+            }
+        ),
+        "{v}"
+    );
     assert!(err.to_string().contains("nothing changed"), "{err}");
     // As it was: design, meshes, no errors, nothing to send to viewers.
     assert_eq!(model.design(), before);
@@ -111,7 +127,10 @@ fn apply_then_update_rolls_back_a_failed_build() {
     assert!(work.failures > 0, "{work:?}");
     let errors = &model.errors().0;
     assert_eq!(errors.len(), 1, "{errors:?}");
-    assert_eq!(errors[0].1[0].path, "vessels[3].parts[2]");
+    let ModelFailure::Build(failure) = &errors[0] else {
+        panic!("a build failure, not a rule: {errors:?}");
+    };
+    assert_eq!(failure.path, "vessels[3].parts[2]");
     assert_eq!(model.design(), before, "both edits are undone");
     assert_eq!(write_glb(&model.scene()).unwrap(), glb);
     let changes = model.take_changes();

@@ -1,7 +1,7 @@
 //! A live edit whose geometry cannot be built is never acknowledged (issue 30
 //! §1): it passes every design rule, but the model cannot mesh it, so the
-//! server answers 422 naming the part's JSON path, the stage that failed and
-//! why, and the design, revision and model stay as they were.
+//! server answers 422 (kind `geometry`, not a rule) naming the part's JSON
+//! path, the stage and patch that failed and the mesher's typed cause, and the design, revision and model stay as they were.
 
 mod server_support;
 
@@ -40,12 +40,16 @@ fn an_edit_that_cannot_be_built_is_refused_and_changes_nothing() {
     ]));
     assert_eq!(r.status, 422, "{}", r.text());
     let answer = r.json();
-    assert_eq!(answer["kind"], "refused", "{answer}");
-    let v = &answer["violations"][0];
+    // A build failure, not a broken rule: no `violations`.
+    assert_eq!(answer["kind"], "geometry", "{answer}");
+    assert!(answer.get("violations").is_none(), "{answer}");
+    let v = &answer["failures"][0];
     assert_eq!(v["path"], "vessels[3].parts[2]", "{answer}");
-    assert_eq!(v["entity"], "TK-301/ROOF cone", "{answer}");
+    assert_eq!(v["entity"], "TK-301/ROOF", "{answer}");
+    assert_eq!(v["stage"], "mesh", "{answer}");
+    assert_eq!(v["patch"], "cone", "{answer}");
     assert!(
-        v["rule"].as_str().unwrap().contains("refinement"),
+        v["cause"].as_str().unwrap().contains("refinement"),
         "{answer}"
     );
     let after = server.request("GET", "/design.json", &[], b"");

@@ -66,16 +66,26 @@ pub fn run(args: BuildArgs) -> ExitCode {
     ) {
         Ok(m) => m,
         Err(ModelError::Design(e)) => return fail(&e),
+        Err(ModelError::Geometry(failures)) => {
+            // Not a broken rule: what could not be built, by design path.
+            eprintln!(
+                "error: {}: the geometry cannot be built ({} failure(s)):",
+                design.display(),
+                failures.len()
+            );
+            for f in &failures {
+                eprintln!("error: {f}");
+            }
+            return ExitCode::from(2);
+        }
         Err(e) => {
             eprintln!("error: {e}");
             return ExitCode::from(2);
         }
     };
     if !model.errors().0.is_empty() {
-        for (entity, violations) in &model.errors().0 {
-            for v in violations {
-                eprintln!("error: {entity}: {}", v.rule);
-            }
+        for failure in &model.errors().0 {
+            eprintln!("error: {failure}");
         }
         return ExitCode::from(1);
     }

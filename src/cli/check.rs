@@ -1,16 +1,24 @@
 //! `vesselcad check`: whether a design is valid, every problem listed otherwise.
 //!
+//! A design that passes every rule is then built (at `--tolerance`, unless
+//! `--rules-only`): a part or nozzle whose geometry cannot be built makes it
+//! invalid too, reported as what it is — a build failure naming the design
+//! path, the stable id, the stage that failed and the typed cause — never as a
+//! broken rule.
+//!
 //! `check --json` prints one object on standard output, whatever the outcome:
 //!
 //! ```text
 //! {"format": "vesselcad-check/1", "file": "...", "valid": true, "vessels": 3,
-//!  "deficiencies": [{"vessel", "deficiency"}]}
+//!  "built": true, "deficiencies": [{"vessel", "deficiency"}]}
 //! {"format": "vesselcad-check/1", "file": "...", "valid": false, "kind": "invalid",
 //!  "error": "<message>", "violations": [{"path", "entity", "field", "value", "rule"}]}
+//! {"format": "vesselcad-check/1", "file": "...", "valid": false, "kind": "geometry",
+//!  "error": "<message>", "failures": [{"path", "entity", "stage", "patch", "cause"}]}
 //! ```
 //!
-//! with the same exit codes as `check`: 0 valid, 1 invalid (or, with `--strict`,
-//! deficient), 2 unreadable.
+//! with the same exit codes as `check`: 0 valid, 1 invalid or unbuildable (or,
+//! with `--strict`, deficient), 2 unreadable or bad options.
 
 use std::path::{Path, PathBuf};
 use std::process::ExitCode;
@@ -18,6 +26,9 @@ use std::process::ExitCode;
 use clap::Args;
 use serde_json::{Value, json};
 use vesselcad::design::{Design, DesignError, load};
+use vesselcad::mesh::TessellationOptions;
+use vesselcad::model::{BuildFailure, ModelError};
+use vesselcad::plant::build_plant;
 
 use super::fail;
 use super::output::outln;
@@ -36,23 +47,84 @@ pub struct CheckArgs {
     /// Also exit 1 when a part or nozzle is thinner than the code requires.
     #[arg(long)]
     strict: bool,
+    /// Chordal tolerance the geometry is built to, mm.
+    #[arg(long, default_value_t = TessellationOptions::DEFAULT.tolerance, allow_negative_numbers = true)]
+    tolerance: f64,
+    /// Check the design rules only: do not build the geometry.
+    #[arg(long)]
+    rules_only: bool,
 }
 
-/// Runs `vesselcad check`: exit 0 when valid, 1 when invalid, 2 when unreadable.
+/// Why a design that passes every rule is still not valid.
+enum Unbuilt {
+    /// Parts or nozzles whose geometry cannot be built.
+    Geometry(Vec<BuildFailure>),
+    /// Bad options, or another refusal of the model (exit 2).
+    Other(ModelError),
+}
+
+/// Builds `design` unless `args` say rules only.
+fn build(design: &Design, args: &CheckArgs) -> Result<(), Unbuilt> {
+    if args.rules_only {
+        return Ok(());
+    }
+    let options = TessellationOptions::chord(args.tolerance);
+    match build_plant(design, options, &mut |_, _| {}) {
+        Ok(_) => Ok(()),
+        Err(ModelError::Geometry(failures)) => Err(Unbuilt::Geometry(failures)),
+        Err(e) => Err(Unbuilt::Other(e)),
+    }
+}
+
+/// The message of a design that passes every rule but cannot be built.
+fn unbuildable(failures: &[BuildFailure], tolerance: f64) -> String {
+    format!(
+        "every rule holds, but the geometry cannot be built at {tolerance} mm: {} failure(s):\n{}",
+        failures.len(),
+        failures
+            .iter()
+            .map(|f| format!("  - {f}"))
+            .collect::<Vec<_>>()
+            .join("\n")
+    )
+}
+
+/// Runs `vesselcad check`: exit 0 when valid, 1 when invalid or unbuildable,
+/// 2 when unreadable.
 pub fn run(args: CheckArgs) -> ExitCode {
     if args.json {
-        return check_json(&args.design, args.strict);
+        return check_json(&args);
     }
-    match load(&args.design) {
-        Ok(d) => {
+    let d = match load(&args.design) {
+        Ok(d) => d,
+        Err(e) => return fail(&e),
+    };
+    match build(&d, &args) {
+        Ok(()) => {
             outln!(
-                "{}: valid ({} vessel(s))",
+                "{}: valid ({} vessel(s){})",
                 args.design.display(),
-                d.vessels.len()
+                d.vessels.len(),
+                if args.rules_only {
+                    String::from(", rules only")
+                } else {
+                    format!(", built at {} mm", args.tolerance)
+                }
             );
             print_deficiencies(&d, args.strict)
         }
-        Err(e) => fail(&e),
+        Err(Unbuilt::Geometry(failures)) => {
+            eprintln!(
+                "error: {}: {}",
+                args.design.display(),
+                unbuildable(&failures, args.tolerance)
+            );
+            ExitCode::from(1)
+        }
+        Err(Unbuilt::Other(e)) => {
+            eprintln!("error: {e}");
+            ExitCode::from(2)
+        }
     }
 }
 
@@ -71,11 +143,37 @@ fn print_deficiencies(design: &Design, strict: bool) -> ExitCode {
     }
 }
 
-/// Runs `check --json` on `path`; with `strict`, a deficiency makes it exit 1.
-fn check_json(path: &Path, strict: bool) -> ExitCode {
+/// Runs `check --json`; with `--strict`, a deficiency makes it exit 1.
+fn check_json(args: &CheckArgs) -> ExitCode {
+    let (path, strict): (&Path, bool) = (&args.design, args.strict);
     let file = path.display().to_string();
-    let (report, code) = match load(path) {
-        Ok(design) => {
+    let loaded = load(path).map(|design| {
+        let built = build(&design, args);
+        (design, built)
+    });
+    let (report, code) = match loaded {
+        Ok((_, Err(Unbuilt::Geometry(failures)))) => (
+            json!({
+                "format": CHECK_FORMAT,
+                "file": file,
+                "valid": false,
+                "kind": "geometry",
+                "error": unbuildable(&failures, args.tolerance),
+                "failures": failures.iter().map(BuildFailure::to_json).collect::<Vec<_>>(),
+            }),
+            ExitCode::from(1),
+        ),
+        Ok((_, Err(Unbuilt::Other(e)))) => (
+            json!({
+                "format": CHECK_FORMAT,
+                "file": file,
+                "valid": false,
+                "kind": "options",
+                "error": e.to_string(),
+            }),
+            ExitCode::from(2),
+        ),
+        Ok((design, Ok(()))) => {
             let found = super::calc::deficiencies(&design);
             let code = if strict && !found.is_empty() {
                 ExitCode::from(1)
@@ -92,6 +190,7 @@ fn check_json(path: &Path, strict: bool) -> ExitCode {
                     "file": file,
                     "valid": true,
                     "vessels": design.vessels.len(),
+                    "built": !args.rules_only,
                     "deficiencies": found,
                 }),
                 code,

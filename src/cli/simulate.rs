@@ -93,10 +93,8 @@ pub fn run(args: SimulateArgs) -> ExitCode {
                 c.failures
             );
             let errors = &sim.model().errors().0;
-            for (entity, violations) in errors.iter().rev().take(c.failures as usize) {
-                for v in violations {
-                    eprintln!("  {entity}: {}", v.rule);
-                }
+            for failure in errors.iter().rev().take(c.failures as usize) {
+                eprintln!("  {failure}");
             }
         }
     }

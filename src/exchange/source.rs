@@ -178,9 +178,9 @@ pub(super) fn vessel_source(
             tolerance,
             None,
         )
-        .map_err(|message| ExchangeError::Opening {
+        .map_err(|e| ExchangeError::Opening {
             entity: entity(&nodes[neck].id),
-            message,
+            message: e.to_string(),
         })?;
         cuts.push(CutSource {
             neck,

@@ -144,7 +144,8 @@ pub fn build_scene(design: &Design, options: &TessellationOptions) -> Result<Sce
                     options.tolerance,
                     None,
                 )
-                .map(|c| (c.cut, c.pad)),
+                .map(|c| (c.cut, c.pad))
+                .map_err(|e| e.to_string()),
                 None => Err("the part has no patch to cut into its host".to_string()),
             };
             ((v, n, h), result)

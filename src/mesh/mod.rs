@@ -24,8 +24,8 @@ mod test_parts;
 
 pub use cut::SharedCuts;
 pub use cut::{
-    AxialCut, Cut, HostTrim, Notch, OpeningPlan, PAD_PATCH, PadCut, ReusableCut, cut_opening,
-    cut_opening_reusing,
+    AxialCut, Cut, CutError, CutLoop, HostTrim, Notch, OpeningPlan, PAD_PATCH, PadCut, ReusableCut,
+    cut_opening, cut_opening_reusing,
 };
 pub use layout::{
     LayoutError, MAX_EDGE_SEGMENTS, PatchSides, SEAM_CUTS, closed_in_u, edge_parameters,

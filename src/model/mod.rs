@@ -12,8 +12,13 @@
 //! transaction over geometry too: when the run cannot cut or mesh what they
 //! changed, every vessel they touched is put back as the last update that built
 //! left it ([`Model::try_update`] returns [`ModelError::Geometry`];
-//! [`Model::update`] keeps the failures in [`Model::errors`]). [`Model::edit`]
-//! is one edit and its update.
+//! [`Model::update`] keeps the failures in [`Model::errors`]). New tessellation
+//! options are part of the same transaction: options that some patch cannot be
+//! meshed to are put back with the edits. So no patch ever keeps a mesh of
+//! another design or other options as if it were current: a patch that fails
+//! to mesh loses its mesh, and the update that put it back meshes it again.
+//! A failure is a [`BuildFailure`] (design path, stable id, stage and typed
+//! cause), not a design rule. [`Model::edit`] is one edit and its update.
 
 mod edit;
 mod memory;
@@ -37,12 +42,13 @@ use rayon::prelude::*;
 use thiserror::Error;
 
 pub use crate::components::Views;
+pub use crate::components::{BuildCause, BuildFailure, ModelFailure};
 use crate::components::{
     ChangeLog, CheckedResolutions, CutTable, DirtyParts, DirtyPatches, EditedVessels, Instances,
     ModelErrors, OpeningHosts, PendingResolutions, RequestedTessellation, StageTimes,
     StorageExtents, Tessellation, VesselIndex, WorkCounters,
 };
-use crate::design::{Design, DesignError, RuleViolation};
+use crate::design::{Design, DesignError};
 use crate::export::Scene;
 use crate::mesh::{OptionsError, TessellationOptions};
 use crate::systems::build_schedule;
@@ -57,10 +63,11 @@ pub enum ModelError {
     #[error(transparent)]
     Options(#[from] OptionsError),
     /// The edit passes every rule but its geometry cannot be built: each failed
-    /// part or nozzle is listed with its JSON path, the stage that failed
-    /// (`shape`, `opening`, `region`, `mesh`) and why. The edit was undone.
+    /// part or nozzle is listed with its JSON path, stable id, the stage that
+    /// failed (`shape`, `opening`, `region`, `mesh`) and the typed cause. The
+    /// edit (and new tessellation options) were undone.
     #[error("the geometry cannot be built, nothing changed: {} failure(s):\n{}", .0.len(), .0.iter().map(|v| format!("  - {v}")).collect::<Vec<_>>().join("\n"))]
-    Geometry(Vec<RuleViolation>),
+    Geometry(Vec<BuildFailure>),
     /// The edit names a vessel that does not exist.
     #[error("no vessel has the tag {tag:?}")]
     UnknownVessel {
@@ -90,6 +97,10 @@ pub struct Model {
     /// then holds only theirs and the next run's): put back if the update fails,
     /// merged with the world's once it builds.
     log_before: Option<ChangeLog>,
+    /// The tessellation options asked for before the first
+    /// [`set_tessellation`](Self::set_tessellation) since the last update that
+    /// built: put back with the edits if the update fails.
+    options_before: Option<TessellationOptions>,
     /// Schedule runs since the model was made.
     runs: u64,
 }
@@ -123,6 +134,7 @@ impl Model {
             schedule: build_schedule(),
             undo: undo::Undo::default(),
             log_before: None,
+            options_before: None,
             runs: 0,
         })
     }
@@ -238,30 +250,46 @@ impl Model {
     /// is as it was, so the model is as the last update that built left it.
     /// Failures with no edit to undo (new tessellation options) are returned
     /// too, the model keeping what it could build.
+    ///
+    /// # Errors
+    ///
+    /// [`ModelError::Geometry`] with every [`BuildFailure`];
+    /// [`ModelError::Design`] if the run found broken rules in the world (only
+    /// possible when it was written around the edit checks).
     pub fn try_update(&mut self) -> Result<WorkCounters, ModelError> {
         self.try_update_inner().map_err(|failed| {
             let (_, failed) = *failed;
-            ModelError::Geometry(failed.into_iter().flat_map(|(_, v)| v).collect())
+            let mut violations = Vec::new();
+            let mut build = Vec::new();
+            for f in failed {
+                match f {
+                    ModelFailure::Rules(_, v) => violations.extend(v),
+                    ModelFailure::Build(b) => build.push(b),
+                }
+            }
+            if violations.is_empty() {
+                ModelError::Geometry(build)
+            } else {
+                ModelError::Design(DesignError::Invalid(violations))
+            }
         })
     }
 
     /// [`try_update`](Self::try_update), failures kept by entity with the
     /// counters of the failed run.
-    #[expect(
-        clippy::type_complexity,
-        reason = "private: the failed run's counters and errors, boxed"
-    )]
-    fn try_update_inner(
-        &mut self,
-    ) -> Result<WorkCounters, Box<(WorkCounters, Vec<(String, Vec<RuleViolation>)>)>> {
+    fn try_update_inner(&mut self) -> Result<WorkCounters, Box<(WorkCounters, Vec<ModelFailure>)>> {
         let undo = std::mem::take(&mut self.undo);
+        let options_before = self.options_before.take();
         let work = self.run();
         let failed = std::mem::take(&mut self.world.resource_mut::<ModelErrors>().0);
         if failed.is_empty() {
             self.merge_log();
             return Ok(work);
         }
-        if !undo.is_empty() {
+        if !undo.is_empty() || options_before.is_some() {
+            if let Some(options) = options_before {
+                self.world.resource_mut::<RequestedTessellation>().0 = options;
+            }
             sync::commit(&mut self.world, undo.staged());
             self.run();
             self.world.resource_mut::<ModelErrors>().0.clear();
@@ -319,12 +347,16 @@ impl Model {
         self.try_update()
     }
 
-    /// Changes the tessellation options; every patch is re-meshed on the next update.
+    /// Changes the tessellation options; every patch is re-meshed on the next
+    /// update. That update is transactional for them too: if some patch cannot
+    /// be meshed to them, the options in force before are put back (with the
+    /// edits applied since the last update) and the failure is reported.
     pub fn set_tessellation(&mut self, options: TessellationOptions) -> Result<(), ModelError> {
         options.validate()?;
         let mut t = self.world.resource_mut::<RequestedTessellation>();
         if t.0 != options {
-            t.0 = options;
+            let before = std::mem::replace(&mut t.0, options);
+            self.options_before.get_or_insert(before);
         }
         Ok(())
     }
@@ -360,7 +392,8 @@ impl Model {
         std::mem::take(&mut *self.world.resource_mut::<ChangeLog>())
     }
 
-    /// Violations found in the world by the last updates (normally none).
+    /// What the last update could not do (normally nothing): build failures
+    /// and rule violations found in the world.
     pub fn errors(&self) -> &ModelErrors {
         self.world.resource::<ModelErrors>()
     }

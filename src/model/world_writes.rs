@@ -3,6 +3,8 @@
 //! mutable query does not compile); this test writes a parameter from inside, as
 //! a bug in the model would, and checks the Validate stage still resolves the
 //! vessel from the world rather than from the resolution the edit's check left.
+//! A second test moves a nozzle off its host the same way, to show a cut that
+//! fails is reported as a typed build failure.
 
 use crate::components::NozzleSpec;
 use crate::design::parse;
@@ -39,4 +41,51 @@ fn a_vessel_written_around_apply_is_resolved_again() {
     assert!(m.errors().0.is_empty());
     let full = build_scene(&m.design(), &options).unwrap();
     assert!(write_glb(&m.scene()).unwrap() == write_glb(&full).unwrap());
+}
+
+/// A nozzle whose opening the cutter cannot cut (moved 100 m off its host
+/// past the edits, as a bug would; no design reaches this through the checked
+/// edits) is reported as a build failure, typed, by its design path: not as a
+/// broken rule.
+#[test]
+fn an_opening_that_cannot_be_cut_is_a_typed_build_failure() {
+    use crate::components::{BuildCause, DirtyParts, ModelFailure, PartFrame};
+    use crate::mesh::CutError;
+    use glam::{DAffine3, DVec3};
+
+    let options = TessellationOptions::chord(2.0);
+    let design = parse(include_str!("../../examples/designs/small-plant.json")).unwrap();
+    let mut m = Model::from_design(&design, options).unwrap();
+    let (tag, mark) = (&design.vessels[0].tag, &design.vessels[0].nozzles[0].mark);
+    let mut q = m.world.query::<(bevy_ecs::entity::Entity, &NozzleSpec)>();
+    let nozzle = q
+        .iter(&m.world)
+        .find(|(_, s)| &s.0.mark == mark)
+        .map(|(e, _)| e)
+        .unwrap();
+    let away = DAffine3::from_translation(DVec3::new(1e5, 0.0, 0.0));
+    let frame = m.world.get::<PartFrame>(nozzle).unwrap().0;
+    m.world.get_mut::<PartFrame>(nozzle).unwrap().0 = away * frame;
+    m.world.resource_mut::<DirtyParts>().frames.push(nozzle);
+    let work = m.update();
+    assert_eq!(work.failures, 1, "{work:?}");
+    let errors = &m.errors().0;
+    let [ModelFailure::Build(failure)] = errors.as_slice() else {
+        panic!("one build failure, no rule: {errors:?}");
+    };
+    assert_eq!(failure.path, "vessels[0].nozzles[0]", "{failure}");
+    assert_eq!(failure.entity, format!("{tag}/{mark}"), "{failure}");
+    assert_eq!(failure.cause.stage(), "opening", "{failure}");
+    let BuildCause::Opening { host, source } = &failure.cause else {
+        panic!("{failure}");
+    };
+    assert!(host.starts_with(&format!("{tag}/")), "{failure}");
+    assert!(
+        matches!(
+            source,
+            CutError::Intersection { .. } | CutError::NotWithinPatch { .. }
+        ),
+        "{failure}"
+    );
+    assert!(source.patch().is_some(), "{failure}");
 }

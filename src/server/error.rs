@@ -4,8 +4,11 @@
 //! what was wrong — the session is unchanged.
 //!
 //! Every response error body has the shape
-//! `{"error": "<message>", "kind": "<kind>", "violations": [...]?}` where
-//! `violations` lists the broken design rules (path, entity, field, value, rule).
+//! `{"error": "<message>", "kind": "<kind>", "violations": [...]?, "failures": [...]?}`
+//! where `violations` lists the broken design rules (path, entity, field, value,
+//! rule) and `failures` the parts and nozzles whose geometry cannot be built
+//! (kind `geometry`: path, entity, stage, patch, cause; see
+//! [`BuildFailure::to_json`]).
 
 use axum::Json;
 use axum::http::StatusCode;
@@ -15,7 +18,7 @@ use thiserror::Error;
 
 use crate::design::{DesignError, RuleViolation};
 use crate::drawing::{LISTED_TAGS, list_tags};
-use crate::model::ModelError;
+use crate::model::{BuildFailure, ModelError};
 
 /// Why `vesselcad serve` could not start or stopped.
 #[derive(Debug, Error)]
@@ -149,6 +152,7 @@ impl ApiError {
             ApiError::Unappliable(_) => "unappliable",
             ApiError::TestFailed(_) => "test_failed",
             ApiError::Invalid(_) => "invalid",
+            ApiError::Refused(ModelError::Geometry(_)) => "geometry",
             ApiError::Refused(_) => "refused",
             ApiError::Unauthorized => "unauthorized",
             ApiError::Forbidden(_) => "forbidden",
@@ -166,7 +170,14 @@ impl ApiError {
     fn violations(&self) -> &[RuleViolation] {
         match self {
             ApiError::Invalid(e) | ApiError::Refused(ModelError::Design(e)) => e.violations(),
-            ApiError::Refused(ModelError::Geometry(v)) => v,
+            _ => &[],
+        }
+    }
+
+    /// The parts and nozzles whose geometry cannot be built, if any.
+    fn failures(&self) -> &[BuildFailure] {
+        match self {
+            ApiError::Refused(ModelError::Geometry(f)) => f,
             _ => &[],
         }
     }
@@ -186,6 +197,10 @@ impl IntoResponse for ApiError {
                     })
                 })
                 .collect();
+        }
+        let failures = self.failures();
+        if !failures.is_empty() {
+            body["failures"] = failures.iter().map(BuildFailure::to_json).collect();
         }
         if let ApiError::UnknownVessel { known, .. } = &self {
             body["vessels"] = json!(known.iter().take(LISTED_TAGS).collect::<Vec<_>>());

@@ -29,6 +29,7 @@ use std::sync::Arc;
 
 use glam::{DAffine3, DVec2, DVec3, DVec4};
 
+use super::error::{CutError, CutLoop};
 use super::outcome::{Cut, PAD_PATCH, PadCut};
 use super::seams::HostTrim;
 use super::turn::{Turn, is_round, round_u, split_turn};
@@ -138,7 +139,7 @@ pub(super) fn canonical_host(
     surface: &NurbsSurface,
     ext: &Extrusion,
     zs: (f64, f64),
-) -> Result<NurbsSurface, String> {
+) -> Result<NurbsSurface, CutError> {
     let margin = (zs.1 - zs.0) + 1.0;
     let (lo, hi) = (zs.0 - margin, zs.1 + margin);
     let (a, b) = if ext.z1 > ext.z0 { (lo, hi) } else { (hi, lo) };
@@ -153,9 +154,12 @@ pub(super) fn canonical_host(
             ]
         })
         .collect();
-    let v = KnotVector::try_new(1, vec![0.0, 0.0, 1.0, 1.0]).map_err(|e| e.to_string())?;
-    NurbsSurface::try_new(surface.u_knots().clone(), v, points)
-        .map_err(|e| format!("canonical host: {e}"))
+    let construction = |source| CutError::Construction {
+        what: "the course's canonical copy",
+        source,
+    };
+    let v = KnotVector::try_new(1, vec![0.0, 0.0, 1.0, 1.0]).map_err(construction)?;
+    NurbsSurface::try_new(surface.u_knots().clone(), v, points).map_err(construction)
 }
 
 /// The axial range of the control nets of `surfaces`.
@@ -227,16 +231,15 @@ impl AxialCut {
         &self,
         host: &Patch,
         placement: &Placement,
-    ) -> Result<Option<PadCut>, String> {
+    ) -> Result<Option<PadCut>, CutError> {
         let Some(outer) = &self.pad else {
             return Ok(None);
         };
-        let ext = Extrusion::of(&host.surface)
-            .ok_or_else(|| "pad: the host is not a straight course".to_string())?;
+        let ext = Extrusion::of(&host.surface).ok_or(CutError::NotACourse { patch: host.name })?;
         let into_nozzle = placement.canonical.inverse();
         let surface = canonical_host(&host.surface, &ext, self.zs)?
             .transformed(&into_nozzle)
-            .map_err(|e| format!("pad: {e}"))?;
+            .map_err(CutError::Placement)?;
         Ok(Some(PadCut {
             patch: Patch::new(PAD_PATCH, surface, host.analytic.transformed(&into_nozzle)),
             outer: outer.clone(),
@@ -256,18 +259,28 @@ impl AxialCut {
         Extrusion::of(surface).is_some_and(|ext| cut_key(surface, &ext, placement) == self.key)
     }
 
-    /// The opening in host patch `surface` with the nozzle at `placement`
-    /// (turned and moved from the canonical one): `None` when a loop does not
-    /// lie strictly within the patch's v-domain (it crosses an end of the
-    /// course).
-    pub(super) fn place(&self, surface: &NurbsSurface, placement: &Placement) -> Option<Cut> {
-        let ext = Extrusion::of(surface)?;
-        let neck = placed(&self.neck, &ext, placement)?;
+    /// The opening in host patch `host` with the nozzle at `placement`
+    /// (turned and moved from the canonical one), or
+    /// [`CutError::PastCourseEnd`] when a loop does not lie strictly within the
+    /// patch's v-domain (it crosses an end of the course). `host` is a straight
+    /// course ([`fits`](Self::fits)).
+    pub(super) fn place(&self, host: &Patch, placement: &Placement) -> Result<Cut, CutError> {
+        let ext = Extrusion::of(&host.surface).ok_or(CutError::NotACourse { patch: host.name })?;
+        let past_end = |which| {
+            move |z| CutError::PastCourseEnd {
+                which,
+                patch: host.name,
+                z,
+                z0: ext.z0.min(ext.z1),
+                z1: ext.z0.max(ext.z1),
+            }
+        };
+        let neck = placed(&self.neck, &ext, placement).map_err(past_end(CutLoop::Neck))?;
         let pad = match self.pad.as_deref() {
-            Some(p) => Some(placed(p, &ext, placement)?),
+            Some(p) => Some(placed(p, &ext, placement).map_err(past_end(CutLoop::Pad))?),
             None => None,
         };
-        Some(Cut {
+        Ok(Cut {
             hosts: vec![(self.host, HostTrim::Hole)],
             neck,
             pad,
@@ -282,7 +295,8 @@ impl AxialCut {
 }
 
 /// `canonical` turned and moved along the axis as `placement` says onto the
-/// extrusion `ext`, or `None` if a point falls outside its v-domain.
+/// extrusion `ext`, or the axial coordinate of the first point that falls
+/// outside its v-domain.
 ///
 /// Turned, a point's host u is its new angle's (the first in the domain, each
 /// later one unwrapped next to the one before, as the marcher keeps them).
@@ -290,7 +304,7 @@ fn placed(
     canonical: &IntersectionLoop,
     ext: &Extrusion,
     placement: &Placement,
-) -> Option<IntersectionLoop> {
+) -> Result<IntersectionLoop, f64> {
     let t = placement.t;
     let points: Vec<DVec3> = match placement.turn {
         Some(turn) => canonical
@@ -317,9 +331,12 @@ fn placed(
             }
             None => uv.x,
         };
-        host_uv.push(ext.holds(v).then_some(DVec2::new(u, v))?);
+        if !ext.holds(v) {
+            return Err(p.z);
+        }
+        host_uv.push(DVec2::new(u, v));
     }
-    Some(IntersectionLoop {
+    Ok(IntersectionLoop {
         points,
         neck_uv: canonical.neck_uv.clone(),
         host_uv,
@@ -349,7 +366,7 @@ mod tests {
         frame: &DAffine3,
         pad: bool,
         kept: Option<&Arc<super::AxialCut>>,
-    ) -> Result<ReusableCut, String> {
+    ) -> Result<ReusableCut, super::CutError> {
         let (neck, course) = (neck(), course());
         cut_opening_reusing(
             &neck,
@@ -479,14 +496,33 @@ mod tests {
         let low = frame(DVec3::new(0.0, 0.0, 150.0), axis);
         let course = course();
         let placement = super::Placement::of(&low, &[&course]);
-        assert!(kept.place(&course.surface, &placement).is_none());
+        assert!(matches!(
+            kept.place(&course, &placement),
+            Err(super::CutError::PastCourseEnd { .. })
+        ));
         let fresh = cut(&low, true, None);
         let reusing = cut(&low, true, Some(&kept));
         assert!(
             fresh.is_err() && reusing.is_err(),
             "{fresh:?} / {reusing:?}"
         );
-        assert_eq!(fresh.unwrap_err(), reusing.unwrap_err());
+        let err = fresh.unwrap_err();
+        assert_eq!(err, reusing.unwrap_err());
+        // Typed: the pad's loop (radius 225 mm at 150 mm) leaves the course
+        // below its start, and the message says what to change.
+        let super::CutError::PastCourseEnd {
+            which,
+            patch,
+            z,
+            z0,
+            z1,
+        } = &err
+        else {
+            panic!("{err}");
+        };
+        assert_eq!((*which, *patch), (super::CutLoop::Pad, course.name));
+        assert!(*z < *z0 && (*z0, *z1) == (0.0, 3000.0), "{err}");
+        assert!(err.to_string().contains("move the nozzle"), "{err}");
     }
 
     #[test]

@@ -21,30 +21,44 @@ use glam::{DAffine3, DVec2, DVec3};
 use crate::nurbs::builders::{line, revolve};
 
 use super::axial::{AxialCut, Placement, axial_range, canonical_host, cut_key};
+use super::error::{CutError, CutLoop};
 use super::outcome::{Cut, PAD_PATCH, PadCut};
 use super::reach::Reach;
 use super::seams::{HostTrim, Placed, insert_seam_samples, split_at_seams};
 use super::shared_key;
 use crate::mesh::surface::Extrusion;
-use crate::nurbs::NurbsSurface;
 use crate::nurbs::intersect::{
     HostIsoline, IntersectionLoop, LoopSample, intersect_generator, loop_crossing,
     neck_host_intersection,
 };
+use crate::nurbs::{NurbsError, NurbsSurface};
 use crate::parts::Patch;
 
 /// Bisection steps placing the seam sample.
 const SEAM_STEPS: usize = 80;
 
-/// One loop against one host patch, with a seam sample if it goes round the pole.
+/// One loop (`which`, of the surface `neck`) against one host patch (named
+/// `patch`), with a seam sample if it goes round the pole.
 fn loop_on(
-    neck: &NurbsSurface,
-    host: &NurbsSurface,
+    (which, neck): (CutLoop, &NurbsSurface),
+    (patch, host): (&'static str, &NurbsSurface),
     tolerance: f64,
-) -> Result<IntersectionLoop, String> {
-    let mut curve = neck_host_intersection(neck, host, tolerance).map_err(|e| e.to_string())?;
+) -> Result<IntersectionLoop, CutError> {
+    let mut curve =
+        neck_host_intersection(neck, host, tolerance).map_err(|source| CutError::Intersection {
+            which,
+            patch,
+            source,
+        })?;
     if curve.host_turns(host) != 0 {
-        add_seam_sample(neck, host, &mut curve)?;
+        add_seam_sample(neck, host, &mut curve).map_err(|(u, source)| {
+            CutError::PoleSeamSample {
+                which,
+                patch,
+                u,
+                source,
+            }
+        })?;
     }
     Ok(curve)
 }
@@ -60,7 +74,7 @@ pub fn cut_opening(
     host_frame: &DAffine3,
     host_patches: &[&Patch],
     tolerance: f64,
-) -> Result<Cut, String> {
+) -> Result<Cut, CutError> {
     cut_opening_reusing(
         neck,
         pad_od,
@@ -102,7 +116,7 @@ pub fn cut_opening_reusing(
     host_patches: &[&Patch],
     tolerance: f64,
     kept: Option<&Arc<AxialCut>>,
-) -> Result<ReusableCut, String> {
+) -> Result<ReusableCut, CutError> {
     OpeningPlan::new(
         neck,
         pad_od,
@@ -182,7 +196,12 @@ impl<'a> OpeningPlan<'a> {
     }
 
     /// The opening (see [`cut_opening_reusing`]).
-    pub fn cut(&self, kept: Option<&Arc<AxialCut>>) -> Result<ReusableCut, String> {
+    ///
+    /// # Errors
+    ///
+    /// A [`CutError`] naming the host patch and loop where the opening cannot
+    /// be cut.
+    pub fn cut(&self, kept: Option<&Arc<AxialCut>>) -> Result<ReusableCut, CutError> {
         let reach = &self.reach;
         let cut = cut_with(self, kept)?;
         Ok(ReusableCut {
@@ -195,7 +214,7 @@ impl<'a> OpeningPlan<'a> {
 
 /// [`OpeningPlan::cut`] on the plan's neck to march on (its (u, v) in the
 /// result are on that neck).
-fn cut_with(plan: &OpeningPlan, kept: Option<&Arc<AxialCut>>) -> Result<ReusableCut, String> {
+fn cut_with(plan: &OpeningPlan, kept: Option<&Arc<AxialCut>>) -> Result<ReusableCut, CutError> {
     let OpeningPlan {
         pad_od,
         nozzle_frame,
@@ -213,7 +232,7 @@ fn cut_with(plan: &OpeningPlan, kept: Option<&Arc<AxialCut>>) -> Result<Reusable
         && kept.reach() == reach.key()
         && let Some(host) = host_patches.get(kept.host())
         && kept.fits(&host.surface, placement)
-        && let Some(cut) = kept.place(&host.surface, placement)
+        && let Ok(cut) = kept.place(host, placement)
     {
         return Ok(ReusableCut {
             cut,
@@ -224,9 +243,10 @@ fn cut_with(plan: &OpeningPlan, kept: Option<&Arc<AxialCut>>) -> Result<Reusable
     }
     let neck = reach.surface();
     let neck = neck.as_ref();
-    let place = |s: &NurbsSurface, at: &DAffine3| {
-        s.transformed(at)
-            .map_err(|e| format!("cannot place the nozzle in its host's frame: {e}"))
+    let place = |s: &NurbsSurface, at: &DAffine3| s.transformed(at).map_err(CutError::Placement);
+    let construction = |source| CutError::Construction {
+        what: "the reinforcing pad's outside cylinder",
+        source,
     };
     // The pad's outside cylinder spans the neck's height (in the nozzle frame).
     let top = reach.top;
@@ -237,8 +257,8 @@ fn cut_with(plan: &OpeningPlan, kept: Option<&Arc<AxialCut>>) -> Result<Reusable
                 DVec3::new(od / 2.0, 0.0, 0.0),
                 DVec3::new(od / 2.0, 0.0, top),
             )
-            .map_err(|e| e.to_string())?;
-            Some(revolve(&generator, DVec3::ZERO, DVec3::Z, TAU).map_err(|e| e.to_string())?)
+            .map_err(construction)?;
+            Some(revolve(&generator, DVec3::ZERO, DVec3::Z, TAU).map_err(construction)?)
         }
     };
     let neck_placed = place(neck, &relative)?;
@@ -260,14 +280,14 @@ fn cut_with(plan: &OpeningPlan, kept: Option<&Arc<AxialCut>>) -> Result<Reusable
     } else {
         None
     };
-    let mut last = String::from("the host has no patch");
+    let mut last = None;
     for k in try_order(&neck_placed, host_patches) {
         let patch = host_patches[k];
         let result = match (Extrusion::of(&patch.surface), &canonical) {
             (Some(ext), Some((n, p))) => {
                 let zs = axial_range(std::iter::once(n).chain(p));
                 canonical_host(&patch.surface, &ext, zs)
-                    .and_then(|host| loops(n, p.as_ref(), &host, tolerance))
+                    .and_then(|host| loops(n, p.as_ref(), (patch.name, &host), tolerance))
                     .and_then(|marched| {
                         let axial = AxialCut::new(
                             k,
@@ -278,9 +298,7 @@ fn cut_with(plan: &OpeningPlan, kept: Option<&Arc<AxialCut>>) -> Result<Reusable
                             marched,
                             reach.key(),
                         );
-                        let cut = axial
-                            .place(&patch.surface, placement)
-                            .ok_or_else(|| "the loop runs past an end of the course".to_string())?;
+                        let cut = axial.place(patch, placement)?;
                         Ok(ReusableCut {
                             cut,
                             pad: axial.pad_cut(patch, placement)?,
@@ -289,37 +307,36 @@ fn cut_with(plan: &OpeningPlan, kept: Option<&Arc<AxialCut>>) -> Result<Reusable
                         })
                     })
             }
-            _ => loops(&neck_placed, pad.as_ref(), &patch.surface, tolerance).and_then(
-                |(neck_loop, pad_loop)| {
-                    let pad = match &pad_loop {
-                        Some(outer) => Some(PadCut {
-                            patch: pad_patch(patch, nozzle_frame, host_frame)?,
-                            outer: Arc::new(outer.clone()),
-                            inner: Arc::new(neck_loop.clone()),
-                        }),
-                        None => None,
-                    };
-                    Ok(ReusableCut {
-                        cut: Cut {
-                            hosts: vec![(k, HostTrim::Hole)],
-                            neck: neck_loop,
-                            pad: pad_loop,
-                        },
-                        pad,
-                        axial: None,
-                        reused: false,
-                    })
-                },
-            ),
+            _ => loops(
+                &neck_placed,
+                pad.as_ref(),
+                (patch.name, &patch.surface),
+                tolerance,
+            )
+            .and_then(|(neck_loop, pad_loop)| {
+                let pad = match &pad_loop {
+                    Some(outer) => Some(PadCut {
+                        patch: pad_patch(patch, nozzle_frame, host_frame)?,
+                        outer: Arc::new(outer.clone()),
+                        inner: Arc::new(neck_loop.clone()),
+                    }),
+                    None => None,
+                };
+                Ok(ReusableCut {
+                    cut: Cut {
+                        hosts: vec![(k, HostTrim::Hole)],
+                        neck: neck_loop,
+                        pad: pad_loop,
+                    },
+                    pad,
+                    axial: None,
+                    reused: false,
+                })
+            }),
         };
         match result {
             Ok(cut) => return Ok(cut),
-            Err(e) => {
-                last = format!(
-                    "the opening does not lie within host patch {:?}: {e}",
-                    patch.name
-                )
-            }
+            Err(e) => last = Some(e),
         }
     }
     match cut_across_seams(&neck_placed, pad.is_some(), host_patches, tolerance)? {
@@ -330,7 +347,12 @@ fn cut_with(plan: &OpeningPlan, kept: Option<&Arc<AxialCut>>) -> Result<Reusable
             axial: None,
             reused: false,
         }),
-        None => Err(last),
+        // One patch: its own reason; several: none holds the opening.
+        None => Err(match last {
+            None => CutError::NoHostPatch,
+            Some(e) if host_patches.len() == 1 => e,
+            Some(e) => CutError::NotWithinPatch { cause: Box::new(e) },
+        }),
     }
 }
 
@@ -339,12 +361,12 @@ fn cut_with(plan: &OpeningPlan, kept: Option<&Arc<AxialCut>>) -> Result<Reusable
 fn loops(
     neck: &NurbsSurface,
     pad: Option<&NurbsSurface>,
-    host: &NurbsSurface,
+    host: (&'static str, &NurbsSurface),
     tolerance: f64,
-) -> Result<(IntersectionLoop, Option<IntersectionLoop>), String> {
+) -> Result<(IntersectionLoop, Option<IntersectionLoop>), CutError> {
     let (neck_loop, pad_loop) = rayon::join(
-        || loop_on(neck, host, tolerance),
-        || pad.map(|p| loop_on(p, host, tolerance).map_err(|e| format!("pad: {e}"))),
+        || loop_on((CutLoop::Neck, neck), host, tolerance),
+        || pad.map(|p| loop_on((CutLoop::Pad, p), host, tolerance)),
     );
     Ok((neck_loop?, pad_loop.transpose()?))
 }
@@ -403,7 +425,7 @@ fn cut_across_seams(
     has_pad: bool,
     host_patches: &[&Patch],
     tolerance: f64,
-) -> Result<Option<Cut>, String> {
+) -> Result<Option<Cut>, CutError> {
     let count = host_patches.len();
     for len in 2..=count {
         for first in 0..=count - len {
@@ -415,19 +437,12 @@ fn cut_across_seams(
             let Ok(mut curve) = neck_host_intersection(neck, &joined, tolerance) else {
                 continue;
             };
-            let names: Vec<&str> = run.iter().map(|p| p.name).collect();
-            let across = format!("the opening crosses the seam between host patches {names:?}");
+            let names: Vec<&'static str> = run.iter().map(|p| p.name).collect();
             if curve.host_turns(&joined) != 0 {
-                return Err(format!(
-                    "{across} and goes round the head's pole; such an opening is not \
-                     supported: move the nozzle off the centre or inside one patch"
-                ));
+                return Err(CutError::AcrossSeamRoundPole { patches: names });
             }
             if has_pad {
-                return Err(format!(
-                    "{across}; a reinforcing pad there would lie on two surfaces and is \
-                     not supported: remove the pad or move the nozzle inside one patch"
-                ));
+                return Err(CutError::PadAcrossSeam { patches: names });
             }
             let placed: Vec<Placed> = run
                 .iter()
@@ -438,10 +453,8 @@ fn cut_across_seams(
                 })
                 .collect();
             let seams: Vec<f64> = placed[..len - 1].iter().map(|p| p.v.1 + p.shift).collect();
-            insert_seam_samples(neck, &joined, &mut curve, &seams)
-                .map_err(|e| format!("{across}: {e}"))?;
-            let notches =
-                split_at_seams(&curve, &placed, &names).map_err(|e| format!("{across}: {e}"))?;
+            insert_seam_samples(neck, &joined, &mut curve, &seams, &names)?;
+            let notches = split_at_seams(&curve, &placed, &names)?;
             let hosts = notches
                 .into_iter()
                 .enumerate()
@@ -458,12 +471,13 @@ fn cut_across_seams(
     Ok(None)
 }
 
-/// Inserts a sample of the loop exactly at the host's seam angle u0 (mod period).
+/// Inserts a sample of the loop exactly at the host's seam angle u0 (mod period);
+/// fails with the seam angle and the kernel's reason, if a solve failed.
 fn add_seam_sample(
     neck: &NurbsSurface,
     host: &NurbsSurface,
     curve: &mut IntersectionLoop,
-) -> Result<(), String> {
+) -> Result<(), (f64, Option<NurbsError>)> {
     let ((u0, u1), _) = host.domain();
     let (nu0, nu1) = neck.domain().0;
     let (period, neck_period) = (u1 - u0, nu1 - nu0);
@@ -509,8 +523,7 @@ fn add_seam_sample(
         let mut hit = None;
         for _ in 0..SEAM_STEPS {
             let mid = 0.5 * (x0 + x1);
-            let h =
-                intersect_generator(neck, host, mid).map_err(|e| format!("seam sample: {e}"))?;
+            let h = intersect_generator(neck, host, mid).map_err(|e| (target, Some(e)))?;
             let expected = a + (b - a) * (mid - na) / (nb - na);
             let hu = h.host_uv.x + period * ((expected - h.host_uv.x) / period).round();
             if (hu < target) == (a < target) {
@@ -524,14 +537,14 @@ fn add_seam_sample(
             }
         }
         let Some((nu, h)) = hit else {
-            return Err("seam sample not found".into());
+            return Err((target, None));
         };
         curve.points.insert(at, h.point);
         curve.neck_uv.insert(at, DVec2::new(nu, h.neck_v));
         curve.host_uv.insert(at, DVec2::new(target, h.host_uv.y));
         return Ok(());
     }
-    Err("the loop round the pole does not cross the host's seam".into())
+    Err((u0, None))
 }
 
 /// The reinforcing pad's patch off a straight course: the host patch's surface
@@ -542,12 +555,12 @@ fn pad_patch(
     host: &Patch,
     nozzle_frame: &DAffine3,
     host_frame: &DAffine3,
-) -> Result<Patch, String> {
+) -> Result<Patch, CutError> {
     let relative = nozzle_frame.inverse() * *host_frame;
     let surface = host
         .surface
         .transformed(&relative)
-        .map_err(|e| format!("pad: {e}"))?;
+        .map_err(CutError::Placement)?;
     Ok(Patch::new(
         PAD_PATCH,
         surface,

@@ -15,6 +15,7 @@ use std::sync::Arc;
 
 use glam::DVec2;
 
+use super::error::CutError;
 use crate::mesh::surface::closed_in_u;
 use crate::nurbs::intersect::{
     HostIsoline, IntersectionLoop, LoopSample, intersect_generator, loop_crossing,
@@ -67,13 +68,15 @@ impl Placed {
 
 /// Inserts a sample of `curve` exactly at each seam's v (the v where one placed
 /// patch ends and the next begins) between every two samples on either side of it.
-/// `curve` was computed between `neck` and the joined `host`.
+/// `curve` was computed between `neck` and the joined `host`; `names` name the
+/// joined patches in errors.
 pub(super) fn insert_seam_samples(
     neck: &NurbsSurface,
     host: &NurbsSurface,
     curve: &mut IntersectionLoop,
     seams: &[f64],
-) -> Result<(), String> {
+    names: &[&'static str],
+) -> Result<(), CutError> {
     let ((hu0, hu1), (hv0, hv1)) = host.domain();
     let (period, closed) = (hu1 - hu0, closed_in_u(host));
     let neck_period = neck.domain().0.1 - neck.domain().0.0;
@@ -127,8 +130,11 @@ pub(super) fn insert_seam_samples(
         let mut hit = None;
         for _ in 0..SEAM_STEPS {
             let mid = 0.5 * (x0 + x1);
-            let h = intersect_generator(neck, host, mid)
-                .map_err(|e| format!("seam crossing at v = {c}: {e}"))?;
+            let h = intersect_generator(neck, host, mid).map_err(|e| CutError::SeamCrossing {
+                patches: names.to_vec(),
+                v: c,
+                source: Some(e),
+            })?;
             if (h.host_uv.y < c) == (a.y < c) {
                 x0 = mid;
             } else {
@@ -141,7 +147,11 @@ pub(super) fn insert_seam_samples(
             }
         }
         let Some((nu, h)) = hit else {
-            return Err(format!("no seam crossing found at v = {c}"));
+            return Err(CutError::SeamCrossing {
+                patches: names.to_vec(),
+                v: c,
+                source: None,
+            });
         };
         let mut hu = h.host_uv.x;
         if closed {
@@ -162,8 +172,8 @@ pub(super) fn insert_seam_samples(
 pub(super) fn split_at_seams(
     curve: &IntersectionLoop,
     placed: &[Placed],
-    names: &[&str],
-) -> Result<Vec<Vec<Notch>>, String> {
+    names: &[&'static str],
+) -> Result<Vec<Vec<Notch>>, CutError> {
     // Seam k lies between patch k and patch k + 1.
     let seams: Vec<f64> = placed[..placed.len() - 1]
         .iter()
@@ -174,7 +184,9 @@ pub(super) fn split_at_seams(
     let seam_of = |i: usize| seams.iter().position(|&c| uv[i].y == c);
     let on_seams: Vec<usize> = (0..n).filter(|&i| seam_of(i).is_some()).collect();
     if on_seams.len() < 2 {
-        return Err("the opening does not cross the seam between its host patches".into());
+        return Err(CutError::NotAcrossSeam {
+            patches: names.to_vec(),
+        });
     }
     let patch_at = |v: f64| {
         placed.iter().position(|p| {
@@ -198,20 +210,17 @@ pub(super) fn split_at_seams(
             None => None,
         };
         let Some(patch) = patch else {
-            return Err(format!(
-                "the opening touches the seam between {:?} and {:?} without crossing it",
-                names[sa],
-                names[sa + 1]
-            ));
+            return Err(CutError::TouchesSeam {
+                below: names[sa],
+                above: names[sa + 1],
+            });
         };
         if sa != sb {
-            return Err(format!(
-                "the opening crosses the whole {:?} patch, from the seam with {:?} to the \
-                 seam with {:?}; an opening may cross one seam only",
-                names[patch],
-                names[sa.min(sb)],
-                names[sa.max(sb) + 1]
-            ));
+            return Err(CutError::CrossesWholePatch {
+                patch: names[patch],
+                below: names[sa.min(sb)],
+                above: names[sa.max(sb) + 1],
+            });
         }
         // Seam `sa` is this patch's v-end side if the patch lies below it.
         let (side, edge) = if sa == patch {
