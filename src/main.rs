@@ -48,6 +48,9 @@ enum Command {
     /// Write the exact model as STEP (AP214): sewn B-spline faces, shells,
     /// nozzle connection points.
     Export(cli::export::ExportArgs),
+    /// The design store: import, list, log, show, diff, tag, checkout, export,
+    /// search (SQLite file or PostgreSQL URL).
+    Store(cli::store::StoreArgs),
 }
 
 fn main() -> ExitCode {
@@ -68,5 +71,6 @@ fn main() -> ExitCode {
         Command::Simulate(args) => cli::simulate::run(args),
         Command::Bench(args) => cli::bench::run(args),
         Command::Export(args) => cli::export::run(args),
+        Command::Store(args) => cli::store::run(args),
     }
 }
