@@ -248,7 +248,8 @@ fn import(
 fn list(store: &mut Store, as_json: bool) -> Result<ExitCode, StoreError> {
     let designs = store.designs()?;
     if as_json {
-        outln!("{}", json!({ "designs": designs }));
+        let stats = store.stats()?;
+        outln!("{}", json!({ "designs": designs, "stats": stats }));
         return Ok(ExitCode::SUCCESS);
     }
     for d in designs {

@@ -27,6 +27,6 @@ pub use diff::{Changed, diff};
 pub use error::StoreError;
 pub use features::Features;
 pub use history::{CHANNEL, CHECKPOINT, Change, Revision};
-pub use open::{DesignEntry, Store, is_postgres_url};
+pub use open::{DesignEntry, Stats, Store, is_postgres_url};
 pub use schema::SCHEMA_VERSION;
 pub use search::Hit;

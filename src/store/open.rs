@@ -39,6 +39,19 @@ pub struct DesignEntry {
     pub vessels: i64,
 }
 
+/// How much a store holds.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, serde::Serialize)]
+pub struct Stats {
+    /// Designs.
+    pub designs: i64,
+    /// Revisions of all designs.
+    pub revisions: i64,
+    /// Distinct design snapshots kept (content-addressed, so shared).
+    pub snapshots: i64,
+    /// Vessels in the search index (each design's newest revision).
+    pub vessels: i64,
+}
+
 impl Store {
     /// Opens the store at `location` (a SQLite path or a PostgreSQL URL).
     ///
@@ -97,6 +110,26 @@ impl Store {
                 vessels: row[5].int().unwrap_or(0),
             })
             .collect())
+    }
+
+    /// How many designs, revisions, snapshots and indexed vessels it holds.
+    ///
+    /// # Errors
+    ///
+    /// [`StoreError::Database`].
+    pub fn stats(&mut self) -> Result<Stats, StoreError> {
+        let rows = self.db.query(
+            "SELECT (SELECT count(*) FROM designs), (SELECT count(*) FROM revisions),
+                    (SELECT count(*) FROM snapshots), (SELECT count(*) FROM vessels)",
+            &[],
+        )?;
+        let count = |k: usize| rows.first().and_then(|r| r[k].int()).unwrap_or(0);
+        Ok(Stats {
+            designs: count(0),
+            revisions: count(1),
+            snapshots: count(2),
+            vessels: count(3),
+        })
     }
 
     /// The names of every stored design.
