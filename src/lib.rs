@@ -72,6 +72,7 @@ pub mod plant;
 pub mod project;
 pub mod report;
 pub mod server;
+pub mod store;
 #[path = "../systems/mod.rs"]
 pub mod systems;
 pub mod weights;

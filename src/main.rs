@@ -51,6 +51,9 @@ enum Command {
     /// Write one vessel's shell finite-element model (CalculiX .inp, Gmsh .msh,
     /// VTU) and optionally solve it with ccx.
     Fem(cli::fem::FemArgs),
+    /// The design store: import, list, log, show, diff, tag, checkout, export,
+    /// search (SQLite file or PostgreSQL URL).
+    Store(cli::store::StoreArgs),
 }
 
 fn main() -> ExitCode {
@@ -72,5 +75,6 @@ fn main() -> ExitCode {
         Command::Bench(args) => cli::bench::run(args),
         Command::Export(args) => cli::export::run(args),
         Command::Fem(args) => cli::fem::run(args),
+        Command::Store(args) => cli::store::run(args),
     }
 }

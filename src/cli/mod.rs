@@ -1,6 +1,7 @@
 //! The `vesselcad` command line, one file per command, each a thin layer over
 //! the library that parses arguments, prints and picks the exit status: `build`,
-//! `check`, `serve`, `drawing`, `info`, `plant`, `simulate`, `bench`, `export`, `fem`.
+//! `check`, `serve`, `drawing`, `info`, `plant`, `simulate`, `bench`, `export`, `fem`,
+//! `store`.
 //! [`output`] is their standard output (quiet on a closed pipe), [`progress`]
 //! the progress bar and [`alloc`] the heap measurement of `info --memory` and
 //! `bench`.
@@ -19,6 +20,7 @@ pub mod plant;
 pub mod progress;
 pub mod serve;
 pub mod simulate;
+pub mod store;
 
 use std::process::ExitCode;
 

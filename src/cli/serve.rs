@@ -50,6 +50,12 @@ pub struct ServeArgs {
     /// stay in the journal and are replayed on the next start.
     #[arg(long)]
     pub save_on_exit: bool,
+    /// Commit every edit as a revision in this design store (a SQLite file or
+    /// a `postgres://` URL shared by several servers) instead of the journal;
+    /// adds undo, redo and history. The design is the file's name without
+    /// `.json`; an old journal is migrated on first start.
+    #[arg(long)]
+    pub store: Option<String>,
 }
 
 /// A positive, finite number of seconds (at most a day).
@@ -83,6 +89,7 @@ pub fn run(args: ServeArgs) -> ExitCode {
         save_on_exit: args.save_on_exit,
         max_connections: usize::from(args.max_connections),
         idle_timeout: Duration::from_secs_f64(args.idle_timeout),
+        store: args.store,
     };
     match server::run(options) {
         Ok(()) => ExitCode::SUCCESS,

@@ -123,6 +123,21 @@ pub enum ApiError {
     /// still holds every edit. 500.
     #[error("design not saved (the file is as it was, the journal keeps every edit): {0}")]
     SaveFailed(String),
+    /// Another server committed to the shared store first; nothing changed
+    /// here. 409, with the current revision.
+    #[error("edit refused: {message}")]
+    Conflict {
+        /// The design's newest revision.
+        current: u64,
+        /// What happened.
+        message: String,
+    },
+    /// `POST /undo` or `/redo` with nothing to undo or redo. 409.
+    #[error("nothing to {0}")]
+    NothingTo(&'static str),
+    /// History asked of a session without a store (`serve --store`). 404.
+    #[error("this session keeps no history: start `vesselcad serve` with --store")]
+    NoHistory,
 }
 
 impl ApiError {
@@ -134,7 +149,10 @@ impl ApiError {
             ApiError::Unappliable(_) | ApiError::Invalid(_) | ApiError::Refused(_) => {
                 StatusCode::UNPROCESSABLE_ENTITY
             }
-            ApiError::TestFailed(_) => StatusCode::CONFLICT,
+            ApiError::TestFailed(_) | ApiError::Conflict { .. } | ApiError::NothingTo(_) => {
+                StatusCode::CONFLICT
+            }
+            ApiError::NoHistory => StatusCode::NOT_FOUND,
             ApiError::Unauthorized => StatusCode::UNAUTHORIZED,
             ApiError::Forbidden(_) => StatusCode::FORBIDDEN,
             ApiError::UnsupportedType(_) => StatusCode::UNSUPPORTED_MEDIA_TYPE,
@@ -163,6 +181,9 @@ impl ApiError {
             ApiError::Drawing(_) => "drawing",
             ApiError::Storage(_) => "storage",
             ApiError::SaveFailed(_) => "save_failed",
+            ApiError::Conflict { .. } => "conflict",
+            ApiError::NothingTo(_) => "nothing_to_do",
+            ApiError::NoHistory => "no_history",
         }
     }
 
@@ -204,6 +225,9 @@ impl IntoResponse for ApiError {
         }
         if let ApiError::UnknownVessel { known, .. } = &self {
             body["vessels"] = json!(known.iter().take(LISTED_TAGS).collect::<Vec<_>>());
+        }
+        if let ApiError::Conflict { current, .. } = &self {
+            body["revision"] = json!(current);
         }
         if let ApiError::TooLarge { limit } = self {
             body["limit"] = json!(limit);

@@ -18,12 +18,16 @@
 pub mod assets;
 pub mod broadcast;
 pub mod error;
+pub mod follow;
 pub mod guard;
 pub mod journal;
 pub mod limits;
+pub mod persist;
 pub mod routes;
 pub mod session;
 pub mod state;
+pub mod store_link;
+pub mod undo;
 
 use std::net::{IpAddr, Ipv4Addr, SocketAddr};
 use std::path::PathBuf;
@@ -67,6 +71,9 @@ pub struct ServeOptions {
     /// default: the file is written only by `POST /save`; unsaved edits stay in
     /// the journal and are replayed on the next start.
     pub save_on_exit: bool,
+    /// The design store edits are committed to (a SQLite path or a PostgreSQL
+    /// URL); without one, the journal beside the design.
+    pub store: Option<String>,
 }
 
 impl ServeOptions {
@@ -82,6 +89,7 @@ impl ServeOptions {
             save_on_exit: false,
             max_connections: limits::MAX_CONNECTIONS,
             idle_timeout: limits::IDLE_TIMEOUT,
+            store: None,
         }
     }
 }
@@ -105,12 +113,15 @@ pub struct Server {
 pub async fn start(options: ServeOptions) -> Result<Server, ServeError> {
     let design = options.design.clone();
     let tessellation = options.tessellation;
-    let session = tokio::task::spawn_blocking(move || Session::open(&design, tessellation))
-        .await
-        .map_err(|e| ServeError::Journal {
-            path: options.design.display().to_string(),
-            message: format!("opening the session panicked: {e}"),
-        })??;
+    let store = options.store.clone();
+    let session = tokio::task::spawn_blocking(move || {
+        Session::open_with(&design, tessellation, store.as_deref())
+    })
+    .await
+    .map_err(|e| ServeError::Journal {
+        path: options.design.display().to_string(),
+        message: format!("opening the session panicked: {e}"),
+    })??;
     let session = Arc::new(Mutex::new(session));
     let address = SocketAddr::new(options.bind, options.port);
     let listener = tokio::net::TcpListener::bind(address)
@@ -133,6 +144,20 @@ pub async fn start(options: ServeOptions) -> Result<Server, ServeError> {
         viewer_timeout: options.viewer_timeout,
         viewer_ping: limits::ping_interval(options.idle_timeout),
     };
+    if let Some(url) = options
+        .store
+        .as_deref()
+        .filter(|s| crate::store::is_postgres_url(s))
+    {
+        // Detached: it looks at the shutdown signal every quarter second.
+        drop(follow::follow(
+            url.to_string(),
+            store_link::design_name(&options.design),
+            session.clone(),
+            state.hub.clone(),
+            watching.clone(),
+        ));
+    }
     let app = router(state);
     let listener =
         limits::LimitedListener::new(listener, options.max_connections, options.idle_timeout);

@@ -8,6 +8,10 @@
 //! POST /edit                  a JSON Patch (RFC 6902) → {"revision", "changed", ...}
 //! POST /save                  write the design file (again, if it was deleted),
 //!                              start a fresh journal
+//! POST /undo, POST /redo      a new revision that undoes / redoes this server's
+//!                              last edit (409 when there is none)
+//! GET  /revisions             the store's revisions (`serve --store`)
+//! GET  /design.json?rev=N     the design at revision N (`serve --store`)
 //! GET  /drawing.svg?vessel=T  the vessel's drawing sheet
 //! GET  /ws                    the viewer stream (see `broadcast`)
 //! ```
@@ -50,6 +54,9 @@ pub fn router(state: AppState) -> Router {
         .route("/design.json", get(design_json))
         .route("/edit", post(edit))
         .route("/save", post(save))
+        .route("/undo", post(undo))
+        .route("/redo", post(redo))
+        .route("/revisions", get(revisions))
         .route("/drawing.svg", get(drawing_svg))
         .route("/ws", get(viewer_socket))
         .fallback(not_found)
@@ -99,11 +106,28 @@ async fn model_glb(State(state): State<AppState>) -> Response {
         .into_response()
 }
 
-async fn design_json(State(state): State<AppState>) -> Response {
+/// The `rev` query parameter.
+#[derive(Deserialize)]
+struct RevisionQuery {
+    rev: Option<u64>,
+}
+
+async fn design_json(
+    State(state): State<AppState>,
+    query: Result<Query<RevisionQuery>, axum::extract::rejection::QueryRejection>,
+) -> Result<Response, ApiError> {
+    let Ok(Query(RevisionQuery { rev })) = query else {
+        return Err(ApiError::BadQuery(
+            "expected /design.json or /design.json?rev=<revision number>".into(),
+        ));
+    };
     let (revision, text) = state
-        .with_session(|s, _| (s.revision(), s.design_text()))
-        .await;
-    (
+        .with_session(move |s, _| {
+            let revision = rev.unwrap_or(s.revision());
+            s.design_text_at(revision).map(|t| (revision, t))
+        })
+        .await?;
+    Ok((
         [
             (
                 header::CONTENT_TYPE,
@@ -113,7 +137,7 @@ async fn design_json(State(state): State<AppState>) -> Response {
         ],
         text,
     )
-        .into_response()
+        .into_response())
 }
 
 /// The body, or the error for one over the limit.
@@ -134,12 +158,51 @@ async fn edit(
     let body = body_or_error(body)?;
     let answer = state
         .with_session(move |session, hub| {
-            let accepted = session.apply_patch(&body)?;
+            let accepted = match session.apply_patch(&body) {
+                Ok(a) => a,
+                Err(e @ ApiError::Conflict { .. }) => {
+                    // Another server was first: take its revision, then refuse.
+                    if let Ok(Some(caught)) = session.catch_up() {
+                        hub.publish(Update::of(&caught));
+                    }
+                    return Err(e);
+                }
+                Err(e) => return Err(e),
+            };
             hub.publish(Update::of(&accepted));
             Ok::<_, ApiError>(accepted.to_json("accepted"))
         })
         .await?;
     Ok(axum::Json(answer).into_response())
+}
+
+/// `POST /undo` and `POST /redo`: a new revision, streamed like an edit.
+async fn undo(State(state): State<AppState>) -> Result<Response, ApiError> {
+    let answer = state
+        .with_session(|session, hub| {
+            let accepted = session.undo()?;
+            hub.publish(Update::of(&accepted));
+            Ok::<_, ApiError>(accepted.to_json("undone"))
+        })
+        .await?;
+    Ok(axum::Json(answer).into_response())
+}
+
+async fn redo(State(state): State<AppState>) -> Result<Response, ApiError> {
+    let answer = state
+        .with_session(|session, hub| {
+            let accepted = session.redo()?;
+            hub.publish(Update::of(&accepted));
+            Ok::<_, ApiError>(accepted.to_json("redone"))
+        })
+        .await?;
+    Ok(axum::Json(answer).into_response())
+}
+
+/// `GET /revisions`: the store's revisions, oldest first (404 without a store).
+async fn revisions(State(state): State<AppState>) -> Result<Response, ApiError> {
+    let list = state.with_session(|s, _| s.revisions()).await?;
+    Ok(axum::Json(json!({ "revisions": list })).into_response())
 }
 
 async fn save(State(state): State<AppState>) -> Result<Response, ApiError> {

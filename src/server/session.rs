@@ -21,7 +21,9 @@ use std::path::{Path, PathBuf};
 use serde_json::{Value, json};
 
 use super::error::{ApiError, ServeError};
-use super::journal::{Journal, fingerprint, write_atomically};
+use super::journal::{Journal, fingerprint, journal_path, write_atomically};
+use super::persist::{PersistError, Persistence, Record};
+use super::store_link::StoreLink;
 use crate::design::units::to_inches;
 use crate::design::{self, Design, DesignError, Units, to_canonical_json};
 use crate::export::{Scene, node_id, scene_ids, write_delta_glb, write_glb};
@@ -71,15 +73,20 @@ pub struct Snapshot {
 /// One design file being edited live.
 pub struct Session {
     path: PathBuf,
-    model: Model,
+    pub(super) model: Model,
     /// The current design as canonical JSON: the document patches apply to.
-    design: Value,
-    revision: u64,
+    pub(super) design: Value,
+    pub(super) revision: u64,
     /// The revision the design file on disk holds.
     saved_revision: u64,
     /// The file's length unit: a save writes the design back in it.
     units: Units,
-    journal: Journal,
+    /// Where accepted edits are made durable: the journal, or a store.
+    pub(super) persistence: Box<dyn Persistence>,
+    /// Designs an undo goes back to, newest last (at most [`UNDO_DEPTH`]).
+    pub(super) undo: Vec<Design>,
+    /// Designs a redo goes forward to, newest last.
+    pub(super) redo: Vec<Design>,
     /// The full GLB of the current revision, built on first request.
     full: Option<Snapshot>,
     /// Each node's `extras` (kind, parameters, resolved figures) as last sent, by
@@ -87,6 +94,9 @@ pub struct Session {
     /// (a nozzle's service, a vessel's overall length) is sent again too.
     extras: BTreeMap<String, Value>,
 }
+
+/// How many edits back `POST /undo` reaches.
+pub const UNDO_DEPTH: usize = 32;
 
 impl Session {
     /// Opens the design file at `path`, builds its model and replays its journal.
@@ -96,6 +106,21 @@ impl Session {
     /// [`ServeError::Design`] for a design that cannot be loaded or built,
     /// [`ServeError::Journal`] for a journal that cannot be read or replayed.
     pub fn open(path: &Path, options: TessellationOptions) -> Result<Session, ServeError> {
+        Session::open_with(path, options, None)
+    }
+
+    /// Opens the design file at `path` with its edits in the store at `store`
+    /// (see [`StoreLink`]), or in its journal without one.
+    ///
+    /// # Errors
+    ///
+    /// As [`Session::open`]; [`ServeError::Journal`] naming the store when it
+    /// cannot be opened or reached.
+    pub fn open_with(
+        path: &Path,
+        options: TessellationOptions,
+        store: Option<&str>,
+    ) -> Result<Session, ServeError> {
         let design_error = |source: ModelError| ServeError::Design {
             path: path.display().to_string(),
             source,
@@ -106,6 +131,24 @@ impl Session {
             .map_err(|e| design_error(e.into()))?
             .units;
         let parsed = design::parse(text).map_err(|e| design_error(e.into()))?;
+        let old_journal = journal_path(path);
+        let migrating = store.is_some() && old_journal.exists();
+        if store.is_some() && !migrating {
+            let file = parsed;
+            let (link, revision, design) =
+                StoreLink::open(store.unwrap_or_default(), path, &file, units, None)?;
+            return Session::assemble(
+                path,
+                options,
+                Box::new(link),
+                design,
+                revision,
+                revision,
+                units,
+            )
+            .map_err(design_error);
+        }
+        let file = parsed.clone();
         let (journal, replay) = Journal::open(path, &bytes)?;
         let journal_path = journal.path().display().to_string();
         for dropped in &replay.dropped {
@@ -138,6 +181,26 @@ impl Session {
                 message: format!("the replayed design is not a design: {e}"),
             })?;
         }
+        if let (Some(location), true) = (store, migrating) {
+            let replayed = (!replay.edits.is_empty()).then_some(&design);
+            let (link, revision, design) = StoreLink::open(location, path, &file, units, replayed)?;
+            let mut migrated = old_journal.clone().into_os_string();
+            migrated.push(".migrated");
+            std::fs::rename(&old_journal, &migrated).map_err(|e| ServeError::Journal {
+                path: journal_path.clone(),
+                message: format!("migrated into the store, but cannot be renamed: {e}"),
+            })?;
+            return Session::assemble(
+                path,
+                options,
+                Box::new(link),
+                design,
+                revision,
+                revision,
+                units,
+            )
+            .map_err(design_error);
+        }
         let model = Model::from_design(&design, options).map_err(|e| match e {
             e if replay.edits.is_empty() => design_error(e),
             e => ServeError::Journal {
@@ -153,7 +216,37 @@ impl Session {
             revision,
             saved_revision: replay.base_revision,
             units,
-            journal,
+            persistence: Box::new(journal),
+            undo: Vec::new(),
+            redo: Vec::new(),
+            full: None,
+        };
+        session.model.take_changes();
+        Ok(session)
+    }
+
+    /// A session on `design` at `revision` whose edits go to `persistence`.
+    fn assemble(
+        path: &Path,
+        options: TessellationOptions,
+        persistence: Box<dyn Persistence>,
+        design: Design,
+        revision: u64,
+        saved_revision: u64,
+        units: Units,
+    ) -> Result<Session, ModelError> {
+        let model = Model::from_design(&design, options)?;
+        let mut session = Session {
+            path: path.to_path_buf(),
+            design: design_value(&model.design()),
+            extras: node_extras(&model.scene()),
+            model,
+            revision,
+            saved_revision,
+            units,
+            persistence,
+            undo: Vec::new(),
+            redo: Vec::new(),
             full: None,
         };
         session.model.take_changes();
@@ -171,23 +264,59 @@ impl Session {
     /// is not a valid design, [`ApiError::Storage`] if the journal cannot be
     /// written. In every case the session is unchanged.
     pub fn apply_patch(&mut self, body: &[u8]) -> Result<Accepted, ApiError> {
+        self.apply_as(body, "edit")
+    }
+
+    /// [`Session::apply_patch`] with the message the revision is recorded with.
+    pub(super) fn apply_as(&mut self, body: &[u8], message: &str) -> Result<Accepted, ApiError> {
         let value: Value = serde_json::from_slice(body)
             .map_err(|e| ApiError::Malformed(format!("the body is not JSON: {e}")))?;
         let mut normalized = value.clone();
         canonical_numbers(&mut normalized);
         let patch = parse_patch(normalized)?;
         let previous = self.design.clone();
+        let before = self.model.design();
         let (next, work) = self.stage(&patch)?;
-        if let Err(e) = self.journal.append(self.revision + 1, &value) {
+        let after = self.model.design();
+        let record = Record {
+            revision: self.revision + 1,
+            patch: &value,
+            before: &before,
+            after: &after,
+            message,
+        };
+        if let Err(e) = self.persistence.record(&record) {
             // Not durable: put the model back as it was before answering.
             self.restore(&previous);
-            return Err(ApiError::Storage(format!(
-                "cannot write the journal {}: {e}",
-                self.journal.path().display()
-            )));
+            return Err(match e {
+                PersistError::Conflict { current } => ApiError::Conflict {
+                    current,
+                    message: format!(
+                        "{} was changed by another server first (it is at revision \
+                         {current}); reload and edit again",
+                        self.persistence.describe()
+                    ),
+                },
+                PersistError::Failed(message) => ApiError::Storage(message),
+            });
+        }
+        if message == "edit" {
+            self.redo.clear();
+        }
+        if message != "undo" {
+            self.undo.push(before);
+            if self.undo.len() > UNDO_DEPTH {
+                self.undo.remove(0);
+            }
         }
         self.design = next;
         self.revision += 1;
+        Ok(self.accepted(work))
+    }
+
+    /// The answer for the model's change since the last one, at the current
+    /// revision.
+    pub(super) fn accepted(&mut self, work: WorkCounters) -> Accepted {
         self.full = None;
         let mut log = self.model.take_changes();
         let scene = self.model.scene();
@@ -199,13 +328,13 @@ impl Session {
         }
         self.extras = extras;
         let delta_glb = delta_or_empty(&scene, &log.changed);
-        Ok(Accepted {
+        Accepted {
             revision: self.revision,
             changed: log.changed.into_iter().collect(),
             removed: log.removed.into_iter().collect(),
             work,
             delta_glb: Bytes::from(delta_glb),
-        })
+        }
     }
 
     /// Applies a parsed patch to the model (not yet journaled): returns the new
@@ -299,13 +428,14 @@ impl Session {
             }
             Err(e) => return Err(failed(&target, &e)),
         };
-        self.journal
-            .mark_saved(&print, self.revision)
-            .map_err(|e| failed(self.journal.path(), &e))?;
+        let describe = self.persistence.describe();
+        self.persistence
+            .saving(&print, self.revision)
+            .map_err(|e| ApiError::SaveFailed(format!("cannot write {describe}: {e}")))?;
         write_atomically(&target, text.as_bytes()).map_err(|e| failed(&target, &e))?;
         self.saved_revision = self.revision;
-        self.journal
-            .reset(&print, self.revision)
+        self.persistence
+            .saved(&print, self.revision)
             .map_err(|e| failed(&self.path, &e))?;
         Ok(Saved {
             revision: self.revision,
@@ -466,7 +596,7 @@ fn node_extras(scene: &Scene) -> BTreeMap<String, Value> {
 }
 
 /// A design as the JSON value patches apply to (its canonical form).
-fn design_value(design: &Design) -> Value {
+pub(super) fn design_value(design: &Design) -> Value {
     serde_json::to_value(design).unwrap_or(Value::Null)
 }
 

@@ -12,6 +12,7 @@ pub mod full_build;
 pub mod heads;
 pub mod numbers;
 pub mod occt;
+pub mod stores;
 pub mod supports;
 pub mod triangle;
 

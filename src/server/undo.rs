@@ -1,0 +1,123 @@
+//! Undo, redo, history and catching up, on top of [`Session`]: an undo or a redo
+//! is a new revision whose design is an earlier one (history is never
+//! rewritten), made durable like any edit. The undo and redo stacks hold the
+//! designs of this server's last [`UNDO_DEPTH`] edits (in memory: a restart
+//! starts them empty; the store's history stays, and `store checkout` reaches
+//! any revision). Catching up adopts the newest revision another server
+//! committed to the same store.
+
+use serde_json::Value;
+
+use super::error::ApiError;
+use super::session::{Accepted, Session, UNDO_DEPTH, design_value};
+use crate::design::{Design, to_canonical_json};
+use crate::model::Edit;
+use crate::store::Revision;
+
+impl Session {
+    /// Goes back to the design before this server's last edit not yet undone,
+    /// as a new revision.
+    ///
+    /// # Errors
+    ///
+    /// [`ApiError::NothingTo`] with nothing to undo, and as
+    /// [`Session::apply_patch`].
+    pub fn undo(&mut self) -> Result<Accepted, ApiError> {
+        let Some(target) = self.undo.last().cloned() else {
+            return Err(ApiError::NothingTo("undo"));
+        };
+        let current = self.model.design();
+        let accepted = self.go_to(&target, "undo")?;
+        self.undo.pop();
+        self.redo.push(current);
+        if self.redo.len() > UNDO_DEPTH {
+            self.redo.remove(0);
+        }
+        Ok(accepted)
+    }
+
+    /// Redoes the last undo, as a new revision.
+    ///
+    /// # Errors
+    ///
+    /// [`ApiError::NothingTo`] with nothing to redo, and as
+    /// [`Session::apply_patch`].
+    pub fn redo(&mut self) -> Result<Accepted, ApiError> {
+        let Some(target) = self.redo.last().cloned() else {
+            return Err(ApiError::NothingTo("redo"));
+        };
+        let accepted = self.go_to(&target, "redo")?;
+        self.redo.pop();
+        Ok(accepted)
+    }
+
+    /// Makes `target` the design, through the edit path (a JSON Patch).
+    fn go_to(&mut self, target: &Design, message: &str) -> Result<Accepted, ApiError> {
+        let patch = json_patch::diff(&self.design, &design_value(target));
+        let body = serde_json::to_vec(&patch).map_err(|e| ApiError::Malformed(e.to_string()))?;
+        self.apply_as(&body, message)
+    }
+
+    /// The revisions kept, oldest first.
+    ///
+    /// # Errors
+    ///
+    /// [`ApiError::NoHistory`] without a store, [`ApiError::Storage`] when it
+    /// cannot be read.
+    pub fn revisions(&mut self) -> Result<Vec<Revision>, ApiError> {
+        match self.persistence.revisions() {
+            None => Err(ApiError::NoHistory),
+            Some(r) => r.map_err(ApiError::Storage),
+        }
+    }
+
+    /// The canonical JSON of the design at `revision`.
+    ///
+    /// # Errors
+    ///
+    /// [`ApiError::NoHistory`] without a store (for another revision than the
+    /// current), [`ApiError::BadQuery`] for a revision not kept.
+    pub fn design_text_at(&mut self, revision: u64) -> Result<String, ApiError> {
+        if revision == self.revision {
+            return Ok(self.design_text());
+        }
+        match self.persistence.design_at(revision) {
+            None => Err(ApiError::NoHistory),
+            Some(Ok(d)) => Ok(to_canonical_json(&d)),
+            Some(Err(e)) => Err(ApiError::BadQuery(e)),
+        }
+    }
+
+    /// Adopts the newest revision another server committed, if there is one:
+    /// the model takes its design (only what differs is rebuilt) and the
+    /// answer is what viewers are sent.
+    ///
+    /// # Errors
+    ///
+    /// [`ApiError::Storage`] when the store cannot be read,
+    /// [`ApiError::Refused`] if the model cannot build it.
+    pub fn catch_up(&mut self) -> Result<Option<Accepted>, ApiError> {
+        let Some((revision, design)) = self
+            .persistence
+            .newer_than(self.revision)
+            .map_err(ApiError::Storage)?
+        else {
+            return Ok(None);
+        };
+        let work = self
+            .model
+            .edit(Edit::ReplaceDesign(design))
+            .map_err(ApiError::Refused)?;
+        self.design = design_value(&self.model.design());
+        self.revision = revision;
+        // Another server's edits are not this server's to undo.
+        self.undo.clear();
+        self.redo.clear();
+        Ok(Some(self.accepted(work)))
+    }
+
+    /// The current design as the JSON value patches apply to.
+    pub fn design_value(&self) -> &Value {
+        &self.design
+    }
+}

@@ -1,0 +1,252 @@
+//! `vesselcad serve --store` on every backend (SQLite always, PostgreSQL when
+//! `$VESSELCAD_TEST_PG` is set): every acknowledged edit survives `kill -9`,
+//! undo and redo are new revisions, history is served, an old journal is
+//! migrated, two servers on one store refuse a stale edit with 409, and on
+//! PostgreSQL a viewer of one server sees the other server's edits.
+
+mod common;
+mod server_support;
+
+use common::stores::{postgres_store, postgres_url, test_stores};
+use futures_util::StreamExt;
+use serde_json::{Value, json};
+use server_support::{ServerProcess, TIMEOUT, design_copy};
+use tokio_tungstenite::tungstenite::Message;
+use vesselcad::design::load;
+
+fn projection(k: usize) -> Value {
+    json!([{ "op": "replace", "path": "/vessels/0/nozzles/0/projection", "value": 1500 + 10 * k }])
+}
+
+#[test]
+fn acknowledged_edits_survive_kill_9_and_history_is_served() {
+    for t in test_stores() {
+        let design = design_copy("horizontal-drum.json", "store-kill");
+        let original = std::fs::read(&*design).unwrap();
+        let args = ["--store", t.location.as_str()];
+        let mut server = ServerProcess::start(&design, &args);
+        for k in 1..=5 {
+            let r = server.edit(&projection(k));
+            assert_eq!(r.status, 200, "{}: {}", t.label, r.text());
+            assert_eq!(r.json()["revision"], k);
+        }
+        server.kill9();
+        assert_eq!(
+            std::fs::read(&*design).unwrap(),
+            original,
+            "the file was written"
+        );
+        assert!(!design.with_file_name("design.json.journal").exists());
+
+        let server = ServerProcess::start(&design, &args);
+        let r = server.request("GET", "/design.json", &[], b"");
+        assert_eq!(r.header("x-vesselcad-revision"), Some("5"), "{}", t.label);
+        assert_eq!(r.json()["vessels"][0]["nozzles"][0]["projection"], 1550.0);
+        let revisions = server.get_json("/revisions");
+        let list = revisions["revisions"].as_array().unwrap();
+        assert_eq!(list.len(), 6, "{}", t.label);
+        assert_eq!(list[3]["message"], "edit");
+        assert_eq!(
+            list[3]["patch"][0]["path"],
+            "/vessels/0/nozzles/0/projection"
+        );
+        let r = server.request("GET", "/design.json?rev=0", &[], b"");
+        assert_eq!(r.header("x-vesselcad-revision"), Some("0"));
+        let first = serde_json::to_value(load(&*design).unwrap()).unwrap();
+        assert_eq!(r.json(), first);
+        let r = server.request("GET", "/design.json?rev=9", &[], b"");
+        assert_eq!(r.status, 400, "{}", r.text());
+    }
+}
+
+#[test]
+fn undo_and_redo_are_new_revisions() {
+    for t in test_stores() {
+        let design = design_copy("horizontal-drum.json", "store-undo");
+        let server = ServerProcess::start(&design, &["--store", t.location.as_str()]);
+        let at = |s: &ServerProcess| {
+            s.get_json("/design.json")["vessels"][0]["nozzles"][0]["projection"].clone()
+        };
+        let before = at(&server);
+        assert_eq!(server.request("POST", "/undo", &[], b"").status, 409);
+        assert_eq!(server.edit(&projection(1)).status, 200);
+        assert_eq!(server.edit(&projection(2)).status, 200);
+        let r = server.request("POST", "/undo", &[], b"");
+        assert_eq!(r.status, 200, "{}", r.text());
+        assert_eq!(r.json()["revision"], 3);
+        assert_eq!(at(&server), 1510.0);
+        let r = server.request("POST", "/undo", &[], b"");
+        assert_eq!(r.json()["revision"], 4);
+        assert_eq!(at(&server), before);
+        let r = server.request("POST", "/redo", &[], b"");
+        assert_eq!(r.json()["revision"], 5, "{}", r.text());
+        assert_eq!(at(&server), 1510.0);
+        // A new edit ends the redo chain.
+        assert_eq!(server.edit(&projection(7)).status, 200);
+        assert_eq!(server.request("POST", "/redo", &[], b"").status, 409);
+        let log = server.get_json("/revisions");
+        let messages: Vec<&str> = log["revisions"]
+            .as_array()
+            .unwrap()
+            .iter()
+            .map(|r| r["message"].as_str().unwrap())
+            .collect();
+        assert_eq!(
+            &messages[1..],
+            ["edit", "edit", "undo", "undo", "redo", "edit"],
+            "{}",
+            t.label
+        );
+    }
+}
+
+#[test]
+fn without_a_store_there_is_no_history_but_undo_works() {
+    let design = design_copy("horizontal-drum.json", "store-none");
+    let server = ServerProcess::start(&design, &[]);
+    assert_eq!(server.request("GET", "/revisions", &[], b"").status, 404);
+    assert_eq!(server.edit(&projection(1)).status, 200);
+    let r = server.request("POST", "/undo", &[], b"");
+    assert_eq!(r.status, 200, "{}", r.text());
+    assert_eq!(r.json()["revision"], 2);
+}
+
+#[test]
+fn an_old_journal_is_migrated_on_first_start() {
+    for t in test_stores() {
+        let design = design_copy("horizontal-drum.json", "store-migrate");
+        let mut server = ServerProcess::start(&design, &[]);
+        assert_eq!(server.edit(&projection(1)).status, 200);
+        assert_eq!(server.edit(&projection(2)).status, 200);
+        server.kill9();
+        let journal = design.with_file_name("design.json.journal");
+        assert!(journal.exists());
+        let server = ServerProcess::start(&design, &["--store", t.location.as_str()]);
+        let r = server.request("GET", "/design.json", &[], b"");
+        assert_eq!(r.header("x-vesselcad-revision"), Some("1"), "{}", t.label);
+        assert_eq!(r.json()["vessels"][0]["nozzles"][0]["projection"], 1520.0);
+        assert!(!journal.exists());
+        assert!(
+            design
+                .with_file_name("design.json.journal.migrated")
+                .exists()
+        );
+        let log = server.get_json("/revisions");
+        assert_eq!(
+            log["revisions"][1]["message"],
+            "edits migrated from the journal"
+        );
+    }
+}
+
+#[test]
+fn a_stale_server_gets_409_with_the_current_revision_then_catches_up() {
+    // On SQLite nothing tells the second server, so its session is stale.
+    let t = &test_stores()[0];
+    let a = design_copy("horizontal-drum.json", "store-team-a");
+    let b = design_copy("horizontal-drum.json", "store-team-b");
+    let args = ["--store", t.location.as_str()];
+    let one = ServerProcess::start(&a, &args);
+    let two = ServerProcess::start(&b, &args);
+    assert_eq!(one.edit(&projection(1)).status, 200);
+    let r = two.edit(&projection(2));
+    assert_eq!(r.status, 409, "{}", r.text());
+    assert_eq!(r.json()["kind"], "conflict");
+    assert_eq!(r.json()["revision"], 1);
+    // The refused server took the winner's revision; an edit now goes on it.
+    assert_eq!(
+        two.get_json("/design.json")["vessels"][0]["nozzles"][0]["projection"],
+        1510.0
+    );
+    let r = two.edit(&projection(3));
+    assert_eq!(r.status, 200, "{}", r.text());
+    assert_eq!(r.json()["revision"], 2);
+}
+
+#[test]
+fn two_servers_on_postgres_stream_each_others_edits() {
+    let Some(url) = postgres_url() else {
+        eprintln!("VESSELCAD_TEST_PG is not set: skipped");
+        return;
+    };
+    let t = postgres_store(&url);
+    let a = design_copy("horizontal-drum.json", "store-pg-a");
+    let b = design_copy("horizontal-drum.json", "store-pg-b");
+    let args = ["--store", t.location.as_str()];
+    let one = ServerProcess::start(&a, &args);
+    let two = ServerProcess::start(&b, &args);
+    let runtime = tokio::runtime::Builder::new_current_thread()
+        .enable_all()
+        .build()
+        .unwrap();
+    runtime.block_on(async {
+        let url = format!("ws://{}/ws", two.address);
+        let mut viewer = tokio_tungstenite::connect_async(url).await.unwrap().0;
+        let hello = next_header(&mut viewer).await;
+        assert_eq!(hello["revision"], 0);
+        let address = one.address;
+        let r = tokio::task::spawn_blocking(move || {
+            server_support::request(
+                address,
+                "POST",
+                "/edit",
+                &[("content-type", "application/json")],
+                projection(4).to_string().as_bytes(),
+            )
+        })
+        .await
+        .unwrap();
+        assert_eq!(r.status, 200, "{}", r.text());
+        // The viewer of the other server gets the edit as a delta.
+        let delta = next_header(&mut viewer).await;
+        assert_eq!(delta["revision"], 1, "{delta}");
+        assert!(!delta["changed"].as_array().unwrap().is_empty(), "{delta}");
+    });
+    assert_eq!(
+        two.get_json("/design.json")["vessels"][0]["nozzles"][0]["projection"],
+        1540.0
+    );
+    let r = two.edit(&projection(5));
+    assert_eq!(r.status, 200, "{}", r.text());
+    assert_eq!(r.json()["revision"], 2);
+}
+
+#[test]
+fn an_unreachable_store_stops_the_server_with_a_clear_error() {
+    let design = design_copy("horizontal-drum.json", "store-down");
+    let out = std::process::Command::new(env!("CARGO_BIN_EXE_vesselcad"))
+        .args([
+            "serve",
+            "--port",
+            "0",
+            "--store",
+            "postgres://u:pw@127.0.0.1:1/db",
+        ])
+        .arg(&*design)
+        .output()
+        .unwrap();
+    assert!(!out.status.success());
+    let err = String::from_utf8_lossy(&out.stderr);
+    assert!(
+        err.contains("cannot connect") && err.contains("u:***@127.0.0.1:1"),
+        "{err}"
+    );
+    assert!(!err.contains("pw@"), "{err}");
+}
+
+/// The next text message (a hello or delta header) of a viewer socket.
+async fn next_header<S>(ws: &mut S) -> Value
+where
+    S: futures_util::Stream<Item = Result<Message, tokio_tungstenite::tungstenite::Error>> + Unpin,
+{
+    loop {
+        let message = tokio::time::timeout(TIMEOUT, ws.next())
+            .await
+            .expect("no message within the timeout")
+            .expect("socket closed")
+            .expect("socket error");
+        if let Message::Text(text) = message {
+            return serde_json::from_str(&text).unwrap();
+        }
+    }
+}
