@@ -23,13 +23,19 @@ fn main() {
             let n: usize = args[1].parse().expect("a vessel count");
             (generate_plant(n, 1).expect("a plant"), &args[2..])
         }
-        Some(path) => (load(std::path::Path::new(path)).expect("a design"), &args[1..]),
+        Some(path) => (
+            load(std::path::Path::new(path)).expect("a design"),
+            &args[1..],
+        ),
         None => {
             let path = concat!(
                 env!("CARGO_MANIFEST_DIR"),
                 "/examples/designs/horizontal-drum.json"
             );
-            (load(std::path::Path::new(path)).expect("the example"), &args[..])
+            (
+                load(std::path::Path::new(path)).expect("the example"),
+                &args[..],
+            )
         }
     };
     let tolerance: f64 = rest

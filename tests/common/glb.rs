@@ -50,8 +50,12 @@ impl Glb {
                 let count = ext["count"].as_u64().unwrap() as usize;
                 let data = &bin[at..at + len];
                 let decoded: Vec<u8> = match (ext["mode"].as_str().unwrap(), stride) {
-                    ("ATTRIBUTES", 4) => flat(meshopt::decode_vertex_buffer::<[u8; 4]>(data, count)),
-                    ("ATTRIBUTES", 8) => flat(meshopt::decode_vertex_buffer::<[u8; 8]>(data, count)),
+                    ("ATTRIBUTES", 4) => {
+                        flat(meshopt::decode_vertex_buffer::<[u8; 4]>(data, count))
+                    }
+                    ("ATTRIBUTES", 8) => {
+                        flat(meshopt::decode_vertex_buffer::<[u8; 8]>(data, count))
+                    }
                     ("ATTRIBUTES", 12) => {
                         flat(meshopt::decode_vertex_buffer::<[u8; 12]>(data, count))
                     }
@@ -206,10 +210,8 @@ pub fn validate(name: &str, bytes: &[u8]) -> Option<Value> {
         eprintln!("{MISSING}");
         return None;
     }
-    let file = std::env::temp_dir().join(format!(
-        "vesselcad-glb-{name}-{}.glb",
-        std::process::id()
-    ));
+    let file =
+        std::env::temp_dir().join(format!("vesselcad-glb-{name}-{}.glb", std::process::id()));
     std::fs::write(&file, bytes).unwrap();
     let output = Command::new("node")
         .arg(root.join("tests/support/validate-gltf.js"))
