@@ -124,12 +124,16 @@ impl<'a> MeshBuffers<'a> {
             patch: patch.to_string(),
             vertex,
         };
+        let oct = mesh.oct_normals();
+        let (mut lo, mut hi) = (DVec3::INFINITY, DVec3::NEG_INFINITY);
         for (vertex, p) in mesh.positions().enumerate() {
-            if unit_normal(mesh.normal(vertex)).is_none() || !metres(p).is_finite() {
+            if unit_normal(oct[vertex].decode()).is_none() || !metres(p).is_finite() {
                 return Err(vertex_error(vertex));
             }
+            lo = lo.min(p);
+            hi = hi.max(p);
         }
-        let encoding = Encoding::of(mesh, &self.options);
+        let encoding = Encoding::of(mesh, (lo, hi), &self.options);
         let count = mesh.vertex_count();
         let streams = encoding.streams();
         let offsets = streams.map(|s| self.lengths[s.slot()]);
@@ -141,7 +145,7 @@ impl<'a> MeshBuffers<'a> {
         }
         // Every element is 2 or 4 bytes aligned within its stream, and every
         // stream's view starts on a multiple of 4: accessors stay aligned.
-        let (lo, hi) = encoding.position_bounds(mesh);
+        let (lo, hi) = encoding.position_bounds((lo, hi));
         let quantized = encoding.quantized.is_some();
         let [ps, ns, is] = streams;
         let positions = root.push(json::Accessor {

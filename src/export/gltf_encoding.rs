@@ -97,10 +97,13 @@ pub(super) struct Encoding {
 impl Encoding {
     /// The encoding of `mesh` (checked: finite, indices in range) under
     /// `options`.
-    pub fn of(mesh: &PackedMesh, options: &GlbOptions) -> Self {
+    /// `bounds` are the mesh's (min, max), mm.
+    pub fn of(mesh: &PackedMesh, bounds: (DVec3, DVec3), options: &GlbOptions) -> Self {
         let compact = options.is_compact();
         let count = mesh.vertex_count();
-        let quantized = options.quantize.and_then(|bound| quantization(mesh, bound));
+        let quantized = options
+            .quantize
+            .and_then(|bound| quantization(bounds, bound));
         let reorder = (options.compress == Compression::Meshopt).then(|| {
             let indices: Vec<u32> = mesh.indices().collect();
             let indices = meshopt::optimize_vertex_cache(&indices, count);
@@ -177,22 +180,19 @@ impl Encoding {
             .map(|c| c.clamp(0.0, f64::from(u16::MAX)) as u16)
     }
 
-    /// The bounds of the written positions in the accessor's own numbers.
-    pub fn position_bounds(&self, mesh: &PackedMesh) -> ([f64; 3], [f64; 3]) {
-        let mut lo = [f64::INFINITY; 3];
-        let mut hi = [f64::NEG_INFINITY; 3];
-        for p in mesh.positions() {
-            let v: [f64; 3] = if self.quantized.is_some() {
+    /// The bounds of the written positions in the accessor's own numbers, from
+    /// the mesh's bounds `(lo, hi)` (mm): both conversions (to `f32` metres,
+    /// to quantized integers) are monotonic in each coordinate, so they map the
+    /// bounds onto the bounds.
+    pub fn position_bounds(&self, (lo, hi): (DVec3, DVec3)) -> ([f64; 3], [f64; 3]) {
+        let convert = |p: DVec3| -> [f64; 3] {
+            if self.quantized.is_some() {
                 self.quantize(p).map(f64::from)
             } else {
                 metres(p).to_array().map(f64::from)
-            };
-            for k in 0..3 {
-                lo[k] = lo[k].min(v[k]);
-                hi[k] = hi[k].max(v[k]);
             }
-        }
-        (lo, hi)
+        };
+        (convert(lo), convert(hi))
     }
 
     /// Appends the bytes of `mesh` in `stream` (nothing for a stream it does
@@ -243,15 +243,15 @@ impl Encoding {
     }
 }
 
-/// The origin (in steps) and step (m) quantizing `mesh` within `bound` mm, or
+/// The origin (in steps) and step (m) quantizing a mesh of bounds `(lo, hi)`
+/// (mm) within `bound` mm, or
 /// `None` when 16 bits cannot: the coarsest power-of-two step (in metres) whose
 /// bound `√3/2 · step` is within `bound`, if the mesh spans at most 65 534
 /// steps. Every mesh of a file has that one step and an origin on its grid, so
 /// the boundary vertices that neighbouring patches of a part share land on the
 /// same grid point: quantization opens no crack between them.
-pub(super) fn quantization(mesh: &PackedMesh, bound: f64) -> Option<(DVec3, f64)> {
+fn quantization((lo, hi): (DVec3, DVec3), bound: f64) -> Option<(DVec3, f64)> {
     let step = quantization_step(bound)?;
-    let (lo, hi) = mesh.bounds()?;
     let (lo, hi) = (lo * MM_TO_M, hi * MM_TO_M);
     let origin = (lo / step).floor();
     let span = (hi / step).ceil() - origin;
