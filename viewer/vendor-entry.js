@@ -3,3 +3,4 @@
 export * from 'three';
 export { GLTFLoader } from 'three/addons/loaders/GLTFLoader.js';
 export { OrbitControls } from 'three/addons/controls/OrbitControls.js';
+export { MeshoptDecoder } from 'three/addons/libs/meshopt_decoder.module.js';

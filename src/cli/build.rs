@@ -6,9 +6,11 @@ use std::path::{Path, PathBuf};
 use std::process::ExitCode;
 use std::time::Instant;
 
-use clap::Args;
+use clap::{Args, ValueEnum};
 use vesselcad::design::{Design, load};
-use vesselcad::export::{ExportError, stream_glb, stream_glb_to};
+use vesselcad::export::{
+    Compression, ExportError, GlbOptions, quantization_budget, stream_glb_with, stream_glb_with_to,
+};
 use vesselcad::mesh::TessellationOptions;
 use vesselcad::model::{Model, ModelError};
 use vesselcad::plant::build_plant;
@@ -32,6 +34,24 @@ pub struct BuildArgs {
     /// for analysis-quality triangles). No limit by default.
     #[arg(long, allow_negative_numbers = true)]
     max_stretch: Option<f64>,
+    /// Quantize (`KHR_mesh_quantization`): 16-bit positions and 8-bit normals,
+    /// with a quarter of the tolerance given to quantization (meshes are made
+    /// to 0.75 × the tolerance, so the file holds the tolerance).
+    #[arg(long)]
+    quantize: bool,
+    /// Compress the buffer: `meshopt` (`EXT_meshopt_compression`).
+    #[arg(long, value_enum)]
+    compress: Option<CompressArg>,
+    /// Write every patch's mesh on its own, even where patches share one.
+    #[arg(long)]
+    no_reuse: bool,
+}
+
+/// Compressions of `--compress`.
+#[derive(Clone, Copy, ValueEnum)]
+enum CompressArg {
+    /// `EXT_meshopt_compression`.
+    Meshopt,
 }
 
 /// Runs `vesselcad build`.
@@ -41,7 +61,18 @@ pub fn run(args: BuildArgs) -> ExitCode {
         output,
         tolerance,
         max_stretch,
+        quantize,
+        compress,
+        no_reuse,
     } = args;
+    let glb = GlbOptions {
+        reuse: !no_reuse,
+        quantize: quantize.then(|| quantization_budget(tolerance)),
+        compress: match compress {
+            Some(CompressArg::Meshopt) => Compression::Meshopt,
+            None => Compression::None,
+        },
+    };
     let start = Instant::now();
     let to_stdout = output.as_os_str() == "-";
     if !to_stdout
@@ -62,7 +93,7 @@ pub fn run(args: BuildArgs) -> ExitCode {
     };
     let model = match build_with_progress(
         &d,
-        TessellationOptions::chord(tolerance).with_max_stretch(max_stretch),
+        TessellationOptions::chord(glb.meshing_tolerance(tolerance)).with_max_stretch(max_stretch),
     ) {
         Ok(m) => m,
         Err(ModelError::Design(e)) => return fail(&e),
@@ -100,7 +131,7 @@ pub fn run(args: BuildArgs) -> ExitCode {
     let written = if to_stdout {
         let stdout = std::io::stdout().lock();
         let mut out = std::io::BufWriter::new(stdout);
-        stream_glb(&scene, &mut out, Path::new("<stdout>")).and_then(|n| {
+        stream_glb_with(&scene, &glb, &mut out, Path::new("<stdout>")).and_then(|n| {
             out.flush().map_err(|source| ExportError::Io {
                 path: "<stdout>".into(),
                 source,
@@ -108,7 +139,7 @@ pub fn run(args: BuildArgs) -> ExitCode {
             Ok(n)
         })
     } else {
-        stream_glb_to(&scene, &output)
+        stream_glb_with_to(&scene, &glb, &output)
     };
     let bytes = match written {
         Ok(bytes) => bytes,

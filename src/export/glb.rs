@@ -11,6 +11,7 @@ use std::io::Write;
 use std::path::{Path, PathBuf};
 
 use super::error::ExportError;
+use super::glb_options::GlbOptions;
 use super::gltf_document::document;
 use super::scene::Scene;
 
@@ -27,7 +28,8 @@ pub(super) const HEADER_LEN: usize = 12;
 /// Bytes of a chunk header.
 pub(super) const CHUNK_HEADER_LEN: usize = 8;
 
-/// The scene as GLB bytes: Y-up, metres, one buffer, deterministic.
+/// The scene as GLB bytes with the default [`GlbOptions`] (equal meshes
+/// shared, `f32` data): Y-up, metres, one buffer, deterministic.
 ///
 /// # Errors
 ///
@@ -35,8 +37,19 @@ pub(super) const CHUNK_HEADER_LEN: usize = 8;
 /// that cannot be written, [`ExportError::TooLarge`] past the format's 4 GiB,
 /// [`ExportError::Json`] if the document cannot be serialized.
 pub fn write_glb(scene: &Scene) -> Result<Vec<u8>, ExportError> {
-    let (root, bin) = document(scene)?;
-    let json = serde_json::to_vec(&root)?;
+    write_glb_with(scene, &GlbOptions::default())
+}
+
+/// The scene as GLB bytes written with `options` (reuse, quantization,
+/// compression): Y-up, metres, deterministic.
+///
+/// # Errors
+///
+/// As [`write_glb`].
+pub fn write_glb_with(scene: &Scene, options: &GlbOptions) -> Result<Vec<u8>, ExportError> {
+    let document = document(scene, options)?;
+    let json = document.json_bytes()?;
+    let bin = document.buffers.bin;
     let json_len = padded(json.len());
     let bin_len = padded(bin.len());
     let mut total = HEADER_LEN + CHUNK_HEADER_LEN + json_len;
@@ -65,14 +78,23 @@ pub fn write_glb(scene: &Scene) -> Result<Vec<u8>, ExportError> {
 ///
 /// As [`write_glb`], and [`ExportError::Io`] when the file cannot be written.
 pub fn write_glb_to(scene: &Scene, path: &Path) -> Result<(), ExportError> {
-    let bytes = write_glb(scene)?;
+    write_bytes_to(&write_glb(scene)?, path)
+}
+
+/// Writes `bytes` to `path` atomically (a temporary file beside it, renamed
+/// over `path`).
+///
+/// # Errors
+///
+/// [`ExportError::Io`] when the file cannot be written.
+pub(super) fn write_bytes_to(bytes: &[u8], path: &Path) -> Result<(), ExportError> {
     let tmp = temporary_path(path);
     let io = |path: &Path| {
         let path = path.to_path_buf();
         move |source| ExportError::Io { path, source }
     };
     let written = std::fs::File::create(&tmp).and_then(|mut file| {
-        file.write_all(&bytes)?;
+        file.write_all(bytes)?;
         file.sync_all()
     });
     if let Err(source) = written {

@@ -4,25 +4,25 @@
 //!
 //! Last stage of the data flow for large plants. Two passes over the scene: the
 //! first lays the document out ([`super::gltf_document`] with buffers that only
-//! count bytes, checking every mesh on the way); the second writes the header,
-//! the JSON chunk and the `BIN` chunk's three views — all positions, all normals,
-//! all indices, in scene order — converting each mesh's `f64` mm to `f32` m as it
-//! goes through a buffered writer.
+//! count bytes, checking and encoding every distinct mesh on the way); the second
+//! writes the header, the JSON chunk and the `BIN` chunk's views — stream by
+//! stream (all positions, all normals, all indices, in scene order) — converting
+//! each mesh's `f64` mm to `f32` m (or quantizing it) as it goes through a
+//! buffered writer.
 
 use std::io::{BufWriter, Write};
 use std::path::Path;
 
 use super::error::ExportError;
+use super::glb::write_glb_with;
 use super::glb::{
     CHUNK_BIN, CHUNK_HEADER_LEN, CHUNK_JSON, HEADER_LEN, MAGIC, VERSION, padded, temporary_path,
 };
-use super::gltf_buffers::{MeshBuffers, metres, unit_normal};
-use super::gltf_document::{document_with, is_empty};
+use super::glb_options::{Compression, GlbOptions};
+use super::gltf_buffers::MeshBuffers;
+use super::gltf_document::document_with;
+use super::gltf_encoding::Stream;
 use super::scene::Scene;
-use crate::mesh::PackedMesh;
-
-/// Appends one view's bytes of one mesh.
-type ViewWriter = dyn Fn(&PackedMesh, &mut Vec<u8>);
 
 /// Writes the scene as GLB to `out`, streaming the mesh data; returns the bytes
 /// written. The bytes equal [`super::write_glb`]'s.
@@ -32,9 +32,39 @@ type ViewWriter = dyn Fn(&PackedMesh, &mut Vec<u8>);
 /// As [`super::write_glb`], and [`ExportError::Io`] (naming `name`) when `out`
 /// fails.
 pub fn stream_glb(scene: &Scene, out: impl Write, name: &Path) -> Result<u64, ExportError> {
-    let (root, _) = document_with(scene, MeshBuffers::layout_only())?;
-    let bin_len: usize = root.buffers.first().map_or(0, |b| b.byte_length.0 as usize);
-    let json = serde_json::to_vec(&root)?;
+    stream_glb_with(scene, &GlbOptions::default(), out, name)
+}
+
+/// Writes the scene as GLB with `options` to `out`; returns the bytes written,
+/// which equal [`super::write_glb_with`]'s. Uncompressed files stream the mesh
+/// data; a compressed file, whose layout depends on the encoded bytes, is
+/// assembled in memory first (it is a fraction of the meshes' size).
+///
+/// # Errors
+///
+/// As [`stream_glb`].
+pub fn stream_glb_with(
+    scene: &Scene,
+    options: &GlbOptions,
+    mut out: impl Write,
+    name: &Path,
+) -> Result<u64, ExportError> {
+    let io = |source| ExportError::Io {
+        path: name.to_path_buf(),
+        source,
+    };
+    if options.compress != Compression::None {
+        let bytes = write_glb_with(scene, options)?;
+        out.write_all(&bytes).map_err(io)?;
+        return Ok(bytes.len() as u64);
+    }
+    let document = document_with(scene, MeshBuffers::layout_only(*options))?;
+    let bin_len: usize = document
+        .root
+        .buffers
+        .first()
+        .map_or(0, |b| b.byte_length.0 as usize);
+    let json = document.json_bytes()?;
     let json_padded = padded(json.len());
     let bin_padded = padded(bin_len);
     let mut total = HEADER_LEN + CHUNK_HEADER_LEN + json_padded;
@@ -44,10 +74,6 @@ pub fn stream_glb(scene: &Scene, out: impl Write, name: &Path) -> Result<u64, Ex
     let total_u32 = u32::try_from(total).map_err(|_| ExportError::TooLarge {
         bytes: total as u64,
     })?;
-    let io = |source| ExportError::Io {
-        path: name.to_path_buf(),
-        source,
-    };
     let mut w = BufWriter::with_capacity(1 << 20, out);
     let mut write = |bytes: &[u8]| w.write_all(bytes);
     (|| -> std::io::Result<()> {
@@ -63,46 +89,21 @@ pub fn stream_glb(scene: &Scene, out: impl Write, name: &Path) -> Result<u64, Ex
         }
         write(&(bin_padded as u32).to_le_bytes())?;
         write(&CHUNK_BIN.to_le_bytes())?;
-        let meshes = || {
-            scene
-                .vessels
-                .iter()
-                .flat_map(|v| &v.nodes)
-                .flat_map(|n| &n.patches)
-                .map(|p| &*p.mesh)
-                .filter(|m| !is_empty(m))
-        };
         let mut chunk: Vec<u8> = Vec::with_capacity(1 << 16);
-        // The first pass checked every normal: none is zero or non-finite here.
-        let views: [&ViewWriter; 3] = [
-            &|m, chunk| {
-                for p in m.positions() {
-                    for c in metres(p).to_array() {
-                        chunk.extend_from_slice(&c.to_le_bytes());
-                    }
-                }
-            },
-            &|m, chunk| {
-                for n in m.oct_normals() {
-                    for c in unit_normal(n.decode()).unwrap_or_default().to_array() {
-                        chunk.extend_from_slice(&c.to_le_bytes());
-                    }
-                }
-            },
-            &|m, chunk| {
-                for i in m.indices() {
-                    chunk.extend_from_slice(&i.to_le_bytes());
-                }
-            },
-        ];
-        for view in views {
-            for mesh in meshes() {
+        let mut written = 0;
+        // Stream by stream, as the views lie in the buffer, each padded to 4.
+        for stream in Stream::ALL {
+            let mut length = 0;
+            for (mesh, encoding) in &document.meshes {
                 chunk.clear();
-                view(mesh, &mut chunk);
+                encoding.write(stream, mesh, &mut chunk);
+                length += chunk.len();
                 write(&chunk)?;
             }
+            write(&vec![0; padded(length) - length])?;
+            written += padded(length);
         }
-        write(&vec![0; bin_padded - bin_len])?;
+        write(&vec![0; bin_padded - written])?;
         Ok(())
     })()
     .map_err(io)?;
@@ -117,13 +118,26 @@ pub fn stream_glb(scene: &Scene, out: impl Write, name: &Path) -> Result<u64, Ex
 ///
 /// As [`stream_glb`].
 pub fn stream_glb_to(scene: &Scene, path: &Path) -> Result<u64, ExportError> {
+    stream_glb_with_to(scene, &GlbOptions::default(), path)
+}
+
+/// [`stream_glb_with`] to `path` atomically; returns the bytes written.
+///
+/// # Errors
+///
+/// As [`stream_glb`].
+pub fn stream_glb_with_to(
+    scene: &Scene,
+    options: &GlbOptions,
+    path: &Path,
+) -> Result<u64, ExportError> {
     let tmp = temporary_path(path);
     let io = |path: &Path| {
         let path = path.to_path_buf();
         move |source| ExportError::Io { path, source }
     };
     let file = std::fs::File::create(&tmp).map_err(io(&tmp))?;
-    let written = stream_glb(scene, &file, &tmp).and_then(|n| {
+    let written = stream_glb_with(scene, options, &file, &tmp).and_then(|n| {
         file.sync_all().map_err(io(&tmp))?;
         Ok(n)
     });

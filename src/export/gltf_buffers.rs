@@ -1,12 +1,17 @@
-//! Packing meshes into the glTF binary buffer: `f32` positions in metres, unit
-//! `f32` normals and `u32` indices, with their accessors and buffer views.
+//! Packing meshes into the glTF binary buffer: a view per stream (element
+//! layout), the accessors of every mesh, and the `BIN` chunk's bytes.
 //!
-//! Part of the glTF writer: [`super::gltf_document`] hands every non-empty patch
-//! mesh to [`MeshBuffers::push`], then [`MeshBuffers::finish`] appends one buffer
-//! and three buffer views — all positions, all normals, all indices, in that order,
-//! each 4-byte aligned — and returns the bytes of the GLB `BIN` chunk. This is where
-//! the model's `f64` mm become the file's `f32` m; meshes are checked on the way, so
-//! a file is never written with NaNs or indices out of range.
+//! Part of the glTF writer: [`super::gltf_document`] hands every distinct patch
+//! mesh to [`MeshBuffers::push`], which checks it (so a file is never written
+//! with NaNs or indices out of range), encodes it ([`super::gltf_encoding`]:
+//! plain `f32` metres and `u32` indices, or quantized) and appends it to its
+//! streams; [`MeshBuffers::finish`] then appends the buffer and one view per
+//! non-empty stream — plain files have three, all positions, all normals, all
+//! indices, in that order, each 4-byte aligned — and returns the bytes of the
+//! GLB `BIN` chunk. With meshopt compression each view's bytes are encoded on
+//! their own (`EXT_meshopt_compression`): the `BIN` chunk holds the encoded
+//! views and a second buffer, without data, the uncompressed layout the views
+//! and accessors describe.
 
 use glam::{DVec3, Vec3};
 use gltf_json as json;
@@ -16,17 +21,12 @@ use json::validation::{Checked, USize64};
 use serde_json::Value;
 
 use super::error::ExportError;
+use super::glb_options::{Compression, GlbOptions};
+use super::gltf_encoding::{Dequantization, Encoding, Stream};
 use crate::mesh::PackedMesh;
 
 /// Millimetres → metres.
 pub(super) const MM_TO_M: f64 = 1e-3;
-
-/// Index of the positions view, the first one [`MeshBuffers::finish`] pushes.
-const POSITIONS_VIEW: u32 = 0;
-/// Index of the normals view.
-const NORMALS_VIEW: u32 = 1;
-/// Index of the indices view.
-const INDICES_VIEW: u32 = 2;
 
 /// The accessors of one mesh primitive.
 #[derive(Clone, Copy, Debug)]
@@ -39,32 +39,71 @@ pub(super) struct PrimitiveAccessors {
     pub indices: json::Index<json::Accessor>,
 }
 
-/// The three growing views of the binary buffer.
-#[derive(Default)]
-pub(super) struct MeshBuffers {
-    positions: Vec<u8>,
-    normals: Vec<u8>,
-    indices: Vec<u8>,
-    /// Bytes of each view so far (kept whether or not the bytes are).
-    lengths: [usize; 3],
+/// The buffer's streams as they grow, and the meshes in them.
+pub(super) struct MeshBuffers<'a> {
+    /// The bytes of each stream ([`Stream::ALL`] order), unless laying out only.
+    streams: [Vec<u8>; 6],
+    /// Bytes of each stream so far (kept whether or not the bytes are).
+    lengths: [usize; 6],
+    /// The accessors into each stream, to point at its view in `finish`.
+    accessors: [Vec<usize>; 6],
+    /// Every mesh written, in order, with its encoding: what the streaming
+    /// writer writes.
+    meshes: Vec<(&'a PackedMesh, Encoding)>,
+    /// How compact the file is.
+    options: GlbOptions,
     /// Lay out only: count the bytes without keeping them, for the streaming
     /// writer ([`super::glb_stream`]), which writes them straight from the meshes.
     layout_only: bool,
 }
 
-impl MeshBuffers {
-    /// Buffers that only lay the views out: [`finish`](Self::finish) returns no
-    /// bytes, but the document is the same.
-    pub fn layout_only() -> Self {
-        Self {
-            layout_only: true,
-            ..Self::default()
-        }
-    }
+/// The buffer of a finished document: the `BIN` chunk's bytes, and the
+/// extensions to add to the JSON (meshopt views and their fallback buffer).
+#[derive(Default)]
+pub(super) struct FinishedBuffers {
+    /// The `BIN` chunk (empty when laid out only or without triangles).
+    pub bin: Vec<u8>,
+    /// `EXT_meshopt_compression` objects of buffer views, by view index.
+    pub view_extensions: Vec<(usize, Value)>,
+    /// The uncompressed fallback buffer's index, when compressed.
+    pub fallback_buffer: Option<usize>,
 }
 
-impl MeshBuffers {
-    /// Checks `mesh`, appends its data and pushes its accessors onto `root`.
+impl<'a> MeshBuffers<'a> {
+    /// Empty buffers for a file written with `options`.
+    pub fn new(options: GlbOptions) -> Self {
+        Self {
+            streams: Default::default(),
+            lengths: [0; 6],
+            accessors: Default::default(),
+            meshes: Vec::new(),
+            options,
+            layout_only: false,
+        }
+    }
+
+    /// Buffers that only lay the views out: [`finish`](Self::finish) returns no
+    /// bytes, but the document is the same. Not for compressed files (their
+    /// layout depends on the bytes).
+    pub fn layout_only(options: GlbOptions) -> Self {
+        Self {
+            layout_only: true,
+            ..Self::new(options)
+        }
+    }
+
+    /// The options the buffers are written with.
+    pub fn options(&self) -> &GlbOptions {
+        &self.options
+    }
+
+    /// Takes the meshes written so far, in order, with their encodings.
+    pub fn take_meshes(&mut self) -> Vec<(&'a PackedMesh, Encoding)> {
+        std::mem::take(&mut self.meshes)
+    }
+
+    /// Checks `mesh`, appends its data and pushes its accessors onto `root`;
+    /// returns them and the patch node's dequantization transform.
     /// `entity` (`tag/id`) and `patch` name the mesh in errors.
     ///
     /// # Errors
@@ -75,121 +114,227 @@ impl MeshBuffers {
     pub fn push(
         &mut self,
         root: &mut json::Root,
-        mesh: &PackedMesh,
+        mesh: &'a PackedMesh,
         entity: &str,
         patch: &str,
-    ) -> Result<PrimitiveAccessors, ExportError> {
+    ) -> Result<(PrimitiveAccessors, Dequantization), ExportError> {
         check_topology(mesh, entity, patch)?;
         let vertex_error = |vertex| ExportError::NonFiniteVertex {
             entity: entity.to_string(),
             patch: patch.to_string(),
             vertex,
         };
-        let count = mesh.vertex_count();
-        let [position_offset, normal_offset, index_offset] = self.lengths;
-        self.lengths[0] += 12 * count;
-        self.lengths[1] += 12 * count;
-        self.lengths[2] += 4 * mesh.index_count();
-        let keep = !self.layout_only;
-        let mut lo = Vec3::splat(f32::INFINITY);
-        let mut hi = Vec3::splat(f32::NEG_INFINITY);
+        let oct = mesh.oct_normals();
+        let (mut lo, mut hi) = (DVec3::INFINITY, DVec3::NEG_INFINITY);
         for (vertex, p) in mesh.positions().enumerate() {
-            let n = mesh.normal(vertex);
-            let p = metres(p);
-            let n = unit_normal(n).ok_or_else(|| vertex_error(vertex))?;
-            if !p.is_finite() {
+            if unit_normal(oct[vertex].decode()).is_none() || !metres(p).is_finite() {
                 return Err(vertex_error(vertex));
             }
             lo = lo.min(p);
             hi = hi.max(p);
-            if keep {
-                extend_vec3(&mut self.positions, p);
-                extend_vec3(&mut self.normals, n);
+        }
+        let encoding = Encoding::of(mesh, (lo, hi), &self.options);
+        let count = mesh.vertex_count();
+        let streams = encoding.streams();
+        let offsets = streams.map(|s| self.lengths[s.slot()]);
+        for (stream, n) in streams.into_iter().zip([count, count, mesh.index_count()]) {
+            self.lengths[stream.slot()] += stream.stride() * n;
+            if !self.layout_only {
+                encoding.write(stream, mesh, &mut self.streams[stream.slot()]);
             }
         }
-        if keep {
-            for i in mesh.indices() {
-                self.indices.extend_from_slice(&i.to_le_bytes());
-            }
-        }
+        // Every element is 2 or 4 bytes aligned within its stream, and every
+        // stream's view starts on a multiple of 4: accessors stay aligned.
+        let (lo, hi) = encoding.position_bounds((lo, hi));
+        let quantized = encoding.quantized.is_some();
+        let [ps, ns, is] = streams;
         let positions = root.push(json::Accessor {
-            min: Some(vec3_value(lo)),
-            max: Some(vec3_value(hi)),
+            min: Some(Value::from(lo.to_vec())),
+            max: Some(Value::from(hi.to_vec())),
             ..accessor(
-                POSITIONS_VIEW,
-                position_offset,
+                offsets[0],
                 count,
                 Type::Vec3,
-                ComponentType::F32,
+                if quantized {
+                    ComponentType::U16
+                } else {
+                    ComponentType::F32
+                },
+                false,
             )
         });
         let normals = root.push(accessor(
-            NORMALS_VIEW,
-            normal_offset,
+            offsets[1],
             count,
             Type::Vec3,
-            ComponentType::F32,
+            if ns == Stream::NormalsI8 {
+                ComponentType::I8
+            } else {
+                ComponentType::F32
+            },
+            ns == Stream::NormalsI8,
         ));
         let indices = root.push(accessor(
-            INDICES_VIEW,
-            index_offset,
+            offsets[2],
             mesh.index_count(),
             Type::Scalar,
-            ComponentType::U32,
+            if is == Stream::Indices16 {
+                ComponentType::U16
+            } else {
+                ComponentType::U32
+            },
+            false,
         ));
-        Ok(PrimitiveAccessors {
-            positions,
-            normals,
-            indices,
-        })
+        for (stream, a) in [(ps, positions), (ns, normals), (is, indices)] {
+            self.accessors[stream.slot()].push(a.value());
+        }
+        let dequantization = encoding.dequantization();
+        self.meshes.push((mesh, encoding));
+        Ok((
+            PrimitiveAccessors {
+                positions,
+                normals,
+                indices,
+            },
+            dequantization,
+        ))
     }
 
-    /// Pushes the buffer and its three views onto `root` (which must hold no views
-    /// yet) and returns the binary chunk's bytes. Pushes nothing and returns no
-    /// bytes when no mesh was added.
+    /// Pushes the buffer(s) and a view per non-empty stream onto `root` (which
+    /// must hold no views yet), points the accessors at their views, and returns
+    /// the binary chunk's bytes with the extensions the JSON needs. Pushes
+    /// nothing and returns no bytes when no mesh was added.
     ///
     /// # Errors
     ///
     /// [`ExportError::TooLarge`] when the buffer passes the GLB's 4 GiB limit.
-    pub fn finish(self, root: &mut json::Root) -> Result<Vec<u8>, ExportError> {
-        let total: usize = self.lengths.iter().sum();
+    pub fn finish(self, root: &mut json::Root) -> Result<FinishedBuffers, ExportError> {
+        let total: usize = self.lengths.iter().map(|&l| padded4(l)).sum();
         if total == 0 {
-            return Ok(Vec::new());
+            return Ok(FinishedBuffers::default());
         }
+        let too_large = |bytes: usize| ExportError::TooLarge {
+            bytes: bytes as u64,
+        };
         if u32::try_from(total).is_err() {
-            return Err(ExportError::TooLarge {
-                bytes: total as u64,
-            });
+            return Err(too_large(total));
         }
-        let buffer = root.push(json::Buffer {
-            byte_length: USize64::from(total),
+        let compressed = self.options.compress == Compression::Meshopt;
+        let mut out = FinishedBuffers::default();
+        // Compressed: the BIN chunk (buffer 0) holds the encoded views; buffer 1
+        // is the uncompressed layout, with no data, that the views describe.
+        let (encoded, bin_length) = if compressed {
+            let encoded: Vec<Option<Vec<u8>>> = Stream::ALL
+                .iter()
+                .zip(&self.streams)
+                .map(|(&stream, bytes)| (!bytes.is_empty()).then(|| encode_view(stream, bytes)))
+                .collect();
+            let length = encoded.iter().flatten().map(|e| padded4(e.len())).sum();
+            (encoded, length)
+        } else {
+            (Vec::new(), total)
+        };
+        let bin_buffer = root.push(json::Buffer {
+            byte_length: USize64::from(bin_length),
             name: None,
             uri: None,
             extensions: None,
             extras: None,
         });
-        let mut bin = Vec::with_capacity(if self.layout_only { 0 } else { total });
-        let views = [
-            (self.positions, Some(Stride(12)), Target::ArrayBuffer),
-            (self.normals, Some(Stride(12)), Target::ArrayBuffer),
-            (self.indices, None, Target::ElementArrayBuffer),
-        ];
-        let mut offset = 0;
-        for ((bytes, stride, target), length) in views.into_iter().zip(self.lengths) {
-            root.push(json::buffer::View {
-                buffer,
-                byte_length: USize64::from(length),
-                byte_offset: Some(USize64::from(offset)),
-                byte_stride: stride,
+        let view_buffer = if compressed {
+            let fallback = root.push(json::Buffer {
+                byte_length: USize64::from(total),
                 name: None,
-                target: Some(Checked::Valid(target)),
+                uri: None,
                 extensions: None,
                 extras: None,
             });
-            offset += length;
-            bin.extend_from_slice(&bytes);
+            out.fallback_buffer = Some(fallback.value());
+            fallback
+        } else {
+            bin_buffer
+        };
+        if !self.layout_only {
+            out.bin.reserve(bin_length);
         }
-        Ok(bin)
+        let mut offset = 0;
+        for (k, stream) in Stream::ALL.into_iter().enumerate() {
+            let length = self.lengths[k];
+            if length == 0 {
+                continue;
+            }
+            let view = root.push(json::buffer::View {
+                buffer: view_buffer,
+                byte_length: USize64::from(length),
+                byte_offset: Some(USize64::from(offset)),
+                byte_stride: (!stream.is_index()).then_some(Stride(stream.stride())),
+                name: None,
+                target: Some(Checked::Valid(if stream.is_index() {
+                    Target::ElementArrayBuffer
+                } else {
+                    Target::ArrayBuffer
+                })),
+                extensions: None,
+                extras: None,
+            });
+            for &a in &self.accessors[k] {
+                root.accessors[a].buffer_view = Some(view);
+            }
+            if let Some(Some(bytes)) = encoded.get(k) {
+                out.view_extensions.push((
+                    view.value(),
+                    serde_json::json!({
+                        "buffer": bin_buffer.value(),
+                        "byteOffset": out.bin.len(),
+                        "byteLength": bytes.len(),
+                        "byteStride": stream.stride(),
+                        "mode": if stream.is_index() { "TRIANGLES" } else { "ATTRIBUTES" },
+                        "count": length / stream.stride(),
+                    }),
+                ));
+                out.bin.extend_from_slice(bytes);
+                out.bin.resize(padded4(out.bin.len()), 0);
+            } else if !self.layout_only {
+                out.bin.extend_from_slice(&self.streams[k]);
+                out.bin.resize(padded4(out.bin.len()), 0);
+            }
+            offset += padded4(length);
+        }
+        Ok(out)
+    }
+}
+
+/// A stream's bytes in meshoptimizer's encoding: the vertex codec (version 0,
+/// the one `EXT_meshopt_compression` specifies) for attributes, the triangle
+/// codec for indices.
+fn encode_view(stream: Stream, bytes: &[u8]) -> Vec<u8> {
+    fn vertices<const N: usize>(bytes: &[u8]) -> Vec<u8> {
+        let elements: Vec<[u8; N]> = bytes
+            .chunks_exact(N)
+            .map(|c| c.try_into().unwrap_or([0; N]))
+            .collect();
+        // Encoding into a buffer of the bound's size cannot fail.
+        meshopt::encode_vertex_buffer_level(&elements, 2, Some(0)).unwrap_or_default()
+    }
+    match stream {
+        Stream::PositionsF32 | Stream::NormalsF32 => vertices::<12>(bytes),
+        Stream::PositionsU16 => vertices::<8>(bytes),
+        Stream::NormalsI8 => vertices::<4>(bytes),
+        Stream::Indices32 | Stream::Indices16 => {
+            let indices: Vec<u32> = if stream == Stream::Indices16 {
+                bytes
+                    .chunks_exact(2)
+                    .map(|c| u32::from(u16::from_le_bytes([c[0], c[1]])))
+                    .collect()
+            } else {
+                bytes
+                    .chunks_exact(4)
+                    .map(|c| u32::from_le_bytes([c[0], c[1], c[2], c[3]]))
+                    .collect()
+            };
+            let vertices = indices.iter().max().map_or(0, |&m| m as usize + 1);
+            meshopt::encode_index_buffer(&indices, vertices).unwrap_or_default()
+        }
     }
 }
 
@@ -230,29 +375,17 @@ pub(super) fn unit_normal(n: DVec3) -> Option<Vec3> {
     n.as_vec3().try_normalize()
 }
 
-/// Appends the little-endian bytes of a vector.
-fn extend_vec3(bytes: &mut Vec<u8>, v: Vec3) {
-    for c in v.to_array() {
-        bytes.extend_from_slice(&c.to_le_bytes());
-    }
-}
-
-/// A `VEC3` min or max as JSON: each `f32` widened exactly to `f64`, so the
-/// written number reads back as the very `f32` in the buffer.
-fn vec3_value(v: Vec3) -> Value {
-    Value::from(v.to_array().map(f64::from).to_vec())
-}
-
-/// A tightly packed accessor into one of the three views.
+/// A tightly packed accessor at `offset` of its stream's view (set by
+/// [`MeshBuffers::finish`]).
 fn accessor(
-    view: u32,
     offset: usize,
     count: usize,
     type_: Type,
     component: ComponentType,
+    normalized: bool,
 ) -> json::Accessor {
     json::Accessor {
-        buffer_view: Some(json::Index::new(view)),
+        buffer_view: None,
         byte_offset: Some(USize64::from(offset)),
         count: USize64::from(count),
         component_type: Checked::Valid(GenericComponentType(component)),
@@ -262,7 +395,12 @@ fn accessor(
         min: None,
         max: None,
         name: None,
-        normalized: false,
+        normalized,
         sparse: None,
     }
+}
+
+/// `len` rounded up to a multiple of 4.
+fn padded4(len: usize) -> usize {
+    len.div_ceil(4) * 4
 }

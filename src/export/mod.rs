@@ -9,7 +9,9 @@
 //!   metadata comes from [`vessel_extras`], [`part_extras`] and [`nozzle_extras`].
 //! - [`write_glb`] / [`write_glb_to`] write a scene as binary glTF 2.0 (Y-up,
 //!   metres, deterministic bytes); [`stream_glb`] / [`stream_glb_to`] write the
-//!   same bytes straight from the meshes, without a second copy of them.
+//!   same bytes straight from the meshes, without a second copy of them. Equal
+//!   meshes are written once; [`GlbOptions`] adds `KHR_mesh_quantization` and
+//!   `EXT_meshopt_compression` ([`write_glb_with`], [`stream_glb_with`]).
 //! - [`write_delta_glb`] writes only the changed parts of a scene, keyed by their
 //!   stable ids, for live viewers.
 
@@ -18,9 +20,11 @@ mod direct;
 mod error;
 mod extras;
 mod glb;
+mod glb_options;
 mod glb_stream;
 mod gltf_buffers;
 mod gltf_document;
+mod gltf_encoding;
 mod gltf_materials;
 mod scene;
 
@@ -28,7 +32,9 @@ pub use delta::{delta_scene, node_id, scene_ids, write_delta_glb};
 pub use direct::{build_scene, patch_name};
 pub use error::ExportError;
 pub use extras::{nozzle_extras, part_extras, vessel_extras};
-pub use glb::{write_glb, write_glb_to};
-pub use glb_stream::{stream_glb, stream_glb_to};
+pub use glb::{write_glb, write_glb_to, write_glb_with};
+pub use glb_options::{Compression, GlbOptions, quantization_budget};
+pub use glb_stream::{stream_glb, stream_glb_to, stream_glb_with, stream_glb_with_to};
 pub use gltf_document::{PLANT_NODE, PLANT_ROTATION};
+pub use gltf_encoding::quantization_bound;
 pub use scene::{Scene, SceneNode, SceneNodeKind, ScenePatch, SceneVessel};

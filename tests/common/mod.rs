@@ -9,6 +9,7 @@ pub mod eccentric;
 pub mod examples;
 pub mod fem;
 pub mod full_build;
+pub mod glb;
 pub mod heads;
 pub mod numbers;
 pub mod occt;

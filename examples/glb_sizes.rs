@@ -1,0 +1,106 @@
+//! The GLB writer's figures for each option: file size, glTF meshes, patch
+//! nodes (draw calls) and write speed (bytes of output per second, before
+//! compression for the compressed variant's reference).
+//!
+//! `cargo run --profile test --example glb_sizes -- [DESIGN.json | --plant N] [TOLERANCE]`
+//! (the example plant's horizontal drum by default, at 1 mm; `--plant N` a
+//! generated plant of N vessels). Each variant is written a few times and the
+//! fastest run counts. Meshes are made to the tolerance less the quantization
+//! budget, as `vesselcad build --quantize` makes them.
+
+use std::time::Instant;
+
+use vesselcad::design::load;
+use vesselcad::export::{Compression, GlbOptions, quantization_budget, write_glb_with};
+use vesselcad::mesh::TessellationOptions;
+use vesselcad::model::Model;
+use vesselcad::plant::generate_plant;
+
+fn main() {
+    let args: Vec<String> = std::env::args().skip(1).collect();
+    let (design, rest) = match args.first().map(String::as_str) {
+        Some("--plant") => {
+            let n: usize = args[1].parse().expect("a vessel count");
+            (generate_plant(n, 1).expect("a plant"), &args[2..])
+        }
+        Some(path) => (
+            load(std::path::Path::new(path)).expect("a design"),
+            &args[1..],
+        ),
+        None => {
+            let path = concat!(
+                env!("CARGO_MANIFEST_DIR"),
+                "/examples/designs/horizontal-drum.json"
+            );
+            (
+                load(std::path::Path::new(path)).expect("the example"),
+                &args[..],
+            )
+        }
+    };
+    let tolerance: f64 = rest
+        .first()
+        .map_or(1.0, |t| t.parse().expect("a tolerance"));
+    let meshing = tolerance - quantization_budget(tolerance);
+    let model = Model::from_design(&design, TessellationOptions::chord(meshing)).expect("builds");
+    let scene = model.scene();
+    let patches: usize = scene
+        .vessels
+        .iter()
+        .flat_map(|v| &v.nodes)
+        .map(|n| {
+            n.patches
+                .iter()
+                .filter(|p| p.mesh.triangle_count() > 0)
+                .count()
+        })
+        .sum();
+    println!(
+        "{} vessel(s), {patches} patches, meshed at {meshing} mm for {tolerance} mm",
+        scene.vessels.len()
+    );
+    println!("| variant | bytes | glTF meshes | draw calls | write MB/s |");
+    println!("|---|---|---|---|---|");
+    let variants = [
+        ("f32, one mesh per patch", false, None, Compression::None),
+        ("f32, reuse (default)", true, None, Compression::None),
+        (
+            "reuse + quantization",
+            true,
+            Some(quantization_budget(tolerance)),
+            Compression::None,
+        ),
+        ("reuse + meshopt", true, None, Compression::Meshopt),
+        (
+            "reuse + quantization + meshopt",
+            true,
+            Some(quantization_budget(tolerance)),
+            Compression::Meshopt,
+        ),
+    ];
+    for (name, reuse, quantize, compress) in variants {
+        let options = GlbOptions {
+            reuse,
+            quantize,
+            compress,
+        };
+        let mut best = f64::INFINITY;
+        let mut bytes = Vec::new();
+        for _ in 0..3 {
+            let start = Instant::now();
+            bytes = write_glb_with(&scene, &options).expect("writes");
+            best = best.min(start.elapsed().as_secs_f64());
+        }
+        let json_len = u32::from_le_bytes(bytes[12..16].try_into().unwrap()) as usize;
+        let json: serde_json::Value = serde_json::from_slice(&bytes[20..20 + json_len]).unwrap();
+        let meshes = json["meshes"].as_array().map_or(0, Vec::len);
+        let draws = json["nodes"]
+            .as_array()
+            .map_or(0, |n| n.iter().filter(|n| n["mesh"].is_u64()).count());
+        println!(
+            "| {name} | {} | {meshes} | {draws} | {:.0} |",
+            bytes.len(),
+            bytes.len() as f64 / best / 1e6
+        );
+    }
+}
