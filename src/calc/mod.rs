@@ -11,7 +11,7 @@
 //!
 //! On top of the formulas: a vessel's design conditions in calculation units
 //! ([`conditions`]), one pressure part ([`part_calc`]), UG-45 for a nozzle neck
-//! with UG-37 reinforcement ([`reinforcement`]) and the B16.5 flange rating
+//! with UG-37 reinforcement ([`mod@reinforcement`]) and the B16.5 flange rating
 //! ([`flange`]) ([`nozzle_calc`]) and a whole vessel ([`calculate`]). The ECS system
 //! `systems::update_calculations` keeps the same figures live as components.
 
