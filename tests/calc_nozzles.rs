@@ -262,3 +262,46 @@ fn a_design_s_nozzles_get_ug37_and_b16_5() {
         }
     }
 }
+
+/// The vessel's hydrotest against each flange's shell test (1.5 × its 38 °C
+/// rating): a drum with 40 mm walls at 500 kPa has an MAWP far above Class 150's,
+/// so its UG-99(b) test pressure exceeds 1.5 × 1.96 = 2.94 MPa on every Class 150
+/// flange, while each flange still carries the design pressure.
+#[test]
+fn a_hydrotest_above_a_flange_s_shell_test_is_a_deficiency() {
+    use vesselcad::design::PartDesign;
+    let table = MaterialTable::builtin();
+    let mut design = common::examples::example("horizontal-drum");
+    let v = &mut design.vessels[0];
+    v.design.pressure = Some(500.0);
+    v.design.temperature = Some(100.0);
+    for p in &mut v.parts {
+        match p {
+            PartDesign::Shell(s) => s.thickness = Some(40.0),
+            PartDesign::Head(h) => h.thickness = Some(40.0),
+            _ => {}
+        }
+    }
+    let resolved = vesselcad::constraints::resolve_vessel(v, 0).unwrap();
+    let c = calculate(v, &resolved, &table);
+    let test = c.vessel.hydrotest.as_ref().unwrap().value;
+    assert!(test > 2.94, "hydrotest {test} MPa");
+    let class_150: Vec<_> = c
+        .nozzles
+        .iter()
+        .filter(|n| n.flange.as_ref().is_some_and(|f| f.class == 150))
+        .collect();
+    assert!(!class_150.is_empty());
+    for n in class_150 {
+        assert!(n.flange.as_ref().unwrap().deficiency.is_none(), "{n:?}");
+        assert!(
+            c.vessel
+                .deficiencies
+                .iter()
+                .any(|d| d.starts_with(&format!("{}: hydrotest", n.mark)) && d.contains("2.940")),
+            "{}: {:?}",
+            n.mark,
+            c.vessel.deficiencies
+        );
+    }
+}
