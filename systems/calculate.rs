@@ -17,7 +17,7 @@ use rustc_hash::{FxHashMap, FxHashSet};
 use super::WorkCounters;
 use crate::calc::{
     Conditions, Liquid, MaterialTable, NozzleCalc, PartCalc, VesselCalc, conditions, nozzle_calc,
-    part_calc, pressure_shape,
+    part_calc,
 };
 use crate::components::{
     DesignOrder, Materials, MountedOn, Mounts, NozzleCalculation, NozzleSpec, OperatingSpec,
@@ -114,12 +114,13 @@ pub fn update_calculations(
         let Ok((_, spec, op, children, calc)) = vessels.get(v) else {
             continue;
         };
+        let kind = spec.kind;
         let stack = children.into_iter().flatten().filter_map(|&c| {
             let (_, spec, shape, span, ..) = parts.get(c).ok()?;
             let Some(Shape::Part(g)) = shape.as_deref() else {
                 return None;
             };
-            pressure_shape(g, 0.0)?;
+            Liquid::bounds(kind, g).then_some(())?;
             Some((span.map(|s| (s.0, s.1))?, thickness(&spec.0).unwrap_or(0.0)))
         });
         let liquid = Liquid::of(spec.kind, op.0, stack);
@@ -160,7 +161,16 @@ pub fn update_calculations(
                 openings.sort();
                 let head = liquid.map_or(0.0, |l| l.head_at(span.0));
                 let openings = openings.into_iter().map(|(_, m)| m).collect();
-                part_calc(spec.0.id(), g, thickness(&spec.0), head, openings, c).transpose()
+                part_calc(
+                    spec.0.id(),
+                    g,
+                    thickness(&spec.0),
+                    head,
+                    liquid.as_ref(),
+                    openings,
+                    c,
+                )
+                .transpose()
             }
             _ => None,
         };
@@ -199,8 +209,8 @@ pub fn update_calculations(
         counters.nozzles_calculated += 1;
         let host_calc = host.and_then(|h| part_result(h.0));
         let result = match (conds, shape.as_deref(), host_calc) {
-            (Ok(c), Some(Shape::Nozzle(n, _)), Some(Ok(h))) => {
-                Some(nozzle_calc(&spec.0.mark, n, &h, c))
+            (Ok(c), Some(Shape::Nozzle(n, pad)), Some(Ok(h))) => {
+                Some(nozzle_calc(&spec.0.mark, n, *pad, &h, c))
             }
             _ => None,
         };

@@ -54,7 +54,8 @@ fn every_vessel_is_calculated_on_the_first_update() {
         drum.parts
     );
     assert_eq!(drum.nozzles.len(), 8);
-    // A storage tank is API 650's, not computed yet: said, not guessed.
+    // A storage tank is API 650's: its course by the one-foot method, its bottom
+    // and roof plates not calculated — said, not guessed.
     let tank = m
         .design()
         .vessels
@@ -65,6 +66,14 @@ fn every_vessel_is_calculated_on_the_first_update() {
         .clone();
     let t = m.calculation(&tank).unwrap();
     assert!(t.vessel.problems[0].contains("API 650"), "{:?}", t.vessel);
+    assert_eq!(t.vessel.code, "API 650");
+    assert!(
+        t.parts
+            .iter()
+            .any(|p| p.required.paragraph.starts_with("API 650")),
+        "{:?}",
+        t.parts
+    );
 }
 
 #[test]
@@ -171,7 +180,7 @@ fn a_thin_wall_is_a_deficiency_and_thickening_clears_it() {
         .vessel
         .deficiencies
         .iter()
-        .filter(|d| !d.contains("neck"))
+        .filter(|d| d.contains(": wall "))
         .collect();
     assert_eq!(walls.len(), 1, "{:?}", calc.vessel);
     let d = walls[0];
@@ -183,6 +192,13 @@ fn a_thin_wall_is_a_deficiency_and_thickening_clears_it() {
     assert_live(&m, "V-101");
     m.edit(thin(14.0)).unwrap();
     let calc = m.calculation("V-101").unwrap();
-    assert!(calc.vessel.deficiencies.iter().all(|d| d.contains("neck")));
+    assert!(
+        calc.vessel
+            .deficiencies
+            .iter()
+            .all(|d| !d.contains(": wall ")),
+        "{:?}",
+        calc.vessel.deficiencies
+    );
     assert_live(&m, "V-101");
 }

@@ -7,7 +7,7 @@ use std::io::Write;
 
 use vesselcad::calc::{CalcError, MaterialTable};
 
-const REQUIRED: [&str; 11] = [
+const REQUIRED: [&str; 12] = [
     "SA-516-70",
     "SA-516-60",
     "SA-285-C",
@@ -19,6 +19,7 @@ const REQUIRED: [&str; 11] = [
     "SA-105",
     "SA-182-F316L",
     "SA-36",
+    "SA-283-C",
 ];
 
 #[test]

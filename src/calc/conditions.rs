@@ -38,6 +38,9 @@ pub struct Conditions {
     pub joint_efficiency: f64,
     /// Whether E is the default rather than the design's.
     pub joint_efficiency_default: bool,
+    /// The code the figures follow: `ASME VIII-1` or `API 650` (then `stress` is
+    /// the product design stress Sd and `stress_test` the hydrostatic test stress St).
+    pub code: &'static str,
     /// Material specification as the table names it.
     pub material: String,
     /// Allowable stress at the design temperature, MPa.
@@ -46,6 +49,9 @@ pub struct Conditions {
     pub stress_test: f64,
     /// Where the allowable stress comes from.
     pub stress_source: String,
+    /// The material's ASME B16.5 group, taken for the nozzle flanges (forgings of
+    /// the vessel's material family), when the table gives one.
+    pub flange_group: Option<String>,
 }
 
 /// The calculation inputs of a vessel's design conditions, or the sentence saying
@@ -57,11 +63,7 @@ pub fn conditions(
     table: &MaterialTable,
 ) -> Result<Conditions, String> {
     if kind == VesselKind::Tank {
-        return Err(
-            "storage tank: API 650 (one-foot method) is not computed yet; ASME VIII-1 does not \
-             apply"
-                .into(),
-        );
+        return tank_conditions(design, table);
     }
     let pressure = design
         .pressure
@@ -98,5 +100,51 @@ pub fn conditions(
         stress,
         stress_test,
         stress_source: material.allowable_stress.source.clone(),
+        flange_group: material.b16_5_group.as_ref().map(|g| g.value.clone()),
+        code: code_of(kind),
+    })
+}
+
+/// Highest design temperature of API 650 without Annex M, °C (1.1.1: 93 °C).
+pub const API650_MAX_TEMPERATURE: f64 = 93.0;
+
+/// A storage tank's conditions under API 650: Sd and St from the material's
+/// specified minimums by 5.6.2.1 / 5.6.2.2; the design pressure (atmospheric up
+/// to Annex F) does not enter the one-foot method.
+fn tank_conditions(design: &DesignConditions, table: &MaterialTable) -> Result<Conditions, String> {
+    let name = design
+        .material
+        .as_deref()
+        .ok_or("design.material: not given; API 650's Sd and St need it")?;
+    let material = table
+        .get(name)
+        .map_err(|e| format!("design.material: {e}"))?;
+    let temperature = design.temperature.unwrap_or(TEST_TEMPERATURE);
+    if temperature > API650_MAX_TEMPERATURE {
+        return Err(format!(
+            "design.temperature: {temperature} °C exceeds API 650's {API650_MAX_TEMPERATURE} °C; \
+             Annex M (elevated temperature) is not computed"
+        ));
+    }
+    let (sd, st) = super::api650::allowable_stresses(
+        material.yield_strength.value,
+        material.tensile_strength.value,
+    );
+    Ok(Conditions {
+        pressure: design.pressure.unwrap_or(0.0) * 1e-3,
+        temperature,
+        corrosion_allowance: design.corrosion_allowance.unwrap_or(0.0),
+        joint_efficiency: 1.0,
+        joint_efficiency_default: design.joint_efficiency.is_none(),
+        material: material.name.clone(),
+        stress: sd,
+        stress_test: st,
+        stress_source: format!(
+            "API 650 5.6.2.1/5.6.2.2 from {}'s Sy = {} and Su = {} MPa: Sd = min(2/3·Sy, 2/5·Su), \
+             St = min(3/4·Sy, 3/7·Su), rounded to 1 MPa as Table 5-2a",
+            material.name, material.yield_strength.value, material.tensile_strength.value
+        ),
+        flange_group: None,
+        code: "API 650",
     })
 }

@@ -1,6 +1,6 @@
 //! The calculation report as one self-contained HTML page, in the shape handed
 //! to an inspector: per vessel the design data, each pressure part's calculation
-//! (formula, inputs, result, paragraph), the nozzle table (UG-45), the MAWP /
+//! (formula, inputs, result, paragraph), the nozzle tables (UG-45, UG-37, B16.5), the MAWP /
 //! MDMT summary, the hydrotest, the weights with their centres of gravity, and
 //! the deficiencies. Printed to PDF by headless Chromium (`vesselcad calc -o
 //! report.pdf`).
@@ -226,7 +226,84 @@ fn vessel(o: &mut String, v: &ReportVessel) {
                 ],
             );
         }
-        o.push_str("</table><p>UG-45: t = max(t_a, min(t_b1, t_b3)); t_a = UG-27(c)(1) of the neck + CA; t_b1 = the host's required thickness at E = 1 (≥ UG-16(b)) + CA; t_b3 = standard wall × 0.875 + CA. UG-37 reinforcement and B16.5 flange ratings are not calculated.</p>\n");
+        o.push_str("</table><p>UG-45: t = max(t_a, min(t_b1, t_b3)); t_a = UG-27(c)(1) of the neck + CA; t_b1 = the host's required thickness at E = 1 (≥ UG-16(b)) + CA; t_b3 = standard wall × 0.875 + CA. </p>\n");
+        o.push_str("<h3>Nozzles — UG-37 reinforcement and B16.5 flange rating</h3><table>\n");
+        head(
+            o,
+            &[
+                "Mark",
+                "d",
+                "t",
+                "tr",
+                "tn",
+                "trn",
+                "te",
+                "A",
+                "A1",
+                "A2",
+                "A41",
+                "A42",
+                "A5",
+                "Available",
+                "Margin",
+                "UG-37",
+                "Flange",
+                "Rating",
+                "B16.5",
+            ],
+        );
+        for n in &v.calculation.nozzles {
+            let mut cells = vec![n.mark.clone()];
+            match &n.reinforcement {
+                Some(r) => {
+                    cells.extend(
+                        [r.d, r.t, r.tr, r.tn, r.trn, r.te]
+                            .iter()
+                            .map(|x| format!("{x:.2}")),
+                    );
+                    cells.extend(
+                        [
+                            r.a_required,
+                            r.a1,
+                            r.a2,
+                            r.a41,
+                            r.a42,
+                            r.a5,
+                            r.a_available,
+                            r.margin,
+                        ]
+                        .iter()
+                        .map(|x| format!("{x:.0}")),
+                    );
+                    cells.push(match (r.exempt, r.deficient()) {
+                        (Some(e), _) => format!("exempt: {e}"),
+                        (None, true) => "DEFICIENT".into(),
+                        (None, false) => "OK".into(),
+                    });
+                }
+                None => cells.extend(std::iter::repeat_n("—".to_string(), 15)),
+            }
+            match &n.flange {
+                Some(f) => {
+                    cells.push(format!("Class {} (group {})", f.class, f.group));
+                    cells.push(format!(
+                        "{:.3} MPa at {} °C for {:.3} MPa",
+                        f.rating, f.temperature, f.pressure
+                    ));
+                    cells.push(
+                        if f.deficiency.is_some() {
+                            "DEFICIENT"
+                        } else {
+                            "OK"
+                        }
+                        .into(),
+                    );
+                }
+                None => cells.extend(std::iter::repeat_n("—".to_string(), 3)),
+            }
+            row(o, &cells);
+        }
+        o.push_str("</table><p>UG-37 area replacement, Fig. UG-37.1, radial nozzle set through the wall, no inward projection: A = d·tr; A1 = max(d, 2(t + tn))·(t − tr); A2 = min(5(tn − trn)·t, 5(tn − trn)·tn), with a pad min(5(tn − trn)·t, 2(tn − trn)(2.5·tn + te)); A41, A42 = leg² of the smallest UW-16(d) welds; A5 = pad within the parallel limit max(d, Rn + tn + t) each side. Neck, wall, pad and flange of the vessel's material (fr = 1); F = E1 = 1. B16.5 rating at the design temperature from Table 2-1.1 (Group 1.1), interpolated; the vessel's hydrotest must not exceed 1.5 × the 38 °C rating.</p>\n");
     }
     o.push_str("<h3>MAWP / MDMT summary and hydrotest</h3><table>\n");
     row(

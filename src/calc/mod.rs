@@ -11,16 +11,20 @@
 //!
 //! On top of the formulas: a vessel's design conditions in calculation units
 //! ([`conditions`]), one pressure part ([`part_calc`]), UG-45 for a nozzle neck
-//! ([`nozzle_calc`]) and a whole vessel ([`calculate`]). The ECS system
+//! with UG-37 reinforcement ([`mod@reinforcement`]) and the B16.5 flange rating
+//! ([`flange`]) ([`nozzle_calc`]) and a whole vessel ([`calculate`]). The ECS system
 //! `systems::update_calculations` keeps the same figures live as components.
 
+pub mod api650;
 mod conditions;
 mod error;
+pub mod flange;
 pub mod heads;
 pub mod html;
 pub mod materials;
 mod nozzle;
 mod part;
+pub mod reinforcement;
 mod shape;
 pub mod shells;
 mod summary;
@@ -28,8 +32,10 @@ pub mod vessel;
 
 pub use conditions::{Conditions, DEFAULT_JOINT_EFFICIENCY, TEST_TEMPERATURE, code_of, conditions};
 pub use error::CalcError;
+pub use flange::FlangeRating;
 pub use materials::{Material, MaterialTable};
 pub use nozzle::{NozzleCalc, PIPE_UNDERTOLERANCE, nozzle_calc};
 pub use part::{Input, PartCalc, part_calc, pressure_shape};
+pub use reinforcement::{Opening, Reinforcement, reinforcement};
 pub use shape::{Formula, Shape, Strength, mawp, required_thickness};
 pub use summary::{Calculation, Liquid, VesselCalc, calculate};

@@ -1,3 +1,7 @@
+//! A nozzle calculated: UG-45 neck thickness, UG-37 reinforcement of its opening
+//! (with its pad from the model, [`super::reinforcement`]) and the B16.5 rating
+//! of its flange ([`super::flange`]).
+//!
 //! UG-45 nozzle neck thickness: the neck must be at least the larger of t_a (the
 //! neck's own UG-27 thickness under the pressure on its host, plus corrosion) and
 //! t_b, the smaller of the host's required thickness at E = 1 (not less than the
@@ -7,9 +11,11 @@
 
 use serde::Serialize;
 
+use super::flange::flange_rating;
+use super::reinforcement::{Opening, reinforcement};
 use super::shells::circumferential_thickness;
 use super::vessel::UG16_MINIMUM;
-use super::{Conditions, PartCalc};
+use super::{Conditions, FlangeRating, PartCalc, Reinforcement};
 use crate::parts::Nozzle;
 use crate::parts::tables::{PipeSchedule, pipe};
 
@@ -39,19 +45,45 @@ pub struct NozzleCalc {
     pub t_b3: f64,
     /// UG-45 required neck thickness max(t_a, min(t_b1, t_b3)), mm.
     pub required: f64,
-    /// Why the neck fails, when it does.
+    /// Why the neck fails UG-45, when it does.
     pub deficiency: Option<String>,
+    /// UG-37 reinforcement of the opening, when it could be calculated.
+    pub reinforcement: Option<Reinforcement>,
+    /// Why the reinforcement fails, when it does.
+    pub reinforcement_deficiency: Option<String>,
+    /// B16.5 rating of the flange, when its group's table is shipped.
+    pub flange: Option<FlangeRating>,
+    /// What was not calculated for this nozzle, and why.
+    pub notes: Vec<String>,
 }
 
-/// UG-45 of `nozzle` (mark `mark`) on `host`, calculated under `c`. The neck is
-/// taken of the vessel's material, seamless (E = 1).
+impl NozzleCalc {
+    /// Every deficiency of the nozzle: UG-45, UG-37, B16.5.
+    pub fn deficiencies(&self) -> impl Iterator<Item = &String> {
+        self.deficiency
+            .iter()
+            .chain(&self.reinforcement_deficiency)
+            .chain(self.flange.iter().filter_map(|f| f.deficiency.as_ref()))
+    }
+}
+
+/// UG-45, UG-37 and B16.5 of `nozzle` (mark `mark`, reinforcing `pad` as
+/// `(outside diameter, thickness)`) on `host`, calculated under `c`. The neck, its
+/// pad and its flange are taken of the vessel's material (the flange in its B16.5
+/// group), the neck seamless (E = 1).
 pub fn nozzle_calc(
     mark: &str,
     nozzle: &Nozzle,
+    pad: Option<(f64, f64)>,
     host: &PartCalc,
     c: &Conditions,
 ) -> Result<NozzleCalc, String> {
     let fail = |e: String| format!("{mark}: {e}");
+    if c.code == "API 650" {
+        return Err(fail(
+            "API 650 shell nozzles (5.7, Tables 5-6 to 5-8) are not calculated".into(),
+        ));
+    }
     let row = pipe(nozzle.nps);
     let nominal = row.wall(nozzle.schedule).map_err(|e| fail(e.to_string()))?;
     let std_wall = row
@@ -74,6 +106,67 @@ pub fn nozzle_calc(
              {required:.2} mm (t_a {t_a:.2}, t_b1 {t_b1:.2}, t_b3 {t_b3:.2} mm)"
         )
     });
+    let mut notes = Vec::new();
+    let opening = match host.thickness {
+        _ if host.shape == "flat head" => {
+            notes.push(format!(
+                "{mark}: UG-39 (openings in flat heads) is not calculated"
+            ));
+            None
+        }
+        None => {
+            notes.push(format!(
+                "{mark}: UG-37 needs the host {}'s thickness",
+                host.id
+            ));
+            None
+        }
+        Some(wall) => match reinforcement(&Opening {
+            pressure: host.pressure,
+            stress: c.stress,
+            corrosion_allowance: ca,
+            neck_od: od,
+            neck_wall: nominal,
+            wall,
+            wall_required: host.required_seamless - ca,
+            host_diameter: host.inside_diameter,
+            pad,
+        }) {
+            Ok(r) => Some(r),
+            Err(e) => {
+                notes.push(format!("{mark}: UG-37: {e}"));
+                None
+            }
+        },
+    };
+    if let Some(note) = opening.as_ref().and_then(|r| r.note.clone()) {
+        notes.push(format!("{mark}: {note}"));
+    }
+    let reinforcement_deficiency = opening.as_ref().filter(|r| r.deficient()).map(|r| {
+        format!(
+            "{mark}: UG-37 area available {:.0} mm² is less than the {:.0} mm² required \
+             (A1 {:.0}, A2 {:.0}, A41 {:.0}, A42 {:.0}, A5 {:.0} mm²)",
+            r.a_available, r.a_required, r.a1, r.a2, r.a41, r.a42, r.a5
+        )
+    });
+    let flange = match &c.flange_group {
+        None => {
+            notes.push(format!(
+                "{mark}: B16.5: the material {} has no flange group in the table",
+                c.material
+            ));
+            None
+        }
+        Some(group) => {
+            match flange_rating(mark, nozzle.class, group, host.pressure, c.temperature) {
+                Ok(f) => Some(f),
+                Err(e) => {
+                    notes.push(format!("{mark}: B16.5 not rated: {e}"));
+                    None
+                }
+            }
+        }
+    };
     Ok(NozzleCalc {
         mark: mark.to_string(),
         host: host.id.clone(),
@@ -86,5 +179,9 @@ pub fn nozzle_calc(
         t_b3,
         required,
         deficiency,
+        reinforcement: opening,
+        reinforcement_deficiency,
+        flange,
+        notes,
     })
 }

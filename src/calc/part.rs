@@ -8,8 +8,9 @@
 
 use serde::Serialize;
 
-use super::vessel::minimum_thickness;
-use super::{Conditions, Formula, Shape, Strength, mawp, required_thickness};
+use super::api650::one_foot;
+use super::vessel::{GRAVITY, minimum_thickness};
+use super::{Conditions, Formula, Liquid, Shape, Strength, mawp, required_thickness};
 use crate::constraints::PartGeometry;
 use crate::parts::ReducerAlignment;
 use crate::parts::heads::HeadKind;
@@ -42,8 +43,11 @@ pub struct PartCalc {
     pub thickness: Option<f64>,
     /// Required thickness, hot and corroded, corrosion allowance included.
     pub required: Formula,
-    /// Required thickness at E = 1 (seamless), mm: UG-45's t_b1 for its nozzles.
+    /// Required thickness at E = 1 (seamless), mm: UG-45's t_b1 for its nozzles
+    /// and, less the corrosion allowance, UG-37's tr.
     pub required_seamless: f64,
+    /// Inside diameter, new (a head's skirt, a reducer's large end), mm.
+    pub inside_diameter: f64,
     /// UG-16(b) minimum thickness, corrosion allowance included, mm.
     pub minimum: f64,
     /// MAWP at the part, hot and corroded, MPa.
@@ -116,6 +120,15 @@ pub fn pressure_shape(geometry: &PartGeometry, t: f64) -> Option<Shape> {
     })
 }
 
+fn inside_diameter(geometry: &PartGeometry, t: f64) -> f64 {
+    match geometry {
+        PartGeometry::Shell(s) => s.outside_diameter - 2.0 * t,
+        PartGeometry::Head(h) => h.outside_diameter - 2.0 * t,
+        PartGeometry::Reducer(r) => r.large_diameter - 2.0 * t,
+        _ => 0.0,
+    }
+}
+
 fn shape_inputs(shape: &Shape) -> Vec<Input> {
     let i = |name, value| Input {
         name,
@@ -160,7 +173,8 @@ fn shape_inputs(shape: &Shape) -> Vec<Input> {
 }
 
 /// Calculates part `id` of `kind` with resolved `geometry`, nominal wall
-/// `thickness`, under `conditions` plus `static_head` MPa. `Ok(None)` for a part
+/// `thickness`, under `conditions` plus `static_head` MPa of `liquid`. A tank's
+/// shell course follows API 650 instead (`tank_part`). `Ok(None)` for a part
 /// that carries no pressure; `Err` with the reason when a formula cannot be
 /// applied (out of its paragraph's scope, bad proportions).
 pub fn part_calc(
@@ -168,9 +182,13 @@ pub fn part_calc(
     geometry: &PartGeometry,
     thickness: Option<f64>,
     static_head: f64,
+    liquid: Option<&Liquid>,
     openings: Vec<String>,
     c: &Conditions,
 ) -> Result<Option<PartCalc>, String> {
+    if c.code == "API 650" {
+        return tank_part(id, geometry, thickness, static_head, liquid, openings, c);
+    }
     let Some(shape) = pressure_shape(geometry, thickness.unwrap_or(0.0)) else {
         return Ok(None);
     };
@@ -253,10 +271,96 @@ pub fn part_calc(
         thickness,
         required,
         required_seamless,
+        inside_diameter: inside_diameter(geometry, thickness.unwrap_or(0.0)),
         minimum,
         mawp: mawp_hot,
         mawp_new_cold: mawp_cold,
         inputs,
+        openings,
+        deficiency,
+    }))
+}
+
+/// A storage tank's part under API 650: a shell course by the one-foot method
+/// (5.6.3.2) with the design liquid level at the top of the shell and the 5.6.1.1
+/// minimum; bottom and roof plates are not calculated (an error saying so).
+fn tank_part(
+    id: &str,
+    geometry: &PartGeometry,
+    thickness: Option<f64>,
+    static_head: f64,
+    liquid: Option<&Liquid>,
+    openings: Vec<String>,
+    c: &Conditions,
+) -> Result<Option<PartCalc>, String> {
+    let PartGeometry::Shell(shell) = geometry else {
+        return match geometry {
+            PartGeometry::Head(_) => Err(format!(
+                "{id}: API 650 bottom (5.4) and roof (5.10) plates are not calculated"
+            )),
+            _ => Ok(None),
+        };
+    };
+    let liquid = liquid.ok_or_else(|| format!("{id}: API 650: the tank has no shell courses"))?;
+    let t = thickness.unwrap_or(0.0);
+    // D: the centreline diameter of the course (5.6.1.1 Note 1 takes the bottom
+    // course's; every course here has its own, the same in a straight tank).
+    let d = (shell.outside_diameter - t) * 1e-3;
+    let gravity = liquid.density / 1000.0;
+    let level = static_head / (liquid.density * GRAVITY) * 1e6;
+    let course = one_foot(
+        d,
+        level,
+        gravity,
+        c.stress,
+        c.stress_test,
+        c.corrosion_allowance,
+    )
+    .map_err(|e| format!("{id}: {e}"))?;
+    let (paragraph, formula) = if course.required == course.minimum {
+        ("API 650 5.6.1.1", "minimum nominal thickness by diameter")
+    } else if course.required == course.design {
+        ("API 650 5.6.3.2", "t_d = 4.9·D·(H − 0.3)·G / Sd + CA")
+    } else {
+        ("API 650 5.6.3.2", "t_t = 4.9·D·(H − 0.3) / St")
+    };
+    let deficiency = thickness.and_then(|t| {
+        (t < course.required).then(|| {
+            format!(
+                "{id}: course {t} mm is thinner than API 650's {:.2} mm (t_d {:.2}, t_t {:.2}, \
+                 minimum {:.0} mm; D = {d:.3} m, H = {level:.3} m, G = {gravity:.3})",
+                course.required, course.design, course.test, course.minimum
+            )
+        })
+    });
+    let input = |name, value, unit| Input { name, value, unit };
+    Ok(Some(PartCalc {
+        id: id.to_string(),
+        kind: geometry.kind(),
+        shape: "tank shell course",
+        pressure: static_head,
+        static_head,
+        thickness,
+        required: Formula {
+            value: course.required,
+            paragraph,
+            formula,
+        },
+        required_seamless: course.required,
+        inside_diameter: shell.outside_diameter - 2.0 * t,
+        minimum: course.minimum,
+        mawp: None,
+        mawp_new_cold: None,
+        inputs: vec![
+            input("D", d, "m"),
+            input("H", level, "m"),
+            input("G", gravity, ""),
+            input("Sd", c.stress, "MPa"),
+            input("St", c.stress_test, "MPa"),
+            input("CA", c.corrosion_allowance, "mm"),
+            input("t_d", course.design, "mm"),
+            input("t_t", course.test, "mm"),
+        ],
         openings,
         deficiency,
     }))

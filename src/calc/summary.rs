@@ -12,7 +12,7 @@ use super::{
     Conditions, Formula, MaterialTable, NozzleCalc, PartCalc, code_of, conditions, nozzle_calc,
     part_calc,
 };
-use crate::constraints::ResolvedVessel;
+use crate::constraints::{PartGeometry, ResolvedVessel};
 use crate::design::{OperatingDesign, VesselDesign, VesselKind, WATER_DENSITY};
 use crate::operating::thickness;
 
@@ -31,14 +31,32 @@ pub struct Liquid {
 }
 
 impl Liquid {
-    /// The liquid of a vessel of `kind` with `operating` data, whose pressure
-    /// parts span `parts` (`(start, end)` in the vessel frame, wall thickness)
-    /// along the axis; `None` when the vessel is empty.
+    /// The liquid of a vessel of `kind` with `operating` data, whose parts that
+    /// bound it ([`Liquid::bounds`]) span `parts` (`(start, end)` in the vessel
+    /// frame, wall thickness) along the axis; `None` when the vessel is empty. A
+    /// tank is always full to the top of its shell with its operating liquid (or
+    /// water): API 650's design liquid level.
     pub fn of(
         kind: VesselKind,
         operating: Option<OperatingDesign>,
         parts: impl IntoIterator<Item = ((f64, f64), f64)>,
     ) -> Option<Liquid> {
+        if kind == VesselKind::Tank {
+            // API 650 5.6.3.2: the design liquid level is the top of the shell.
+            let density = operating
+                .and_then(|o| o.liquid_density)
+                .unwrap_or(WATER_DENSITY);
+            let (bottom, top) = parts.into_iter().fold(
+                (f64::INFINITY, f64::NEG_INFINITY),
+                |(b, t), ((start, end), _)| (b.min(start), t.max(end)),
+            );
+            return (bottom < top).then_some(Liquid {
+                density,
+                surface: top,
+                bottom,
+                horizontal: false,
+            });
+        }
         let o = operating.filter(|o| o.liquid_level > 0.0)?;
         let density = o.liquid_density.unwrap_or(WATER_DENSITY);
         let lowest = parts.into_iter().min_by(|a, b| a.0.0.total_cmp(&b.0.0))?;
@@ -54,6 +72,14 @@ impl Liquid {
             bottom,
             horizontal,
         })
+    }
+
+    /// Whether a part of `geometry` bounds the liquid of a vessel of `kind`: a
+    /// pressure part, and for a tank one of its shell courses (the top of the shell
+    /// is the design liquid level).
+    pub fn bounds(kind: VesselKind, geometry: &PartGeometry) -> bool {
+        super::pressure_shape(geometry, 0.0).is_some()
+            && (kind != VesselKind::Tank || matches!(geometry, PartGeometry::Shell(_)))
     }
 
     /// Static head at the lowest inside point of a part spanning from `start`
@@ -101,7 +127,8 @@ impl VesselCalc {
     ) -> VesselCalc {
         let mut deficiencies: Vec<String> =
             parts.iter().filter_map(|p| p.deficiency.clone()).collect();
-        deficiencies.extend(nozzles.iter().filter_map(|n| n.deficiency.clone()));
+        deficiencies.extend(nozzles.iter().flat_map(|n| n.deficiencies().cloned()));
+        problems.extend(nozzles.iter().flat_map(|n| n.notes.iter().cloned()));
         let conditions = match conditions {
             Ok(c) => Some(c),
             Err(e) => {
@@ -124,6 +151,22 @@ impl VesselCalc {
             (Some((m, _)), Some(c)) => hydrotest_pressure(*m, &[(c.stress_test, c.stress)]).ok(),
             _ => None,
         };
+        if let Some(h) = &hydrotest {
+            for n in nozzles {
+                let Some(f) = &n.flange else { continue };
+                if h.value > f.test_limit {
+                    deficiencies.push(format!(
+                        "{}: hydrotest {:.3} MPa at the top exceeds the B16.5 Class {} shell test \
+                         1.5 × {:.3} = {:.3} MPa",
+                        n.mark,
+                        h.value,
+                        f.class,
+                        f.test_limit / 1.5,
+                        f.test_limit
+                    ));
+                }
+            }
+        }
         VesselCalc {
             tag: tag.to_string(),
             code: code_of(kind),
@@ -173,7 +216,7 @@ pub fn calculate(
             resolved
                 .parts
                 .iter()
-                .filter(|p| super::pressure_shape(&p.geometry, 0.0).is_some())
+                .filter(|p| Liquid::bounds(design.kind, &p.geometry))
                 .map(|p| (p.span, thickness_of(&p.id).unwrap_or(0.0))),
         );
         let mut host_calc: Vec<Option<usize>> = vec![None; resolved.parts.len()];
@@ -185,7 +228,15 @@ pub fn calculate(
                 .map(|n| n.mark.clone())
                 .collect();
             let head = liquid.map_or(0.0, |l| l.head_at(p.span.0));
-            match part_calc(&p.id, &p.geometry, thickness_of(&p.id), head, openings, c) {
+            match part_calc(
+                &p.id,
+                &p.geometry,
+                thickness_of(&p.id),
+                head,
+                liquid.as_ref(),
+                openings,
+                c,
+            ) {
                 Ok(Some(calc)) => {
                     host_calc[i] = Some(parts.len());
                     parts.push(calc);
@@ -198,7 +249,7 @@ pub fn calculate(
             let Some(host) = host_calc.get(n.host).copied().flatten() else {
                 continue;
             };
-            match nozzle_calc(&n.mark, &n.geometry, &parts[host], c) {
+            match nozzle_calc(&n.mark, &n.geometry, n.pad, &parts[host], c) {
                 Ok(calc) => nozzles.push(calc),
                 Err(e) => problems.push(e),
             }

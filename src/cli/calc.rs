@@ -211,6 +211,35 @@ fn print_text(c: &Calculated) {
                 "ok"
             }
         );
+        if let Some(r) = &n.reinforcement {
+            println!(
+                "  {:<8} UG-37 area {:>8.0} mm² available, {:>8.0} mm² required  {}",
+                n.mark,
+                r.a_available,
+                r.a_required,
+                match (r.exempt, r.deficient()) {
+                    (Some(_), _) => "exempt (UG-36(c)(3))",
+                    (None, true) => "DEFICIENT",
+                    (None, false) => "ok",
+                }
+            );
+        }
+        if let Some(f) = &n.flange {
+            println!(
+                "  {:<8} B16.5 Class {} group {}: {:.3} MPa at {} °C for {:.3} MPa  {}",
+                n.mark,
+                f.class,
+                f.group,
+                f.rating,
+                f.temperature,
+                f.pressure,
+                if f.deficiency.is_some() {
+                    "DEFICIENT"
+                } else {
+                    "ok"
+                }
+            );
+        }
     }
     if let Some(m) = v.mawp {
         println!(

@@ -1,0 +1,145 @@
+//! ASME B16.5 flange pressure–temperature ratings: the working pressure a flange
+//! of a class and material group may carry at a temperature, interpolated
+//! linearly between the table's temperatures (B16.5 para. 2.1 permits it), and
+//! the check of a nozzle's flange against the pressure on its host at the design
+//! temperature and against the vessel's hydrostatic test (the flange's shell test,
+//! para. 2.6 / 8.2: 1.5 × its 38 °C rating).
+//!
+//! Shipped: Table 2-1.1 (Group 1.1: A105, A350 LF2, A216 WCB, A515-70, A516-70)
+//! of ASME B16.5-2009/-2013 in bar, the same values B16.34-2013 Table 2-1.1 lists
+//! for the standard class. Other groups are not shipped: their flanges are
+//! reported as not rated, never guessed.
+
+use serde::Serialize;
+
+use super::CalcError;
+use crate::parts::tables::FlangeClass;
+
+/// Temperatures of B16.5 Table 2-1.1, °C (the first row is "−29 to 38").
+const TEMPERATURES: [f64; 17] = [
+    -29.0, 38.0, 50.0, 100.0, 150.0, 200.0, 250.0, 300.0, 325.0, 350.0, 375.0, 400.0, 425.0, 450.0,
+    475.0, 500.0, 538.0,
+];
+
+/// Group 1.1 working pressures, bar, for Class 150, 300, 600 and 900, at
+/// [`TEMPERATURES`] (the "−29 to 38" value repeated at both ends of its row).
+const GROUP_1_1: [[f64; 17]; 4] = [
+    [
+        19.6, 19.6, 19.2, 17.7, 15.8, 13.8, 12.1, 10.2, 9.3, 8.4, 7.4, 6.5, 5.5, 4.6, 3.7, 2.8, 1.4,
+    ],
+    [
+        51.1, 51.1, 50.1, 46.6, 45.1, 43.8, 41.9, 39.8, 38.7, 37.6, 36.4, 34.7, 28.8, 23.0, 17.4,
+        11.8, 5.9,
+    ],
+    [
+        102.1, 102.1, 100.2, 93.2, 90.2, 87.6, 83.9, 79.6, 77.4, 75.1, 72.7, 69.4, 57.5, 46.0,
+        34.9, 23.5, 11.8,
+    ],
+    [
+        153.2, 153.2, 150.4, 139.8, 135.2, 131.4, 125.8, 119.5, 116.1, 112.7, 109.1, 104.2, 86.3,
+        69.0, 52.3, 35.3, 17.7,
+    ],
+];
+
+/// Where the shipped ratings come from.
+pub const SOURCE: &str = "ASME B16.5-2009/-2013 Table 2-1.1 (Group 1.1), standard class, bar; \
+    identical to ASME B16.34-2013 Table 2-1.1 as published by valve makers";
+
+/// The class's number, e.g. 150.
+pub fn class_number(class: FlangeClass) -> u32 {
+    match class {
+        FlangeClass::C150 => 150,
+        FlangeClass::C300 => 300,
+        FlangeClass::C600 => 600,
+        FlangeClass::C900 => 900,
+    }
+}
+
+/// The B16.5 rating of a flange of `class` in material `group` (e.g. `"1.1"`) at
+/// `temperature` °C, MPa gauge; an error for a group whose table is not shipped
+/// or a temperature outside −29 to 538 °C.
+pub fn rating(group: &str, class: FlangeClass, temperature: f64) -> Result<f64, CalcError> {
+    let row = match group {
+        "1.1" => {
+            &GROUP_1_1[match class {
+                FlangeClass::C150 => 0,
+                FlangeClass::C300 => 1,
+                FlangeClass::C600 => 2,
+                FlangeClass::C900 => 3,
+            }]
+        }
+        _ => {
+            return Err(CalcError::Input {
+                entity: format!("B16.5 group {group}"),
+                field: "group".into(),
+                value: f64::NAN,
+                rule: "only the Group 1.1 rating table (Table 2-1.1) is shipped".into(),
+            });
+        }
+    };
+    let (first, last) = (TEMPERATURES[0], TEMPERATURES[TEMPERATURES.len() - 1]);
+    if !(temperature.is_finite() && (first..=last).contains(&temperature)) {
+        return Err(CalcError::Input {
+            entity: format!("B16.5 group {group} class {}", class_number(class)),
+            field: "temperature".into(),
+            value: temperature,
+            rule: format!("Table 2-1.1 covers {first} to {last} °C"),
+        });
+    }
+    let i = TEMPERATURES
+        .windows(2)
+        .position(|w| temperature <= w[1])
+        .unwrap_or(TEMPERATURES.len() - 2);
+    let (t0, t1) = (TEMPERATURES[i], TEMPERATURES[i + 1]);
+    let bar = row[i] + (temperature - t0) / (t1 - t0) * (row[i + 1] - row[i]);
+    Ok(bar * 0.1)
+}
+
+/// A nozzle flange's rating check.
+#[derive(Clone, Debug, PartialEq, Serialize)]
+pub struct FlangeRating {
+    /// Class, e.g. 150.
+    pub class: u32,
+    /// B16.5 material group, e.g. `1.1`.
+    pub group: String,
+    /// Design temperature, °C.
+    pub temperature: f64,
+    /// Rating at the design temperature, MPa.
+    pub rating: f64,
+    /// Pressure on the flange: the host's design pressure with static head, MPa.
+    pub pressure: f64,
+    /// The flange's shell-test limit, 1.5 × its 38 °C rating, MPa (the vessel's
+    /// hydrotest at the top must not exceed it; checked with the vessel's figures).
+    pub test_limit: f64,
+    /// Why the flange fails at design conditions, when it does.
+    pub deficiency: Option<String>,
+}
+
+/// Checks the flange of nozzle `mark`, of `class` and `group`, under `pressure`
+/// MPa at `temperature` °C.
+pub fn flange_rating(
+    mark: &str,
+    class: FlangeClass,
+    group: &str,
+    pressure: f64,
+    temperature: f64,
+) -> Result<FlangeRating, CalcError> {
+    let at = rating(group, class, temperature)?;
+    let test_limit = 1.5 * rating(group, class, 38.0)?;
+    let n = class_number(class);
+    let deficiency = (pressure > at).then(|| {
+        format!(
+            "{mark}: B16.5 Class {n} (group {group}) is rated {at:.3} MPa at {temperature} °C, \
+             below the {pressure:.3} MPa on it"
+        )
+    });
+    Ok(FlangeRating {
+        class: n,
+        group: group.to_string(),
+        temperature,
+        rating: at,
+        pressure,
+        test_limit,
+        deficiency,
+    })
+}

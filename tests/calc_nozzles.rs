@@ -1,0 +1,307 @@
+//! Nozzle calculations beyond UG-45: UG-37 reinforcement by area replacement and
+//! the ASME B16.5 flange pressure–temperature rating, as pure functions against
+//! published figures and hand calculations written out below, and through a
+//! design (the pad from the model, deficiencies in `calculate`).
+
+mod common;
+
+use vesselcad::calc::flange::{flange_rating, rating};
+use vesselcad::calc::{MaterialTable, Opening, calculate, reinforcement};
+use vesselcad::parts::tables::FlangeClass;
+
+fn close(got: f64, want: f64, tol: f64) {
+    assert!(
+        (got - want).abs() <= tol,
+        "got {got}, expected {want} ± {tol}"
+    );
+}
+
+/// ASME B16.5-2013 Table 2-1.1, Group 1.1, as published (e.g. reliaballvalve.com,
+/// "Valve Body Materials (ASME B16.34) Pressure/temperature Ratings", the same
+/// values): Class 150 at −29…38 °C 19.6 bar, at 200 °C 13.8 bar; Class 300 at
+/// 400 °C 34.7 bar; Class 600 at 538 °C 11.8 bar; Class 900 at 100 °C 139.8 bar.
+#[test]
+fn b16_5_group_1_1_matches_the_published_table() {
+    close(
+        rating("1.1", FlangeClass::C150, -29.0).unwrap(),
+        1.96,
+        1e-12,
+    );
+    close(rating("1.1", FlangeClass::C150, 38.0).unwrap(), 1.96, 1e-12);
+    close(
+        rating("1.1", FlangeClass::C150, 200.0).unwrap(),
+        1.38,
+        1e-12,
+    );
+    close(
+        rating("1.1", FlangeClass::C300, 400.0).unwrap(),
+        3.47,
+        1e-12,
+    );
+    close(
+        rating("1.1", FlangeClass::C600, 538.0).unwrap(),
+        1.18,
+        1e-12,
+    );
+    close(
+        rating("1.1", FlangeClass::C900, 100.0).unwrap(),
+        13.98,
+        1e-12,
+    );
+    // Linear interpolation (B16.5 para. 2.1): Class 150 at 120 °C lies 2/5 of the
+    // way from 17.7 bar (100 °C) to 15.8 bar (150 °C): 17.7 − 0.4 × 1.9 = 16.94 bar.
+    close(
+        rating("1.1", FlangeClass::C150, 120.0).unwrap(),
+        1.694,
+        1e-12,
+    );
+    // Ratings fall with temperature and rise with class.
+    for t in [-29.0, 38.0, 120.0, 300.0, 455.0, 538.0] {
+        let r: Vec<f64> = FlangeClass::ALL
+            .iter()
+            .map(|&c| rating("1.1", c, t).unwrap())
+            .collect();
+        assert!(r.windows(2).all(|w| w[0] < w[1]), "{t} °C: {r:?}");
+    }
+}
+
+#[test]
+fn b16_5_refuses_what_it_does_not_know() {
+    let e = rating("1.1", FlangeClass::C150, 540.0)
+        .unwrap_err()
+        .to_string();
+    assert!(
+        e.contains("temperature = 540") && e.contains("-29 to 538"),
+        "{e}"
+    );
+    let e = rating("2.3", FlangeClass::C150, 100.0)
+        .unwrap_err()
+        .to_string();
+    assert!(e.contains("group 2.3") && e.contains("Table 2-1.1"), "{e}");
+    assert!(rating("1.1", FlangeClass::C150, f64::NAN).is_err());
+}
+
+#[test]
+fn flange_rating_flags_a_class_too_low() {
+    // 1.5 MPa at 200 °C: Class 150 is rated 1.38 MPa (deficient), Class 300 4.38.
+    let low = flange_rating("N1", FlangeClass::C150, "1.1", 1.5, 200.0).unwrap();
+    let d = low
+        .deficiency
+        .expect("Class 150 cannot carry 1.5 MPa at 200 °C");
+    assert!(
+        d.contains("N1") && d.contains("Class 150") && d.contains("1.380"),
+        "{d}"
+    );
+    close(low.test_limit, 1.5 * 1.96, 1e-12);
+    let ok = flange_rating("N1", FlangeClass::C300, "1.1", 1.5, 200.0).unwrap();
+    assert!(ok.deficiency.is_none());
+    close(ok.rating, 4.38, 1e-12);
+}
+
+/// Published: a PV Elite nozzle report (scribd "Nozzle-Cal-03") prints
+/// A = d·tr·F = 157.2772 × 19.6998 × 1.0 = 30.983 cm² and A1 = 0 where the wall
+/// has no excess (t = 19.7000 against tr = 19.6998). The same inputs here: a neck
+/// whose corroded bore is 157.2772 mm (OD 227.2772, 35 mm wall, no corrosion).
+#[test]
+fn ug37_required_area_matches_a_published_report() {
+    let r = reinforcement(&Opening {
+        pressure: 1.0,
+        stress: 137.9,
+        corrosion_allowance: 0.0,
+        neck_od: 157.2772 + 70.0,
+        neck_wall: 35.0,
+        wall: 19.7,
+        wall_required: 19.6998,
+        host_diameter: 2000.0,
+        pad: None,
+    })
+    .unwrap();
+    close(r.d, 157.2772, 1e-9);
+    close(r.a_required / 100.0, 30.983, 0.0005);
+    close(r.a1 / 100.0, 0.0, 0.0005);
+}
+
+/// Hand calculation (UG-37, Fig. UG-37.1, fr = F = E1 = 1):
+/// cylinder, P = 1.5 MPa, S = 138 MPa, CA = 3 mm, wall 12 mm, tr = 7.5 mm
+/// (given, corroded, E = 1); NPS 8 Sch 40 neck, OD 219.1, wall 8.18 mm.
+///   tn = 8.18 − 3 = 5.18; d = 219.1 − 2·5.18 = 208.74; Rn = 104.37
+///   t = 12 − 3 = 9; trn = 1.5·104.37 / (138 − 0.9) = 1.141 896…
+///   A  = d·tr = 208.74 · 7.5 = 1565.55 mm²
+///   A1 = max(d, 2(t + tn))·(t − tr) = 208.74 · 1.5 = 313.11 mm²
+///   A2 = min(5(tn − trn)·t, 5(tn − trn)·tn) = 5 · 4.038 104 · 5.18 = 104.5869 mm²
+///   A41: throat min(6, 0.7·min(19, 5.18, 9)) = 3.626, leg = 3.626·√2 = 5.1279;
+///        leg² = 2·3.626² = 26.2958 mm²
+///   available 313.11 + 104.5869 + 26.2958 = 443.99 mm² < 1565.55: deficient.
+/// With a pad 420 mm OD × 10 mm:
+///   limit parallel = max(d, Rn + tn + t) = 208.74 each side → pad counted to
+///   417.48 mm: A5 = (417.48 − 208.74 − 10.36)·10 = 1983.8 mm²
+///   A2 = min(5·4.038 104·9, 2·4.038 104·(2.5·5.18 + 10)) = min(181.7147, 185.3490)
+///      = 181.7147 mm²
+///   A41: throat min(6, 0.7·min(19, 5.18, 10)) = 3.626 → 26.2958 mm²
+///   A42: throat 0.5·min(19, 10, 9) = 4.5, leg² = 2·4.5² = 40.5 mm²
+///   available 313.11 + 181.7147 + 26.2958 + 40.5 + 1983.8 = 2545.42 mm²: adequate.
+#[test]
+fn ug37_hand_calculation_with_and_without_pad() {
+    let bare = Opening {
+        pressure: 1.5,
+        stress: 138.0,
+        corrosion_allowance: 3.0,
+        neck_od: 219.1,
+        neck_wall: 8.18,
+        wall: 12.0,
+        wall_required: 7.5,
+        host_diameter: 2000.0,
+        pad: None,
+    };
+    let r = reinforcement(&bare).unwrap();
+    close(r.d, 208.74, 1e-9);
+    close(r.trn, 1.5 * 104.37 / 137.1, 1e-12);
+    close(r.a_required, 1565.55, 1e-6);
+    close(r.a1, 313.11, 1e-6);
+    close(r.a2, 104.5869, 1e-3);
+    close(r.a41, 26.2958, 1e-3);
+    close(r.a_available, 443.99, 0.01);
+    assert!(r.deficient() && r.exempt.is_none());
+    close(r.limit_parallel, 208.74, 1e-9);
+    close(r.limit_normal, (2.5f64 * 9.0).min(2.5 * 5.18), 1e-12);
+
+    let padded = reinforcement(&Opening {
+        pad: Some((420.0, 10.0)),
+        ..bare
+    })
+    .unwrap();
+    close(padded.a5, 1983.8, 1e-6);
+    close(padded.a2, 181.7147, 1e-3);
+    close(padded.a42, 40.5, 1e-9);
+    close(padded.a_available, 2545.42, 0.01);
+    assert!(!padded.deficient());
+    close(padded.margin, 2545.42 - 1565.55, 0.01);
+    // A wider pad adds nothing beyond the parallel limit.
+    let wide = reinforcement(&Opening {
+        pad: Some((600.0, 10.0)),
+        ..bare
+    })
+    .unwrap();
+    close(wide.a5, padded.a5, 1e-9);
+}
+
+#[test]
+fn ug36_small_openings_are_exempt_and_bad_inputs_named() {
+    // NPS 2 Sch 80: bore 60.3 − 2·5.54 = 49.22 mm ≤ 60 mm.
+    let small = reinforcement(&Opening {
+        pressure: 1.5,
+        stress: 138.0,
+        corrosion_allowance: 0.0,
+        neck_od: 60.3,
+        neck_wall: 5.54,
+        wall: 12.0,
+        wall_required: 11.9,
+        host_diameter: 2000.0,
+        pad: None,
+    })
+    .unwrap();
+    assert!(small.exempt.is_some());
+    assert!(!small.deficient());
+    let e = reinforcement(&Opening {
+        neck_wall: 2.0,
+        corrosion_allowance: 3.0,
+        ..Opening {
+            pressure: 1.5,
+            stress: 138.0,
+            corrosion_allowance: 0.0,
+            neck_od: 60.3,
+            neck_wall: 5.54,
+            wall: 12.0,
+            wall_required: 11.9,
+            host_diameter: 2000.0,
+            pad: None,
+        }
+    })
+    .unwrap_err()
+    .to_string();
+    assert!(
+        e.contains("neck_wall less corrosion") && e.contains("-1"),
+        "{e}"
+    );
+}
+
+/// Through a design: a drum nozzle's pad from the model counts as A5, and a
+/// flange class too low for the design pressure is a deficiency `calculate`
+/// reports.
+#[test]
+fn a_design_s_nozzles_get_ug37_and_b16_5() {
+    let table = MaterialTable::builtin();
+    let mut design = common::examples::example("horizontal-drum");
+    let v = &mut design.vessels[0];
+    v.design.pressure = Some(1500.0);
+    v.design.temperature = Some(200.0);
+    let resolved = vesselcad::constraints::resolve_vessel(v, 0).unwrap();
+    let c = calculate(v, &resolved, &table);
+    assert!(!c.nozzles.is_empty());
+    for n in &c.nozzles {
+        let f = n.flange.as_ref().expect("SA-516-70 is group 1.1");
+        if f.class == 150 {
+            assert!(f.deficiency.is_some(), "{}: {f:?}", n.mark);
+            assert!(
+                c.vessel
+                    .deficiencies
+                    .iter()
+                    .any(|d| d.contains(&n.mark) && d.contains("B16.5")),
+                "{:?}",
+                c.vessel.deficiencies
+            );
+        }
+        let resolved_pad = resolved
+            .nozzles
+            .iter()
+            .find(|r| r.mark == n.mark)
+            .unwrap()
+            .pad;
+        if let (Some(r), Some(_)) = (&n.reinforcement, resolved_pad) {
+            assert!(r.te > 0.0 && r.a5 > 0.0, "{}: {r:?}", n.mark);
+        }
+    }
+}
+
+/// The vessel's hydrotest against each flange's shell test (1.5 × its 38 °C
+/// rating): a drum with 40 mm walls at 500 kPa has an MAWP far above Class 150's,
+/// so its UG-99(b) test pressure exceeds 1.5 × 1.96 = 2.94 MPa on every Class 150
+/// flange, while each flange still carries the design pressure.
+#[test]
+fn a_hydrotest_above_a_flange_s_shell_test_is_a_deficiency() {
+    use vesselcad::design::PartDesign;
+    let table = MaterialTable::builtin();
+    let mut design = common::examples::example("horizontal-drum");
+    let v = &mut design.vessels[0];
+    v.design.pressure = Some(500.0);
+    v.design.temperature = Some(100.0);
+    for p in &mut v.parts {
+        match p {
+            PartDesign::Shell(s) => s.thickness = Some(40.0),
+            PartDesign::Head(h) => h.thickness = Some(40.0),
+            _ => {}
+        }
+    }
+    let resolved = vesselcad::constraints::resolve_vessel(v, 0).unwrap();
+    let c = calculate(v, &resolved, &table);
+    let test = c.vessel.hydrotest.as_ref().unwrap().value;
+    assert!(test > 2.94, "hydrotest {test} MPa");
+    let class_150: Vec<_> = c
+        .nozzles
+        .iter()
+        .filter(|n| n.flange.as_ref().is_some_and(|f| f.class == 150))
+        .collect();
+    assert!(!class_150.is_empty());
+    for n in class_150 {
+        assert!(n.flange.as_ref().unwrap().deficiency.is_none(), "{n:?}");
+        assert!(
+            c.vessel
+                .deficiencies
+                .iter()
+                .any(|d| d.starts_with(&format!("{}: hydrotest", n.mark)) && d.contains("2.940")),
+            "{}: {:?}",
+            n.mark,
+            c.vessel.deficiencies
+        );
+    }
+}
