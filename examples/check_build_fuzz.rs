@@ -5,7 +5,7 @@
 //! slowest build. `tests/design_build_fuzz.rs` runs a few hundred in CI.
 //!
 //! ```text
-//! cargo run --release --example check_build_fuzz -- [cases=2000] [first-seed=0]
+//! cargo run --release --example check_build_fuzz -- [cases=2000] [first-seed=0] [tolerance-mm=0.5]
 //! ```
 
 #[path = "../tests/common/perturb.rs"]
@@ -37,6 +37,10 @@ fn main() -> ExitCode {
     let mut args = std::env::args().skip(1);
     let cases: u64 = args.next().and_then(|a| a.parse().ok()).unwrap_or(2000);
     let first: u64 = args.next().and_then(|a| a.parse().ok()).unwrap_or(0);
+    let options = args
+        .next()
+        .and_then(|a| a.parse().ok())
+        .map_or(TessellationOptions::DEFAULT, TessellationOptions::chord);
     let (mut accepted, mut refused, mut failed) = (0u64, 0u64, 0u64);
     let mut slowest = (0.0f64, 0u64);
     let start = Instant::now();
@@ -52,7 +56,7 @@ fn main() -> ExitCode {
         accepted += 1;
         let t = Instant::now();
         let outcome = catch_unwind(AssertUnwindSafe(|| {
-            Model::from_design(&parsed, TessellationOptions::DEFAULT).map(|m| m.errors().0.clone())
+            Model::from_design(&parsed, options).map(|m| m.errors().0.clone())
         }));
         let took = t.elapsed().as_secs_f64();
         if took > slowest.0 {
@@ -68,8 +72,9 @@ fn main() -> ExitCode {
         println!("FAIL case {case} {name} {made:?} ({took:.2} s): {problem}");
     }
     println!(
-        "{cases} cases: {accepted} accepted, {refused} refused, {failed} accepted but failed to build; \
+        "{cases} cases at {} mm: {accepted} accepted, {refused} refused, {failed} accepted but failed to build; \
          slowest build {:.2} s (case {}); {:.1} s in all",
+        options.tolerance,
         slowest.0,
         slowest.1,
         start.elapsed().as_secs_f64()

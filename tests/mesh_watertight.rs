@@ -582,6 +582,40 @@ fn hillside_tangential_and_inclined_shell_nozzles_are_watertight() {
     check_design(&design, 1.0);
 }
 
+/// The fuzz plant's storage tank (issue 30 §1): its conical roof (half-angle
+/// 79°, two 4″ nozzles at offset 1500 mm) leaves a hole-loop segment nearly
+/// along a cone generator, and refinement ran away (past 50 000 vertices) at 1
+/// and 0.7 mm while 0.5, 1.5 and 2 mm built: the apex, fanned straight to that
+/// segment, made triangles turned over on the cone that no split could mend. It
+/// builds closed at both, with a bounded roof.
+#[test]
+fn the_fuzz_plants_conical_roof_builds_closed_at_1_and_0_7_mm() {
+    let mut design = load(format!(
+        "{}/tests/repros/fuzz-seed1-accepted-edit-roof-4M-vertices.json",
+        env!("CARGO_MANIFEST_DIR")
+    ))
+    .unwrap();
+    design.vessels.retain(|v| v.tag == "TK-301");
+    for tolerance in [1.0, 0.7] {
+        let model = check_design(&design, tolerance);
+        let scene = model.scene();
+        let roof = scene.vessels[0]
+            .nodes
+            .iter()
+            .find(|n| n.id == "ROOF")
+            .unwrap();
+        let vertices: usize = roof
+            .patches
+            .iter()
+            .map(|p| p.mesh.positions().count())
+            .sum();
+        assert!(
+            vertices < 5_000,
+            "the roof at {tolerance} mm has {vertices} vertices"
+        );
+    }
+}
+
 /// Designs that `check` once accepted but `build` could not mesh (issue 30 §1;
 /// `tests/repros/`, from `shared/repros/`): each is now either refused by the
 /// rules, with a violation naming path, entity, field and rule, or builds with

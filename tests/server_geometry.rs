@@ -8,10 +8,11 @@ mod server_support;
 use serde_json::{Value, json};
 use server_support::{ServerProcess, design_copy};
 
-/// The fuzz plant of `tests/repros/` whose storage tank's conical roof cannot be
-/// meshed at 1 mm with nozzle N3 (`vessels[3].nozzles[1]`), an open defect: the
-/// one known design that passes every rule and cannot be built. When the roof
-/// is fixed, this test needs another.
+/// The fuzz plant of `tests/repros/` whose storage tank's conical roof could
+/// not be meshed at 1 mm with nozzle N3 (`vessels[3].nozzles[1]`): the last
+/// known design that passed every rule and could not be built. The roof now
+/// builds, so the test is ignored until it gets another such edit (or an
+/// injected mesher failure).
 fn unbuildable() -> Value {
     let path = format!(
         "{}/tests/repros/fuzz-seed1-accepted-edit-roof-4M-vertices.json",
@@ -21,6 +22,7 @@ fn unbuildable() -> Value {
 }
 
 #[test]
+#[ignore = "needs an edit that check accepts and the mesher cannot build: the fuzz plant's roof at 1 mm, the last one known, builds since the pole-row fix (issue 30)"]
 fn an_edit_that_cannot_be_built_is_refused_and_changes_nothing() {
     let mut plant = unbuildable();
     let tank = &mut plant["vessels"][3];

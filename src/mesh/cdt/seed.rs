@@ -38,6 +38,8 @@ pub(super) const MARGIN: f64 = 0.55;
 /// Consecutive rows keep one point count while it is at most this factor above
 /// what the row needs.
 const COUNT_SLACK: f64 = 1.1;
+/// Fewest points of a row [`pole_rows`] adds (a whole turn round a pole).
+const POLE_ROW_POINTS: usize = 8;
 /// Row spacing of an equilateral lattice with unit edges.
 const ROW_HEIGHT: f64 = 0.866_025_403_784_438_6;
 
@@ -220,7 +222,67 @@ pub(super) fn seeds(
         .enumerate()
         .map(|(r, (profile, &n))| profile.seeds(region, &segments, &us, n, r % 2 == 1))
         .collect();
-    Ok(per_row.into_iter().flatten().collect())
+    let mut out: Vec<DVec2> = per_row.into_iter().flatten().collect();
+    let extra = pole_rows(info, region, &us, &out);
+    out.extend(extra);
+    Ok(out)
+}
+
+/// A row of seeds halfway between each pole and the loop vertex nearest it, for
+/// every collapsed side with no seed nearer the pole than that vertex (a cone:
+/// straight generators need no rows).
+///
+/// Without it spade fans the pole's vertices straight to the loops. A triangle
+/// of a loop segment and a pole vertex is turned over on the surface when the
+/// segment runs nearly along a generator and the line through it passes the apex
+/// on the loop's side: the pole is one point, so no choice of its (u, v) mends
+/// that, and refinement, splitting such triangles at their centroids, only
+/// adds triangles with the same pole corner (a conical roof with two openings
+/// ran past 50 000 vertices at 1 and 0.7 mm). With a row in between, the pole
+/// is zipped to the row ([`with_pole_vertices`]) and the loops meet the row.
+fn pole_rows(info: &PatchInfo, region: &Region, us: &[f64], seeds: &[DVec2]) -> Vec<DVec2> {
+    let (_, (v0, v1)) = info.surface.domain();
+    let eps = 1e-12 * (v1 - v0).abs().max(f64::MIN_POSITIVE);
+    let mut out = Vec::new();
+    for (collapsed, pole) in [(info.collapsed[2], v0), (info.collapsed[3], v1)] {
+        if !collapsed {
+            continue;
+        }
+        let nearest = region
+            .loops()
+            .flat_map(|l| l.uv.iter())
+            .map(|p| (p.y - pole).abs())
+            .filter(|&d| d > eps)
+            .fold(f64::INFINITY, f64::min);
+        if !nearest.is_finite() || seeds.iter().any(|s| (s.y - pole).abs() < nearest) {
+            continue;
+        }
+        // Every loop vertex, and so every loop segment off the seam, is at
+        // least `nearest / 2` away across v; along the row the points keep
+        // [`MARGIN`] of their spacing from where loops cross it (the seam).
+        let v = pole + 0.5 * nearest * if pole == v0 { 1.0 } else { -1.0 };
+        let profile = RowProfile::new(info, us, v);
+        let n = (profile.total().ceil() as usize).max(POLE_ROW_POINTS);
+        let placed = place(us, &profile.cumulative, n, 0.5);
+        let mut crossings = Vec::new();
+        region.row_crossings(v, &mut crossings);
+        for (k, &u) in placed.iter().enumerate() {
+            let before = k.checked_sub(1).map_or(f64::INFINITY, |j| u - placed[j]);
+            let after = placed.get(k + 1).map_or(f64::INFINITY, |&w| w - u);
+            let step = before.min(after);
+            let step = if step.is_finite() {
+                step
+            } else {
+                us[us.len() - 1] - us[0]
+            };
+            if inside_by_crossings(&crossings, u)
+                && crossings.iter().all(|&c| (c - u).abs() >= MARGIN * step)
+            {
+                out.push(DVec2::new(u, v));
+            }
+        }
+    }
+    out
 }
 
 /// The region with vertices added along each side of its outer loop that
