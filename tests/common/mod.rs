@@ -7,6 +7,7 @@
 
 pub mod eccentric;
 pub mod examples;
+pub mod exchange;
 pub mod full_build;
 pub mod heads;
 pub mod numbers;
