@@ -44,6 +44,10 @@ def main():
     path, samples = sys.argv[1], int(sys.argv[2])
     iges = path.lower().endswith((".igs", ".iges"))
     reader = IGESControl_Reader() if iges else STEPControl_Reader()
+    if iges:
+        # One edge per B-spline curve, as STEP: by default OCCT splits a C0
+        # curve (a sampled loop of degree 1) at every sample.
+        Interface_Static.SetIVal_s("read.iges.bspline.continuity", 0)
     status = reader.ReadFile(path)
     out = {"read": status == IFSelect_RetDone}
     if status != IFSelect_RetDone:
