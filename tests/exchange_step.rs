@@ -11,10 +11,11 @@ mod common;
 
 use std::path::Path;
 
+use common::exchange::{across_seam, two_tanks};
 use common::occt::{occt_python, occt_report};
 use glam::{DAffine3, DVec2};
 use serde_json::Value;
-use vesselcad::design::{Design, load, parse};
+use vesselcad::design::{Design, load};
 use vesselcad::exchange::{
     EdgeCurve, ExchangeError, ExchangeOptions, StepBlocks, VesselBrep, export_step, vessel_brep,
     vessel_sources,
@@ -27,26 +28,6 @@ fn example(name: &str) -> Design {
             .join(name),
     )
     .expect("example design loads")
-}
-
-/// The storage tank with its roof vent moved onto the roof's apex (an opening
-/// round the pole of its host) and a second tank beside it.
-fn two_tanks() -> Design {
-    let text = std::fs::read_to_string(
-        Path::new(env!("CARGO_MANIFEST_DIR")).join("examples/designs/storage-tank.json"),
-    )
-    .expect("example reads");
-    let mut json: Value = serde_json::from_str(&text).expect("json");
-    let mut second = json["vessels"][0].clone();
-    second["tag"] = "TK-302".into();
-    second["placement"]["position"] = serde_json::json!([20000, 25000, 0]);
-    second["placement"]["rotation"] = 30.into();
-    second["nozzles"][2]["offset"] = 0.into();
-    json["vessels"]
-        .as_array_mut()
-        .expect("vessels")
-        .push(second);
-    parse(&json.to_string()).expect("two tanks are valid")
 }
 
 fn breps(design: &Design) -> Vec<VesselBrep> {
@@ -167,13 +148,10 @@ fn occt_reads_valid_sewn_named_faces() {
     let Some(python) = occt_python() else {
         return;
     };
-    let mut across_seam: Value = serde_json::to_value(two_tanks()).expect("json");
-    across_seam["vessels"][1]["nozzles"][0]["orientation"] = 60.into();
-    let across_seam: Design = serde_json::from_value(across_seam).expect("design");
     for (label, design) in [
         // The four vessels of the other examples.
         ("small-plant", example("small-plant.json")),
-        ("across-seam", across_seam),
+        ("across-seam", across_seam()),
     ] {
         let text = export_step(
             &design,

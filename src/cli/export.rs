@@ -1,5 +1,5 @@
-//! `vesselcad export <design> -o <file.step|.stp> [--vessel TAG ...]`: the
-//! exact model as an exchange file (see `vesselcad::exchange`).
+//! `vesselcad export <design> -o <file.step|.stp|.igs|.iges> [--vessel TAG ...]`:
+//! the exact model as an exchange file (see `vesselcad::exchange`).
 
 use std::path::PathBuf;
 use std::process::ExitCode;
@@ -7,7 +7,7 @@ use std::time::Instant;
 
 use clap::{Args, ValueEnum};
 use vesselcad::design::{DesignError, load};
-use vesselcad::exchange::{ExchangeError, ExchangeOptions, StepBlocks, export_step};
+use vesselcad::exchange::{ExchangeError, ExchangeOptions, StepBlocks, export_iges, export_step};
 
 use super::output::outln;
 
@@ -16,6 +16,8 @@ use super::output::outln;
 pub enum Format {
     /// ISO 10303-21, AP214.
     Step,
+    /// IGES 5.3, trimmed surfaces.
+    Iges,
 }
 
 /// The `export` subcommand's arguments.
@@ -23,7 +25,7 @@ pub enum Format {
 pub struct ExportArgs {
     /// The design file (JSON, vesselcad/1).
     design: PathBuf,
-    /// Output file: .step or .stp.
+    /// Output file: .step, .stp, .igs or .iges.
     #[arg(short, long)]
     output: PathBuf,
     /// Write only these vessels (repeatable); all by default.
@@ -47,6 +49,7 @@ fn format_of(path: &std::path::Path) -> Option<Format> {
     let extension = path.extension()?.to_str()?.to_ascii_lowercase();
     match extension.as_str() {
         "step" | "stp" => Some(Format::Step),
+        "igs" | "iges" => Some(Format::Iges),
         _ => None,
     }
 }
@@ -56,7 +59,7 @@ pub fn run(args: ExportArgs) -> ExitCode {
     let start = Instant::now();
     let Some(format) = args.format.or_else(|| format_of(&args.output)) else {
         eprintln!(
-            "error: {}: cannot tell the format from the extension (.step, .stp); give --format",
+            "error: {}: cannot tell the format from the extension (.step, .stp, .igs, .iges); give --format",
             args.output.display()
         );
         return ExitCode::from(2);
@@ -90,6 +93,7 @@ pub fn run(args: ExportArgs) -> ExitCode {
             &name,
             &mut StepBlocks::default(),
         ),
+        Format::Iges => export_iges(&design, &args.vessels, &options, &name),
     };
     let text = match text {
         Ok(text) => text,

@@ -1,4 +1,5 @@
-//! Exchange files of the exact model: STEP (AP214) for CAD and plant tools.
+//! Exchange files of the exact model: STEP (AP214) and IGES 5.3 for CAD and
+//! plant tools.
 //!
 //! Pipeline: design → [`vessel_sources`] (resolved vessels, exact patches in part
 //! frames, openings cut to the exchange tolerance) → [`vessel_brep`] (faces on
@@ -7,11 +8,15 @@
 //! locally) → [`write_step`] (header, the blocks rebased into one file, the plant
 //! assembly placing each vessel). [`export_step`] runs it all; [`StepBlocks`]
 //! keeps each vessel's block by the content of its design so that an export
-//! after an edit writes only the vessels that changed.
+//! after an edit writes only the vessels that changed. [`export_iges`] writes
+//! the same B-rep as IGES trimmed surfaces (`iges_model` on the record layout
+//! of `iges`).
 
 mod blocks;
 mod brep;
 mod error;
+mod iges;
+mod iges_model;
 mod loops;
 mod measure;
 mod seam;
@@ -22,6 +27,7 @@ mod topology;
 pub use blocks::{ExchangeOptions, StepBlocks, export_step};
 pub use brep::{Edge, EdgeCurve, Face, OrientedEdge, Port, Shell, VesselBrep};
 pub use error::ExchangeError;
+pub use iges_model::{export_iges, write_iges};
 pub use measure::{FaceMeasures, ORDER, face_measures, face_measures_with};
 pub use source::{CutSource, NodeKind, NodeSource, VesselSource, vessel_sources};
 pub use step::{LOCAL_BASE, PlacedBlock, StepBlock, rebase, vessel_block, write_step};

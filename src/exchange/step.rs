@@ -54,7 +54,7 @@ pub struct StepBlock {
 }
 
 /// Appends `x` as a STEP real (a decimal point always, `E` for the exponent).
-fn real(out: &mut String, x: f64) {
+pub(super) fn real(out: &mut String, x: f64) {
     let x = if x == 0.0 { 0.0 } else { x };
     let mut buffer = ryu::Buffer::new();
     let text = buffer.format_finite(x);

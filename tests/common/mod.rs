@@ -7,6 +7,7 @@
 
 pub mod eccentric;
 pub mod examples;
+pub mod exchange;
 pub mod fem;
 pub mod full_build;
 pub mod glb;

