@@ -60,7 +60,12 @@ fn an_opening_that_cannot_be_cut_is_a_typed_build_failure() {
     let mut q = m.world.query::<(bevy_ecs::entity::Entity, &NozzleSpec)>();
     let vessel_of = |e| {
         let parent = m.world.get::<bevy_ecs::hierarchy::ChildOf>(e)?.parent();
-        Some(m.world.get::<crate::components::VesselSpec>(parent)?.tag.clone())
+        Some(
+            m.world
+                .get::<crate::components::VesselSpec>(parent)?
+                .tag
+                .clone(),
+        )
     };
     let nozzle = q
         .iter(&m.world)
