@@ -172,3 +172,40 @@ fn apply_then_update_rolls_back_a_failed_build() {
         "{changes:?}"
     );
 }
+
+/// New tessellation options are part of the transaction (issue 31 §4): options
+/// some patch cannot be meshed to are put back, every patch keeps the mesh of
+/// the options in force, the failure is reported typed, and no mesh of other
+/// options stands as current (the GLB is byte for byte the one before).
+#[test]
+fn options_that_cannot_be_meshed_are_put_back() {
+    // Builds at the default 0.5 mm; its roof cannot be meshed at 1 mm.
+    let mut model = Model::from_design(&unbuildable(), TessellationOptions::DEFAULT).unwrap();
+    model.take_changes();
+    let glb = write_glb(&model.scene()).unwrap();
+    model
+        .set_tessellation(TessellationOptions::chord(TOLERANCE))
+        .unwrap();
+    let err = model.try_update().unwrap_err();
+    let ModelError::Geometry(failures) = &err else {
+        panic!("expected a geometry refusal, got {err}");
+    };
+    assert!(
+        failures
+            .iter()
+            .any(|f| f.path == "vessels[3].parts[2]" && f.cause.stage() == "mesh"),
+        "{err}"
+    );
+    assert_eq!(write_glb(&model.scene()).unwrap(), glb);
+    // The options in force are the ones before: the next update has nothing to do.
+    assert_eq!(model.update(), Default::default());
+    assert!(model.errors().0.is_empty(), "{:?}", model.errors());
+    // `update` does the same, keeping the failures in `errors()`.
+    model
+        .set_tessellation(TessellationOptions::chord(TOLERANCE))
+        .unwrap();
+    let work = model.update();
+    assert!(work.failures > 0, "{work:?}");
+    assert!(!model.errors().0.is_empty());
+    assert_eq!(write_glb(&model.scene()).unwrap(), glb);
+}

@@ -58,9 +58,18 @@ fn an_opening_that_cannot_be_cut_is_a_typed_build_failure() {
     let mut m = Model::from_design(&design, options).unwrap();
     let (tag, mark) = (&design.vessels[0].tag, &design.vessels[0].nozzles[0].mark);
     let mut q = m.world.query::<(bevy_ecs::entity::Entity, &NozzleSpec)>();
+    let vessel_of = |e| {
+        let parent = m.world.get::<bevy_ecs::hierarchy::ChildOf>(e)?.parent();
+        Some(
+            m.world
+                .get::<crate::components::VesselSpec>(parent)?
+                .tag
+                .clone(),
+        )
+    };
     let nozzle = q
         .iter(&m.world)
-        .find(|(_, s)| &s.0.mark == mark)
+        .find(|(e, s)| &s.0.mark == mark && vessel_of(*e).as_ref() == Some(tag))
         .map(|(e, _)| e)
         .unwrap();
     let away = DAffine3::from_translation(DVec3::new(1e5, 0.0, 0.0));
