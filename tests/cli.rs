@@ -253,6 +253,7 @@ fn check_json_names_its_format_and_every_problem() {
 /// (an open defect, as in `model_transaction`: when the roof is fixed, this
 /// test needs another design).
 #[test]
+#[ignore = "needs an edit that check accepts and the mesher cannot build: the fuzz plant's roof at 1 mm, the last one known, builds since the pole-row fix (issue 30)"]
 fn check_and_build_report_what_cannot_be_built_by_design_path() {
     let roof = format!(
         "{}/tests/repros/fuzz-seed1-accepted-edit-roof-4M-vertices.json",
