@@ -7,7 +7,7 @@
 
 use glam::DVec2;
 
-use super::envelope::Builder;
+use super::builder::Builder;
 
 /// Share of the rim radius the inner grid's half-side takes.
 const INNER: f64 = 0.45;

@@ -5,13 +5,13 @@
 //! mid-side nodes are exact points of the mid-surface: mid-side nodes at the
 //! parameter midpoint of their piece and the angle midpoint.
 
-use std::collections::HashMap;
 use std::f64::consts::TAU;
 
 use glam::{DVec2, DVec3};
 
+use super::builder::Builder;
 use super::meridian::{self, Segment};
-use super::{Element, ElementKind, FeMesh, FePart, FemError};
+use super::{FeMesh, FePart, FemError};
 use crate::constraints::{ResolvedVessel, stack_of};
 use crate::design::VesselDesign;
 use crate::operating::profile::{Surface, stack_profile};
@@ -32,70 +32,6 @@ impl Default for FemOptions {
             size: None,
             order: 2,
         }
-    }
-}
-
-/// Accumulates nodes and elements; mid-side nodes are keyed by their edge so
-/// neighbouring elements share them.
-#[derive(Default)]
-pub struct Builder {
-    /// The mesh so far.
-    pub mesh: FeMesh,
-    /// Plane coordinates of cap nodes (offset from the axis).
-    plane: Vec<Option<DVec2>>,
-    mids: HashMap<(usize, usize), usize>,
-    /// Whether elements get mid-side nodes.
-    pub quadratic: bool,
-}
-
-impl Builder {
-    /// Adds a node.
-    pub fn node(&mut self, p: DVec3, plane: Option<DVec2>) -> usize {
-        self.mesh.nodes.push(p);
-        self.plane.push(plane);
-        self.mesh.nodes.len() - 1
-    }
-
-    /// Plane coordinates of node `i` (zero if it has none).
-    pub fn plane(&self, i: usize) -> DVec2 {
-        self.plane[i].unwrap_or(DVec2::ZERO)
-    }
-
-    /// The mid-side node of edge (a, b), made at `at()` if new.
-    pub fn mid(&mut self, a: usize, b: usize, at: impl FnOnce() -> DVec3) -> usize {
-        let key = (a.min(b), a.max(b));
-        if let Some(&id) = self.mids.get(&key) {
-            return id;
-        }
-        let id = self.node(at(), None);
-        self.mids.insert(key, id);
-        id
-    }
-
-    /// Whether edge (a, b) has a mid-side node already.
-    pub fn has_mid(&self, a: usize, b: usize) -> bool {
-        self.mids.contains_key(&(a.min(b), a.max(b)))
-    }
-
-    /// Adds a quadrilateral with corners `c`; `mid(b, x, y)` gives the mid-side
-    /// node of edge (x, y) when the mesh is quadratic.
-    pub fn quad(
-        &mut self,
-        part: usize,
-        c: [usize; 4],
-        mid: &mut dyn FnMut(&mut Builder, usize, usize) -> usize,
-    ) {
-        let mut nodes = c.to_vec();
-        let kind = if self.quadratic {
-            for k in 0..4 {
-                let id = mid(self, c[k], c[(k + 1) % 4]);
-                nodes.push(id);
-            }
-            ElementKind::Quad8
-        } else {
-            ElementKind::Quad4
-        };
-        self.mesh.elements.push(Element { kind, nodes, part });
     }
 }
 
@@ -200,10 +136,7 @@ pub fn build_envelope(
     let mer = meridian::stations(chain, size);
     let n = ((TAU * r_max / size).ceil() as usize).div_ceil(8).max(2) * 8;
     let theta = |k: f64| TAU * k / n as f64;
-    let mut b = Builder {
-        quadratic: options.order == 2,
-        ..Builder::default()
-    };
+    let mut b = Builder::new(options.order == 2);
     b.mesh.parts = parts;
     // Rings of corner nodes; the rims of caps carry plane coordinates.
     let mut rings = Vec::with_capacity(mer.stations.len());

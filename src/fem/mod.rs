@@ -13,6 +13,7 @@
 //! write it; [`frd`] and [`results`] read a CalculiX run back and classify the
 //! stresses per part; [`quality`] measures the mesh.
 
+pub mod builder;
 pub mod cap;
 pub mod conditions;
 pub mod envelope;
