@@ -14,6 +14,9 @@ use server_support::{ServerProcess, TIMEOUT, design_copy};
 use tokio_tungstenite::tungstenite::Message;
 use vesselcad::design::load;
 
+/// The content type every POST declares.
+const JSON: &[(&str, &str)] = &[("content-type", "application/json")];
+
 fn projection(k: usize) -> Value {
     json!([{ "op": "replace", "path": "/vessels/0/nozzles/0/projection", "value": 1500 + 10 * k }])
 }
@@ -68,22 +71,22 @@ fn undo_and_redo_are_new_revisions() {
             s.get_json("/design.json")["vessels"][0]["nozzles"][0]["projection"].clone()
         };
         let before = at(&server);
-        assert_eq!(server.request("POST", "/undo", &[], b"").status, 409);
+        assert_eq!(server.request("POST", "/undo", JSON, b"").status, 409);
         assert_eq!(server.edit(&projection(1)).status, 200);
         assert_eq!(server.edit(&projection(2)).status, 200);
-        let r = server.request("POST", "/undo", &[], b"");
+        let r = server.request("POST", "/undo", JSON, b"");
         assert_eq!(r.status, 200, "{}", r.text());
         assert_eq!(r.json()["revision"], 3);
         assert_eq!(at(&server), 1510.0);
-        let r = server.request("POST", "/undo", &[], b"");
+        let r = server.request("POST", "/undo", JSON, b"");
         assert_eq!(r.json()["revision"], 4);
         assert_eq!(at(&server), before);
-        let r = server.request("POST", "/redo", &[], b"");
+        let r = server.request("POST", "/redo", JSON, b"");
         assert_eq!(r.json()["revision"], 5, "{}", r.text());
         assert_eq!(at(&server), 1510.0);
         // A new edit ends the redo chain.
         assert_eq!(server.edit(&projection(7)).status, 200);
-        assert_eq!(server.request("POST", "/redo", &[], b"").status, 409);
+        assert_eq!(server.request("POST", "/redo", JSON, b"").status, 409);
         let log = server.get_json("/revisions");
         let messages: Vec<&str> = log["revisions"]
             .as_array()
@@ -106,7 +109,7 @@ fn without_a_store_there_is_no_history_but_undo_works() {
     let server = ServerProcess::start(&design, &[]);
     assert_eq!(server.request("GET", "/revisions", &[], b"").status, 404);
     assert_eq!(server.edit(&projection(1)).status, 200);
-    let r = server.request("POST", "/undo", &[], b"");
+    let r = server.request("POST", "/undo", JSON, b"");
     assert_eq!(r.status, 200, "{}", r.text());
     assert_eq!(r.json()["revision"], 2);
 }

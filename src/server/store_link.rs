@@ -14,6 +14,7 @@ use std::path::Path;
 use super::error::ServeError;
 use super::persist::{PersistError, Persistence, Record};
 use crate::design::{Design, Units};
+use crate::store::pg::redact;
 use crate::store::{Change, Revision, Store, StoreError};
 
 /// A session's link to its design in a store.
@@ -31,7 +32,7 @@ pub fn design_name(path: &Path) -> String {
 
 fn error(location: &str, e: &StoreError) -> ServeError {
     ServeError::Journal {
-        path: location.to_string(),
+        path: redact(location),
         message: e.to_string(),
     }
 }

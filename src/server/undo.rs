@@ -6,8 +6,6 @@
 //! any revision). Catching up adopts the newest revision another server
 //! committed to the same store.
 
-use serde_json::Value;
-
 use super::error::ApiError;
 use super::session::{Accepted, Session, UNDO_DEPTH, design_value};
 use crate::design::{Design, to_canonical_json};
@@ -114,10 +112,5 @@ impl Session {
         self.undo.clear();
         self.redo.clear();
         Ok(Some(self.accepted(work)))
-    }
-
-    /// The current design as the JSON value patches apply to.
-    pub fn design_value(&self) -> &Value {
-        &self.design
     }
 }
