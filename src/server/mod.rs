@@ -21,7 +21,9 @@ pub mod error;
 pub mod guard;
 pub mod journal;
 pub mod limits;
+pub mod progressive;
 pub mod routes;
+pub mod scoped;
 pub mod session;
 pub mod state;
 
