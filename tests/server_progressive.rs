@@ -26,16 +26,16 @@ fn nodes(glb: &[u8]) -> BTreeMap<String, String> {
         let describe = |node: &gltf::Node| {
             let patches: Vec<String> = node
                 .children()
-                .map(|p| {
-                    let prim = p.mesh().unwrap().primitives().next().unwrap();
+                .filter_map(|p| {
+                    let prim = p.mesh()?.primitives().next().unwrap();
                     let pos = prim.get(&gltf::Semantic::Positions).unwrap();
-                    format!(
+                    Some(format!(
                         "{} {} {:?} {:?}",
                         p.name().unwrap(),
                         pos.count(),
                         pos.min(),
                         pos.max()
-                    )
+                    ))
                 })
                 .collect();
             format!(
