@@ -654,11 +654,11 @@ function showMessage(message) {
 
 // Sends a request whose answer is an accepted edit or an error.
 async function post(url, patch) {
-  const headers = { ...authHeaders() };
-  if (patch) headers['Content-Type'] = 'application/json-patch+json';
+  // The guard wants a JSON content type on every POST: undo and redo send `{}`.
+  const headers = { ...authHeaders(), 'Content-Type': patch ? 'application/json-patch+json' : 'application/json' };
   state.sentAt = performance.now();
   try {
-    const response = await fetch(url, { method: 'POST', headers, body: patch ? JSON.stringify(patch) : undefined });
+    const response = await fetch(url, { method: 'POST', headers, body: patch ? JSON.stringify(patch) : '{}' });
     let body = {};
     try { body = await response.json(); } catch (e) { body = { error: `${response.statusText || 'no JSON answer'}` }; }
     if (!response.ok) {
