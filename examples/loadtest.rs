@@ -7,7 +7,7 @@
 //!
 //! ```sh
 //! cargo run --release --example loadtest -- --viewers 50 --editors 5 --seconds 20
-//! #   [--design examples/designs/small-plant.json] [--tolerance 0.5]
+//! #   [--design examples/designs/small-plant.json] [--tolerance 0.5] [--progressive]
 //! ```
 //!
 //! Each editor changes one nozzle's projection back and forth (editor e: vessel
@@ -36,6 +36,8 @@ struct Args {
     seconds: f64,
     design: String,
     tolerance: f64,
+    /// Viewers connect to `/ws?progressive=1` (hello without the whole GLB).
+    progressive: bool,
 }
 
 fn args() -> Args {
@@ -49,8 +51,13 @@ fn args() -> Args {
         )
         .into(),
         tolerance: TessellationOptions::DEFAULT.tolerance,
+        progressive: false,
     };
-    let list: Vec<String> = std::env::args().skip(1).collect();
+    let mut list: Vec<String> = std::env::args().skip(1).collect();
+    if let Some(k) = list.iter().position(|a| a == "--progressive") {
+        list.remove(k);
+        a.progressive = true;
+    }
     for pair in list.chunks(2) {
         let value = pair.get(1).map(String::as_str).unwrap_or("");
         let bad = || -> ! {
@@ -138,8 +145,18 @@ async fn main() {
     let server = start(options).await.expect("cannot start the server");
     let address = server.address();
     println!(
-        "loadtest: {} viewers, {} editors, {} s, {} ({} vessels), tolerance {} mm, http://{address}/",
-        args.viewers, args.editors, args.seconds, args.design, vessels, args.tolerance
+        "loadtest: {} viewers{}, {} editors, {} s, {} ({} vessels), tolerance {} mm, http://{address}/",
+        args.viewers,
+        if args.progressive {
+            " (progressive)"
+        } else {
+            ""
+        },
+        args.editors,
+        args.seconds,
+        args.design,
+        vessels,
+        args.tolerance
     );
 
     // Viewers: connect all, wait for every hello.
@@ -147,7 +164,11 @@ async fn main() {
     let stop_at = Arc::new(Mutex::new(None::<u64>));
     let (ready_tx, mut ready_rx) = tokio::sync::mpsc::channel::<()>(args.viewers.max(1));
     for _ in 0..args.viewers {
-        let url = format!("ws://{address}/ws");
+        let url = if args.progressive {
+            format!("ws://{address}/ws?progressive=1")
+        } else {
+            format!("ws://{address}/ws")
+        };
         let ready = ready_tx.clone();
         let stop_at = stop_at.clone();
         viewer_tasks.push(tokio::spawn(async move {
@@ -182,8 +203,19 @@ async fn main() {
                         continue;
                     }
                 };
+                // A progressive hello or resync comes without a GLB.
+                let message = match message {
+                    Message::Text(t) => {
+                        header = serde_json::from_str(&t).ok();
+                        if header.as_ref().is_some_and(|h| h["progressive"] == true) {
+                            Message::Binary(Default::default())
+                        } else {
+                            continue;
+                        }
+                    }
+                    other => other,
+                };
                 match message {
-                    Message::Text(t) => header = serde_json::from_str(&t).ok(),
                     Message::Binary(glb) => {
                         let now = Instant::now();
                         seen.bytes += glb.len();

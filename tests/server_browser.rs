@@ -2,7 +2,8 @@
 //! `/usr/bin/chromium`, driven by npm `playwright-core` from tests/support) open
 //! the page served by the real `vesselcad serve`; an edit made through page A's
 //! parameter panel changes the geometry page B shows, and a bad value shows the
-//! server's error in page A and changes nothing in page B.
+//! server's error in page A and changes nothing in page B; undo, adding a nozzle
+//! and the typed editors go through the same pages.
 
 mod server_support;
 
@@ -85,7 +86,9 @@ fn an_edit_in_one_page_changes_the_geometry_in_another() {
     assert!((before[0] - 7.2).abs() < 1e-3, "{before:?}");
     assert!((after[0] - 8.0).abs() < 1e-3, "{after:?}");
     assert!((after[1] - before[1]).abs() < 1e-6 && (after[2] - before[2]).abs() < 1e-6);
+    // Success is not shown as an error.
     assert_eq!(report["statusA"], "accepted as revision 1");
+    assert_eq!(report["statusAError"], "");
     // The bad value: error shown in page A, nothing changed in page B.
     let error = report["errorText"].as_str().unwrap();
     assert!(
@@ -102,7 +105,36 @@ fn an_edit_in_one_page_changes_the_geometry_in_another() {
             .starts_with("/drawing.svg?vessel=V-101"),
         "{report}"
     );
+    // Ctrl+Z: the server's undo, or its error shown in red (no /undo route).
+    let undo = &report["undo"];
+    assert!(
+        undo["revision"].as_u64() > Some(1)
+            || undo["error"].as_str().is_some_and(|e| e.contains("404")),
+        "{undo}"
+    );
+    // A nozzle added through page A's button reaches page B.
+    let added = report["added"].as_array().unwrap();
+    assert_eq!(added.len(), 1, "{report}");
+    assert!(
+        added[0].as_str().unwrap().starts_with("V-101/N"),
+        "{report}"
+    );
+    assert_eq!(report["addError"], "");
+    // The vessel's editors: its kind a drop-down, its liquid level in mm.
+    assert_eq!(report["kindEditor"], 1);
+    assert!(
+        report["levelLabel"].as_str().unwrap().contains("(mm)"),
+        "{report}"
+    );
     if report["webgl"] == true {
+        assert_eq!(
+            report["pixelsChangedByEdit"], true,
+            "the edit changed no pixel"
+        );
+        assert_eq!(
+            report["pixelsChangedByAdd"], true,
+            "the added nozzle changed no pixel"
+        );
         let picked = report["picked"].as_str().unwrap();
         assert!(
             picked.starts_with("V-101/"),
@@ -114,8 +146,8 @@ fn an_edit_in_one_page_changes_the_geometry_in_another() {
         .unwrap()
         .iter()
         .filter_map(Value::as_str)
-        // The refused edit answers 422.
-        .filter(|e| !e.contains("status of 422"))
+        // The refused edit answers 422; the undo without a route 404.
+        .filter(|e| !e.contains("status of 422") && !e.contains("status of 404"))
         .collect();
     assert!(
         page_errors.is_empty(),

@@ -379,6 +379,25 @@ impl Model {
         read::scene(&self.world)
     }
 
+    /// The scene of the vessels `tags` alone, in the order given (unknown tags
+    /// are left out): what a viewer needs after an edit of those vessels,
+    /// without reading the rest of the plant.
+    pub fn vessels_scene<S: AsRef<str>>(&self, tags: &[S]) -> Scene {
+        let index = &self.world.resource::<VesselIndex>().0;
+        let entities = tags
+            .iter()
+            .filter_map(|t| index.get(t.as_ref()).copied())
+            .collect();
+        read::scene_of(&self.world, entities)
+    }
+
+    /// The design of vessel `tag` as the entities hold it (canonical: mm);
+    /// `None` for an unknown tag.
+    pub fn vessel_design(&self, tag: &str) -> Option<crate::design::VesselDesign> {
+        let entity = *self.world.resource::<VesselIndex>().0.get(tag)?;
+        read::vessel(&self.world, entity)
+    }
+
     /// How many times the schedule ran since the model was made (an update
     /// that fails and is undone runs it twice): what a caller that must build
     /// once, such as a session replaying its journal, is checked by.

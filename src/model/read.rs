@@ -233,8 +233,13 @@ fn scene_patches(world: &World, entity: Entity) -> Vec<ScenePatch> {
 
 /// The exporters' scene of the whole plant, in design order.
 pub(crate) fn scene(world: &World) -> Scene {
+    scene_of(world, vessels(world))
+}
+
+/// The exporters' scene of the vessel `entities`, in the order given.
+pub(crate) fn scene_of(world: &World, entities: Vec<Entity>) -> Scene {
     let mut out = Scene::default();
-    for entity in vessels(world) {
+    for entity in entities {
         let Some((design, resolved)) = resolved(world, entity) else {
             continue;
         };

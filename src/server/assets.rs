@@ -1,7 +1,8 @@
 //! The viewer's static files, embedded in the binary so `vesselcad serve` needs
 //! nothing beside it: the page, its script and style, and the three.js bundle
 //! (three.js r187 with GLTFLoader and OrbitControls, MIT, built from npm by
-//! `viewer/` with esbuild and committed with its licence header).
+//! `viewer/` with esbuild and committed with its licence header), and the
+//! design format's JSON Schema, from which the viewer types its editors.
 //!
 //! Files are looked up by exact name in a fixed table, never on the file system,
 //! so no request path (`..`, `%2e%2e`, absolute paths, symlinks) can reach a file
@@ -36,6 +37,13 @@ const STATIC: &[(&str, Asset)] = &[
         Asset {
             content_type: "text/css; charset=utf-8",
             bytes: include_bytes!("assets/viewer.css"),
+        },
+    ),
+    (
+        "schema.json",
+        Asset {
+            content_type: "application/schema+json",
+            bytes: include_bytes!("../../docs/vesselcad-1.schema.json"),
         },
     ),
     (

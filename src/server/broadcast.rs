@@ -18,6 +18,11 @@
 //! {"type":"resync","revision":R,"ids":[...],"reason":"..."} + full GLB (fell behind)
 //! ```
 //!
+//! A viewer connecting to `/ws?progressive=1` gets its hello and resyncs as one
+//! text message each, `"progressive":true` and each vessel's box in
+//! `"vessels":[{"tag","min","max"}]` (glTF frame, m) instead of the GLB, and
+//! fetches the vessels' GLBs itself ([`super::progressive`]).
+//!
 //! Revisions of deltas follow each other by one from the hello's; a viewer
 //! ignores nothing and applies them in order. Viewers send nothing but pings and
 //! close frames (text they send is ignored; messages above
@@ -190,7 +195,16 @@ where
     if let Some(reason) = reason {
         header["reason"] = json!(reason);
     }
-    send_pair(sink, header.to_string(), &snapshot.glb, timeout).await
+    let Some(outline) = &snapshot.outline else {
+        return send_pair(sink, header.to_string(), &snapshot.glb, timeout).await;
+    };
+    // Progressive: the boxes, and no GLB (the viewer fetches each vessel's).
+    header["progressive"] = json!(true);
+    header["vessels"] = outline.clone();
+    match tokio::time::timeout(timeout, sink.send(Message::Text(header.to_string().into()))).await {
+        Ok(Ok(())) => Ok(()),
+        _ => Err(Ended::Gone),
+    }
 }
 
 /// Sends a JSON header then its GLB, each within `timeout`.

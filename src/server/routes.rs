@@ -4,6 +4,7 @@
 //! GET  /                      the viewer page
 //! GET  /static/<file>         its script, style and three.js bundle (embedded)
 //! GET  /model.glb             the current model (header x-vesselcad-revision)
+//! GET  /vessel.glb?tag=T      one vessel's GLB (ETag; see `progressive`)
 //! GET  /design.json           the current design, canonical JSON (mm)
 //! POST /edit                  a JSON Patch (RFC 6902) → {"revision", "changed", ...}
 //! POST /save                  write the design file (again, if it was deleted),
@@ -12,7 +13,9 @@
 //!                              last edit (409 when there is none)
 //! GET  /revisions             the store's revisions (`serve --store`)
 //! GET  /design.json?rev=N     the design at revision N (`serve --store`)
+//! GET  /vessel.json?vessel=T  one vessel's design and index {"revision","index","vessel"}
 //! GET  /drawing.svg?vessel=T  the vessel's drawing sheet
+//! GET  /drawing.dxf?vessel=T  the same sheet as DXF (a download)
 //! GET  /ws                    the viewer stream (see `broadcast`)
 //! ```
 //!
@@ -29,7 +32,7 @@ use axum::body::Bytes;
 use axum::extract::rejection::BytesRejection;
 use axum::extract::ws::WebSocketUpgrade;
 use axum::extract::{DefaultBodyLimit, Path, Query, State};
-use axum::http::{HeaderValue, StatusCode, Uri, header};
+use axum::http::{HeaderMap, HeaderValue, StatusCode, Uri, header};
 use axum::response::{IntoResponse, Response};
 use axum::routing::{get, post};
 use serde::Deserialize;
@@ -39,8 +42,8 @@ use super::assets::{self, Asset};
 use super::broadcast::{MAX_VIEWER_MESSAGE, Update, run_viewer};
 use super::error::ApiError;
 use super::guard::guard;
+use super::session::SheetFormat;
 use super::state::AppState;
-use crate::drawing::{SheetOptions, sheet_svg};
 
 /// Largest request body (an edit), bytes: 1 MiB.
 pub const MAX_BODY: usize = 1 << 20;
@@ -51,6 +54,7 @@ pub fn router(state: AppState) -> Router {
         .route("/", get(index))
         .route("/static/{*file}", get(static_file))
         .route("/model.glb", get(model_glb))
+        .route("/vessel.glb", get(vessel_glb))
         .route("/design.json", get(design_json))
         .route("/edit", post(edit))
         .route("/save", post(save))
@@ -58,6 +62,8 @@ pub fn router(state: AppState) -> Router {
         .route("/redo", post(redo))
         .route("/revisions", get(revisions))
         .route("/drawing.svg", get(drawing_svg))
+        .route("/drawing.dxf", get(drawing_dxf))
+        .route("/vessel.json", get(vessel_json))
         .route("/ws", get(viewer_socket))
         .fallback(not_found)
         .layer(DefaultBodyLimit::max(MAX_BODY))
@@ -221,10 +227,94 @@ async fn save(State(state): State<AppState>) -> Result<Response, ApiError> {
     Ok(axum::Json(answer).into_response())
 }
 
+/// `GET /vessel.glb?tag=T`: one vessel's node tree as in `/model.glb`, with
+/// the session's revision (`x-vesselcad-revision`), the last revision that
+/// changed the vessel (`x-vesselcad-vessel-revision`) and an `ETag` of both
+/// tag and that revision (`If-None-Match` answers 304).
+async fn vessel_glb(
+    State(state): State<AppState>,
+    headers: HeaderMap,
+    query: Result<Query<DrawingQuery>, axum::extract::rejection::QueryRejection>,
+) -> Result<Response, ApiError> {
+    let Ok(Query(DrawingQuery {
+        tag: Some(tag),
+        vessel: None,
+    })) = query
+    else {
+        return Err(ApiError::BadQuery("expected /vessel.glb?tag=<tag>".into()));
+    };
+    let found = state
+        .with_session({
+            let tag = tag.clone();
+            move |s, _| s.vessel_glb(&tag).ok_or_else(|| (s.vessel_tags(), ()))
+        })
+        .await;
+    let glb = match found {
+        Ok(glb) => glb,
+        Err((known, ())) => return Err(ApiError::UnknownVessel { tag, known }),
+    };
+    let etag = format!(
+        "\"{}-{}\"",
+        super::journal::fingerprint(tag.as_bytes()),
+        glb.vessel_revision
+    );
+    let etag = HeaderValue::from_str(&etag).unwrap_or(HeaderValue::from_static("\"0\""));
+    let vessel_revision = (
+        header::HeaderName::from_static("x-vesselcad-vessel-revision"),
+        HeaderValue::from(glb.vessel_revision),
+    );
+    if headers.get(header::IF_NONE_MATCH) == Some(&etag) {
+        return Ok((
+            StatusCode::NOT_MODIFIED,
+            [
+                (header::ETAG, etag),
+                revision_header(glb.revision),
+                vessel_revision,
+            ],
+        )
+            .into_response());
+    }
+    Ok((
+        [
+            (
+                header::CONTENT_TYPE,
+                HeaderValue::from_static("model/gltf-binary"),
+            ),
+            (header::ETAG, etag),
+            revision_header(glb.revision),
+            vessel_revision,
+        ],
+        glb.glb,
+    )
+        .into_response())
+}
+
 /// The `vessel` query parameter.
 #[derive(Deserialize)]
 struct DrawingQuery {
     vessel: Option<String>,
+    /// `/vessel.glb`'s name for it.
+    tag: Option<String>,
+}
+
+/// The tag of a `?vessel=T` query on `route`, if it names a vessel.
+async fn queried_vessel(
+    state: &AppState,
+    route: &str,
+    query: Result<Query<DrawingQuery>, axum::extract::rejection::QueryRejection>,
+) -> Result<String, ApiError> {
+    let Ok(Query(DrawingQuery {
+        vessel: Some(tag),
+        tag: None,
+    })) = query
+    else {
+        return Err(ApiError::BadQuery(format!("expected {route}?vessel=<tag>")));
+    };
+    let known = state.with_session(|s, _| s.vessel_tags()).await;
+    if !known.contains(&tag) {
+        return Err(ApiError::UnknownVessel { tag, known });
+    }
+    Ok(tag)
 }
 
 /// `GET /drawing.svg?vessel=TAG`: the vessel's drawing sheet (ANSI D, hidden lines
@@ -233,20 +323,9 @@ async fn drawing_svg(
     State(state): State<AppState>,
     query: Result<Query<DrawingQuery>, axum::extract::rejection::QueryRejection>,
 ) -> Result<Response, ApiError> {
-    let Ok(Query(DrawingQuery { vessel: Some(tag) })) = query else {
-        return Err(ApiError::BadQuery(
-            "expected /drawing.svg?vessel=<tag>".into(),
-        ));
-    };
-    let known = state.with_session(|s, _| s.vessel_tags()).await;
-    if !known.contains(&tag) {
-        return Err(ApiError::UnknownVessel { tag, known });
-    }
+    let tag = queried_vessel(&state, "/drawing.svg", query).await?;
     let svg = state
-        .with_session(move |s, _| {
-            sheet_svg(s.model(), &tag, &SheetOptions::default())
-                .map_err(|e| ApiError::Drawing(e.to_string()))
-        })
+        .with_session(move |s, _| s.drawing(&tag, SheetFormat::Svg))
         .await?;
     Ok((
         [(
@@ -258,14 +337,87 @@ async fn drawing_svg(
         .into_response())
 }
 
-async fn viewer_socket(State(state): State<AppState>, ws: WebSocketUpgrade) -> Response {
+/// `GET /drawing.dxf?vessel=TAG`: the same sheet as DXF (R2000), as a download.
+async fn drawing_dxf(
+    State(state): State<AppState>,
+    query: Result<Query<DrawingQuery>, axum::extract::rejection::QueryRejection>,
+) -> Result<Response, ApiError> {
+    let tag = queried_vessel(&state, "/drawing.dxf", query).await?;
+    let file = format!(
+        "attachment; filename=\"{}.dxf\"",
+        tag.replace(
+            |c: char| !c.is_ascii_alphanumeric() && c != '-' && c != '_',
+            "_"
+        )
+    );
+    let dxf = state
+        .with_session(move |s, _| s.drawing(&tag, SheetFormat::Dxf))
+        .await?;
+    Ok((
+        [
+            (
+                header::CONTENT_TYPE,
+                HeaderValue::from_static("image/vnd.dxf"),
+            ),
+            (
+                header::CONTENT_DISPOSITION,
+                HeaderValue::from_str(&file).unwrap_or(HeaderValue::from_static("attachment")),
+            ),
+        ],
+        dxf,
+    )
+        .into_response())
+}
+
+/// `GET /vessel.json?vessel=TAG`: one vessel's design (canonical JSON, mm) and
+/// its index in the design: `{"revision", "index", "vessel"}` — what a viewer
+/// reads after a delta instead of the whole design.
+async fn vessel_json(
+    State(state): State<AppState>,
+    query: Result<Query<DrawingQuery>, axum::extract::rejection::QueryRejection>,
+) -> Result<Response, ApiError> {
+    let tag = queried_vessel(&state, "/vessel.json", query).await?;
+    let answer = state
+        .with_session(move |s, _| s.vessel_entry(&tag))
+        .await
+        .ok_or_else(|| ApiError::NotFound("/vessel.json".into()))?;
+    Ok(axum::Json(answer).into_response())
+}
+
+/// The `progressive` query parameter of `/ws`.
+#[derive(Deserialize)]
+struct SocketQuery {
+    progressive: Option<String>,
+}
+
+async fn viewer_socket(
+    State(state): State<AppState>,
+    query: Result<Query<SocketQuery>, axum::extract::rejection::QueryRejection>,
+    ws: WebSocketUpgrade,
+) -> Response {
+    let progressive = query
+        .ok()
+        .and_then(|Query(q)| q.progressive)
+        .is_some_and(|p| p != "0" && p != "false");
     ws.max_message_size(MAX_VIEWER_MESSAGE)
         .on_upgrade(move |socket| async move {
             let queue = state.hub.subscribe();
             let shutdown = state.shutdown.clone();
             let snapshot = || {
                 let state = state.clone();
-                async move { Some(state.with_session(|s, _| s.snapshot()).await) }
+                async move {
+                    Some(
+                        state
+                            .with_session(move |s, _| {
+                                if progressive {
+                                    s.outline()
+                                } else {
+                                    s.snapshot()
+                                }
+                            })
+                            .await,
+                    )
+                }
             };
             let timeout = state.viewer_timeout;
             let ping = state.viewer_ping;

@@ -17,18 +17,22 @@
 use axum::body::Bytes;
 use std::collections::{BTreeMap, BTreeSet};
 use std::path::{Path, PathBuf};
+use std::time::Instant;
 
 use serde_json::{Value, json};
 
 use super::error::{ApiError, ServeError};
 use super::journal::{Journal, fingerprint, journal_path, write_atomically};
 use super::persist::{PersistError, Persistence, Record};
+use super::progressive::{Bounds, bounds_json, vessel_bounds};
+use super::scoped;
 use super::store_link::StoreLink;
 use crate::design::units::to_inches;
-use crate::design::{self, Design, DesignError, Units, to_canonical_json};
+use crate::design::{self, Design, DesignError, Units, VesselDesign, to_canonical_json};
+use crate::drawing::{SheetOptions, sheet_dxf, sheet_model, sheet_svg};
 use crate::export::{Scene, node_id, scene_ids, write_delta_glb, write_glb};
 use crate::mesh::TessellationOptions;
-use crate::model::{Edit, Model, ModelError};
+use crate::model::{Edit, Model, ModelError, Views};
 use crate::systems::WorkCounters;
 
 /// An accepted edit: its revision, what changed and the delta for viewers.
@@ -59,14 +63,29 @@ impl Accepted {
     }
 }
 
-/// A full snapshot for a viewer: revision, every stable id, the whole GLB.
+/// A full snapshot for a viewer: revision, every stable id, and the whole GLB
+/// or, for a progressive viewer, each vessel's box (see [`super::progressive`]).
 #[derive(Debug, Clone)]
 pub struct Snapshot {
     /// The revision it shows.
     pub revision: u64,
     /// Every stable id in the model.
     pub ids: Vec<String>,
-    /// The whole model as GLB.
+    /// The whole model as GLB (empty in a progressive snapshot).
+    pub glb: Bytes,
+    /// A progressive snapshot's vessels: `[{"tag", "min", "max"}, …]` (glTF
+    /// frame, m), sent instead of the GLB.
+    pub outline: Option<Value>,
+}
+
+/// One vessel's GLB as `GET /vessel.glb` serves it.
+#[derive(Debug, Clone)]
+pub struct VesselGlb {
+    /// The session's revision when it was written.
+    pub revision: u64,
+    /// The last revision that changed this vessel (0: none since the start).
+    pub vessel_revision: u64,
+    /// The vessel's node tree, as in the whole model's GLB.
     pub glb: Bytes,
 }
 
@@ -90,9 +109,31 @@ pub struct Session {
     /// The full GLB of the current revision, built on first request.
     full: Option<Snapshot>,
     /// Each node's `extras` (kind, parameters, resolved figures) as last sent, by
-    /// stable id: a node whose metadata changed without its frame or geometry
+    /// vessel tag and stable id: a node whose metadata changed without its frame or geometry
     /// (a nozzle's service, a vessel's overall length) is sent again too.
-    extras: BTreeMap<String, Value>,
+    extras: BTreeMap<String, BTreeMap<String, Value>>,
+    /// Each vessel's bounding box (glTF frame), by tag.
+    bounds: BTreeMap<String, Bounds>,
+    /// The last revision that changed each vessel, by tag (absent: none since
+    /// the start).
+    changed_at: BTreeMap<String, u64>,
+    /// Meshing options of the model (and of the drawings' vessel models).
+    options: TessellationOptions,
+    /// The last drawings made, by tag and format, with the vessel revision they
+    /// show (at most [`KEPT_SHEETS`]).
+    sheets: BTreeMap<(String, SheetFormat), (u64, Bytes)>,
+}
+
+/// Drawings a session keeps (most viewers look at a few vessels' sheets).
+const KEPT_SHEETS: usize = 16;
+
+/// A drawing sheet's file format.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, PartialOrd, Ord)]
+pub enum SheetFormat {
+    /// SVG text.
+    Svg,
+    /// DXF (R2000) bytes.
+    Dxf,
 }
 
 /// How many edits back `POST /undo` reaches.
@@ -125,28 +166,44 @@ impl Session {
             path: path.display().to_string(),
             source,
         };
+        let started = Instant::now();
+        let progress = |what: &str| {
+            eprintln!(
+                "vesselcad serve: {} {what} ({:.1} s)",
+                path.display(),
+                started.elapsed().as_secs_f64()
+            );
+        };
         let bytes = design::read_design_bytes(path).map_err(|e| design_error(e.into()))?;
         let text = design::decode_design(path, &bytes).map_err(|e| design_error(e.into()))?;
         let units = design::parse_unchecked(text)
             .map_err(|e| design_error(e.into()))?
             .units;
         let parsed = design::parse(text).map_err(|e| design_error(e.into()))?;
+        progress(&format!(
+            "read and checked: {} vessels; building and meshing",
+            parsed.vessels.len()
+        ));
         let old_journal = journal_path(path);
         let migrating = store.is_some() && old_journal.exists();
         if store.is_some() && !migrating {
             let file = parsed;
             let (link, revision, design) =
                 StoreLink::open(store.unwrap_or_default(), path, &file, units, None)?;
-            return Session::assemble(
+            // No drawing views: a sheet is drawn from a model of its vessel alone.
+            let model =
+                Model::from_design_with(&design, options, Views::Off).map_err(design_error)?;
+            let session = Session::assemble(
                 path,
                 options,
                 Box::new(link),
-                design,
+                model,
                 revision,
                 revision,
                 units,
-            )
-            .map_err(design_error);
+            );
+            progress("ready");
+            return Ok(session);
         }
         let file = parsed.clone();
         let (journal, replay) = Journal::open(path, &bytes)?;
@@ -190,56 +247,67 @@ impl Session {
                 path: journal_path.clone(),
                 message: format!("migrated into the store, but cannot be renamed: {e}"),
             })?;
-            return Session::assemble(
+            // No drawing views: a sheet is drawn from a model of its vessel alone.
+            let model =
+                Model::from_design_with(&design, options, Views::Off).map_err(design_error)?;
+            let session = Session::assemble(
                 path,
                 options,
                 Box::new(link),
-                design,
+                model,
                 revision,
                 revision,
                 units,
-            )
-            .map_err(design_error);
+            );
+            progress("ready");
+            return Ok(session);
         }
-        let model = Model::from_design(&design, options).map_err(|e| match e {
+        // No drawing views: a sheet is drawn from a model of its vessel alone
+        // (`drawing`), so the plant is not projected at start nor on each edit.
+        let model = Model::from_design_with(&design, options, Views::Off).map_err(|e| match e {
             e if replay.edits.is_empty() => design_error(e),
             e => ServeError::Journal {
                 path: journal_path.clone(),
                 message: format!("the design after replaying the journal is refused: {e}"),
             },
         })?;
-        let mut session = Session {
-            path: path.to_path_buf(),
-            design: design_value(&model.design()),
-            extras: node_extras(&model.scene()),
+        let memory = model.memory();
+        progress(&format!(
+            "built: {:.1} MB of meshes; indexing for viewers",
+            memory.meshes as f64 / 1e6
+        ));
+        let session = Session::assemble(
+            path,
+            options,
+            Box::new(journal),
             model,
             revision,
-            saved_revision: replay.base_revision,
+            replay.base_revision,
             units,
-            persistence: Box::new(journal),
-            undo: Vec::new(),
-            redo: Vec::new(),
-            full: None,
-        };
-        session.model.take_changes();
+        );
+        progress("ready");
         Ok(session)
     }
 
-    /// A session on `design` at `revision` whose edits go to `persistence`.
+    /// A session on `model` at `revision` whose edits go to `persistence`.
     fn assemble(
         path: &Path,
         options: TessellationOptions,
         persistence: Box<dyn Persistence>,
-        design: Design,
+        model: Model,
         revision: u64,
         saved_revision: u64,
         units: Units,
-    ) -> Result<Session, ModelError> {
-        let model = Model::from_design(&design, options)?;
+    ) -> Session {
+        let scene = model.scene();
         let mut session = Session {
             path: path.to_path_buf(),
             design: design_value(&model.design()),
-            extras: node_extras(&model.scene()),
+            extras: node_extras(&scene),
+            bounds: vessel_bounds(&scene).into_iter().collect(),
+            changed_at: BTreeMap::new(),
+            options,
+            sheets: BTreeMap::new(),
             model,
             revision,
             saved_revision,
@@ -250,7 +318,7 @@ impl Session {
             full: None,
         };
         session.model.take_changes();
-        Ok(session)
+        session
     }
 
     /// Applies a JSON Patch document (the request body) as one edit: all of it or
@@ -274,9 +342,19 @@ impl Session {
         let mut normalized = value.clone();
         canonical_numbers(&mut normalized);
         let patch = parse_patch(normalized)?;
-        let previous = self.design.clone();
         let before = self.model.design();
-        let (next, work) = self.stage(&patch)?;
+        let count = self.design["vessels"].as_array().map_or(0, Vec::len);
+        let scoped = match scoped::vessel_scope(&patch, count) {
+            Some(indices) => self.stage_vessels(&patch, &indices)?,
+            None => None,
+        };
+        let (next, work) = match scoped {
+            Some((vessels, work)) => (Next::Vessels(vessels), work),
+            None => {
+                let (next, work) = self.stage(&patch)?;
+                (Next::Whole(next), work)
+            }
+        };
         let after = self.model.design();
         let record = Record {
             revision: self.revision + 1,
@@ -287,7 +365,7 @@ impl Session {
         };
         if let Err(e) = self.persistence.record(&record) {
             // Not durable: put the model back as it was before answering.
-            self.restore(&previous);
+            self.restore(&next);
             return Err(match e {
                 PersistError::Conflict { current } => ApiError::Conflict {
                     current,
@@ -309,24 +387,67 @@ impl Session {
                 self.undo.remove(0);
             }
         }
-        self.design = next;
+        let touched = match next {
+            Next::Whole(next) => {
+                let touched = scoped::differing_vessels(&self.design, &next);
+                self.design = next;
+                touched
+            }
+            Next::Vessels(vessels) => {
+                let mut touched = Vec::new();
+                for (i, value) in vessels {
+                    if let Some(tag) = value.get("tag").and_then(Value::as_str) {
+                        touched.push(tag.to_string());
+                    }
+                    self.design["vessels"][i] = value;
+                }
+                touched
+            }
+        };
         self.revision += 1;
-        Ok(self.accepted(work))
+        Ok(self.accepted(work, touched))
     }
 
     /// The answer for the model's change since the last one, at the current
-    /// revision.
-    pub(super) fn accepted(&mut self, work: WorkCounters) -> Accepted {
+    /// revision; `touched` are the tags of the vessels whose design changed.
+    pub(super) fn accepted(&mut self, work: WorkCounters, touched: Vec<String>) -> Accepted {
         self.full = None;
         let mut log = self.model.take_changes();
-        let scene = self.model.scene();
-        let extras = node_extras(&scene);
-        for (id, value) in &extras {
-            if self.extras.get(id) != Some(value) {
-                log.changed.insert(id.clone());
+        // Only the vessels the edit touched are read back: their ids that
+        // changed, and those whose metadata changed without their geometry.
+        let mut tags: BTreeSet<String> = touched.into_iter().collect();
+        for id in &log.changed {
+            let known = tags.iter().any(|t| {
+                id == t
+                    || id
+                        .strip_prefix(t.as_str())
+                        .is_some_and(|r| r.starts_with('/'))
+            });
+            if !known {
+                tags.insert(vessel_of(id).to_string());
             }
         }
-        self.extras = extras;
+        let tags: Vec<String> = tags.into_iter().collect();
+        let scene = self.model.vessels_scene(&tags);
+        let mut extras = node_extras(&scene);
+        let mut bounds: BTreeMap<String, Bounds> = vessel_bounds(&scene).into_iter().collect();
+        for tag in &tags {
+            self.changed_at.insert(tag.clone(), self.revision);
+            match bounds.remove(tag) {
+                Some(b) => self.bounds.insert(tag.clone(), b),
+                None => self.bounds.remove(tag),
+            };
+            let now = extras.remove(tag).unwrap_or_default();
+            let before = self.extras.remove(tag).unwrap_or_default();
+            for (id, value) in &now {
+                if before.get(id) != Some(value) {
+                    log.changed.insert(id.clone());
+                }
+            }
+            if !now.is_empty() {
+                self.extras.insert(tag.clone(), now);
+            }
+        }
         let delta_glb = delta_or_empty(&scene, &log.changed);
         Accepted {
             revision: self.revision,
@@ -335,6 +456,39 @@ impl Session {
             work,
             delta_glb: Bytes::from(delta_glb),
         }
+    }
+
+    /// Applies a patch confined to the vessels at `indices` to them alone and to
+    /// the model (not yet journaled): their new JSON by index, and the work done.
+    /// `Ok(None)` when the patch must go through the whole document (a vessel
+    /// renamed or unparsable); on error the model is unchanged.
+    fn stage_vessels(
+        &mut self,
+        patch: &json_patch::Patch,
+        indices: &[usize],
+    ) -> Result<Option<(Vec<(usize, Value)>, WorkCounters)>, ApiError> {
+        let Some(patched) = scoped::patch_vessels(&self.design, patch, indices, canonical_numbers)?
+        else {
+            return Ok(None);
+        };
+        let tags: Vec<String> = patched.iter().map(|(_, _, v)| v.tag.clone()).collect();
+        let edit = scoped::vessels_edit(patched.into_iter().map(|(_, _, v)| v).collect());
+        let work = self.model.edit(edit).map_err(|e| match e {
+            ModelError::Design(e) => ApiError::Invalid(e),
+            other => ApiError::Refused(other),
+        })?;
+        // As the model gives them back: defaults in their canonical form.
+        let vessels = indices
+            .iter()
+            .zip(&tags)
+            .map(|(&i, tag)| {
+                let value = self.model.vessel_design(tag).map_or(Value::Null, |v| {
+                    serde_json::to_value(v).unwrap_or(Value::Null)
+                });
+                (i, value)
+            })
+            .collect();
+        Ok(Some((vessels, work)))
     }
 
     /// Applies a parsed patch to the model (not yet journaled): returns the new
@@ -364,13 +518,24 @@ impl Session {
         Ok((design_value(&self.model.design()), work))
     }
 
-    /// Puts the model back to `design` (a design it held before).
-    fn restore(&mut self, design: &Value) {
-        if let Ok(d) = serde_json::from_value::<Design>(design.clone()) {
-            // It was valid a moment ago, so this cannot be refused.
-            if self.model.edit(Edit::ReplaceDesign(d)).is_ok() {
-                self.model.take_changes();
-            }
+    /// Puts the model back to the design the session holds (the staged `next`
+    /// not being kept): the vessels it changed, or the whole design.
+    fn restore(&mut self, next: &Next) {
+        let edit = match next {
+            Next::Whole(_) => serde_json::from_value::<Design>(self.design.clone())
+                .ok()
+                .map(Edit::ReplaceDesign),
+            Next::Vessels(vessels) => vessels
+                .iter()
+                .map(|(i, _)| serde_json::from_value(self.design["vessels"][*i].clone()).ok())
+                .collect::<Option<Vec<VesselDesign>>>()
+                .map(scoped::vessels_edit),
+        };
+        // It was valid a moment ago, so this cannot be refused.
+        if let Some(edit) = edit
+            && self.model.edit(edit).is_ok()
+        {
+            self.model.take_changes();
         }
     }
 
@@ -468,9 +633,108 @@ impl Session {
             revision: self.revision,
             ids: scene_ids(&scene),
             glb: Bytes::from(glb),
+            outline: None,
         };
         self.full = Some(snapshot.clone());
         snapshot
+    }
+
+    /// A progressive viewer's snapshot: every stable id and each vessel's box,
+    /// in design order, without meshes (cheap: nothing is read from the model).
+    pub fn outline(&self) -> Snapshot {
+        let mut ids = Vec::new();
+        let mut boxes = Vec::new();
+        for tag in self.design_tags() {
+            if let Some(of_vessel) = self.extras.get(tag) {
+                ids.push(tag.to_string());
+                ids.extend(of_vessel.keys().filter(|id| *id != tag).cloned());
+            }
+            if let Some(b) = self.bounds.get(tag) {
+                boxes.push((tag.to_string(), *b));
+            }
+        }
+        Snapshot {
+            revision: self.revision,
+            ids,
+            glb: Bytes::new(),
+            outline: Some(bounds_json(&boxes)),
+        }
+    }
+
+    /// Vessel `tag`'s GLB at the current revision; `None` for an unknown tag.
+    pub fn vessel_glb(&self, tag: &str) -> Option<VesselGlb> {
+        let scene = self.model.vessels_scene(&[tag]);
+        if scene.vessels.is_empty() {
+            return None;
+        }
+        let glb = write_glb(&scene).unwrap_or_else(|e| {
+            eprintln!("vesselcad serve: cannot write the GLB of {tag}: {e}");
+            Vec::new()
+        });
+        Some(VesselGlb {
+            revision: self.revision,
+            vessel_revision: self.changed_at.get(tag).copied().unwrap_or(0),
+            glb: Bytes::from(glb),
+        })
+    }
+
+    /// Vessel `tag`'s drawing sheet (ANSI D) as SVG or DXF, from a model of the
+    /// vessel alone with drawing views (the session's model keeps none); kept
+    /// until the vessel changes.
+    ///
+    /// # Errors
+    ///
+    /// [`ApiError::NotFound`] for an unknown tag, [`ApiError::Drawing`] when the
+    /// sheet cannot be made.
+    pub fn drawing(&mut self, tag: &str, format: SheetFormat) -> Result<Bytes, ApiError> {
+        let at = self.changed_at.get(tag).copied().unwrap_or(0);
+        let key = (tag.to_string(), format);
+        if let Some((made, bytes)) = self.sheets.get(&key)
+            && *made == at
+        {
+            return Ok(bytes.clone());
+        }
+        let vessel = self
+            .model
+            .vessel_design(tag)
+            .ok_or_else(|| ApiError::NotFound(format!("vessel {tag}")))?;
+        let design = Design {
+            format: design::FORMAT.to_string(),
+            units: Units::Mm,
+            vessels: vec![vessel],
+        };
+        let drawing_error = |e: &dyn std::fmt::Display| ApiError::Drawing(e.to_string());
+        let (model, _) = sheet_model(&design, tag, self.options).map_err(|e| drawing_error(&e))?;
+        let options = SheetOptions::default();
+        let bytes = match format {
+            SheetFormat::Svg => sheet_svg(&model, tag, &options).map(String::into_bytes),
+            SheetFormat::Dxf => sheet_dxf(&model, tag, &options),
+        }
+        .map_err(|e| drawing_error(&e))?;
+        let bytes = Bytes::from(bytes);
+        if self.sheets.len() >= KEPT_SHEETS {
+            self.sheets.pop_first();
+        }
+        self.sheets.insert(key, (at, bytes.clone()));
+        Ok(bytes)
+    }
+
+    /// Vessel `tag`'s design and index: `{"revision", "index", "vessel"}`.
+    pub fn vessel_entry(&self, tag: &str) -> Option<Value> {
+        let vessels = self.design["vessels"].as_array()?;
+        let index = vessels
+            .iter()
+            .position(|v| v.get("tag").and_then(Value::as_str) == Some(tag))?;
+        Some(json!({ "revision": self.revision, "index": index, "vessel": vessels[index] }))
+    }
+
+    /// The vessel tags of the current design, in design order.
+    fn design_tags(&self) -> impl Iterator<Item = &str> {
+        self.design["vessels"]
+            .as_array()
+            .into_iter()
+            .flatten()
+            .filter_map(|v| v.get("tag")?.as_str())
     }
 
     /// The current revision.
@@ -485,17 +749,12 @@ impl Session {
 
     /// True if a vessel has this tag.
     pub fn has_vessel(&self, tag: &str) -> bool {
-        self.model.design().vessels.iter().any(|v| v.tag == tag)
+        self.design_tags().any(|t| t == tag)
     }
 
     /// Every vessel's tag, in design order.
     pub fn vessel_tags(&self) -> Vec<String> {
-        self.model
-            .design()
-            .vessels
-            .into_iter()
-            .map(|v| v.tag)
-            .collect()
+        self.design_tags().map(str::to_string).collect()
     }
 
     /// The model, for read-only outputs (e.g. drawings).
@@ -583,14 +842,28 @@ fn canonical_numbers(value: &mut Value) {
     }
 }
 
-/// Every node's `extras` by stable id.
-fn node_extras(scene: &Scene) -> BTreeMap<String, Value> {
+/// A staged edit's new design: the whole document, or the JSON of the vessels
+/// it changed, by index.
+enum Next {
+    Whole(Value),
+    Vessels(Vec<(usize, Value)>),
+}
+
+/// The vessel tag of a stable id (`tag` or `tag/id`).
+fn vessel_of(id: &str) -> &str {
+    id.split_once('/').map_or(id, |(tag, _)| tag)
+}
+
+/// Every node's `extras` by vessel tag, then by stable id.
+fn node_extras(scene: &Scene) -> BTreeMap<String, BTreeMap<String, Value>> {
     let mut out = BTreeMap::new();
     for vessel in &scene.vessels {
-        out.insert(vessel.tag.clone(), vessel.extras.clone());
+        let mut of_vessel = BTreeMap::new();
+        of_vessel.insert(vessel.tag.clone(), vessel.extras.clone());
         for node in &vessel.nodes {
-            out.insert(node_id(&vessel.tag, &node.id), node.extras.clone());
+            of_vessel.insert(node_id(&vessel.tag, &node.id), node.extras.clone());
         }
+        out.insert(vessel.tag.clone(), of_vessel);
     }
     out
 }

@@ -106,11 +106,13 @@ impl Session {
             .model
             .edit(Edit::ReplaceDesign(design))
             .map_err(ApiError::Refused)?;
-        self.design = design_value(&self.model.design());
+        let next = design_value(&self.model.design());
+        let touched = super::scoped::differing_vessels(&self.design, &next);
+        self.design = next;
         self.revision = revision;
         // Another server's edits are not this server's to undo.
         self.undo.clear();
         self.redo.clear();
-        Ok(Some(self.accepted(work)))
+        Ok(Some(self.accepted(work, touched)))
     }
 }

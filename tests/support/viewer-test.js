@@ -2,8 +2,11 @@
 // /usr/bin/chromium through playwright-core) against a running `vesselcad serve`:
 // two pages open the viewer; page A picks a part from its list, changes one of its
 // parameters in the parameter panel (which sends a JSON Patch), and page B must
-// see that part's geometry change. A bad value typed in page A must show the
-// server's error and change nothing in page B. Prints one JSON report on stdout.
+// see that part's geometry change (and its pixels). A bad value typed in page A
+// must show the server's error and change nothing in page B. Then Ctrl+Z in
+// page A (the server's undo, or its error), a nozzle added to the vessel through
+// page A's button (page B gets it and its pixels change), and the vessel's typed
+// editors. Prints one JSON report on stdout.
 //
 // Usage: node viewer-test.js <base-url> <stable-id> <field> <new-value> <bad-value>
 // Exits 2 if anything fails or takes longer than the global time limit.
@@ -43,6 +46,7 @@ async function open(browser, log) {
     const b = await open(browser, consoleErrors);
     const revision0 = await b.evaluate(() => window.vesselcad.revision);
     const before = await b.evaluate((id) => window.vesselcad.box(id), id);
+    const pixels0 = await b.evaluate(() => window.vesselcad.pixels());
 
     // Page A: pick the part in the list, edit the field in the panel.
     await a.selectOption('#pick', id, { timeout: STEP_MS });
@@ -55,7 +59,10 @@ async function open(browser, log) {
     const after = await b.evaluate((id) => window.vesselcad.box(id), id);
     const revision1 = await b.evaluate(() => window.vesselcad.revision);
     await a.waitForFunction((r) => window.vesselcad.revision >= r, revision1, { timeout: STEP_MS });
-    const statusA = await a.locator('#error').textContent();
+    const statusA = await a.locator('#message').textContent();
+    const statusAError = await a.locator('#error').textContent();
+    const pixels1 = await b.evaluate(() => window.vesselcad.pixels());
+    const editToView = await b.evaluate(() => window.vesselcad.lastApplied);
 
     // A bad value: the page shows the server's error; page B sees no change.
     const again = a.locator(`#params input[name="${field}"]`);
@@ -66,6 +73,34 @@ async function open(browser, log) {
     await b.waitForTimeout(500);
     const revision2 = await b.evaluate(() => window.vesselcad.revision);
     const afterBad = await b.evaluate((id) => window.vesselcad.box(id), id);
+
+    // Undo (Ctrl+Z): the server's answer, an error in red if it has no /undo.
+    const revisionBeforeUndo = await a.evaluate(() => window.vesselcad.revision);
+    await a.locator('#status').click();
+    await a.keyboard.press('Control+z');
+    await a.waitForFunction(
+      (r) => window.vesselcad.lastError !== '' || window.vesselcad.revision > r,
+      revisionBeforeUndo, { timeout: STEP_MS });
+    const undo = {
+      error: await a.locator('#error').textContent(),
+      message: await a.locator('#message').textContent(),
+      revision: await a.evaluate(() => window.vesselcad.revision),
+    };
+    // Add a nozzle to the picked part's vessel: page B gets it.
+    const vessel = id.slice(0, id.lastIndexOf('/'));
+    await a.selectOption('#pick', vessel, { timeout: STEP_MS });
+    const idsBefore = await b.evaluate(() => window.vesselcad.ids());
+    const revisionBeforeAdd = await b.evaluate(() => window.vesselcad.revision);
+    await a.click('#add-nozzle');
+    await b.waitForFunction((r) => window.vesselcad.revision > r, revisionBeforeAdd, { timeout: STEP_MS });
+    const idsAfter = await b.evaluate(() => window.vesselcad.ids());
+    const added = idsAfter.filter((x) => !idsBefore.includes(x));
+    const addError = await a.evaluate(() => window.vesselcad.lastError);
+    const pixels2 = await b.evaluate(() => window.vesselcad.pixels());
+    // The vessel's fields: typed editors from the schema.
+    await a.selectOption('#pick', vessel, { timeout: STEP_MS });
+    const kindEditor = await a.locator('#params select[name="kind"]').count();
+    const levelLabel = await a.locator('#params tr', { hasText: 'operating.liquid_level' }).textContent();
 
     const drawingSrc = await a.locator('#drawing').getAttribute('src');
     const webgl = await a.evaluate(() => !!document.querySelector('#view canvas'));
@@ -81,7 +116,9 @@ async function open(browser, log) {
     }
     console.log(JSON.stringify({
       shown, before, after, revision0, revision1, revision2, afterBad,
-      statusA, errorText, drawingSrc, webgl, picked, gaps, consoleErrors,
+      statusA, statusAError, errorText, drawingSrc, webgl, picked, gaps, consoleErrors,
+      pixelsChangedByEdit: pixels0 !== pixels1, pixelsChangedByAdd: pixels1 !== pixels2,
+      undo, added, addError, kindEditor, levelLabel, editToView: editToView > 0,
     }));
   } finally {
     await browser.close();
