@@ -215,37 +215,34 @@ async fn main() {
                     }
                     other => other,
                 };
-                match message {
-                    Message::Binary(glb) => {
-                        let now = Instant::now();
-                        seen.bytes += glb.len();
-                        let Some(h) = header.take() else { continue };
-                        let revision = h["revision"].as_u64().unwrap_or(0);
-                        match h["type"].as_str() {
-                            Some("hello") => {
-                                seen.last = revision;
-                                let _ = ready.send(()).await;
-                            }
-                            Some("resync") => {
-                                seen.resyncs += 1;
-                                seen.covered_by_resync.push((seen.last + 1, revision));
-                                seen.last = revision;
-                            }
-                            Some("delta") => {
-                                if seen.arrivals.insert(revision, now).is_some() {
-                                    seen.duplicates += 1;
-                                }
-                                seen.last = seen.last.max(revision);
-                            }
-                            _ => {}
+                if let Message::Binary(glb) = message {
+                    let now = Instant::now();
+                    seen.bytes += glb.len();
+                    let Some(h) = header.take() else { continue };
+                    let revision = h["revision"].as_u64().unwrap_or(0);
+                    match h["type"].as_str() {
+                        Some("hello") => {
+                            seen.last = revision;
+                            let _ = ready.send(()).await;
                         }
-                        if let Some(last) = *stop_at.lock().await
-                            && seen.last >= last
-                        {
-                            break;
+                        Some("resync") => {
+                            seen.resyncs += 1;
+                            seen.covered_by_resync.push((seen.last + 1, revision));
+                            seen.last = revision;
                         }
+                        Some("delta") => {
+                            if seen.arrivals.insert(revision, now).is_some() {
+                                seen.duplicates += 1;
+                            }
+                            seen.last = seen.last.max(revision);
+                        }
+                        _ => {}
                     }
-                    _ => {}
+                    if let Some(last) = *stop_at.lock().await
+                        && seen.last >= last
+                    {
+                        break;
+                    }
                 }
             }
             seen

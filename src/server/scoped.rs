@@ -55,6 +55,9 @@ fn inside_vessel(pointer: &str, count: usize) -> Option<usize> {
     (index.to_string() == token && index < count && !below.is_empty()).then_some(index)
 }
 
+/// A patched vessel: its index in the design, its JSON and its design.
+pub type PatchedVessel = (usize, Value, VesselDesign);
+
 /// The patched vessels, by index, as JSON and as designs; `Ok(None)` when one of
 /// them changed its tag or does not parse (the caller then patches the whole
 /// document, for its exact messages).
@@ -67,7 +70,7 @@ pub fn patch_vessels(
     patch: &json_patch::Patch,
     indices: &[usize],
     canonical: impl Fn(&mut Value),
-) -> Result<Option<Vec<(usize, Value, VesselDesign)>>, ApiError> {
+) -> Result<Option<Vec<PatchedVessel>>, ApiError> {
     let Some(vessels) = design.get("vessels").and_then(Value::as_array) else {
         return Ok(None);
     };

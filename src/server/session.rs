@@ -136,6 +136,9 @@ pub enum SheetFormat {
     Dxf,
 }
 
+/// Vessels staged by a scoped edit (their index and new JSON) and the work done.
+type Staged = (Vec<(usize, Value)>, WorkCounters);
+
 /// How many edits back `POST /undo` reaches.
 pub const UNDO_DEPTH: usize = 32;
 
@@ -466,7 +469,7 @@ impl Session {
         &mut self,
         patch: &json_patch::Patch,
         indices: &[usize],
-    ) -> Result<Option<(Vec<(usize, Value)>, WorkCounters)>, ApiError> {
+    ) -> Result<Option<Staged>, ApiError> {
         let Some(patched) = scoped::patch_vessels(&self.design, patch, indices, canonical_numbers)?
         else {
             return Ok(None);
