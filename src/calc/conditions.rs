@@ -52,6 +52,8 @@ pub struct Conditions {
     /// The material's ASME B16.5 group, taken for the nozzle flanges (forgings of
     /// the vessel's material family), when the table gives one.
     pub flange_group: Option<String>,
+    /// The material's Fig. UCS-66 curve letter, when it is a Part UCS material.
+    pub ucs66_curve: Option<String>,
 }
 
 /// The calculation inputs of a vessel's design conditions, or the sentence saying
@@ -101,6 +103,7 @@ pub fn conditions(
         stress_test,
         stress_source: material.allowable_stress.source.clone(),
         flange_group: material.b16_5_group.as_ref().map(|g| g.value.clone()),
+        ucs66_curve: material.ucs66_curve.as_ref().map(|g| g.value.clone()),
         code: code_of(kind),
     })
 }
@@ -145,6 +148,7 @@ fn tank_conditions(design: &DesignConditions, table: &MaterialTable) -> Result<C
             material.name, material.yield_strength.value, material.tensile_strength.value
         ),
         flange_group: None,
+        ucs66_curve: None,
         code: "API 650",
     })
 }

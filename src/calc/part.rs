@@ -10,7 +10,7 @@ use serde::Serialize;
 
 use super::api650::one_foot;
 use super::vessel::{GRAVITY, minimum_thickness};
-use super::{Conditions, Formula, Liquid, Shape, Strength, mawp, required_thickness};
+use super::{Conditions, Formula, Liquid, Mdmt, Shape, Strength, mawp, required_thickness};
 use crate::constraints::PartGeometry;
 use crate::parts::ReducerAlignment;
 use crate::parts::heads::HeadKind;
@@ -58,6 +58,9 @@ pub struct PartCalc {
     pub inputs: Vec<Input>,
     /// Marks of the nozzles whose openings are in this part, in design order.
     pub openings: Vec<String>,
+    /// UCS-66 MDMT of the part, when its material has a Fig. UCS-66 curve and
+    /// its nominal thickness is given.
+    pub mdmt: Option<Mdmt>,
     /// Why the part fails, when it does.
     pub deficiency: Option<String>,
 }
@@ -277,6 +280,11 @@ pub fn part_calc(
         mawp_new_cold: mawp_cold,
         inputs,
         openings,
+        mdmt: c
+            .ucs66_curve
+            .as_deref()
+            .zip(thickness)
+            .map(|(curve, t)| super::mdmt::mdmt(curve, t)),
         deficiency,
     }))
 }
@@ -362,6 +370,7 @@ fn tank_part(
             input("t_t", course.test, "mm"),
         ],
         openings,
+        mdmt: None,
         deficiency,
     }))
 }
