@@ -18,6 +18,7 @@
 pub mod api650;
 mod conditions;
 mod error;
+pub mod external;
 pub mod flange;
 pub mod heads;
 pub mod html;
