@@ -14,6 +14,8 @@
 //!   3.125e-4, B = 31.25 MPa, Pa = B/(Ro/t) = 0.078125 MPa.
 //! - 2:1 ellipsoidal head Do = 2000: Ro = 0.9·2000 = 1800 mm.
 
+mod common;
+
 use vesselcad::calc::external::{cylinder, ellipsoidal_ro, head};
 
 const E: f64 = 200_000.0;
@@ -61,4 +63,44 @@ fn beyond_the_elastic_line_and_thick_walls_are_refused() {
     assert!(e.contains("UG-28(c)(2)"), "{e}");
     let e = cylinder(1000.0, 0.0, 500.0, E, SY).unwrap_err();
     assert!(e.contains("t = 0"), "{e}");
+}
+
+/// Through a design: a drum under full vacuum (101.3 kPa external) gets UG-28 on
+/// its shells and UG-33 on its heads, computed on the corroded wall, and a part
+/// whose allowable is below 0.1013 MPa is a deficiency; without the field no
+/// part has an external figure.
+#[test]
+fn a_design_under_vacuum_gets_ug28_and_ug33() {
+    use vesselcad::calc::{MaterialTable, calculate};
+    let table = MaterialTable::builtin();
+    let mut design = common::examples::example("horizontal-drum");
+    let v = &mut design.vessels[0];
+    v.design.pressure = Some(300.0);
+    v.design.temperature = Some(100.0);
+    let resolved = vesselcad::constraints::resolve_vessel(v, 0).unwrap();
+    let none = calculate(v, &resolved, &table);
+    assert!(none.parts.iter().all(|p| p.external.is_none()));
+    v.design.external_pressure = Some(101.3);
+    let c = calculate(v, &resolved, &table);
+    let mut shells = 0;
+    for p in &c.parts {
+        let x = p.external.as_ref().expect("an external figure");
+        let Ok(x) = x else { continue };
+        if p.kind == "shell" {
+            assert_eq!(x.paragraph, "UG-28(c)(1)");
+            shells += 1;
+        }
+        let short = x.allowable < 0.1013;
+        let flagged = c
+            .vessel
+            .deficiencies
+            .iter()
+            .any(|d| d.contains(&p.id) && d.contains("external"));
+        assert_eq!(
+            short, flagged,
+            "{}: {x:?} {:?}",
+            p.id, c.vessel.deficiencies
+        );
+    }
+    assert!(shells > 0, "{:?}", c.parts);
 }
