@@ -52,6 +52,14 @@ pub struct Conditions {
     /// The material's ASME B16.5 group, taken for the nozzle flanges (forgings of
     /// the vessel's material family), when the table gives one.
     pub flange_group: Option<String>,
+    /// The material's Fig. UCS-66 curve letter, when it is a Part UCS material.
+    pub ucs66_curve: Option<String>,
+    /// External design pressure, MPa (0 when the design gives none).
+    pub external_pressure: f64,
+    /// Specified minimum yield strength, MPa (the elastic limit of UG-28).
+    pub yield_strength: f64,
+    /// Modulus of elasticity, MPa (UG-28's B = A·E/2).
+    pub modulus: f64,
 }
 
 /// The calculation inputs of a vessel's design conditions, or the sentence saying
@@ -101,6 +109,10 @@ pub fn conditions(
         stress_test,
         stress_source: material.allowable_stress.source.clone(),
         flange_group: material.b16_5_group.as_ref().map(|g| g.value.clone()),
+        ucs66_curve: material.ucs66_curve.as_ref().map(|g| g.value.clone()),
+        external_pressure: design.external_pressure.unwrap_or(0.0) * 1e-3,
+        yield_strength: material.yield_strength.value,
+        modulus: material.modulus.value,
         code: code_of(kind),
     })
 }
@@ -145,6 +157,10 @@ fn tank_conditions(design: &DesignConditions, table: &MaterialTable) -> Result<C
             material.name, material.yield_strength.value, material.tensile_strength.value
         ),
         flange_group: None,
+        ucs66_curve: None,
+        external_pressure: 0.0,
+        yield_strength: material.yield_strength.value,
+        modulus: material.modulus.value,
         code: "API 650",
     })
 }

@@ -322,13 +322,40 @@ fn vessel(o: &mut String, v: &ReportVessel) {
             calc.governing.clone().unwrap_or("—".into()),
         ],
     );
+    let parts = &v.calculation.parts;
+    let mdmt = super::mdmt::vessel_mdmt(
+        parts
+            .iter()
+            .filter_map(|p| p.mdmt.as_ref().map(|m| (p.id.as_str(), m))),
+    );
     row(
         o,
         &[
-            "MDMT".into(),
-            "not calculated (UCS-66 not implemented)".into(),
+            "MDMT without impact test (UCS-66, warmest part)".into(),
+            mdmt.map_or("— (no part has a UCS-66 figure)".into(), |(id, t)| {
+                format!("{t:.1} °C, governed by {id}")
+            }),
         ],
     );
+    for p in parts {
+        if let Some(m) = &p.mdmt {
+            row(
+                o,
+                &[
+                    format!(
+                        "MDMT {} (curve {}, tg {} mm)",
+                        p.id, m.curve, m.governing_thickness
+                    ),
+                    format!(
+                        "{}: {}",
+                        m.temperature
+                            .map_or("not computed".into(), |t| format!("{t:.1} °C")),
+                        m.basis
+                    ),
+                ],
+            );
+        }
+    }
     row(
         o,
         &[

@@ -60,6 +60,10 @@ pub struct Material {
     /// ASME B16.5 material group (e.g. `1.1`), when the specification has one.
     #[serde(default)]
     pub b16_5_group: Option<Sourced<String>>,
+    /// ASME VIII-1 Fig. UCS-66 impact-test exemption curve (`A`–`D`) of a Part
+    /// UCS material; none for materials outside Part UCS.
+    #[serde(default)]
+    pub ucs66_curve: Option<Sourced<String>>,
     /// Allowable stress S at temperature, MPa.
     pub allowable_stress: StressTable,
 }

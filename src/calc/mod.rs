@@ -18,10 +18,12 @@
 pub mod api650;
 mod conditions;
 mod error;
+pub mod external;
 pub mod flange;
 pub mod heads;
 pub mod html;
 pub mod materials;
+pub mod mdmt;
 mod nozzle;
 mod part;
 pub mod reinforcement;
@@ -34,6 +36,7 @@ pub use conditions::{Conditions, DEFAULT_JOINT_EFFICIENCY, TEST_TEMPERATURE, cod
 pub use error::CalcError;
 pub use flange::FlangeRating;
 pub use materials::{Material, MaterialTable};
+pub use mdmt::Mdmt;
 pub use nozzle::{NozzleCalc, PIPE_UNDERTOLERANCE, nozzle_calc};
 pub use part::{Input, PartCalc, part_calc, pressure_shape};
 pub use reinforcement::{Opening, Reinforcement, reinforcement};

@@ -9,8 +9,9 @@
 use serde::Serialize;
 
 use super::api650::one_foot;
+use super::external::External;
 use super::vessel::{GRAVITY, minimum_thickness};
-use super::{Conditions, Formula, Liquid, Shape, Strength, mawp, required_thickness};
+use super::{Conditions, Formula, Liquid, Mdmt, Shape, Strength, mawp, required_thickness};
 use crate::constraints::PartGeometry;
 use crate::parts::ReducerAlignment;
 use crate::parts::heads::HeadKind;
@@ -58,6 +59,12 @@ pub struct PartCalc {
     pub inputs: Vec<Input>,
     /// Marks of the nozzles whose openings are in this part, in design order.
     pub openings: Vec<String>,
+    /// UCS-66 MDMT of the part, when its material has a Fig. UCS-66 curve and
+    /// its nominal thickness is given.
+    pub mdmt: Option<Mdmt>,
+    /// UG-28 / UG-33 under the design's external pressure, corroded, when it
+    /// gives one: the figures, or why they are not computed.
+    pub external: Option<Result<External, String>>,
     /// Why the part fails, when it does.
     pub deficiency: Option<String>,
 }
@@ -225,6 +232,16 @@ pub fn part_calc(
         _ => (None, None),
     };
     let governing = required.value.max(minimum);
+    let external = thickness
+        .filter(|_| c.external_pressure > 0.0)
+        .map(|t| external_check(geometry, t - c.corrosion_allowance, c));
+    let external_short = match &external {
+        Some(Ok(x)) if x.allowable < c.external_pressure => Some(format!(
+            "{id}: allowable external pressure {:.4} MPa ({}) is below the design's {:.4} MPa",
+            x.allowable, x.paragraph, c.external_pressure
+        )),
+        _ => None,
+    };
     let deficiency = thickness.and_then(|t| {
         (t < governing).then(|| {
             let why = if required.value >= minimum {
@@ -277,7 +294,16 @@ pub fn part_calc(
         mawp_new_cold: mawp_cold,
         inputs,
         openings,
-        deficiency,
+        mdmt: c
+            .ucs66_curve
+            .as_deref()
+            .zip(thickness)
+            .map(|(curve, t)| super::mdmt::mdmt(curve, t)),
+        external,
+        deficiency: match (deficiency, external_short) {
+            (Some(a), Some(b)) => Some(format!("{a}; {b}")),
+            (a, b) => a.or(b),
+        },
     }))
 }
 
@@ -362,6 +388,36 @@ fn tank_part(
             input("t_t", course.test, "mm"),
         ],
         openings,
+        mdmt: None,
+        external: None,
         deficiency,
     }))
+}
+
+/// UG-28 / UG-33 of a part of corroded wall `t` mm. Choice: a shell's
+/// unsupported length L is its own length plus Do/3, the largest UG-28(b) head
+/// allowance (one third of a hemisphere's depth at each end), which can only
+/// lower the result; stiffening rings and cones are not taken.
+fn external_check(geometry: &PartGeometry, t: f64, c: &Conditions) -> Result<External, String> {
+    use super::external::{cylinder, ellipsoidal_ro, head};
+    let (e, sy) = (c.modulus, c.yield_strength);
+    match geometry {
+        PartGeometry::Shell(s) => cylinder(
+            s.outside_diameter,
+            t,
+            s.length + s.outside_diameter / 3.0,
+            e,
+            sy,
+        ),
+        PartGeometry::Head(h) => {
+            let ro = match h.kind {
+                HeadKind::Hemispherical => h.outside_diameter / 2.0,
+                HeadKind::Ellipsoidal { ratio } => ellipsoidal_ro(h.outside_diameter, ratio)?,
+                HeadKind::Torispherical { crown_radius, .. } => crown_radius,
+                _ => return Err("UG-33: only hemispherical, 2:1 ellipsoidal and torispherical heads are computed".into()),
+            };
+            head(ro, t, e, sy)
+        }
+        _ => Err("UG-28/UG-33: reducers and cones under external pressure are not computed".into()),
+    }
 }

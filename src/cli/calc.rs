@@ -248,6 +248,30 @@ fn print_text(c: &Calculated) {
             v.governing.as_deref().unwrap_or("—")
         );
     }
+    let mdmt = vesselcad::calc::mdmt::vessel_mdmt(
+        c.calculation
+            .parts
+            .iter()
+            .filter_map(|p| p.mdmt.as_ref().map(|m| (p.id.as_str(), m))),
+    );
+    if let Some((id, t)) = mdmt {
+        println!("  MDMT (UCS-66):    {t:.1} °C, governed by {id}");
+    }
+    for p in &c.calculation.parts {
+        match &p.external {
+            Some(Ok(x)) => println!(
+                "  {:<8} {} external: A {:.3e}, B {:.1} MPa, Pa {:.4} MPa",
+                p.id, x.paragraph, x.a, x.b, x.allowable
+            ),
+            Some(Err(e)) => println!("  {:<8} external pressure not computed: {e}", p.id),
+            None => {}
+        }
+    }
+    for p in &c.calculation.parts {
+        if let Some(m) = p.mdmt.as_ref().filter(|m| m.temperature.is_none()) {
+            println!("  MDMT {:<8}     not computed: {}", p.id, m.basis);
+        }
+    }
     if let Some(h) = &v.hydrotest {
         println!(
             "  hydrotest (top):  {:.0} kPa(g) ({})",

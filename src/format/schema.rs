@@ -139,6 +139,10 @@ pub struct DesignConditions {
     /// VIII-1 UW-12), 0 < E ≤ 1; default 0.85 (spot radiography).
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub joint_efficiency: Option<f64>,
+    /// External design pressure (vacuum: 101.3), kPa: checked by ASME VIII-1
+    /// UG-28 (cylinders) and UG-33 (heads) in the elastic range. Default: none.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub external_pressure: Option<f64>,
 }
 
 /// Title-block data of a vessel's drawing sheet; every field optional.

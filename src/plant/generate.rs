@@ -133,6 +133,7 @@ fn vessel(rng: &mut SplitMix64, index: usize, cell: (f64, f64)) -> VesselDesign 
             .to_string(),
         ),
         metal_density: None,
+        external_pressure: None,
         joint_efficiency: None,
     };
     notes(rng, &mut v);

@@ -1,0 +1,106 @@
+//! UG-28 / UG-33 external pressure in the elastic range (`vesselcad::calc::external`).
+//!
+//! Hand calculation (E = 200 000 MPa, Sy = 260 MPa, limit A·E ≤ 0.5·Sy = 130 MPa):
+//! - Cylinder Do = 1000, t = 10, L = 3000 mm: t/Do = 0.01; long A = 1.1·0.01² =
+//!   1.1e-4; short A = 1.30·0.01^1.5 / (3 − 0.45·0.1) = 0.0013/2.955 =
+//!   4.39932e-4 (governs, the larger); A·E = 87.99 MPa ≤ 130; B = A·E/2 =
+//!   43.993 MPa; Pa = 4B/(3·Do/t) = 4·43.993/300 = 0.58658 MPa.
+//! - Long cylinder, L = 100 000 mm: short A = 0.0013/99.955 = 1.30e-5 < 1.1e-4,
+//!   A = 1.1e-4, B = 11 MPa, Pa = 44/300 = 0.146667 MPa.
+//!   Cross-check against the classical long-tube buckling pressure
+//!   Pcr = 2E/(1−ν²)·(t/Do)³ = 2·200 000/0.91·1e-6 = 0.43956 MPa: Pa = Pcr/3
+//!   within the 1.1 vs 2/0.91/2 = 1.0989 rounding of Fig. G (0.1 %).
+//! - Torispherical head Ro = 2000, t = 5 mm: Ro/t = 400, A = 0.125/400 =
+//!   3.125e-4, B = 31.25 MPa, Pa = B/(Ro/t) = 0.078125 MPa.
+//! - 2:1 ellipsoidal head Do = 2000: Ro = 0.9·2000 = 1800 mm.
+
+mod common;
+
+use vesselcad::calc::external::{cylinder, ellipsoidal_ro, head};
+
+const E: f64 = 200_000.0;
+const SY: f64 = 260.0;
+
+fn close(got: f64, want: f64, rel: f64) {
+    assert!(((got - want) / want).abs() < rel, "got {got}, want {want}");
+}
+
+#[test]
+fn ug28_short_cylinder_hand_calculation() {
+    let r = cylinder(1000.0, 10.0, 3000.0, E, SY).unwrap();
+    assert_eq!(r.paragraph, "UG-28(c)(1)");
+    close(r.a, 4.39932e-4, 1e-5);
+    close(r.b, 43.9932, 1e-5);
+    close(r.allowable, 0.586576, 1e-5);
+}
+
+#[test]
+fn ug28_long_cylinder_is_a_third_of_the_classical_buckling_pressure() {
+    let r = cylinder(1000.0, 10.0, 100_000.0, E, SY).unwrap();
+    close(r.a, 1.1e-4, 1e-12);
+    close(r.allowable, 0.146_667, 1e-5);
+    let pcr = 2.0 * E / (1.0 - 0.09) * 1e-6;
+    close(r.allowable, pcr / 3.0, 2e-3);
+}
+
+#[test]
+fn ug33_heads_hand_calculation() {
+    let r = head(2000.0, 5.0, E, SY).unwrap();
+    close(r.a, 3.125e-4, 1e-12);
+    close(r.b, 31.25, 1e-12);
+    close(r.allowable, 0.078125, 1e-12);
+    close(ellipsoidal_ro(2000.0, 2.0).unwrap(), 1800.0, 1e-12);
+    assert!(ellipsoidal_ro(2000.0, 2.5).unwrap_err().contains("2:1"));
+}
+
+#[test]
+fn beyond_the_elastic_line_and_thick_walls_are_refused() {
+    // Ro/t = 100: A = 1.25e-3, A·E = 250 MPa > 130 MPa.
+    let e = head(1000.0, 10.0, E, SY).unwrap_err();
+    assert!(e.contains("elastic line"), "{e}");
+    // Do/t = 8 < 10.
+    let e = cylinder(80.0, 10.0, 500.0, E, SY).unwrap_err();
+    assert!(e.contains("UG-28(c)(2)"), "{e}");
+    let e = cylinder(1000.0, 0.0, 500.0, E, SY).unwrap_err();
+    assert!(e.contains("t = 0"), "{e}");
+}
+
+/// Through a design: a drum under full vacuum (101.3 kPa external) gets UG-28 on
+/// its shells and UG-33 on its heads, computed on the corroded wall, and a part
+/// whose allowable is below 0.1013 MPa is a deficiency; without the field no
+/// part has an external figure.
+#[test]
+fn a_design_under_vacuum_gets_ug28_and_ug33() {
+    use vesselcad::calc::{MaterialTable, calculate};
+    let table = MaterialTable::builtin();
+    let mut design = common::examples::example("horizontal-drum");
+    let v = &mut design.vessels[0];
+    v.design.pressure = Some(300.0);
+    v.design.temperature = Some(100.0);
+    let resolved = vesselcad::constraints::resolve_vessel(v, 0).unwrap();
+    let none = calculate(v, &resolved, &table);
+    assert!(none.parts.iter().all(|p| p.external.is_none()));
+    v.design.external_pressure = Some(101.3);
+    let c = calculate(v, &resolved, &table);
+    let mut shells = 0;
+    for p in &c.parts {
+        let x = p.external.as_ref().expect("an external figure");
+        let Ok(x) = x else { continue };
+        if p.kind == "shell" {
+            assert_eq!(x.paragraph, "UG-28(c)(1)");
+            shells += 1;
+        }
+        let short = x.allowable < 0.1013;
+        let flagged = c
+            .vessel
+            .deficiencies
+            .iter()
+            .any(|d| d.contains(&p.id) && d.contains("external"));
+        assert_eq!(
+            short, flagged,
+            "{}: {x:?} {:?}",
+            p.id, c.vessel.deficiencies
+        );
+    }
+    assert!(shells > 0, "{:?}", c.parts);
+}
