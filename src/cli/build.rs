@@ -9,7 +9,8 @@ use std::time::Instant;
 use clap::{Args, ValueEnum};
 use vesselcad::design::{Design, load};
 use vesselcad::export::{
-    Compression, ExportError, GlbOptions, quantization_budget, stream_glb_with, stream_glb_with_to,
+    Compression, ExportError, GlbOptions, Granularity, merge_scene, quantization_budget,
+    stream_glb_with, stream_glb_with_to,
 };
 use vesselcad::mesh::TessellationOptions;
 use vesselcad::model::{Model, ModelError};
@@ -45,6 +46,34 @@ pub struct BuildArgs {
     /// Write every patch's mesh on its own, even where patches share one.
     #[arg(long)]
     no_reuse: bool,
+    /// What one mesh (one draw call per material) holds: `patch` (default),
+    /// `part`, `vessel` or `plant`; merged meshes keep the tolerance.
+    #[arg(long, value_enum, default_value = "patch")]
+    granularity: GranularityArg,
+}
+
+/// Granularities of `--granularity`.
+#[derive(Clone, Copy, ValueEnum)]
+enum GranularityArg {
+    /// One mesh per patch.
+    Patch,
+    /// One mesh per part or nozzle.
+    Part,
+    /// One mesh per vessel and material.
+    Vessel,
+    /// One mesh per material for the whole plant.
+    Plant,
+}
+
+impl From<GranularityArg> for Granularity {
+    fn from(g: GranularityArg) -> Self {
+        match g {
+            GranularityArg::Patch => Granularity::Patch,
+            GranularityArg::Part => Granularity::Part,
+            GranularityArg::Vessel => Granularity::Vessel,
+            GranularityArg::Plant => Granularity::Plant,
+        }
+    }
 }
 
 /// Compressions of `--compress`.
@@ -64,6 +93,7 @@ pub fn run(args: BuildArgs) -> ExitCode {
         quantize,
         compress,
         no_reuse,
+        granularity,
     } = args;
     let glb = GlbOptions {
         reuse: !no_reuse,
@@ -110,7 +140,10 @@ pub fn run(args: BuildArgs) -> ExitCode {
         }
         return ExitCode::from(1);
     }
-    let scene = model.scene();
+    let scene = match Granularity::from(granularity) {
+        Granularity::Patch => model.scene(),
+        g => merge_scene(&model.scene(), g),
+    };
     let triangles: usize = scene
         .vessels
         .iter()
