@@ -10,7 +10,7 @@ use clap::{Args, ValueEnum};
 use vesselcad::design::{Design, load};
 use vesselcad::export::{
     Compression, ExportError, GlbOptions, Granularity, merge_scene, quantization_budget,
-    stream_glb_with, stream_glb_with_to,
+    stream_glb_with, stream_glb_with_to, write_tiles,
 };
 use vesselcad::mesh::TessellationOptions;
 use vesselcad::model::{Model, ModelError};
@@ -26,8 +26,12 @@ pub struct BuildArgs {
     /// The design file (JSON, vesselcad/1).
     design: PathBuf,
     /// Output GLB file (`.glb`), or `-` for standard output.
-    #[arg(short, long)]
-    output: PathBuf,
+    #[arg(short, long, required_unless_present = "tiles")]
+    output: Option<PathBuf>,
+    /// Write 3D Tiles 1.1 into this directory instead: one GLB per vessel and
+    /// a `tileset.json` (plant frame, metres, Z-up).
+    #[arg(long, conflicts_with = "output")]
+    tiles: Option<PathBuf>,
     /// Chordal tolerance of the meshes, mm.
     #[arg(long, default_value_t = TessellationOptions::DEFAULT.tolerance, allow_negative_numbers = true)]
     tolerance: f64,
@@ -94,7 +98,9 @@ pub fn run(args: BuildArgs) -> ExitCode {
         compress,
         no_reuse,
         granularity,
+        tiles,
     } = args;
+    let output = output.unwrap_or_default();
     let glb = GlbOptions {
         reuse: !no_reuse,
         quantize: quantize.then(|| quantization_budget(tolerance)),
@@ -105,7 +111,8 @@ pub fn run(args: BuildArgs) -> ExitCode {
     };
     let start = Instant::now();
     let to_stdout = output.as_os_str() == "-";
-    if !to_stdout
+    if tiles.is_none()
+        && !to_stdout
         && output
             .extension()
             .is_some_and(|e| e.eq_ignore_ascii_case("gltf"))
@@ -151,6 +158,25 @@ pub fn run(args: BuildArgs) -> ExitCode {
         .flat_map(|n| &n.patches)
         .map(|p| p.mesh.triangle_count())
         .sum();
+    if let Some(dir) = tiles {
+        return match write_tiles(&scene, &glb, tolerance, &dir) {
+            Ok(files) => {
+                outln!(
+                    "{}: {} vessel tile(s), {} triangles at {} mm, {:.0} ms",
+                    dir.join(vesselcad::export::TILESET).display(),
+                    files.len() - 1,
+                    triangles,
+                    tolerance,
+                    start.elapsed().as_secs_f64() * 1e3
+                );
+                ExitCode::SUCCESS
+            }
+            Err(e) => {
+                eprintln!("error: {e}");
+                ExitCode::from(2)
+            }
+        };
+    }
     let written = if to_stdout {
         let stdout = std::io::stdout().lock();
         let mut out = std::io::BufWriter::new(stdout);

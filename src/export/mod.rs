@@ -28,6 +28,7 @@ mod gltf_encoding;
 mod gltf_materials;
 mod granularity;
 mod scene;
+mod tiles;
 
 pub use delta::{delta_scene, node_id, scene_ids, write_delta_glb};
 pub use direct::{build_scene, patch_name};
@@ -40,3 +41,4 @@ pub use gltf_document::{PLANT_NODE, PLANT_ROTATION};
 pub use gltf_encoding::quantization_bound;
 pub use granularity::{Granularity, MERGED_PATCH, merge_scene};
 pub use scene::{Scene, SceneNode, SceneNodeKind, ScenePatch, SceneVessel};
+pub use tiles::{TILESET, write_tiles};
