@@ -6,12 +6,16 @@
 //! (the example plant's horizontal drum by default, at 1 mm; `--plant N` a
 //! generated plant of N vessels). Each variant is written a few times and the
 //! fastest run counts. Meshes are made to the tolerance less the quantization
-//! budget, as `vesselcad build --quantize` makes them.
+//! budget, as `vesselcad build --quantize` makes them. The last rows are the
+//! compact file (reuse + quantization + meshopt) of the scene merged per part,
+//! vessel and plant (`--granularity`; merging is not timed).
 
 use std::time::Instant;
 
 use vesselcad::design::load;
-use vesselcad::export::{Compression, GlbOptions, quantization_budget, write_glb_with};
+use vesselcad::export::{
+    Compression, GlbOptions, Granularity, merge_scene, quantization_budget, write_glb_with,
+};
 use vesselcad::mesh::TessellationOptions;
 use vesselcad::model::Model;
 use vesselcad::plant::generate_plant;
@@ -78,17 +82,33 @@ fn main() {
             Compression::Meshopt,
         ),
     ];
-    for (name, reuse, quantize, compress) in variants {
-        let options = GlbOptions {
-            reuse,
-            quantize,
-            compress,
-        };
+    let merged = [
+        ("compact, --granularity part", Granularity::Part),
+        ("compact, --granularity vessel", Granularity::Vessel),
+        ("compact, --granularity plant", Granularity::Plant),
+    ]
+    .map(|(name, g)| (name, merge_scene(&scene, g)));
+    let rows = variants
+        .iter()
+        .map(|&(name, reuse, quantize, compress)| {
+            let options = GlbOptions {
+                reuse,
+                quantize,
+                compress,
+            };
+            (name, &scene, options)
+        })
+        .chain(
+            merged
+                .iter()
+                .map(|(name, s)| (*name, s, GlbOptions::compact(tolerance))),
+        );
+    for (name, scene, options) in rows {
         let mut best = f64::INFINITY;
         let mut bytes = Vec::new();
         for _ in 0..3 {
             let start = Instant::now();
-            bytes = write_glb_with(&scene, &options).expect("writes");
+            bytes = write_glb_with(scene, &options).expect("writes");
             best = best.min(start.elapsed().as_secs_f64());
         }
         let json_len = u32::from_le_bytes(bytes[12..16].try_into().unwrap()) as usize;

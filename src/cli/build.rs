@@ -9,7 +9,8 @@ use std::time::Instant;
 use clap::{Args, ValueEnum};
 use vesselcad::design::{Design, load};
 use vesselcad::export::{
-    Compression, ExportError, GlbOptions, quantization_budget, stream_glb_with, stream_glb_with_to,
+    Compression, ExportError, GlbOptions, Granularity, merge_scene, quantization_budget,
+    stream_glb_with, stream_glb_with_to, write_tiles,
 };
 use vesselcad::mesh::TessellationOptions;
 use vesselcad::model::{Model, ModelError};
@@ -25,8 +26,12 @@ pub struct BuildArgs {
     /// The design file (JSON, vesselcad/1).
     design: PathBuf,
     /// Output GLB file (`.glb`), or `-` for standard output.
-    #[arg(short, long)]
-    output: PathBuf,
+    #[arg(short, long, required_unless_present = "tiles")]
+    output: Option<PathBuf>,
+    /// Write 3D Tiles 1.1 into this directory instead: one GLB per vessel and
+    /// a `tileset.json` (plant frame, metres, Z-up).
+    #[arg(long, conflicts_with = "output")]
+    tiles: Option<PathBuf>,
     /// Chordal tolerance of the meshes, mm.
     #[arg(long, default_value_t = TessellationOptions::DEFAULT.tolerance, allow_negative_numbers = true)]
     tolerance: f64,
@@ -45,6 +50,34 @@ pub struct BuildArgs {
     /// Write every patch's mesh on its own, even where patches share one.
     #[arg(long)]
     no_reuse: bool,
+    /// What one mesh (one draw call per material) holds: `patch` (default),
+    /// `part`, `vessel` or `plant`; merged meshes keep the tolerance.
+    #[arg(long, value_enum, default_value = "patch")]
+    granularity: GranularityArg,
+}
+
+/// Granularities of `--granularity`.
+#[derive(Clone, Copy, ValueEnum)]
+enum GranularityArg {
+    /// One mesh per patch.
+    Patch,
+    /// One mesh per part or nozzle.
+    Part,
+    /// One mesh per vessel and material.
+    Vessel,
+    /// One mesh per material for the whole plant.
+    Plant,
+}
+
+impl From<GranularityArg> for Granularity {
+    fn from(g: GranularityArg) -> Self {
+        match g {
+            GranularityArg::Patch => Granularity::Patch,
+            GranularityArg::Part => Granularity::Part,
+            GranularityArg::Vessel => Granularity::Vessel,
+            GranularityArg::Plant => Granularity::Plant,
+        }
+    }
 }
 
 /// Compressions of `--compress`.
@@ -64,7 +97,10 @@ pub fn run(args: BuildArgs) -> ExitCode {
         quantize,
         compress,
         no_reuse,
+        granularity,
+        tiles,
     } = args;
+    let output = output.unwrap_or_default();
     let glb = GlbOptions {
         reuse: !no_reuse,
         quantize: quantize.then(|| quantization_budget(tolerance)),
@@ -75,7 +111,8 @@ pub fn run(args: BuildArgs) -> ExitCode {
     };
     let start = Instant::now();
     let to_stdout = output.as_os_str() == "-";
-    if !to_stdout
+    if tiles.is_none()
+        && !to_stdout
         && output
             .extension()
             .is_some_and(|e| e.eq_ignore_ascii_case("gltf"))
@@ -120,7 +157,10 @@ pub fn run(args: BuildArgs) -> ExitCode {
         }
         return ExitCode::from(1);
     }
-    let scene = model.scene();
+    let scene = match Granularity::from(granularity) {
+        Granularity::Patch => model.scene(),
+        g => merge_scene(&model.scene(), g),
+    };
     let triangles: usize = scene
         .vessels
         .iter()
@@ -128,6 +168,25 @@ pub fn run(args: BuildArgs) -> ExitCode {
         .flat_map(|n| &n.patches)
         .map(|p| p.mesh.triangle_count())
         .sum();
+    if let Some(dir) = tiles {
+        return match write_tiles(&scene, &glb, tolerance, &dir) {
+            Ok(files) => {
+                outln!(
+                    "{}: {} vessel tile(s), {} triangles at {} mm, {:.0} ms",
+                    dir.join(vesselcad::export::TILESET).display(),
+                    files.len() - 1,
+                    triangles,
+                    tolerance,
+                    start.elapsed().as_secs_f64() * 1e3
+                );
+                ExitCode::SUCCESS
+            }
+            Err(e) => {
+                eprintln!("error: {e}");
+                ExitCode::from(2)
+            }
+        };
+    }
     let written = if to_stdout {
         let stdout = std::io::stdout().lock();
         let mut out = std::io::BufWriter::new(stdout);

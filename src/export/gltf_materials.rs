@@ -33,6 +33,15 @@ impl MaterialKind {
     /// The material of a node: nozzles by their node kind, parts by the `kind` of
     /// their `extras` (a part without one counts as a pressure part).
     pub fn of(node: &SceneNode) -> MaterialKind {
+        // A merged node names its material.
+        if let Some(kind) = node
+            .extras
+            .get("material")
+            .and_then(|m| m.as_str())
+            .and_then(|m| Self::ALL.into_iter().find(|k| k.name() == m))
+        {
+            return kind;
+        }
         match node.kind {
             SceneNodeKind::Nozzle => MaterialKind::Nozzle,
             SceneNodeKind::Part => match node.extras.get("kind").and_then(|k| k.as_str()) {
@@ -47,6 +56,15 @@ impl MaterialKind {
         self as usize
     }
 
+    /// The material's name (in the file and in merged nodes' `extras`).
+    pub fn name(self) -> &'static str {
+        match self {
+            MaterialKind::Vessel => "vessel",
+            MaterialKind::Support => "support",
+            MaterialKind::Nozzle => "nozzle",
+        }
+    }
+
     /// The glTF material: opaque, metal; single-sided for the vessel and its
     /// nozzles (closed surfaces seen from outside), double-sided for supports,
     /// whose parts are open sheets seen from both sides (a skirt from inside
@@ -54,7 +72,7 @@ impl MaterialKind {
     /// plates): with back-face culling, the usual default, one side of a sheet
     /// would vanish.
     pub fn material(self) -> json::Material {
-        let (name, color, metallic, roughness) = match self {
+        let (_, color, metallic, roughness) = match self {
             MaterialKind::Vessel => ("vessel", [0.70, 0.72, 0.74, 1.0], 0.6, 0.45),
             MaterialKind::Support => ("support", [0.32, 0.34, 0.37, 1.0], 0.5, 0.6),
             MaterialKind::Nozzle => ("nozzle", [0.86, 0.45, 0.10, 1.0], 0.5, 0.4),
@@ -62,7 +80,7 @@ impl MaterialKind {
         json::Material {
             alpha_mode: Checked::Valid(AlphaMode::Opaque),
             double_sided: self == MaterialKind::Support,
-            name: Some(name.to_string()),
+            name: Some(self.name().to_string()),
             pbr_metallic_roughness: json::material::PbrMetallicRoughness {
                 base_color_factor: PbrBaseColorFactor(color),
                 metallic_factor: StrengthFactor(metallic),

@@ -26,7 +26,9 @@ mod gltf_buffers;
 mod gltf_document;
 mod gltf_encoding;
 mod gltf_materials;
+mod granularity;
 mod scene;
+mod tiles;
 
 pub use delta::{delta_scene, node_id, scene_ids, write_delta_glb};
 pub use direct::{build_scene, patch_name};
@@ -37,4 +39,6 @@ pub use glb_options::{Compression, GlbOptions, quantization_budget};
 pub use glb_stream::{stream_glb, stream_glb_to, stream_glb_with, stream_glb_with_to};
 pub use gltf_document::{PLANT_NODE, PLANT_ROTATION};
 pub use gltf_encoding::quantization_bound;
+pub use granularity::{Granularity, MERGED_PATCH, merge_scene};
 pub use scene::{Scene, SceneNode, SceneNodeKind, ScenePatch, SceneVessel};
+pub use tiles::{TILESET, write_tiles};
