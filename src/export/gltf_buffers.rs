@@ -22,11 +22,8 @@ use serde_json::Value;
 
 use super::error::ExportError;
 use super::glb_options::{Compression, GlbOptions};
-use super::gltf_encoding::{Dequantization, Encoding, Stream};
+use super::gltf_encoding::{Dequantization, Encoding, MM_TO_M, Stream, metres, unit_normal};
 use crate::mesh::PackedMesh;
-
-/// Millimetres → metres.
-pub(super) const MM_TO_M: f64 = 1e-3;
 
 /// The accessors of one mesh primitive.
 #[derive(Clone, Copy, Debug)]
@@ -362,17 +359,6 @@ fn check_topology(mesh: &PackedMesh, entity: &str, patch: &str) -> Result<(), Ex
         return Err(malformed(format!("index {bad} with {count} vertices")));
     }
     Ok(())
-}
-
-/// A position in mm as `f32` metres.
-pub(super) fn metres(p: DVec3) -> Vec3 {
-    (p * MM_TO_M).as_vec3()
-}
-
-/// A normal as a unit `f32` vector, renormalized after the conversion; `None` when
-/// it is not finite or (nearly) zero.
-pub(super) fn unit_normal(n: DVec3) -> Option<Vec3> {
-    n.as_vec3().try_normalize()
 }
 
 /// A tightly packed accessor at `offset` of its stream's view (set by

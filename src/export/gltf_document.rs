@@ -35,7 +35,8 @@ use serde_json::value::RawValue;
 
 use super::error::ExportError;
 use super::glb_options::GlbOptions;
-use super::gltf_buffers::{FinishedBuffers, MM_TO_M, MeshBuffers, PrimitiveAccessors};
+use super::gltf_buffers::{FinishedBuffers, MeshBuffers, PrimitiveAccessors};
+use super::gltf_encoding::MM_TO_M;
 use super::gltf_encoding::{Dequantization, Encoding, Stream};
 use super::gltf_materials::MaterialKind;
 use super::scene::{Scene, SceneNode, ScenePatch, SceneVessel};

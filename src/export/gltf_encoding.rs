@@ -2,7 +2,7 @@
 //! layouts) it uses, its quantization step and offset, its vertex order, and the
 //! bytes of each stream.
 //!
-//! Part of the glTF writer, below [`super::gltf_buffers`] (which lays the
+//! Part of the glTF writer, below `gltf_buffers` (which lays the
 //! streams out as buffer views and accessors). A mesh is encoded once, however
 //! many nodes use it. Plain: `f32` metres, unit `f32` normals, `u32` indices.
 //! Quantized (`KHR_mesh_quantization`): positions as `u16` offsets, in the
@@ -18,8 +18,21 @@
 use glam::{DVec3, Vec3};
 
 use super::glb_options::{Compression, GlbOptions};
-use super::gltf_buffers::{MM_TO_M, metres, unit_normal};
 use crate::mesh::PackedMesh;
+
+/// Millimetres → metres.
+pub(super) const MM_TO_M: f64 = 1e-3;
+
+/// A position in mm as `f32` metres.
+pub(super) fn metres(p: DVec3) -> Vec3 {
+    (p * MM_TO_M).as_vec3()
+}
+
+/// A normal as a unit `f32` vector, renormalized after the conversion; `None` when
+/// it is not finite or (nearly) zero.
+pub(super) fn unit_normal(n: DVec3) -> Option<Vec3> {
+    n.as_vec3().try_normalize()
+}
 
 /// Largest quantized coordinate.
 const QUANTIZED_RANGE: f64 = u16::MAX as f64;
