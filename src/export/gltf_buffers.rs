@@ -13,7 +13,7 @@
 //! views and a second buffer, without data, the uncompressed layout the views
 //! and accessors describe.
 
-use glam::{DVec3, Vec3};
+use glam::DVec3;
 use gltf_json as json;
 use json::accessor::{ComponentType, GenericComponentType, Type};
 use json::buffer::{Stride, Target};
@@ -22,7 +22,7 @@ use serde_json::Value;
 
 use super::error::ExportError;
 use super::glb_options::{Compression, GlbOptions};
-use super::gltf_encoding::{Dequantization, Encoding, MM_TO_M, Stream, metres, unit_normal};
+use super::gltf_encoding::{Dequantization, Encoding, Stream, metres, unit_normal};
 use crate::mesh::PackedMesh;
 
 /// The accessors of one mesh primitive.
