@@ -161,8 +161,10 @@ fn add_security_headers(headers: &mut HeaderMap, host: Option<&str>) {
         })
         .map(|h| format!(" ws://{h}"))
         .unwrap_or_default();
+    // 'wasm-unsafe-eval' lets the page compile WebAssembly (three.js's
+    // MeshoptDecoder for `EXT_meshopt_compression`), not evaluate script text.
     let policy = format!(
-        "default-src 'none'; script-src 'self'; style-src 'self'; img-src 'self' data: blob:; \
+        "default-src 'none'; script-src 'self' 'wasm-unsafe-eval'; style-src 'self'; img-src 'self' data: blob:; \
          connect-src 'self'{socket}; frame-ancestors 'none'; base-uri 'none'; form-action 'none'"
     );
     if let Ok(value) = HeaderValue::from_str(&policy) {
