@@ -96,6 +96,18 @@ fn bounds() -> Vec<Bound> {
         ),
         bound(
             "DesignConditions",
+            "external_pressure",
+            "minimum",
+            json!(0.0),
+        ),
+        bound(
+            "DesignConditions",
+            "external_pressure",
+            "maximum",
+            json!(MAX_PRESSURE),
+        ),
+        bound(
+            "DesignConditions",
             "joint_efficiency",
             "exclusiveMinimum",
             json!(0.0),

@@ -7,6 +7,8 @@
 //!
 //! - design pressure (kPa gauge) is finite, at least full vacuum (−101.325 kPa)
 //!   and at most [`MAX_PRESSURE`];
+//! - external design pressure (kPa), when given, is finite, ≥ 0 and at most
+//!   [`MAX_PRESSURE`];
 //! - design temperature (°C) is finite, above absolute zero and at most
 //!   [`MAX_TEMPERATURE`];
 //! - a wall thickness given for a shell course, head or reducer lies between
@@ -122,6 +124,20 @@ pub(crate) fn check(vessel: &VesselDesign, parts: &[Option<ResolvedPart>], repor
             format!(
                 "must be a gauge pressure between full vacuum ({FULL_VACUUM} kPa) and \
                  {MAX_PRESSURE} kPa"
+            ),
+        );
+    }
+    if let Some(p) = c.external_pressure
+        && !(p.is_finite() && (0.0..=MAX_PRESSURE).contains(&p))
+    {
+        report.push(
+            "design.external_pressure",
+            None,
+            "external_pressure",
+            p,
+            format!(
+                "must be an external pressure between 0 and {MAX_PRESSURE} kPa \
+                 (full vacuum is 101.325)"
             ),
         );
     }
