@@ -187,13 +187,9 @@ impl Session {
             "read and checked: {} vessels; building and meshing",
             parsed.vessels.len()
         ));
-        let old_journal = journal_path(path);
-        let migrating = store.is_some() && old_journal.exists();
-        if store.is_some() && !migrating {
-            let file = parsed;
-            let (link, revision, design) =
-                StoreLink::open(store.unwrap_or_default(), path, &file, units, None)?;
-            // No drawing views: a sheet is drawn from a model of its vessel alone.
+        // A session whose edits go to the store: no drawing views (a sheet is
+        // drawn from a model of its vessel alone).
+        let on_store = |link: StoreLink, revision: u64, design: Design| {
             let model =
                 Model::from_design_with(&design, options, Views::Off).map_err(design_error)?;
             let session = Session::assemble(
@@ -206,7 +202,15 @@ impl Session {
                 units,
             );
             progress("ready");
-            return Ok(session);
+            Ok(session)
+        };
+        let old_journal = journal_path(path);
+        let migrating = store.is_some() && old_journal.exists();
+        if store.is_some() && !migrating {
+            let file = parsed;
+            let (link, revision, design) =
+                StoreLink::open(store.unwrap_or_default(), path, &file, units, None)?;
+            return on_store(link, revision, design);
         }
         let file = parsed.clone();
         let (journal, replay) = Journal::open(path, &bytes)?;
@@ -250,20 +254,7 @@ impl Session {
                 path: journal_path.clone(),
                 message: format!("migrated into the store, but cannot be renamed: {e}"),
             })?;
-            // No drawing views: a sheet is drawn from a model of its vessel alone.
-            let model =
-                Model::from_design_with(&design, options, Views::Off).map_err(design_error)?;
-            let session = Session::assemble(
-                path,
-                options,
-                Box::new(link),
-                model,
-                revision,
-                revision,
-                units,
-            );
-            progress("ready");
-            return Ok(session);
+            return on_store(link, revision, design);
         }
         // No drawing views: a sheet is drawn from a model of its vessel alone
         // (`drawing`), so the plant is not projected at start nor on each edit.
