@@ -4,7 +4,8 @@
 //! parameter panel changes the geometry page B shows, and a bad value shows the
 //! server's error in page A and changes nothing in page B; undo, adding a nozzle
 //! and the typed editors go through the same pages. The History panel lists a
-//! store's revisions and its Undo button adds one.
+//! store's revisions and its Undo button adds one; the view draws no frame while
+//! idle.
 
 mod server_support;
 
@@ -200,6 +201,11 @@ fn the_history_panel_lists_the_revisions_and_undo_adds_one() {
     );
     assert_eq!(report["current"], "3", "{report}");
     assert_eq!(report["consoleErrors"], serde_json::json!([]), "{report}");
+    // The view draws on demand: frames were drawn, none over 1.5 s of idle.
+    if report["webgl"] == true {
+        assert!(report["framesBefore"].as_u64() > Some(0), "{report}");
+        assert_eq!(report["framesIdle"], 0, "{report}");
+    }
 }
 
 #[test]

@@ -1,7 +1,8 @@
 // Drives the viewer's History panel in headless Chromium (Debian's
 // /usr/bin/chromium through playwright-core) against a running `vesselcad serve`:
 // opens the page, opens the panel, presses the Undo button, and reports the
-// panel's rows (newest first) before and after, and its note. Prints one JSON
+// panel's rows (newest first) before and after, and its note; then counts the
+// frames drawn over 1.5 s of idle (the view draws on demand). Prints one JSON
 // report on stdout.
 //
 // Usage: node history-test.js <base-url>
@@ -53,7 +54,16 @@ setTimeout(() => {
     const current = await page.locator('#history li.current').getAttribute('data-rev').catch(() => null);
     const note = await page.locator('#history-note').textContent();
     const revisionAfter = await page.evaluate(() => window.vesselcad.revision);
-    console.log(JSON.stringify({ revision, revisionAfter, before, after, current, note, undoError, consoleErrors }));
+    // Drawing on demand: with nothing changing, (almost) no frame is drawn.
+    const webgl = await page.evaluate(() => !!document.querySelector('#view canvas'));
+    await page.waitForTimeout(300);
+    const framesBefore = await page.evaluate(() => window.vesselcad.frames);
+    await page.waitForTimeout(1500);
+    const framesIdle = (await page.evaluate(() => window.vesselcad.frames)) - framesBefore;
+    console.log(JSON.stringify({
+      revision, revisionAfter, before, after, current, note, undoError, consoleErrors,
+      webgl, framesBefore, framesIdle,
+    }));
   } finally {
     await browser.close();
   }

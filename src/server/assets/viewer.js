@@ -18,7 +18,8 @@
 // picked vessel; the Undo and Redo buttons (Ctrl+Z / Ctrl+Shift+Z) call POST
 // /undo and /redo. The History panel lists the store's revisions (GET
 // /revisions; newest first, each with its design as JSON) while it is open.
-// Errors show in red, success does not. The drawing panel shows /drawing.svg of the picked
+// Errors show in red, success does not. The view is drawn on demand (after a
+// camera move, an update, a highlight or a resize), not every frame. The drawing panel shows /drawing.svg of the picked
 // vessel; a click opens it full size with SVG and DXF downloads.
 // `window.vesselcad` exposes the state for tests.
 
@@ -44,6 +45,7 @@ const state = {
   selected: '',
   lastError: '',
   historyAt: null,     // the revision the History panel shows
+  frames: 0,           // frames drawn (on demand)
   gaps: 0,             // deltas whose revision did not follow the last one
   resyncs: 0,
   updates: 0,
@@ -69,6 +71,7 @@ try {
   renderer.setPixelRatio(window.devicePixelRatio);
   $('view').appendChild(renderer.domElement);
   controls = new OrbitControls(camera, renderer.domElement);
+  controls.addEventListener('change', () => invalidate());
 } catch (e) {
   // No WebGL (e.g. a headless browser without a GPU): the model is still kept
   // up to date and can be picked from the list.
@@ -82,14 +85,24 @@ function resize() {
   renderer.setSize(w, h, false);
   camera.aspect = w / h;
   camera.updateProjectionMatrix();
+  invalidate();
 }
 window.addEventListener('resize', resize);
 
+// Drawing on demand: a frame is drawn after something changed (the camera,
+// the model, the highlight, the size), not 60 times a second while idle.
+let frameQueued = false;
+function invalidate() {
+  if (!renderer || frameQueued) return;
+  frameQueued = true;
+  requestAnimationFrame(frame);
+}
+
 function frame() {
-  if (!renderer) return;
+  frameQueued = false;
   controls.update();
   renderer.render(scene, camera);
-  requestAnimationFrame(frame);
+  state.frames += 1;
 }
 
 // Points the camera at `object` (the plant by default) so that all of it shows.
@@ -109,6 +122,7 @@ function frameObject(object) {
   camera.far = distance + size * 20;
   camera.updateProjectionMatrix();
   if (controls) controls.target.copy(center);
+  invalidate();
 }
 
 // ---- model: outline, vessels, deltas -----------------------------------------
@@ -248,6 +262,7 @@ async function loadVessel(tag, generation) {
     state.plant.add(incoming);
     indexVessel(incoming);
     state.loaded.add(tag);
+    invalidate();
     if (state.selected.startsWith(`${tag}/`) || state.selected === tag) highlight();
     return;
   }
@@ -323,6 +338,7 @@ async function handle(header, buffer) {
   state.lastApplied = performance.now();
   $('status').textContent = `revision ${state.revision} · ${state.vessels.size} vessels`;
   $('status').dataset.revision = String(state.revision);
+  invalidate();
   refreshPickList();
   highlight();
   // The design: whole on a hello, resync or a vessel added or removed; else
@@ -498,6 +514,7 @@ function highlight() {
     }
   });
   for (const [id, node] of state.nodes) paint(id, node);
+  invalidate();
 }
 
 async function loadDesign() {
@@ -861,6 +878,7 @@ window.vesselcad = {
   get loaded() { return state.loaded.size; },
   get vessels() { return state.vessels.size; },
   get lastApplied() { return state.lastApplied; },
+  get frames() { return state.frames; },
   ids: () => [...state.nodes.keys()],
   // The History panel's rows, newest first: [revision, text].
   history: () => [...$('history').children].map((li) => [Number(li.dataset.rev), li.textContent]),
@@ -885,4 +903,4 @@ window.vesselcad = {
 
 resize();
 loadSchema().then(connect);
-requestAnimationFrame(frame);
+invalidate();
