@@ -3,7 +3,9 @@
 //! the page served by the real `vesselcad serve`; an edit made through page A's
 //! parameter panel changes the geometry page B shows, and a bad value shows the
 //! server's error in page A and changes nothing in page B; undo, adding a nozzle
-//! and the typed editors go through the same pages.
+//! and the typed editors go through the same pages. The History panel lists a
+//! store's revisions and its Undo button adds one; the view draws no frame while
+//! idle.
 
 mod server_support;
 
@@ -20,6 +22,11 @@ const MISSING: &str = "Chromium or playwright-core is missing: install Debian's 
 /// Runs tests/support/viewer-test.js; `None` when the browser or driver is not
 /// installed (a failure under CI).
 fn drive(server: &ServerProcess, args: &[&str]) -> Option<Value> {
+    run_script("viewer-test.js", server, args)
+}
+
+/// Runs the script `name` of tests/support against `server`.
+fn run_script(name: &str, server: &ServerProcess, args: &[&str]) -> Option<Value> {
     let root = Path::new(env!("CARGO_MANIFEST_DIR"));
     let driver = root.join("tests/support/node_modules/playwright-core/package.json");
     if !driver.is_file() || !Path::new("/usr/bin/chromium").exists() {
@@ -28,7 +35,7 @@ fn drive(server: &ServerProcess, args: &[&str]) -> Option<Value> {
         return None;
     }
     let mut child = Command::new("node")
-        .arg(root.join("tests/support/viewer-test.js"))
+        .arg(root.join("tests/support").join(name))
         .arg(server.url())
         .args(args)
         .stdout(Stdio::piped())
@@ -40,7 +47,7 @@ fn drive(server: &ServerProcess, args: &[&str]) -> Option<Value> {
     while child.try_wait().unwrap().is_none() {
         if start.elapsed() > Duration::from_secs(120) {
             let _ = child.kill();
-            panic!("viewer-test.js did not finish");
+            panic!("{name} did not finish");
         }
         std::thread::sleep(Duration::from_millis(100));
     }
@@ -48,7 +55,7 @@ fn drive(server: &ServerProcess, args: &[&str]) -> Option<Value> {
     let stdout = String::from_utf8_lossy(&output.stdout);
     assert!(
         output.status.success(),
-        "viewer-test.js failed: {stdout}\n{}",
+        "{name} failed: {stdout}\n{}",
         String::from_utf8_lossy(&output.stderr)
     );
     Some(serde_json::from_str(&stdout).unwrap_or_else(|e| panic!("not JSON ({e}): {stdout}")))
@@ -152,5 +159,65 @@ fn an_edit_in_one_page_changes_the_geometry_in_another() {
     assert!(
         page_errors.is_empty(),
         "errors in the page: {page_errors:?}"
+    );
+}
+
+#[test]
+fn the_history_panel_lists_the_revisions_and_undo_adds_one() {
+    let design = design_copy("horizontal-drum.json", "browser-history");
+    let store = tempfile::tempdir().unwrap();
+    let location = store.path().join("vesselcad.db").display().to_string();
+    let server = ServerProcess::start(&design, &["--store", location.as_str()]);
+    for k in 1..=2 {
+        let patch = serde_json::json!([{ "op": "replace",
+            "path": "/vessels/0/nozzles/0/projection", "value": 1500 + 10 * k }]);
+        assert_eq!(server.edit(&patch).status, 200);
+    }
+    let Some(report) = run_script("history-test.js", &server, &[]) else {
+        return;
+    };
+    assert_eq!(report["revision"], 2, "{report}");
+    assert_eq!(report["undoError"], "", "{report}");
+    assert_eq!(report["revisionAfter"], 3, "{report}");
+    let revs = |rows: &Value| -> Vec<u64> {
+        rows.as_array()
+            .unwrap()
+            .iter()
+            .map(|r| r[0].as_u64().unwrap())
+            .collect()
+    };
+    assert_eq!(revs(&report["before"]), [2, 1, 0], "{report}");
+    assert_eq!(revs(&report["after"]), [3, 2, 1, 0], "{report}");
+    let newest = report["after"][0][1].as_str().unwrap();
+    assert!(
+        newest.starts_with("undo ·") && newest.ends_with("JSON"),
+        "{newest}"
+    );
+    assert!(
+        report["after"][3][1]
+            .as_str()
+            .unwrap()
+            .starts_with("import ")
+    );
+    assert_eq!(report["current"], "3", "{report}");
+    assert_eq!(report["consoleErrors"], serde_json::json!([]), "{report}");
+    // The view draws on demand: frames were drawn, none over 1.5 s of idle.
+    if report["webgl"] == true {
+        assert!(report["framesBefore"].as_u64() > Some(0), "{report}");
+        assert_eq!(report["framesIdle"], 0, "{report}");
+    }
+}
+
+#[test]
+fn without_a_store_the_history_panel_says_so() {
+    let design = design_copy("horizontal-drum.json", "browser-no-history");
+    let server = ServerProcess::start(&design, &[]);
+    let Some(report) = run_script("history-test.js", &server, &[]) else {
+        return;
+    };
+    assert_eq!(report["before"], serde_json::json!([]), "{report}");
+    assert!(
+        report["note"].as_str().unwrap().contains("--store"),
+        "{report}"
     );
 }

@@ -2,7 +2,8 @@
 //! `$VESSELCAD_TEST_PG` is set): every acknowledged edit survives `kill -9`,
 //! undo and redo are new revisions, history is served, an old journal is
 //! migrated, two servers on one store refuse a stale edit with 409, and on
-//! PostgreSQL a viewer of one server sees the other server's edits.
+//! PostgreSQL a viewer of one server sees the other server's edits, and a lost
+//! database connection refuses the edit at hand, then reconnects.
 
 mod common;
 mod server_support;
@@ -126,7 +127,7 @@ fn an_old_journal_is_migrated_on_first_start() {
         assert!(journal.exists());
         let server = ServerProcess::start(&design, &["--store", t.location.as_str()]);
         let r = server.request("GET", "/design.json", &[], b"");
-        assert_eq!(r.header("x-vesselcad-revision"), Some("1"), "{}", t.label);
+        assert_eq!(r.header("x-vesselcad-revision"), Some("2"), "{}", t.label);
         assert_eq!(r.json()["vessels"][0]["nozzles"][0]["projection"], 1520.0);
         assert!(!journal.exists());
         assert!(
@@ -134,11 +135,23 @@ fn an_old_journal_is_migrated_on_first_start() {
                 .with_file_name("design.json.journal.migrated")
                 .exists()
         );
+        // One revision per journaled edit, each with its own design.
         let log = server.get_json("/revisions");
-        assert_eq!(
-            log["revisions"][1]["message"],
-            "edits migrated from the journal"
-        );
+        let revisions = log["revisions"].as_array().unwrap();
+        assert_eq!(revisions.len(), 3, "{log}");
+        for k in 1..=2 {
+            assert_eq!(
+                revisions[k]["message"],
+                format!("edit migrated from the journal (its revision {k})")
+            );
+            let at = server.get_json(&format!("/design.json?rev={k}"));
+            assert_eq!(
+                at["vessels"][0]["nozzles"][0]["projection"],
+                1500.0 + 10.0 * k as f64,
+                "{}",
+                t.label
+            );
+        }
     }
 }
 
@@ -212,6 +225,50 @@ fn two_servers_on_postgres_stream_each_others_edits() {
     let r = two.edit(&projection(5));
     assert_eq!(r.status, 200, "{}", r.text());
     assert_eq!(r.json()["revision"], 2);
+}
+
+#[test]
+fn a_lost_database_connection_refuses_the_edit_then_reconnects() {
+    let Some(url) = postgres_url() else {
+        eprintln!("VESSELCAD_TEST_PG is not set: skipped");
+        return;
+    };
+    let t = postgres_store(&url);
+    let app = format!("vesselcad_lost_{}", std::process::id());
+    let location = format!("{}&application_name={app}", t.location);
+    let design = design_copy("horizontal-drum.json", "store-pg-lost");
+    let server = ServerProcess::start(&design, &["--store", location.as_str()]);
+    assert_eq!(server.edit(&projection(1)).status, 200);
+    // The database ends the session's connection, as a restart or a failover
+    // does (the follower's LISTEN connection is left alone: it reconnects by
+    // itself, and would otherwise race the session to find the loss).
+    let mut admin = postgres::Client::connect(&url, postgres::NoTls).unwrap();
+    let ended = admin
+        .query(
+            "SELECT pg_terminate_backend(pid) FROM pg_stat_activity \
+             WHERE application_name = $1 AND query NOT LIKE 'LISTEN%'",
+            &[&app],
+        )
+        .unwrap();
+    assert_eq!(ended.len(), 1, "one session connection");
+    let r = server.edit(&projection(2));
+    assert_eq!(r.status, 503, "{}", r.text());
+    assert_eq!(r.json()["kind"], "store_unavailable", "{}", r.text());
+    assert_eq!(r.header("retry-after"), Some("1"));
+    // Nothing was acknowledged: the session is still at revision 1.
+    let now = server.request("GET", "/design.json", &[], b"");
+    assert_eq!(now.header("x-vesselcad-revision"), Some("1"));
+    assert_eq!(now.json()["vessels"][0]["nozzles"][0]["projection"], 1510.0);
+    // The next edit reconnects and is stored as revision 2.
+    let r = server.edit(&projection(3));
+    assert_eq!(r.status, 200, "{}", r.text());
+    assert_eq!(r.json()["revision"], 2);
+    let log = server.get_json("/revisions");
+    let revisions = log["revisions"].as_array().unwrap();
+    assert_eq!(revisions.len(), 3, "{log}");
+    let mut store = vesselcad::store::Store::open(&t.location).unwrap();
+    let stored = store.design_at("design", 2).unwrap();
+    assert_eq!(stored.vessels[0].nozzles[0].projection, 1530.0);
 }
 
 #[test]

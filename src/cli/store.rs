@@ -197,6 +197,7 @@ fn store_failed(error: &StoreError) -> ExitCode {
     eprintln!("error: {error}");
     match error {
         StoreError::Database { .. }
+        | StoreError::Disconnected { .. }
         | StoreError::NewerSchema { .. }
         | StoreError::Corrupt { .. } => ExitCode::from(2),
         _ => ExitCode::from(1),

@@ -119,6 +119,14 @@ pub enum ApiError {
     /// the model was put back as it was. 500.
     #[error("edit not saved, nothing changed: {0}")]
     Storage(String),
+    /// The design store cannot be reached (the connection was lost or the
+    /// database is down): the edit was not acknowledged and the model is as it
+    /// was; the next request reconnects. 503.
+    #[error(
+        "edit not saved, nothing changed: the design store cannot be reached (the server \
+         reconnects on the next request): {0}"
+    )]
+    StoreUnavailable(String),
     /// The design file could not be saved; it is as it was and the journal
     /// still holds every edit. 500.
     #[error("design not saved (the file is as it was, the journal keeps every edit): {0}")]
@@ -159,6 +167,7 @@ impl ApiError {
             ApiError::UnknownVessel { .. } | ApiError::NotFound(_) => StatusCode::NOT_FOUND,
             ApiError::Drawing(_) => StatusCode::UNPROCESSABLE_ENTITY,
             ApiError::Storage(_) | ApiError::SaveFailed(_) => StatusCode::INTERNAL_SERVER_ERROR,
+            ApiError::StoreUnavailable(_) => StatusCode::SERVICE_UNAVAILABLE,
         }
     }
 
@@ -180,6 +189,7 @@ impl ApiError {
             ApiError::BadQuery(_) => "bad_query",
             ApiError::Drawing(_) => "drawing",
             ApiError::Storage(_) => "storage",
+            ApiError::StoreUnavailable(_) => "store_unavailable",
             ApiError::SaveFailed(_) => "save_failed",
             ApiError::Conflict { .. } => "conflict",
             ApiError::NothingTo(_) => "nothing_to_do",
@@ -232,6 +242,14 @@ impl IntoResponse for ApiError {
         if let ApiError::TooLarge { limit } = self {
             body["limit"] = json!(limit);
         }
-        (self.status(), Json(body)).into_response()
+        let retry = matches!(self, ApiError::StoreUnavailable(_));
+        let mut response = (self.status(), Json(body)).into_response();
+        if retry {
+            response.headers_mut().insert(
+                axum::http::header::RETRY_AFTER,
+                axum::http::HeaderValue::from_static("1"),
+            );
+        }
+        response
     }
 }

@@ -21,6 +21,9 @@ pub enum PersistError {
     },
     /// The journal or database could not be written (its message).
     Failed(String),
+    /// The database cannot be reached (its message); the next request tries
+    /// to reconnect.
+    Unavailable(String),
 }
 
 /// One accepted edit, as the session hands it to be made durable.

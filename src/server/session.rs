@@ -209,7 +209,7 @@ impl Session {
         if store.is_some() && !migrating {
             let file = parsed;
             let (link, revision, design) =
-                StoreLink::open(store.unwrap_or_default(), path, &file, units, None)?;
+                StoreLink::open(store.unwrap_or_default(), path, &file, units, &[])?;
             return on_store(link, revision, design);
         }
         let file = parsed.clone();
@@ -222,6 +222,8 @@ impl Session {
         // built once: each edit was checked when it was accepted.
         let mut design = parsed;
         let mut revision = replay.base_revision;
+        // Migrating into a store: the design after each edit, one revision each.
+        let mut steps = Vec::new();
         if !replay.edits.is_empty() {
             let mut value = design_value(&design);
             for entry in &replay.edits {
@@ -239,6 +241,9 @@ impl Session {
                     .map_err(|e| replay_error(format!("not a design: {e}")))?;
                 value = design_value(&next);
                 revision = entry.revision;
+                if migrating {
+                    steps.push((revision, next));
+                }
             }
             design = serde_json::from_value(value).map_err(|e| ServeError::Journal {
                 path: journal_path.clone(),
@@ -246,8 +251,7 @@ impl Session {
             })?;
         }
         if let (Some(location), true) = (store, migrating) {
-            let replayed = (!replay.edits.is_empty()).then_some(&design);
-            let (link, revision, design) = StoreLink::open(location, path, &file, units, replayed)?;
+            let (link, revision, design) = StoreLink::open(location, path, &file, units, &steps)?;
             let mut migrated = old_journal.clone().into_os_string();
             migrated.push(".migrated");
             std::fs::rename(&old_journal, &migrated).map_err(|e| ServeError::Journal {
@@ -370,6 +374,7 @@ impl Session {
                     ),
                 },
                 PersistError::Failed(message) => ApiError::Storage(message),
+                PersistError::Unavailable(message) => ApiError::StoreUnavailable(message),
             });
         }
         if message == "edit" {

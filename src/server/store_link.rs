@@ -5,9 +5,15 @@
 //! then catches up and the editor gets 409 with the current revision).
 //!
 //! On first start the design file is imported as revision 0, and edits still
-//! in an old `<design>.journal` follow as one revision; the journal is then kept
+//! in an old `<design>.journal` follow, one revision each; the journal is then kept
 //! as `<design>.journal.migrated`. Later starts take the store's newest
 //! revision (the file is written only by `POST /save` or `store export`).
+//!
+//! A lost database connection refuses the edit at hand
+//! ([`PersistError::Unavailable`], nothing acknowledged) and the next request
+//! opens the store again: the session goes on once the database is back. An edit
+//! whose commit reached the database just before the connection dropped comes
+//! back as a conflict on the next edit, and the session then catches up.
 
 use std::path::Path;
 
@@ -20,6 +26,10 @@ use crate::store::{Change, Revision, Store, StoreError};
 /// A session's link to its design in a store.
 pub struct StoreLink {
     store: Store,
+    /// What `--store` named (with its password), to reconnect.
+    location: String,
+    /// The connection was lost: open the store again before the next use.
+    lost: bool,
     name: String,
     author: String,
 }
@@ -39,9 +49,10 @@ fn error(location: &str, e: &StoreError) -> ServeError {
 
 impl StoreLink {
     /// Opens the store at `location` for the design file at `path` whose
-    /// content (in mm) is `file` in unit `units`, and `replayed` that design
-    /// with its old journal's edits (if any). Returns the link, the revision
-    /// and the design to serve.
+    /// content (in mm) is `file` in unit `units`. On first start the file
+    /// becomes revision 0 and `migrated` — the design after each edit of an old
+    /// journal, with that edit's journal revision — follow, one revision each.
+    /// Returns the link, the revision and the design to serve.
     ///
     /// # Errors
     ///
@@ -52,7 +63,7 @@ impl StoreLink {
         path: &Path,
         file: &Design,
         units: Units,
-        replayed: Option<&Design>,
+        migrated: &[(u64, Design)],
     ) -> Result<(StoreLink, u64, Design), ServeError> {
         let mut store = Store::open(location).map_err(|e| error(location, &e))?;
         let shown = store.location().to_string();
@@ -67,14 +78,16 @@ impl StoreLink {
                 message: format!("import {}", path.display()),
             };
             store.import(&name, file, units, &change).map_err(fail)?;
-            if let Some(replayed) = replayed {
+            let mut before = file;
+            for (parent, (revision, after)) in migrated.iter().enumerate() {
                 let change = Change {
                     author: author.clone(),
-                    message: "edits migrated from the journal".into(),
+                    message: format!("edit migrated from the journal (its revision {revision})"),
                 };
                 store
-                    .commit(&name, 0, file, replayed, &change)
+                    .commit(&name, parent as i64, before, after, &change)
                     .map_err(fail)?;
+                before = after;
             }
         }
         let head = store.head(&name).map_err(fail)?.unwrap_or(0);
@@ -82,12 +95,42 @@ impl StoreLink {
         Ok((
             StoreLink {
                 store,
+                location: location.to_string(),
+                lost: false,
                 name,
                 author,
             },
             head as u64,
             design,
         ))
+    }
+}
+
+impl StoreLink {
+    /// Runs `f` on the store, reconnecting first if the connection was lost,
+    /// and noting a connection lost on the way. The error's flag is whether
+    /// the store cannot be reached.
+    fn with_store<T>(
+        &mut self,
+        f: impl FnOnce(&mut Store, &str) -> Result<T, StoreError>,
+    ) -> Result<T, (bool, StoreError)> {
+        if self.lost {
+            self.store = Store::open(&self.location).map_err(|e| (true, e))?;
+            self.lost = false;
+        }
+        f(&mut self.store, &self.name).map_err(|e| {
+            let lost = matches!(e, StoreError::Disconnected { .. });
+            self.lost |= lost;
+            (lost, e)
+        })
+    }
+
+    /// [`StoreLink::with_store`] with the error as text.
+    fn read<T>(
+        &mut self,
+        f: impl FnOnce(&mut Store, &str) -> Result<T, StoreError>,
+    ) -> Result<T, String> {
+        self.with_store(f).map_err(|(_, e)| e.to_string())
     }
 }
 
@@ -98,15 +141,16 @@ impl Persistence for StoreLink {
             message: record.message.to_string(),
         };
         let parent = record.revision as i64 - 1;
-        match self
-            .store
-            .commit(&self.name, parent, record.before, record.after, &change)
-        {
+        let commit = |store: &mut Store, name: &str| {
+            store.commit(name, parent, record.before, record.after, &change)
+        };
+        match self.with_store(commit) {
             Ok(_) => Ok(()),
-            Err(StoreError::Conflict { current, .. }) => Err(PersistError::Conflict {
+            Err((_, StoreError::Conflict { current, .. })) => Err(PersistError::Conflict {
                 current: current as u64,
             }),
-            Err(e) => Err(PersistError::Failed(e.to_string())),
+            Err((true, e)) => Err(PersistError::Unavailable(e.to_string())),
+            Err((false, e)) => Err(PersistError::Failed(e.to_string())),
         }
     }
 
@@ -127,30 +171,20 @@ impl Persistence for StoreLink {
     }
 
     fn revisions(&mut self) -> Option<Result<Vec<Revision>, String>> {
-        Some(self.store.log(&self.name).map_err(|e| e.to_string()))
+        Some(self.read(|store, name| store.log(name)))
     }
 
     fn design_at(&mut self, revision: u64) -> Option<Result<Design, String>> {
-        Some(
-            self.store
-                .design_at(&self.name, revision as i64)
-                .map_err(|e| e.to_string()),
-        )
+        Some(self.read(|store, name| store.design_at(name, revision as i64)))
     }
 
     fn newer_than(&mut self, revision: u64) -> Result<Option<(u64, Design)>, String> {
-        let head = self
-            .store
-            .head(&self.name)
-            .map_err(|e| e.to_string())?
-            .unwrap_or(0) as u64;
-        if head <= revision {
-            return Ok(None);
-        }
-        let design = self
-            .store
-            .design_at(&self.name, head as i64)
-            .map_err(|e| e.to_string())?;
-        Ok(Some((head, design)))
+        self.read(|store, name| {
+            let head = store.head(name)?.unwrap_or(0) as u64;
+            if head <= revision {
+                return Ok(None);
+            }
+            Ok(Some((head, store.design_at(name, head as i64)?)))
+        })
     }
 }

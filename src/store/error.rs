@@ -16,6 +16,15 @@ pub enum StoreError {
         /// What the database said.
         message: String,
     },
+    /// The connection to the database was lost (the server went away or ended
+    /// the session); nothing was committed. Opening the store again reconnects.
+    #[error("store {location}: the connection was lost: {message}")]
+    Disconnected {
+        /// The PostgreSQL URL without its password.
+        location: String,
+        /// What the client library said.
+        message: String,
+    },
     /// The database's schema is newer than this program knows.
     #[error(
         "store {location}: schema version {found} is newer than this vesselcad \

@@ -47,6 +47,12 @@ impl Postgres {
     }
 
     fn error(&self, e: &postgres::Error) -> StoreError {
+        if lost(e) || self.client.is_closed() {
+            return StoreError::Disconnected {
+                location: self.location.clone(),
+                message: full_message(e),
+            };
+        }
         let unique = e.code() == Some(&postgres::error::SqlState::UNIQUE_VIOLATION);
         let message = full_message(e);
         StoreError::Database {
@@ -58,6 +64,17 @@ impl Postgres {
             },
         }
     }
+}
+
+/// Whether `e` means the connection is gone: closed by either side, or the
+/// server ending the session (SQLSTATE class 08, or 57P01–57P03: shutdown,
+/// `pg_terminate_backend`, cannot connect now).
+fn lost(e: &postgres::Error) -> bool {
+    e.is_closed()
+        || e.code().is_some_and(|c| {
+            let code = c.code();
+            code.starts_with("08") || matches!(code, "57P01" | "57P02" | "57P03")
+        })
 }
 
 /// The error with the database's own message (the `postgres` crate's display

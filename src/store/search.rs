@@ -13,9 +13,12 @@
 //! with `od` the largest shell OD, `L` the tangent-to-tangent length, `p`, `T`
 //! the design pressure and temperature, `n` the nozzle count and `N` the largest
 //! nozzle (NPS): 0 is the same vessel, 1 is e.g. a quarter off in diameter or
-//! another kind. The query first looks only at vessels within ±50 % of `od₀` (the
-//! `vessels_od` index; any vessel outside has `d ≥ 2`) and widens to every vessel
-//! only when fewer than `n` within have `d ≤ 2`, so the answer is exact.
+//! another kind. The answer is exact, in at most two queries over the covering
+//! index `vessels_features` (led by `od`): the first looks only at vessels within
+//! ±5 % of `od₀` (any vessel outside has `d ≥ 0.2`); if its `n`-th distance `r` is
+//! not below 0.2, the second looks at the box that holds every vessel with
+//! `d ≤ r` (`|od − od₀| ≤ r·od₀/4`, `|L − L₀| ≤ r·L₀/2`, `|p − p₀| ≤ r·max(p₀, 100)/2`,
+//! `|T − T₀| ≤ 200·r`), and at every vessel when the first found fewer than `n`.
 //!
 //! A `--where` condition is `field op value` joined by `and`, with `op` one of
 //! `= != < <= > >=` or `between a and b`; numeric fields `od length pressure
@@ -57,6 +60,9 @@ const FIELDS: &[(&str, bool)] = &[
     ("tag", false),
     ("design", false),
 ];
+
+/// The first look of `--like`: vessels within this fraction of the wanted OD.
+const NEAR: f64 = 0.05;
 
 /// The columns every search returns, in [`Hit`] order.
 const COLUMNS: &str = "design, rev, tag, kind, head, material, od, length, pressure, \
@@ -270,39 +276,59 @@ impl Store {
             params.extend(c.params.iter().cloned());
         }
         let limit = n as i64;
-        let run = |store: &mut Store, banded: bool| -> Result<Vec<Hit>, StoreError> {
-            let mut filters = filters.clone();
-            let mut params = params.clone();
-            if banded {
+        // `(column, low, high)` conditions added to the query.
+        let run =
+            |store: &mut Store, ranges: &[(&str, f64, f64)]| -> Result<Vec<Hit>, StoreError> {
+                let mut filters = filters.clone();
+                let mut params = params.clone();
+                for &(column, low, high) in ranges {
+                    let k = params.len() + 1;
+                    filters.push(format!("{column} BETWEEN ${k} AND ${}", k + 1));
+                    params.push(low.into());
+                    params.push(high.into());
+                }
+                let filter = if filters.is_empty() {
+                    String::new()
+                } else {
+                    format!("WHERE {}", filters.join(" AND "))
+                };
                 let k = params.len() + 1;
-                filters.push(format!("od BETWEEN ${k} AND ${}", k + 1));
-                params.push((od * 0.5).into());
-                params.push((od * 1.5).into());
-            }
-            let filter = if filters.is_empty() {
-                String::new()
-            } else {
-                format!("WHERE {}", filters.join(" AND "))
-            };
-            let k = params.len() + 1;
-            params.push(limit.into());
-            let sql = format!(
-                "SELECT {COLUMNS}, {DISTANCE} AS distance FROM vessels {filter}
+                params.push(limit.into());
+                let sql = format!(
+                    "SELECT {COLUMNS}, {DISTANCE} AS distance FROM vessels {filter}
                  ORDER BY distance, design, tag LIMIT ${k}"
-            );
-            let rows = store.db.query(&sql, &params)?;
-            Ok(rows.iter().map(|r| hit(r, r[13].real())).collect())
-        };
-        let banded = run(self, true)?;
-        let exact = banded.len() == n
-            && banded
-                .last()
-                .and_then(|h| h.distance)
-                .is_some_and(|d| d <= 2.0);
-        if exact || n == 0 {
-            return Ok(banded);
+                );
+                let rows = store.db.query(&sql, &params)?;
+                Ok(rows.iter().map(|r| hit(r, r[13].real())).collect())
+            };
+        if n == 0 {
+            return Ok(Vec::new());
         }
-        run(self, false)
+        let near = run(self, &[("od", od * (1.0 - NEAR), od * (1.0 + NEAR))])?;
+        let radius = match near.last().and_then(|h| h.distance) {
+            Some(r) if near.len() == n && r < 4.0 * NEAR => return Ok(near),
+            Some(r) if near.len() == n => r * (1.0 + 1e-9) + 1e-12,
+            _ => return run(self, &[]),
+        };
+        let p = like.pressure.max(100.0);
+        let t = like.temperature;
+        run(
+            self,
+            &[
+                ("od", od * (1.0 - radius / 4.0), od * (1.0 + radius / 4.0)),
+                (
+                    "length",
+                    length * (1.0 - radius / 2.0),
+                    length * (1.0 + radius / 2.0),
+                ),
+                (
+                    "pressure",
+                    like.pressure - p * radius / 2.0,
+                    like.pressure + p * radius / 2.0,
+                ),
+                ("temperature", t - 200.0 * radius, t + 200.0 * radius),
+            ],
+        )
     }
 
     /// The first `n` stored vessels meeting `condition`, by design and tag.

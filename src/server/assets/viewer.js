@@ -15,8 +15,11 @@
 // (/static/schema.json: enums as drop-downs, numbers with their unit and range);
 // a change sends a JSON Patch (a `test` of the old value and a `replace`) to
 // POST /edit. Nozzles can be added to and parts or nozzles removed from the
-// picked vessel; Ctrl+Z / Ctrl+Shift+Z call POST /undo and /redo. Errors show
-// in red, success does not. The drawing panel shows /drawing.svg of the picked
+// picked vessel; the Undo and Redo buttons (Ctrl+Z / Ctrl+Shift+Z) call POST
+// /undo and /redo. The History panel lists the store's revisions (GET
+// /revisions; newest first, each with its design as JSON) while it is open.
+// Errors show in red, success does not. The view is drawn on demand (after a
+// camera move, an update, a highlight or a resize), not every frame. The drawing panel shows /drawing.svg of the picked
 // vessel; a click opens it full size with SVG and DXF downloads.
 // `window.vesselcad` exposes the state for tests.
 
@@ -41,6 +44,8 @@ const state = {
   nodes: new Map(),    // "tag/id" → part or nozzle node
   selected: '',
   lastError: '',
+  historyAt: null,     // the revision the History panel shows
+  frames: 0,           // frames drawn (on demand)
   gaps: 0,             // deltas whose revision did not follow the last one
   resyncs: 0,
   updates: 0,
@@ -66,6 +71,7 @@ try {
   renderer.setPixelRatio(window.devicePixelRatio);
   $('view').appendChild(renderer.domElement);
   controls = new OrbitControls(camera, renderer.domElement);
+  controls.addEventListener('change', () => invalidate());
 } catch (e) {
   // No WebGL (e.g. a headless browser without a GPU): the model is still kept
   // up to date and can be picked from the list.
@@ -79,14 +85,24 @@ function resize() {
   renderer.setSize(w, h, false);
   camera.aspect = w / h;
   camera.updateProjectionMatrix();
+  invalidate();
 }
 window.addEventListener('resize', resize);
 
+// Drawing on demand: a frame is drawn after something changed (the camera,
+// the model, the highlight, the size), not 60 times a second while idle.
+let frameQueued = false;
+function invalidate() {
+  if (!renderer || frameQueued) return;
+  frameQueued = true;
+  requestAnimationFrame(frame);
+}
+
 function frame() {
-  if (!renderer) return;
+  frameQueued = false;
   controls.update();
   renderer.render(scene, camera);
-  requestAnimationFrame(frame);
+  state.frames += 1;
 }
 
 // Points the camera at `object` (the plant by default) so that all of it shows.
@@ -106,6 +122,7 @@ function frameObject(object) {
   camera.far = distance + size * 20;
   camera.updateProjectionMatrix();
   if (controls) controls.target.copy(center);
+  invalidate();
 }
 
 // ---- model: outline, vessels, deltas -----------------------------------------
@@ -245,6 +262,7 @@ async function loadVessel(tag, generation) {
     state.plant.add(incoming);
     indexVessel(incoming);
     state.loaded.add(tag);
+    invalidate();
     if (state.selected.startsWith(`${tag}/`) || state.selected === tag) highlight();
     return;
   }
@@ -320,6 +338,7 @@ async function handle(header, buffer) {
   state.lastApplied = performance.now();
   $('status').textContent = `revision ${state.revision} · ${state.vessels.size} vessels`;
   $('status').dataset.revision = String(state.revision);
+  invalidate();
   refreshPickList();
   highlight();
   // The design: whole on a hello, resync or a vessel added or removed; else
@@ -338,6 +357,52 @@ async function handle(header, buffer) {
   }
   renderParams();
   if (!touched || touched.has(drawingTag())) refreshDrawing();
+  refreshHistory();
+}
+
+// ---- history -------------------------------------------------------------------
+// The store's revisions, fetched when the panel is opened and after each
+// revision while it is open. A session without a store keeps no history (404).
+
+const HISTORY_ROWS = 50;
+
+async function refreshHistory() {
+  if (!$('history-panel').open || state.historyAt === state.revision) return;
+  state.historyAt = state.revision;
+  const list = $('history');
+  try {
+    const response = await fetch('/revisions', { headers: authHeaders() });
+    if (response.status === 404) {
+      list.textContent = '';
+      $('history-note').textContent = 'This session keeps no history: start `vesselcad serve` with --store.';
+      return;
+    }
+    const body = await response.json();
+    if (!response.ok) throw new Error(body.error || response.statusText);
+    const revisions = body.revisions.slice(-HISTORY_ROWS).reverse();
+    const shown = body.revisions.length - revisions.length;
+    $('history-note').textContent = shown > 0 ? `the newest ${HISTORY_ROWS} of ${body.revisions.length} revisions` : '';
+    list.textContent = '';
+    for (const r of revisions) {
+      const item = document.createElement('li');
+      item.value = r.rev;
+      item.dataset.rev = String(r.rev);
+      if (r.rev === state.revision) item.className = 'current';
+      const when = r.at.replace('T', ' ').replace(/\.\d+/, '').replace(/Z$/, ' UTC');
+      const tags = r.tags.length ? ` [${r.tags.join(', ')}]` : '';
+      const text = document.createElement('span');
+      text.textContent = `${r.message}${tags} · ${r.author} · ${when} `;
+      const link = document.createElement('a');
+      link.href = withToken(`/design.json?rev=${r.rev}`);
+      link.textContent = 'JSON';
+      link.target = '_blank';
+      item.append(text, link);
+      list.append(item);
+    }
+  } catch (e) {
+    state.historyAt = null;
+    $('history-note').textContent = `history not available: ${e.message || e}`;
+  }
 }
 
 // ---- token --------------------------------------------------------------------
@@ -449,6 +514,7 @@ function highlight() {
     }
   });
   for (const [id, node] of state.nodes) paint(id, node);
+  invalidate();
 }
 
 async function loadDesign() {
@@ -777,6 +843,9 @@ $('pick').addEventListener('change', (e) => select(e.target.value, true));
 $('add-nozzle').addEventListener('click', addNozzle);
 $('remove').addEventListener('click', removeSelected);
 $('frame-all').addEventListener('click', () => frameObject(state.plant));
+$('undo').addEventListener('click', () => post('/undo', null));
+$('redo').addEventListener('click', () => post('/redo', null));
+$('history-panel').addEventListener('toggle', () => { state.historyAt = null; refreshHistory(); });
 
 window.addEventListener('keydown', (e) => {
   if (!(e.ctrlKey || e.metaKey) || e.key.toLowerCase() !== 'z') return;
@@ -809,7 +878,10 @@ window.vesselcad = {
   get loaded() { return state.loaded.size; },
   get vessels() { return state.vessels.size; },
   get lastApplied() { return state.lastApplied; },
+  get frames() { return state.frames; },
   ids: () => [...state.nodes.keys()],
+  // The History panel's rows, newest first: [revision, text].
+  history: () => [...$('history').children].map((li) => [Number(li.dataset.rev), li.textContent]),
   // World-space bounding box [minX, minY, minZ, maxX, maxY, maxZ] (glTF metres).
   box(id) {
     const node = state.nodes.get(id) || (state.loaded.has(id) ? state.vessels.get(id) : null);
@@ -831,4 +903,4 @@ window.vesselcad = {
 
 resize();
 loadSchema().then(connect);
-requestAnimationFrame(frame);
+invalidate();
