@@ -3,7 +3,7 @@
 //! `*ELASTIC` and `*DENSITY`, `*SHELL SECTION` per part, `*BOUNDARY`, one
 //! `*STEP` with `*DLOAD` pressure on the inner side (`P` on the outward-normal
 //! elements pushes them outwards), `*CLOAD` nozzle end thrusts and `GRAV`, and the output requests
-//! (`*NODE FILE` U, `*EL FILE` S, results on the mid-surface and both faces).
+//! (`*NODE FILE` U and RF, `*EL FILE` S, results on the mid-surface and both faces).
 
 use std::fmt::Write;
 
@@ -131,6 +131,6 @@ pub fn to_inp(model: &FeModel) -> String {
     if model.gravity {
         out.push_str("*DLOAD\nEALL, GRAV, 9806.65, 0., 0., -1.\n");
     }
-    out.push_str("*NODE FILE\nU\n*EL FILE\nS\n*END STEP\n");
+    out.push_str("*NODE FILE\nU, RF\n*EL FILE\nS\n*END STEP\n");
     out
 }
