@@ -7,9 +7,8 @@
 mod common;
 
 use common::examples::{EXAMPLES, example};
-use common::fem::vessel;
+use common::fem::{assert_good, vessel};
 use vesselcad::design::{Design, resolve};
-use vesselcad::fem::quality::quality;
 use vesselcad::fem::{FeMesh, FemOptions, build_envelope};
 
 /// Meshes every vessel of `design` at the default size.
@@ -25,46 +24,6 @@ fn meshes(design: &Design, options: &FemOptions) -> Vec<(String, FeMesh)> {
             (v.tag.clone(), mesh)
         })
         .collect()
-}
-
-/// Asserts the conformity and quality targets of `mesh`.
-fn assert_good(what: &str, mesh: &FeMesh) {
-    let q = quality(mesh);
-    eprintln!("{what}: {q:?}");
-    assert_eq!(q.free_edges, 0, "{what}: free edges");
-    assert_eq!(q.nonmanifold_edges, 0, "{what}: non-manifold edges");
-    assert_eq!(q.coincident_nodes, 0, "{what}: coincident nodes");
-    assert_eq!(q.inverted, 0, "{what}: inverted elements");
-    assert_eq!(
-        q.quads, q.elements,
-        "{what}: triangles where none is needed"
-    );
-    assert!(
-        q.quads_in_range as f64 >= 0.95 * q.quads as f64,
-        "{what}: {} of {} quads with angles in 45-135",
-        q.quads_in_range,
-        q.quads
-    );
-    assert!(
-        q.jacobian_ok as f64 >= 0.95 * q.elements as f64,
-        "{what}: {} of {} elements with scaled Jacobian >= 0.3",
-        q.jacobian_ok,
-        q.elements
-    );
-    assert!(q.min_scaled_jacobian > 0.0, "{what}: {q:?}");
-    // Every part shares nodes (its junction ring) with another part.
-    let sets: Vec<Vec<usize>> = (0..mesh.parts.len()).map(|k| mesh.part_nodes(k)).collect();
-    for (k, set) in sets.iter().enumerate() {
-        if sets.len() == 1 {
-            break;
-        }
-        let shared = sets
-            .iter()
-            .enumerate()
-            .filter(|(j, _)| *j != k)
-            .any(|(_, other)| set.iter().any(|n| other.binary_search(n).is_ok()));
-        assert!(shared, "{what}: part {} shares no node", mesh.parts[k].name);
-    }
 }
 
 #[test]

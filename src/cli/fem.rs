@@ -111,6 +111,9 @@ fn write_and_run(args: &FemArgs, model: &vesselcad::fem::FeModel) -> Result<(), 
     write(&beside("msh"), msh::to_msh(&model.mesh).as_bytes())?;
     write(&beside("vtu"), vtu::to_vtu(&model.mesh, None).as_bytes())?;
     write(&beside("units.json"), UNITS.as_bytes())?;
+    for note in &model.mesh.notes {
+        outln!("note: {note}");
+    }
     let q = quality(&model.mesh);
     outln!(
         "{}: {} nodes, {} elements ({} parts), case {}; supports: {}",

@@ -17,7 +17,8 @@
 //! displacement held on the nodes of the saddle's ring within its contact
 //! angle, the first saddle also held along and across the axis at its lowest
 //! node, the second across it). Legs and lugs are not modelled yet: such a
-//! vessel falls back to the 3-2-1 restraints. Units: mm, N, MPa, t/mm³, s.
+//! vessel falls back to the 3-2-1 restraints. Each nozzle neck's end carries
+//! its closed flange's pressure thrust. Units: mm, N, MPa, t/mm³, s.
 
 use glam::DVec3;
 
@@ -91,6 +92,10 @@ pub struct FeModel {
     /// Pressure on the inner side of each element, MPa (same order as the
     /// elements).
     pub pressure: Vec<f64>,
+    /// Nodal forces, N: the pressure thrust of each nozzle's closed flange on
+    /// its neck's end, P·π·r² along the neck axis, spread over the end's nodes
+    /// as a uniform line load (consistent nodal forces).
+    pub loads: Vec<(usize, DVec3)>,
     /// Gravity on the metal.
     pub gravity: bool,
     /// Supports.
@@ -269,6 +274,39 @@ fn resting(mesh: &FeMesh, resolved: &ResolvedVessel) -> (Vec<Support>, String) {
     )
 }
 
+/// The nodal forces of pressure `p` on the closed end of `neck`: P·π·r² along
+/// its axis as a uniform load along the end's edges (a quadratic edge's
+/// consistent forces are 1/6, 2/3, 1/6 of its share; a linear one's 1/2, 1/2).
+fn thrust(mesh: &FeMesh, neck: &super::NeckEnd, p: f64) -> Vec<(usize, DVec3)> {
+    let count = neck.nodes.len();
+    let mut weights: Vec<(usize, f64)> = Vec::with_capacity(2 * count);
+    for j in 0..count {
+        let (a, b) = (neck.nodes[j], neck.nodes[(j + 1) % count]);
+        let length = mesh.nodes[a].distance(mesh.nodes[b]);
+        match neck.mids.get(j) {
+            Some(&m) => {
+                weights.push((a, length / 6.0));
+                weights.push((m, 2.0 * length / 3.0));
+                weights.push((b, length / 6.0));
+            }
+            None => {
+                weights.push((a, 0.5 * length));
+                weights.push((b, 0.5 * length));
+            }
+        }
+    }
+    let total: f64 = weights.iter().map(|w| w.1).sum();
+    let force = p * std::f64::consts::PI * neck.radius * neck.radius;
+    let mut by_node: std::collections::BTreeMap<usize, f64> = Default::default();
+    for (n, w) in weights {
+        *by_node.entry(n).or_default() += w / total;
+    }
+    by_node
+        .into_iter()
+        .map(|(n, w)| (n, neck.axis * force * w))
+        .collect()
+}
+
 /// Attaches load case `case` to `mesh` of `design` (resolved as `resolved`).
 ///
 /// # Errors
@@ -348,6 +386,9 @@ pub fn conditions(
             (test.value, Some((WATER_DENSITY * 1e-12, top)))
         }
     };
+    let at = |c: DVec3| {
+        p_top + liquid.map_or(0.0, |(rho, level)| rho * GRAVITY * (level - c.z).max(0.0))
+    };
     let pressure = mesh
         .elements
         .iter()
@@ -357,9 +398,13 @@ pub fn conditions(
                 .map(|&n| mesh.nodes[n])
                 .sum::<DVec3>()
                 / e.kind.corners() as f64;
-            let head = liquid.map_or(0.0, |(rho, level)| rho * GRAVITY * (level - c.z).max(0.0));
-            p_top + head
+            at(c)
         })
+        .collect();
+    let loads = mesh
+        .necks
+        .iter()
+        .flat_map(|neck| thrust(&mesh, neck, at(neck.centre)))
         .collect();
     let (supports, support_note) = match case {
         LoadCase::Design => {
@@ -391,6 +436,7 @@ pub fn conditions(
         density,
         allowable,
         pressure,
+        loads,
         gravity: case != LoadCase::Design,
         supports,
         support_note,

@@ -154,11 +154,15 @@ pub fn build_envelope(
             .collect();
         rings.push(ring);
     }
+    let holes = super::window::plan(resolved, &mer, n, &b.mesh.parts, &mut b.mesh.notes);
     for (i, iv) in mer.intervals.iter().enumerate() {
         let seg = mer.segments[iv.seg];
         let (lower, upper) = (mer.stations[i], mer.stations[i + 1]);
         let smid = 0.5 * (iv.sa + iv.sb);
         for k in 0..n {
+            if holes.iter().any(|h| h.covers(i, k, n)) {
+                continue;
+            }
             let k1 = (k + 1) % n;
             let c = [rings[i][k], rings[i][k1], rings[i + 1][k1], rings[i + 1][k]];
             let segs = &mer.segments;
@@ -200,10 +204,19 @@ pub fn build_envelope(
     } else {
         b.mesh.boundary.extend(rings[last].iter().copied());
     }
+    for hole in &holes {
+        let end = super::nozzle::mesh(&mut b, hole, &mer, &rings, size, &design.tag);
+        b.mesh.necks.push(end);
+    }
+    super::nozzle::pads(&mut b, &holes, &design.tag);
     // Vessel frame → plant frame.
     let frame = resolved.frame;
     for p in &mut b.mesh.nodes {
         *p = frame.transform_point3(*p);
+    }
+    for end in &mut b.mesh.necks {
+        end.centre = frame.transform_point3(end.centre);
+        end.axis = frame.transform_vector3(end.axis).normalize();
     }
     b.mesh.axis = (
         frame.transform_point3(DVec3::ZERO),

@@ -1,5 +1,5 @@
 //! Reads CalculiX's ASCII results file (`.frd`): the node block (`2C`) and the
-//! nodal result blocks (`-4  DISP`, `-4  STRESS`) of the last step. Records are
+//! nodal result blocks (`-4  DISP`, `-4  STRESS`, `-4  FORC` reactions) of the last step. Records are
 //! fixed-column: ` -1`, the node number in 10 columns, then values 12 columns
 //! each (values can touch, so the columns are cut, not split on spaces).
 
@@ -21,6 +21,9 @@ pub struct Frd {
     pub displacement: HashMap<usize, DVec3>,
     /// Stresses: xx, yy, zz, xy, yz, zx.
     pub stress: HashMap<usize, [f64; 6]>,
+    /// Nodal forces (`RF`), N: the reactions at restrained nodes (at free
+    /// nodes they balance the applied loads).
+    pub reactions: HashMap<usize, DVec3>,
 }
 
 /// One ` -1` record: node number and values.
@@ -48,6 +51,7 @@ pub fn parse(path: &Path, text: &str) -> Result<Frd, FemError> {
         Nodes,
         Disp,
         Stress,
+        Forces,
     }
     let mut out = Frd::default();
     let mut block = Block::None;
@@ -62,6 +66,7 @@ pub fn parse(path: &Path, text: &str) -> Result<Frd, FemError> {
             block = match name {
                 "DISP" => Block::Disp,
                 "STRESS" => Block::Stress,
+                "FORC" => Block::Forces,
                 _ => Block::None,
             };
             continue;
@@ -85,6 +90,9 @@ pub fn parse(path: &Path, text: &str) -> Result<Frd, FemError> {
             }
             Block::Disp if v.len() >= 3 => {
                 out.displacement.insert(id, DVec3::new(v[0], v[1], v[2]));
+            }
+            Block::Forces if v.len() >= 3 => {
+                out.reactions.insert(id, DVec3::new(v[0], v[1], v[2]));
             }
             Block::Stress if v.len() >= 6 => {
                 out.stress.insert(id, [v[0], v[1], v[2], v[3], v[4], v[5]]);

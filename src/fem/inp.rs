@@ -2,8 +2,8 @@
 //! part, node and element sets named by part (`V-101/S1`), `*MATERIAL` with
 //! `*ELASTIC` and `*DENSITY`, `*SHELL SECTION` per part, `*BOUNDARY`, one
 //! `*STEP` with `*DLOAD` pressure on the inner side (`P` on the outward-normal
-//! elements pushes them outwards) and `GRAV`, and the output requests
-//! (`*NODE FILE` U, `*EL FILE` S, results on the mid-surface and both faces).
+//! elements pushes them outwards), `*CLOAD` nozzle end thrusts and `GRAV`, and the output requests
+//! (`*NODE FILE` U and RF, `*EL FILE` S, results on the mid-surface and both faces).
 
 use std::fmt::Write;
 
@@ -54,6 +54,9 @@ pub fn to_inp(model: &FeModel) -> String {
         model.tag,
         model.case.name()
     );
+    for note in &mesh.notes {
+        let _ = writeln!(out, "** {note}");
+    }
     out.push_str("*NODE, NSET=NALL\n");
     for (i, p) in mesh.nodes.iter().enumerate() {
         let _ = writeln!(out, "{}, {:.9e}, {:.9e}, {:.9e}", i + 1, p.x, p.y, p.z);
@@ -115,9 +118,19 @@ pub fn to_inp(model: &FeModel) -> String {
             let _ = writeln!(out, "{}, P, {:.9e}", e + 1, p);
         }
     }
+    if !model.loads.is_empty() {
+        out.push_str("*CLOAD\n");
+        for (n, f) in &model.loads {
+            for (d, v) in [(1, f.x), (2, f.y), (3, f.z)] {
+                if v != 0.0 {
+                    let _ = writeln!(out, "{}, {d}, {v:.9e}", n + 1);
+                }
+            }
+        }
+    }
     if model.gravity {
         out.push_str("*DLOAD\nEALL, GRAV, 9806.65, 0., 0., -1.\n");
     }
-    out.push_str("*NODE FILE\nU\n*EL FILE\nS\n*END STEP\n");
+    out.push_str("*NODE FILE\nU, RF\n*EL FILE\nS\n*END STEP\n");
     out
 }

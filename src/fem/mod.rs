@@ -22,9 +22,11 @@ pub mod frd;
 pub mod inp;
 pub mod meridian;
 pub mod msh;
+pub mod nozzle;
 pub mod quality;
 pub mod results;
 pub mod vtu;
+pub mod window;
 
 pub use conditions::{FeModel, LoadCase, Support};
 pub use envelope::{FemOptions, build_envelope};
@@ -96,6 +98,31 @@ pub struct FeMesh {
     pub boundary: Vec<usize>,
     /// The vessel axis in the plant frame: a point and a unit direction.
     pub axis: (DVec3, DVec3),
+    /// The open ends of the nozzle necks meshed.
+    pub necks: Vec<NeckEnd>,
+    /// What the mesh leaves out of the design, and why.
+    pub notes: Vec<String>,
+}
+
+/// The open end of a nozzle neck (the flange's back), where the closed
+/// flange's pressure thrust is applied.
+#[derive(Clone, Debug, PartialEq)]
+pub struct NeckEnd {
+    /// Nozzle mark.
+    pub mark: String,
+    /// Index of the neck's part.
+    pub part: usize,
+    /// Corner nodes round the end, in order.
+    pub nodes: Vec<usize>,
+    /// Mid-side node of the edge from `nodes[j]` to `nodes[j + 1]` (empty for
+    /// linear elements).
+    pub mids: Vec<usize>,
+    /// Centre of the end on the neck axis, plant frame.
+    pub centre: DVec3,
+    /// Unit neck axis, outwards, plant frame.
+    pub axis: DVec3,
+    /// Neck mid-surface radius, mm.
+    pub radius: f64,
 }
 
 impl FeMesh {

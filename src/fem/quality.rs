@@ -1,7 +1,7 @@
 //! Conformity and quality of a shell mesh: free and non-manifold edges,
 //! coincident nodes (two nodes where one should be shared), corner angles and
 //! the scaled Jacobian of quadrilaterals, minimum angles of triangles, inverted
-//! elements (normal pointing into the vessel), the size ratio of neighbours,
+//! elements (normal pointing into the vessel, or into a nozzle neck), the size ratio of neighbours,
 //! and the seed's quality index cos(min angle) as a histogram.
 
 use std::collections::{HashMap, HashSet};
@@ -108,7 +108,12 @@ pub fn quality(mesh: &FeMesh) -> Quality {
         if sj >= 0.3 {
             q.jacobian_ok += 1;
         }
-        if sj <= 0.0 || n.dot(centroid - centre) <= 0.0 {
+        // Inside a neck is its axis; inside the envelope, its box's centre.
+        let inside = match mesh.necks.iter().find(|k| k.part == el.part) {
+            Some(neck) => neck.centre + neck.axis * (centroid - neck.centre).dot(neck.axis),
+            None => centre,
+        };
+        if sj <= 0.0 || n.dot(centroid - inside) <= 0.0 {
             q.inverted += 1;
         }
         let bin = ((min_angle.to_radians().cos() * 10.0) as usize).min(9);

@@ -5,6 +5,8 @@
 use glam::DVec3;
 use vesselcad::calc::MaterialTable;
 use vesselcad::design::{Design, parse};
+use vesselcad::fem::FeMesh;
+use vesselcad::fem::quality::quality;
 use vesselcad::fem::results::{NodeResult, nodal, run_ccx, solver_available};
 use vesselcad::fem::{FeModel, FemOptions, LoadCase, frd, inp, vessel_model};
 
@@ -12,6 +14,12 @@ use vesselcad::fem::{FeModel, FemOptions, LoadCase, frd, inp, vessel_model};
 /// `"shape": "hemispherical"`), a course of `od` × `length`, the same head on
 /// top, all of thickness `t`; design pressure `kpa`, SA-516-70 at 20 °C.
 pub fn vessel(head: &str, od: f64, length: f64, t: f64, kpa: f64) -> Design {
+    with_nozzles(head, od, length, t, kpa, "")
+}
+
+/// [`vessel`] with `nozzles` (the JSON text of the vessel's `nozzles` array's
+/// items, hosted by `S1`, `H1` or `H2`).
+pub fn with_nozzles(head: &str, od: f64, length: f64, t: f64, kpa: f64, nozzles: &str) -> Design {
     let text = format!(
         r#"{{"format": "vesselcad/1", "units": "mm", "vessels": [{{
           "tag": "V-1", "kind": "vertical",
@@ -21,7 +29,8 @@ pub fn vessel(head: &str, od: f64, length: f64, t: f64, kpa: f64) -> Design {
             {{ "head": {{ "id": "H1", {head}, "thickness": {t} }} }},
             {{ "shell": {{ "id": "S1", "od": {od}, "length": {length}, "thickness": {t} }} }},
             {{ "head": {{ "id": "H2", {head}, "thickness": {t} }} }}
-          ]}}]}}"#
+          ],
+          "nozzles": [{nozzles}]}}]}}"#
     );
     parse(&text).unwrap_or_else(|e| panic!("test design: {e}"))
 }
@@ -65,4 +74,47 @@ pub fn along(s: [f64; 6], a: DVec3, b: DVec3) -> f64 {
         zx * a.x + yz * a.y + zz * a.z,
     );
     sa.dot(b)
+}
+
+/// Asserts the conformity and quality targets of `mesh`: no free edge but the
+/// real boundaries, no non-manifold edge, no two nodes at one point, no
+/// inverted element, quadrilaterals only, ≥ 95 % of them with corner angles in
+/// 45–135° and scaled Jacobian ≥ 0.3, and every part sharing nodes with another.
+pub fn assert_good(what: &str, mesh: &FeMesh) {
+    let q = quality(mesh);
+    eprintln!("{what}: {q:?}");
+    assert_eq!(q.free_edges, 0, "{what}: free edges");
+    assert_eq!(q.nonmanifold_edges, 0, "{what}: non-manifold edges");
+    assert_eq!(q.coincident_nodes, 0, "{what}: coincident nodes");
+    assert_eq!(q.inverted, 0, "{what}: inverted elements");
+    assert_eq!(
+        q.quads, q.elements,
+        "{what}: triangles where none is needed"
+    );
+    assert!(
+        q.quads_in_range as f64 >= 0.95 * q.quads as f64,
+        "{what}: {} of {} quads with angles in 45-135",
+        q.quads_in_range,
+        q.quads
+    );
+    assert!(
+        q.jacobian_ok as f64 >= 0.95 * q.elements as f64,
+        "{what}: {} of {} elements with scaled Jacobian >= 0.3",
+        q.jacobian_ok,
+        q.elements
+    );
+    assert!(q.min_scaled_jacobian > 0.0, "{what}: {q:?}");
+    // Every part shares nodes (its junction ring) with another part.
+    let sets: Vec<Vec<usize>> = (0..mesh.parts.len()).map(|k| mesh.part_nodes(k)).collect();
+    for (k, set) in sets.iter().enumerate() {
+        if sets.len() == 1 {
+            break;
+        }
+        let shared = sets
+            .iter()
+            .enumerate()
+            .filter(|(j, _)| *j != k)
+            .any(|(_, other)| set.iter().any(|n| other.binary_search(n).is_ok()));
+        assert!(shared, "{what}: part {} shares no node", mesh.parts[k].name);
+    }
 }

@@ -1,0 +1,287 @@
+//! A radial nozzle on a cylindrical course, meshed conforming with the course:
+//! the window of [`super::window`] is filled by a ring of quadrilaterals from the
+//! window's boundary (the course's own nodes) to the exact intersection curve of
+//! the neck's and the course's mid-surfaces, and the neck is swept from that
+//! curve to its end (the flange's back) in rings sharing the curve's nodes.
+//!
+//! The ring is laid out on the course unrolled, `(u, z) = (R·Δθ, Δz)` about the
+//! nozzle axis, which maps exactly onto the cylinder; the curve's nodes are at
+//! neck angles φ spread evenly over each side of the window, between the polar
+//! angles of its corners. The ring's layers blend the curve into the window
+//! boundary, graded geometrically (ratio ≤ [`GRADE`]) from the curve's edge
+//! length. Every corner and mid-side node is an exact point of its surface:
+//! ring nodes of the cylinder, curve nodes (and the mid-side nodes between
+//! them) of the intersection, neck nodes of the neck cylinder.
+//!
+//! Pads are a thicker shell region: the course's elements whose centroid is
+//! within the pad's radius of the nozzle axis become the part `TAG/MARK/pad`
+//! with the course's plus the pad's thickness (the mid-surface is not shifted
+//! for the pad). The neck is the part `TAG/MARK` with the pipe's wall.
+
+use std::collections::HashMap;
+use std::f64::consts::TAU;
+
+use glam::{DVec2, DVec3};
+
+use super::builder::Builder;
+use super::meridian::Meridian;
+use super::window::Hole;
+use super::{FePart, NeckEnd};
+
+/// Largest ratio of neighbouring layer thicknesses in the ring and the neck.
+pub const GRADE: f64 = 1.3;
+
+/// Layer positions 0..=1 of `count` layers graded from `first` (a fraction of
+/// the span) by a ratio ≤ [`GRADE`].
+fn graded(span: f64, first: f64, cap: f64) -> Vec<f64> {
+    if span <= first * 1.5 {
+        return vec![0.0, 1.0];
+    }
+    // Smallest count reaching the span with ratio GRADE, sizes capped at `cap`.
+    let mut sizes = vec![first];
+    let mut total = first;
+    while total < span {
+        let next = (sizes[sizes.len() - 1] * GRADE).min(cap.max(first));
+        sizes.push(next);
+        total += next;
+    }
+    // Scale down so the layers fill the span exactly.
+    let scale = span / total;
+    let mut out = vec![0.0];
+    let mut acc = 0.0;
+    for s in sizes {
+        acc += s * scale;
+        out.push(acc / span);
+    }
+    if let Some(last) = out.last_mut() {
+        *last = 1.0;
+    }
+    out
+}
+
+/// Neck angle φ at the mid-point of nodes with angles `a` and `b` (the short way).
+fn mid_angle(a: f64, b: f64) -> f64 {
+    let d = (b - a + std::f64::consts::PI).rem_euclid(TAU) - std::f64::consts::PI;
+    a + 0.5 * d
+}
+
+/// Meshes nozzle `hole` into `b`: the ring over its window (whose boundary
+/// nodes are `rings[station][division]`) and the neck. Returns the neck's end.
+pub fn mesh(
+    b: &mut Builder,
+    hole: &Hole,
+    mer: &Meridian,
+    rings: &[Vec<usize>],
+    size: f64,
+    tag: &str,
+) -> NeckEnd {
+    let n = rings[0].len();
+    let seg = mer.segments[hole.seg];
+    let big_r = hole.big_r;
+    let r = hole.r;
+    let axis = hole.axis();
+    let ec = DVec3::new(-hole.theta.sin(), hole.theta.cos(), 0.0);
+    let origin = hole.origin();
+    // (u, z) about the nozzle → the cylinder.
+    let on_course = |p: DVec2| {
+        let s = seg.piece.at_z(hole.z + p.y);
+        seg.point(s, hole.theta + p.x / big_r)
+    };
+    // The neck at angle φ, distance h from the course axis.
+    let on_neck =
+        |phi: f64, h: f64| origin + axis * h + (ec * phi.cos() + DVec3::Z * phi.sin()) * r;
+    let h0 = |phi: f64| (big_r * big_r - (r * phi.cos()).powi(2)).sqrt();
+    let curve_uv = |phi: f64| DVec2::new(big_r * (r * phi.cos() / big_r).asin(), r * phi.sin());
+    // The window boundary, counter-clockwise in (u, z) from its lower-left corner.
+    let station_z = |i: usize| {
+        let (sg, s) = mer.stations[i];
+        mer.segments[sg].rz(s).y - hole.z
+    };
+    let node_at = |i: usize, k: i64| {
+        let id = rings[i][k.rem_euclid(n as i64) as usize];
+        let u = big_r * (TAU * k as f64 / n as f64 - hole.theta);
+        (id, DVec2::new(u, station_z(i)))
+    };
+    let (a, bb) = (hole.a as i64, hole.i1 - hole.i0);
+    let (k0, k1, i0, i1) = (hole.k0, hole.k0 + a, hole.i0, hole.i1);
+    let mut outer = Vec::new();
+    let mut corners = Vec::new();
+    corners.push(outer.len());
+    outer.extend((k0..k1).map(|k| node_at(i0, k)));
+    corners.push(outer.len());
+    outer.extend((i0..i1).map(|i| node_at(i, k1)));
+    corners.push(outer.len());
+    outer.extend((k0 + 1..=k1).rev().map(|k| node_at(i1, k)));
+    corners.push(outer.len());
+    outer.extend((i0 + 1..=i1).rev().map(|i| node_at(i, k0)));
+    let count = outer.len();
+    debug_assert_eq!(count, 2 * (a as usize + bb));
+    // Neck angles: each side's share of the curve between its corners' polar angles.
+    let mut psi: Vec<f64> = corners
+        .iter()
+        .map(|&c| outer[c].1.y.atan2(outer[c].1.x))
+        .collect();
+    for k in 1..4 {
+        while psi[k] < psi[k - 1] {
+            psi[k] += TAU;
+        }
+    }
+    psi.push(psi[0] + TAU);
+    corners.push(count);
+    let phis: Vec<f64> = (0..count)
+        .map(|j| {
+            let s = (0..4).rfind(|&s| corners[s] <= j).unwrap_or(0);
+            let f = (j - corners[s]) as f64 / (corners[s + 1] - corners[s]) as f64;
+            psi[s] + f * (psi[s + 1] - psi[s])
+        })
+        .collect();
+    let mut angle: HashMap<usize, f64> = HashMap::new();
+    let curve: Vec<usize> = phis
+        .iter()
+        .map(|&phi| {
+            let id = b.node(on_neck(phi, h0(phi)), None);
+            angle.insert(id, phi);
+            id
+        })
+        .collect();
+    // Ring layers between the curve and the window.
+    let first = TAU * r / count as f64;
+    let gap = (0..count)
+        .map(|j| outer[j].1.distance(curve_uv(phis[j])))
+        .sum::<f64>()
+        / count as f64;
+    let cell = (TAU * big_r / n as f64).min(size);
+    let lambdas = graded(gap, first, cell);
+    let mut plane: HashMap<usize, DVec2> = HashMap::new();
+    for &(id, p) in &outer {
+        plane.insert(id, p);
+    }
+    for (j, &id) in curve.iter().enumerate() {
+        plane.insert(id, curve_uv(phis[j]));
+    }
+    let mut layers = vec![curve.clone()];
+    for &lambda in &lambdas[1..lambdas.len() - 1] {
+        let row = (0..count)
+            .map(|j| {
+                let p = curve_uv(phis[j]) * (1.0 - lambda) + outer[j].1 * lambda;
+                let id = b.node(on_course(p), None);
+                plane.insert(id, p);
+                id
+            })
+            .collect();
+        layers.push(row);
+    }
+    layers.push(outer.iter().map(|o| o.0).collect());
+    let part = hole.part;
+    for l in 0..layers.len() - 1 {
+        for j in 0..count {
+            let j1 = (j + 1) % count;
+            let c = [
+                layers[l][j],
+                layers[l + 1][j],
+                layers[l + 1][j1],
+                layers[l][j1],
+            ];
+            b.quad(
+                part,
+                c,
+                &mut |b, x, y| match (angle.get(&x), angle.get(&y)) {
+                    (Some(&p), Some(&q)) => {
+                        let phi = mid_angle(p, q);
+                        b.mid(x, y, || on_neck(phi, h0(phi)))
+                    }
+                    _ => {
+                        let p = 0.5 * (plane[&x] + plane[&y]);
+                        b.mid(x, y, || on_course(p))
+                    }
+                },
+            );
+        }
+    }
+    // The neck, from the curve to its end, graded from the curve's edge length.
+    let neck_part = b.mesh.parts.len();
+    b.mesh.parts.push(FePart {
+        name: format!("{tag}/{}", hole.mark),
+        id: hole.mark.clone(),
+        thickness: hole.wall,
+    });
+    let length = hole.end - big_r;
+    let vs = graded(length, first, size);
+    let mut at: HashMap<usize, (f64, f64)> = HashMap::new();
+    for (j, &id) in curve.iter().enumerate() {
+        at.insert(id, (phis[j], 0.0));
+    }
+    let h = |phi: f64, v: f64| h0(phi) + v * (hole.end - h0(phi));
+    let mut rows = vec![curve.clone()];
+    for &v in &vs[1..] {
+        let row = phis
+            .iter()
+            .map(|&phi| {
+                let id = b.node(on_neck(phi, h(phi, v)), None);
+                at.insert(id, (phi, v));
+                id
+            })
+            .collect();
+        rows.push(row);
+    }
+    for m in 0..rows.len() - 1 {
+        for j in 0..count {
+            let j1 = (j + 1) % count;
+            let c = [rows[m][j], rows[m][j1], rows[m + 1][j1], rows[m + 1][j]];
+            b.quad(neck_part, c, &mut |b, x, y| {
+                let ((p, v), (q, w)) = (at[&x], at[&y]);
+                let phi = mid_angle(p, q);
+                let v = 0.5 * (v + w);
+                b.mid(x, y, || on_neck(phi, h(phi, v)))
+            });
+        }
+    }
+    let end = rows[rows.len() - 1].clone();
+    let mids = if b.quadratic {
+        (0..count)
+            .map(|j| {
+                let (x, y) = (end[j], end[(j + 1) % count]);
+                b.mid(x, y, || origin)
+            })
+            .collect()
+    } else {
+        Vec::new()
+    };
+    b.mesh.boundary.extend(end.iter().copied());
+    NeckEnd {
+        mark: hole.mark.clone(),
+        part: neck_part,
+        nodes: end,
+        mids,
+        centre: origin + axis * hole.end,
+        axis,
+        radius: r,
+    }
+}
+
+/// Moves the course elements under each pad of `holes` into a pad part.
+pub fn pads(b: &mut Builder, holes: &[Hole], tag: &str) {
+    for hole in holes {
+        let Some((od, t)) = hole.pad else {
+            continue;
+        };
+        let host = b.mesh.parts[hole.part].thickness;
+        let pad = b.mesh.parts.len();
+        b.mesh.parts.push(FePart {
+            name: format!("{tag}/{}/pad", hole.mark),
+            id: format!("{}/pad", hole.mark),
+            thickness: host + t,
+        });
+        let (o, d) = (hole.origin(), hole.axis());
+        let nodes = &b.mesh.nodes;
+        for e in b.mesh.elements.iter_mut().filter(|e| e.part == hole.part) {
+            let nc = e.kind.corners();
+            let c = e.nodes[..nc].iter().map(|&i| nodes[i]).sum::<DVec3>() / nc as f64;
+            let rel = c - o;
+            let off = rel - d * rel.dot(d);
+            if rel.dot(d) > 0.0 && off.length() <= 0.5 * od {
+                e.part = pad;
+            }
+        }
+    }
+}
