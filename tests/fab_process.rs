@@ -322,7 +322,7 @@ fn pwht_is_triggered_by_thickness_for_carbon_steel_only() {
 #[test]
 fn weld_map_glb_passes_the_khronos_validator() {
     let design =
-        load(&Path::new(env!("CARGO_MANIFEST_DIR")).join("examples/designs/vertical-column.json"))
+        load(Path::new(env!("CARGO_MANIFEST_DIR")).join("examples/designs/vertical-column.json"))
             .unwrap();
     let resolved = resolve(&design).unwrap();
     let plan = process_plan(&design.vessels[0], &resolved[0], &ShopRules::builtin()).unwrap();

@@ -258,7 +258,7 @@ pub fn weld_map(
             _ => continue,
         };
         let clearance = 50f64.max(2.5 * t);
-        let start = if rolled % 2 == 0 { 0.0 } else { 180.0 };
+        let start = if rolled.is_multiple_of(2) { 0.0 } else { 180.0 };
         rolled += 1;
         let angle = (0..24)
             .map(|k| (start + 15.0 * f64::from(k)).to_radians())
