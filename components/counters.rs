@@ -63,6 +63,9 @@ pub struct WorkCounters {
     /// Vessels whose calculated figures (MAWP, hydrotest, deficiencies) were
     /// gathered again.
     pub vessels_calculated: u64,
+    /// Vessels whose process plan (BOM, weld map, operations) was made again
+    /// (only while the model keeps process plans).
+    pub process_plans: u64,
     /// Patches or openings that failed to mesh or cut (details in `ModelErrors`).
     pub failures: u64,
 }

@@ -16,6 +16,7 @@ mod geometry;
 mod labels;
 mod openings;
 mod operating;
+mod process;
 mod project;
 mod regions;
 mod storage;
@@ -29,6 +30,7 @@ pub use export::collect_changes;
 pub use geometry::rebuild_dirty_patches;
 pub use openings::cut_openings;
 pub use operating::update_operating_states;
+pub use process::{process_plans_kept, update_process_plans};
 pub use project::{entity_input, project_dirty_views, views_kept};
 pub use regions::lay_out_regions;
 pub use storage::budget_storage_precision;
@@ -74,7 +76,11 @@ pub fn build_schedule() -> Schedule {
             .chain(),
     );
     schedule.add_systems((
-        (resolve_dirty_vessels, update_operating_states)
+        (
+            resolve_dirty_vessels,
+            update_operating_states,
+            update_process_plans.run_if(process_plans_kept),
+        )
             .chain()
             .in_set(Stage::Validate),
         apply_resolutions.in_set(Stage::Constrain),

@@ -33,6 +33,7 @@ pub use edit::Edit;
 pub use memory::MemoryBreakdown;
 
 use std::collections::HashSet;
+use std::sync::Arc;
 
 use bevy_ecs::change_detection::DetectChangesMut;
 use bevy_ecs::query::{QueryState, ReadOnlyQueryData};
@@ -372,6 +373,34 @@ impl Model {
     pub fn calculation(&self, tag: &str) -> Option<crate::calc::Calculation> {
         let entity = *self.world.resource::<VesselIndex>().0.get(tag)?;
         read::calculation(&self.world, entity)
+    }
+
+    /// Keeps a process plan (BOM, weld map, operations in levels) on every
+    /// vessel from the next update on, following `rules`; `None` stops and
+    /// drops the plans at the next update's pass (see
+    /// `systems::update_process_plans`).
+    pub fn set_process_planning(&mut self, rules: Option<Arc<crate::fab::ShopRules>>) {
+        match rules {
+            Some(r) => {
+                self.world
+                    .insert_resource(crate::components::ProcessPlanning(r));
+            }
+            None => {
+                self.world
+                    .remove_resource::<crate::components::ProcessPlanning>();
+            }
+        }
+    }
+
+    /// The process plan of vessel `tag` as the last update left it, or why it
+    /// could not be made; `None` for an unknown tag or while plans are not kept.
+    pub fn process_plan(&self, tag: &str) -> Option<Result<Arc<crate::fab::ProcessPlan>, String>> {
+        self.world
+            .get_resource::<crate::components::ProcessPlanning>()?;
+        let entity = *self.world.resource::<VesselIndex>().0.get(tag)?;
+        self.world
+            .get::<crate::components::VesselProcessPlan>(entity)
+            .map(|p| p.0.clone())
     }
 
     /// The plant as a scene for the exporters (meshes as of the last update).

@@ -115,6 +115,9 @@ pub enum ApiError {
     /// The drawing sheet of a vessel could not be made. 422.
     #[error("no drawing: {0}")]
     Drawing(String),
+    /// The process plan (traveler) of a vessel could not be made. 422.
+    #[error("no process plan: {0}")]
+    Plan(String),
     /// The edit was valid but could not be made durable (journal write failed);
     /// the model was put back as it was. 500.
     #[error("edit not saved, nothing changed: {0}")]
@@ -165,7 +168,7 @@ impl ApiError {
             ApiError::Forbidden(_) => StatusCode::FORBIDDEN,
             ApiError::UnsupportedType(_) => StatusCode::UNSUPPORTED_MEDIA_TYPE,
             ApiError::UnknownVessel { .. } | ApiError::NotFound(_) => StatusCode::NOT_FOUND,
-            ApiError::Drawing(_) => StatusCode::UNPROCESSABLE_ENTITY,
+            ApiError::Drawing(_) | ApiError::Plan(_) => StatusCode::UNPROCESSABLE_ENTITY,
             ApiError::Storage(_) | ApiError::SaveFailed(_) => StatusCode::INTERNAL_SERVER_ERROR,
             ApiError::StoreUnavailable(_) => StatusCode::SERVICE_UNAVAILABLE,
         }
@@ -188,6 +191,7 @@ impl ApiError {
             ApiError::NotFound(_) => "not_found",
             ApiError::BadQuery(_) => "bad_query",
             ApiError::Drawing(_) => "drawing",
+            ApiError::Plan(_) => "plan",
             ApiError::Storage(_) => "storage",
             ApiError::StoreUnavailable(_) => "store_unavailable",
             ApiError::SaveFailed(_) => "save_failed",

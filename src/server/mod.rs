@@ -29,6 +29,7 @@ pub mod scoped;
 pub mod session;
 pub mod state;
 pub mod store_link;
+pub mod traveler;
 pub mod undo;
 
 use std::net::{IpAddr, Ipv4Addr, SocketAddr};

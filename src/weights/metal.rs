@@ -164,7 +164,7 @@ fn inside_host(host: &PartGeometry, p: DVec3) -> bool {
 
 /// Distance along a nozzle's axis from its neck start to where it leaves the
 /// host's outside surface, mm (bisection; 0 when the start is outside).
-fn neck_start_outside(n: &ResolvedNozzle, host: &ResolvedPart) -> f64 {
+pub fn neck_start_outside(n: &ResolvedNozzle, host: &ResolvedPart) -> f64 {
     let to_host = host.frame.inverse() * n.frame;
     let at = |t: f64| to_host.transform_point3(DVec3::new(0.0, 0.0, t));
     let end = n.geometry.neck_length().unwrap_or(0.0).max(0.0);
