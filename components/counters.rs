@@ -63,6 +63,9 @@ pub struct WorkCounters {
     /// Vessels whose calculated figures (MAWP, hydrotest, deficiencies) were
     /// gathered again.
     pub vessels_calculated: u64,
+    /// Vessels whose supports were calculated again (Zick's saddle stresses
+    /// from the weight model: any edit of a vessel on saddles changes its weights).
+    pub supports_calculated: u64,
     /// Patches or openings that failed to mesh or cut (details in `ModelErrors`).
     pub failures: u64,
 }
