@@ -1,7 +1,7 @@
 //! The calculation report as one self-contained HTML page, in the shape handed
 //! to an inspector: per vessel the design data, each pressure part's calculation
 //! (formula, inputs, result, paragraph), the nozzle tables (UG-45, UG-37, B16.5), the
-//! external-pressure and saddle tables ([`super::report_tables`]), the MAWP /
+//! external-pressure and saddle tables (`report_tables`), the MAWP /
 //! MDMT summary, the hydrotest, the weights with their centres of gravity, and
 //! the deficiencies. Printed to PDF by headless Chromium (`vesselcad calc -o
 //! report.pdf`).
