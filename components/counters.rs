@@ -66,6 +66,9 @@ pub struct WorkCounters {
     /// Vessels whose process plan (BOM, weld map, operations) was made again
     /// (only while the model keeps process plans).
     pub process_plans: u64,
+    /// Vessels whose supports were calculated again (Zick's saddle stresses
+    /// from the weight model: any edit of a vessel on saddles changes its weights).
+    pub supports_calculated: u64,
     /// Patches or openings that failed to mesh or cut (details in `ModelErrors`).
     pub failures: u64,
 }

@@ -235,6 +235,7 @@ fn bounds() -> Vec<Bound> {
         ("SaddleDesign", "width"),
         ("SaddleDesign", "height"),
         ("SaddleDesign", "web_thickness"),
+        ("SaddleDesign", "wear_plate"),
         ("LegsDesign", "length"),
         ("LugsDesign", "height"),
         ("LugsDesign", "projection"),

@@ -17,12 +17,14 @@ use rustc_hash::{FxHashMap, FxHashSet};
 use super::WorkCounters;
 use crate::calc::{
     Conditions, Liquid, MaterialTable, NozzleCalc, PartCalc, VesselCalc, conditions, nozzle_calc,
-    part_calc,
+    part_calc, support_calcs,
 };
 use crate::components::{
     DesignOrder, Materials, MountedOn, Mounts, NozzleCalculation, NozzleSpec, OperatingSpec,
     PartCalculation, PartSpan, PartSpec, Shape, VesselCalculation, VesselSpec,
 };
+use crate::constraints::resolve_vessel;
+use crate::design::{PartDesign, VesselDesign, VesselKind};
 use crate::operating::thickness;
 
 fn builtin() -> &'static Arc<MaterialTable> {
@@ -226,7 +228,7 @@ pub fn update_calculations(
     let mut all: Vec<Entity> = touched.into_iter().collect();
     all.sort();
     for v in all {
-        let Ok((_, spec, _, children, old)) = vessels.get(v) else {
+        let Ok((_, spec, op, children, old)) = vessels.get(v) else {
             continue;
         };
         let Some((conds, liquid)) = state.remove(&v) else {
@@ -258,7 +260,7 @@ pub fn update_calculations(
         part_calcs.sort_by_key(|(o, _)| *o);
         nozzle_calcs.sort_by_key(|(o, _)| *o);
         problems.sort_by_key(|(o, _)| *o);
-        let calc = VesselCalc::gather(
+        let mut calc = VesselCalc::gather(
             &spec.tag,
             spec.kind,
             conds,
@@ -266,9 +268,63 @@ pub fn update_calculations(
             &nozzle_calcs.iter().map(|(_, n)| n).collect::<Vec<_>>(),
             problems.into_iter().map(|(_, p)| p).collect(),
         );
+        if let Some(design) = supported_design(&spec, &op, children, &parts, &nozzles) {
+            counters.supports_calculated += 1;
+            match resolve_vessel(&design, 0) {
+                Ok(resolved) => support_calcs(&design, &resolved, &mut calc),
+                Err(v) => calc.problems.push(format!(
+                    "supports: the vessel does not resolve ({} rule(s) broken)",
+                    v.len()
+                )),
+            }
+        }
         let new = VesselCalculation { calc, liquid };
         if old != Some(&new) {
             commands.entity(v).insert(new);
         }
     }
+}
+
+/// The design of a horizontal vessel on saddles as its entities hold it (parts
+/// and nozzles in design order; notes left out: the supports' calculation does
+/// not read them), for the weights Zick's method needs; `None` for any other
+/// vessel, whose supports are not calculated.
+fn supported_design(
+    spec: &VesselSpec,
+    op: &OperatingSpec,
+    children: Option<&Children>,
+    parts: &Query<PartRow>,
+    nozzles: &Query<NozzleRow>,
+) -> Option<VesselDesign> {
+    if spec.kind != VesselKind::Horizontal {
+        return None;
+    }
+    let mut part_list: Vec<(DesignOrder, PartDesign)> = Vec::new();
+    let mut nozzle_list = Vec::new();
+    for &c in children.into_iter().flatten() {
+        if let Ok(row) = parts.get(c) {
+            part_list.push((*row.6, row.1.0.clone()));
+        } else if let Ok(row) = nozzles.get(c) {
+            nozzle_list.push((*row.5, row.1.0.clone()));
+        }
+    }
+    if !part_list
+        .iter()
+        .any(|(_, p)| matches!(p, PartDesign::Saddle(_)))
+    {
+        return None;
+    }
+    part_list.sort_by_key(|(o, _)| *o);
+    nozzle_list.sort_by_key(|(o, _)| *o);
+    Some(VesselDesign {
+        tag: spec.tag.clone(),
+        kind: spec.kind,
+        placement: spec.placement,
+        design: spec.design.clone(),
+        drawing: spec.drawing.clone(),
+        parts: part_list.into_iter().map(|(_, p)| p).collect(),
+        nozzles: nozzle_list.into_iter().map(|(_, n)| n).collect(),
+        notes: Vec::new(),
+        operating: op.0,
+    })
 }

@@ -104,3 +104,60 @@ fn a_design_under_vacuum_gets_ug28_and_ug33() {
     }
     assert!(shells > 0, "{:?}", c.parts);
 }
+
+/// A vessel designed for vacuum only (design pressure 0, external pressure full
+/// vacuum) is calculated: its walls under UG-28 / UG-33, no internal thickness
+/// but the UG-16(b) minimum, the UG-99(f) internal test 1.3 · 0.101325 =
+/// 0.1317225 MPa, and the report's external-pressure table. With neither an
+/// internal nor an external pressure the vessel is still not calculated.
+#[test]
+fn a_vacuum_only_vessel_is_calculated() {
+    use vesselcad::calc::html::{ReportVessel, html};
+    use vesselcad::calc::{MaterialTable, calculate};
+    let table = MaterialTable::builtin();
+    let mut design = common::examples::example("horizontal-drum");
+    let v = &mut design.vessels[0];
+    v.design.pressure = Some(0.0);
+    v.design.temperature = Some(100.0);
+    let resolved = vesselcad::constraints::resolve_vessel(v, 0).unwrap();
+    let refused = calculate(v, &resolved, &table);
+    assert!(refused.vessel.conditions.is_none());
+    assert!(
+        refused.vessel.problems[0].contains("design.external_pressure"),
+        "{:?}",
+        refused.vessel.problems
+    );
+    v.design.external_pressure = Some(101.325);
+    let c = calculate(v, &resolved, &table);
+    let conds = c.vessel.conditions.as_ref().expect("conditions");
+    assert!(conds.vacuum_only());
+    assert_eq!(c.parts.len(), 3, "{:?}", c.vessel.problems);
+    for p in &c.parts {
+        assert_eq!(p.required.paragraph, "UG-28");
+        assert_eq!(p.required.value, 3.0, "t = CA");
+        assert!(p.external.as_ref().is_some_and(|x| x.is_ok()), "{p:?}");
+    }
+    let test = c.vessel.hydrotest.as_ref().unwrap();
+    assert_eq!(test.paragraph, "UG-99(f)");
+    close(test.value, 0.131_722_5, 1e-12);
+    // Nozzles: UG-45 still checked; UG-37 under external pressure said, not guessed.
+    assert_eq!(c.nozzles.len(), 8);
+    assert!(
+        c.vessel.problems.iter().any(|p| p.contains("UG-37(d)")),
+        "{:?}",
+        c.vessel.problems
+    );
+    let page = html(
+        "drum.json",
+        &[ReportVessel {
+            design: v,
+            calculation: &c,
+            weights: Err("not needed".into()),
+        }],
+    );
+    assert!(
+        page.contains("External pressure (UG-28 / UG-33"),
+        "no table"
+    );
+    assert!(page.contains("UG-28(c)(1)") && page.contains("UG-33(d)/(e)"));
+}

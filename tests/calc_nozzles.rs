@@ -74,11 +74,48 @@ fn b16_5_refuses_what_it_does_not_know() {
         e.contains("temperature = 540") && e.contains("-29 to 538"),
         "{e}"
     );
-    let e = rating("2.3", FlangeClass::C150, 100.0)
+    let e = rating("2.1", FlangeClass::C150, 100.0)
         .unwrap_err()
         .to_string();
-    assert!(e.contains("group 2.3") && e.contains("Table 2-1.1"), "{e}");
+    assert!(e.contains("group 2.1") && e.contains("Tables 2-1.1"), "{e}");
+    // Groups 2.2 and 2.3 are shipped to 300 °C only.
+    let e = rating("2.2", FlangeClass::C300, 325.0)
+        .unwrap_err()
+        .to_string();
+    assert!(e.contains("Table 2-2.2 is shipped for -29 to 300"), "{e}");
     assert!(rating("1.1", FlangeClass::C150, f64::NAN).is_err());
+}
+
+/// ASME B16.5-2009 Table 2-2.2 (Group 2.2, A182 F316) and Table 2-2.3 (Group
+/// 2.3, A182 F316L / A240 316L), bar: Class 150 at −29 to 38 °C 19.0 and 15.9
+/// (275 and 230 psig), Class 300 49.6 and 41.4 (720 and 600 psig); at 100 °C
+/// 16.2 / 42.2 (2.2) and 13.3 / 34.8 (2.3); at 300 °C Class 600 63.2 (2.2) and
+/// 52.1 (2.3). Interpolated at 125 °C, Class 150 group 2.2: (16.2 + 14.8)/2 =
+/// 15.5 bar. Shell test 1.5 × the 38 °C rating: 2.3 Class 150 = 23.85 bar.
+#[test]
+fn b16_5_groups_2_2_and_2_3() {
+    let bar = |g: &str, c: FlangeClass, t: f64| rating(g, c, t).unwrap() * 10.0;
+    close(bar("2.2", FlangeClass::C150, 20.0), 19.0, 1e-12);
+    close(bar("2.3", FlangeClass::C150, 38.0), 15.9, 1e-12);
+    close(bar("2.2", FlangeClass::C300, -29.0), 49.6, 1e-12);
+    close(bar("2.3", FlangeClass::C300, 0.0), 41.4, 1e-12);
+    close(bar("2.2", FlangeClass::C150, 100.0), 16.2, 1e-12);
+    close(bar("2.2", FlangeClass::C300, 100.0), 42.2, 1e-12);
+    close(bar("2.3", FlangeClass::C150, 100.0), 13.3, 1e-12);
+    close(bar("2.3", FlangeClass::C300, 100.0), 34.8, 1e-12);
+    close(bar("2.2", FlangeClass::C600, 300.0), 63.2, 1e-12);
+    close(bar("2.3", FlangeClass::C600, 300.0), 52.1, 1e-12);
+    close(bar("2.2", FlangeClass::C150, 125.0), 15.5, 1e-12);
+    let f = flange_rating("N1", FlangeClass::C150, "2.3", 1.0, 38.0).unwrap();
+    close(f.test_limit, 1.5 * 1.59, 1e-12);
+    assert!(f.deficiency.is_none());
+    // Each class carries more than the one below at every shipped temperature.
+    for g in ["2.2", "2.3"] {
+        for t in [38.0, 50.0, 100.0, 150.0, 200.0, 250.0, 300.0] {
+            let r: Vec<f64> = FlangeClass::ALL.iter().map(|&c| bar(g, c, t)).collect();
+            assert!(r.windows(2).all(|w| w[0] < w[1]), "{g} {t} °C: {r:?}");
+        }
+    }
 }
 
 #[test]

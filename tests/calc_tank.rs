@@ -141,3 +141,81 @@ fn the_example_tank_is_calculated_live() {
         after.vessel.deficiencies
     );
 }
+
+/// Bottom and roof plates. Hand calculation: a self-supporting cone roof on an
+/// 8 m tank at θ = 10° needs D/(4.8·sin θ) = 8/(4.8 · 0.173648) = 9.598 mm
+/// (5.10.5.1, T = 2.2 kPa); at θ = 37°, 8/(4.8 · 0.601815) = 2.769 → the 5 mm
+/// minimum; a 40 m tank at 9.5°: 40/(4.8 · 0.165048) = 50.49 → the 13 mm most.
+/// A dome of rr = D = 8 m: 8/2.4 = 3.33 → 5 mm; of rr = 9.6 m on a 8 m tank
+/// (1.2·D): 9.6/2.4 = 4 → 5 mm; on a 30 m tank rr = 30: 12.5 mm.
+#[test]
+fn bottom_and_roof_plates() {
+    use vesselcad::calc::api650::{plate, self_supporting_cone, self_supporting_dome};
+    use vesselcad::parts::heads::HeadKind;
+    close(self_supporting_cone(8.0, 10.0).unwrap(), 9.598, 1e-3);
+    close(self_supporting_cone(8.0, 37.0).unwrap(), 5.0, 1e-12);
+    close(self_supporting_cone(40.0, 9.5).unwrap(), 13.0, 1e-12);
+    assert!(self_supporting_cone(8.0, 5.0).is_err());
+    close(self_supporting_dome(8.0, 8.0).unwrap(), 5.0, 1e-12);
+    close(self_supporting_dome(30.0, 30.0).unwrap(), 12.5, 1e-12);
+    assert!(self_supporting_dome(8.0, 10.0).is_err());
+    // 5.4.1: bottom 6 mm + CA; a cone roof taken as supported: 5 mm, with the
+    // self-supporting figure beside it.
+    let flat = HeadKind::Flat {
+        knuckle_radius: 0.0,
+    };
+    let b = plate(flat, 8000.0, true, 1.5).unwrap();
+    assert_eq!((b.required, b.paragraph), (7.5, "API 650 5.4.1"));
+    let cone = HeadKind::Conical {
+        half_angle: 80.0,
+        small_diameter: 0.0,
+    };
+    let r = plate(cone, 8000.0, false, 1.5).unwrap();
+    assert_eq!((r.required, r.paragraph), (5.0, "API 650 5.10.2.2"));
+    close(r.self_supporting.unwrap(), 9.598, 1e-3);
+
+    // The example tank: bottom 8 ≥ 7.5 mm, roof 6 ≥ 5 mm; its roof nozzles are
+    // said to be roof nozzles (not shell nozzles).
+    let d = example("storage-tank");
+    let resolved = design::resolve(&d).unwrap();
+    let c = calculate(&d.vessels[0], &resolved[0], &MaterialTable::builtin());
+    let part = |id: &str| c.parts.iter().find(|p| p.id == id).unwrap();
+    assert_eq!(part("BTM").shape, "tank bottom plate");
+    assert_eq!(part("ROOF").shape, "supported cone roof");
+    assert!(
+        c.vessel.deficiencies.is_empty(),
+        "{:?}",
+        c.vessel.deficiencies
+    );
+    for mark in ["N3", "M2"] {
+        let line = c
+            .vessel
+            .problems
+            .iter()
+            .find(|p| p.starts_with(&format!("{mark}:")))
+            .unwrap();
+        assert!(line.contains("roof nozzles"), "{line}");
+    }
+    let n1 = c
+        .vessel
+        .problems
+        .iter()
+        .find(|p| p.starts_with("N1:"))
+        .unwrap();
+    assert!(n1.contains("shell nozzles"), "{n1}");
+    // A 7 mm bottom is deficient by 5.4.1.
+    let mut thin = d.clone();
+    if let PartDesign::Head(h) = &mut thin.vessels[0].parts[0] {
+        h.thickness = Some(7.0);
+    }
+    let resolved = design::resolve(&thin).unwrap();
+    let c = calculate(&thin.vessels[0], &resolved[0], &MaterialTable::builtin());
+    assert!(
+        c.vessel
+            .deficiencies
+            .iter()
+            .any(|s| s.starts_with("BTM: tank bottom plate 7 mm") && s.contains("5.4.1")),
+        "{:?}",
+        c.vessel.deficiencies
+    );
+}

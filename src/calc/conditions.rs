@@ -28,7 +28,8 @@ pub fn code_of(kind: VesselKind) -> &'static str {
 /// Design conditions in calculation units.
 #[derive(Clone, Debug, PartialEq, Serialize)]
 pub struct Conditions {
-    /// Design pressure at the top, MPa gauge.
+    /// Design pressure at the top, MPa gauge; 0 for a vessel designed for
+    /// vacuum or external pressure only ([`Conditions::vacuum_only`]).
     pub pressure: f64,
     /// Design temperature, °C.
     pub temperature: f64,
@@ -62,6 +63,15 @@ pub struct Conditions {
     pub modulus: f64,
 }
 
+impl Conditions {
+    /// A vessel designed for external pressure (vacuum) only: no internal design
+    /// pressure. Its walls are checked by UG-28 / UG-33, its internal formulas see
+    /// only the static head, and its test is UG-99(f)'s.
+    pub fn vacuum_only(&self) -> bool {
+        self.pressure == 0.0 && self.external_pressure > 0.0
+    }
+}
+
 /// The calculation inputs of a vessel's design conditions, or the sentence saying
 /// why the vessel cannot be calculated (a missing field, a material not in the
 /// table, a temperature outside its stress table, a code not implemented yet).
@@ -76,10 +86,11 @@ pub fn conditions(
     let pressure = design
         .pressure
         .ok_or("design.pressure: not given; no pressure calculation")?;
-    if pressure <= 0.0 {
+    let external = design.external_pressure.unwrap_or(0.0);
+    if pressure < 0.0 || (pressure == 0.0 && external <= 0.0) {
         return Err(format!(
-            "design.pressure: {pressure} kPa(g) is not an internal pressure; external \
-             pressure (UG-28) is not computed yet"
+            "design.pressure: {pressure} kPa(g) is not an internal pressure; give a vacuum or \
+             external design pressure as design.external_pressure (kPa) with design.pressure 0"
         ));
     }
     let temperature = design
@@ -110,7 +121,7 @@ pub fn conditions(
         stress_source: material.allowable_stress.source.clone(),
         flange_group: material.b16_5_group.as_ref().map(|g| g.value.clone()),
         ucs66_curve: material.ucs66_curve.as_ref().map(|g| g.value.clone()),
-        external_pressure: design.external_pressure.unwrap_or(0.0) * 1e-3,
+        external_pressure: external * 1e-3,
         yield_strength: material.yield_strength.value,
         modulus: material.modulus.value,
         code: code_of(kind),

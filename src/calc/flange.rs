@@ -7,8 +7,14 @@
 //!
 //! Shipped: Table 2-1.1 (Group 1.1: A105, A350 LF2, A216 WCB, A515-70, A516-70)
 //! of ASME B16.5-2009/-2013 in bar, the same values B16.34-2013 Table 2-1.1 lists
-//! for the standard class. Other groups are not shipped: their flanges are
-//! reported as not rated, never guessed.
+//! for the standard class; and Tables 2-2.2 (Group 2.2: A182 F316, A240 316) and
+//! 2-2.3 (Group 2.3: A182 F304L/F316L, A240 304L/316L) of the same edition from
+//! −29 to 300 °C, the rows published alike by flange makers and by public
+//! engineering tables (cross-read against a public data file citing them; the
+//! 38 °C values are the well-known 275/720/1440/2160 psi of 316 and 230/600/1200/
+//! 1800 psi of 316L). Above 300 °C those two groups and every other group
+//! (1.2, 2.1, …) are not shipped: their flanges are reported as not rated, never
+//! guessed.
 
 use serde::Serialize;
 
@@ -41,8 +47,26 @@ const GROUP_1_1: [[f64; 17]; 4] = [
     ],
 ];
 
+/// Group 2.2 (316) working pressures, bar, Class 150, 300, 600, 900, at the first
+/// eight [`TEMPERATURES`] (−29 to 300 °C).
+const GROUP_2_2: [[f64; 8]; 4] = [
+    [19.0, 19.0, 18.4, 16.2, 14.8, 13.7, 12.1, 10.2],
+    [49.6, 49.6, 48.1, 42.2, 38.5, 35.7, 33.4, 31.6],
+    [99.3, 99.3, 96.2, 84.4, 77.0, 71.3, 66.8, 63.2],
+    [148.9, 148.9, 144.3, 126.6, 115.5, 107.0, 100.1, 94.9],
+];
+
+/// Group 2.3 (304L, 316L) working pressures, bar, as [`GROUP_2_2`].
+const GROUP_2_3: [[f64; 8]; 4] = [
+    [15.9, 15.9, 15.3, 13.3, 12.0, 11.2, 10.5, 10.0],
+    [41.4, 41.4, 40.0, 34.8, 31.4, 29.2, 27.5, 26.1],
+    [82.7, 82.7, 80.0, 69.6, 62.8, 58.3, 54.9, 52.1],
+    [124.1, 124.1, 120.1, 104.4, 94.2, 87.5, 82.4, 78.2],
+];
+
 /// Where the shipped ratings come from.
-pub const SOURCE: &str = "ASME B16.5-2009/-2013 Table 2-1.1 (Group 1.1), standard class, bar; \
+pub const SOURCE: &str = "ASME B16.5-2009/-2013 Tables 2-1.1 (Group 1.1, −29 to 538 °C), 2-2.2 \
+    and 2-2.3 (Groups 2.2 and 2.3, −29 to 300 °C), standard class, bar; Table 2-1.1 \
     identical to ASME B16.34-2013 Table 2-1.1 as published by valve makers";
 
 /// The class's number, e.g. 150.
@@ -59,38 +83,42 @@ pub fn class_number(class: FlangeClass) -> u32 {
 /// `temperature` °C, MPa gauge; an error for a group whose table is not shipped
 /// or a temperature outside −29 to 538 °C.
 pub fn rating(group: &str, class: FlangeClass, temperature: f64) -> Result<f64, CalcError> {
-    let row = match group {
-        "1.1" => {
-            &GROUP_1_1[match class {
-                FlangeClass::C150 => 0,
-                FlangeClass::C300 => 1,
-                FlangeClass::C600 => 2,
-                FlangeClass::C900 => 3,
-            }]
-        }
+    let k = match class {
+        FlangeClass::C150 => 0,
+        FlangeClass::C300 => 1,
+        FlangeClass::C600 => 2,
+        FlangeClass::C900 => 3,
+    };
+    let (row, table): (&[f64], &str) = match group {
+        "1.1" => (&GROUP_1_1[k], "Table 2-1.1"),
+        "2.2" => (&GROUP_2_2[k], "Table 2-2.2"),
+        "2.3" => (&GROUP_2_3[k], "Table 2-2.3"),
         _ => {
             return Err(CalcError::Input {
                 entity: format!("B16.5 group {group}"),
                 field: "group".into(),
                 value: f64::NAN,
-                rule: "only the Group 1.1 rating table (Table 2-1.1) is shipped".into(),
+                rule: "only the Group 1.1, 2.2 and 2.3 rating tables (Tables 2-1.1, 2-2.2, \
+                       2-2.3) are shipped"
+                    .into(),
             });
         }
     };
-    let (first, last) = (TEMPERATURES[0], TEMPERATURES[TEMPERATURES.len() - 1]);
+    let temps = &TEMPERATURES[..row.len()];
+    let (first, last) = (temps[0], temps[temps.len() - 1]);
     if !(temperature.is_finite() && (first..=last).contains(&temperature)) {
         return Err(CalcError::Input {
             entity: format!("B16.5 group {group} class {}", class_number(class)),
             field: "temperature".into(),
             value: temperature,
-            rule: format!("Table 2-1.1 covers {first} to {last} °C"),
+            rule: format!("{table} is shipped for {first} to {last} °C"),
         });
     }
-    let i = TEMPERATURES
+    let i = temps
         .windows(2)
         .position(|w| temperature <= w[1])
-        .unwrap_or(TEMPERATURES.len() - 2);
-    let (t0, t1) = (TEMPERATURES[i], TEMPERATURES[i + 1]);
+        .unwrap_or(temps.len() - 2);
+    let (t0, t1) = (temps[i], temps[i + 1]);
     let bar = row[i] + (temperature - t0) / (t1 - t0) * (row[i + 1] - row[i]);
     Ok(bar * 0.1)
 }

@@ -1,12 +1,14 @@
 //! The calculation report as one self-contained HTML page, in the shape handed
 //! to an inspector: per vessel the design data, each pressure part's calculation
-//! (formula, inputs, result, paragraph), the nozzle tables (UG-45, UG-37, B16.5), the MAWP /
+//! (formula, inputs, result, paragraph), the nozzle tables (UG-45, UG-37, B16.5), the
+//! external-pressure and saddle tables (`report_tables`), the MAWP /
 //! MDMT summary, the hydrotest, the weights with their centres of gravity, and
 //! the deficiencies. Printed to PDF by headless Chromium (`vesselcad calc -o
 //! report.pdf`).
 
 use std::fmt::Write;
 
+use super::report_tables::{esc, external, head, opt, row, saddles};
 use super::{Calculation, TEST_TEMPERATURE};
 use crate::design::VesselDesign;
 use crate::weights::Weights;
@@ -19,33 +21,6 @@ pub struct ReportVessel<'a> {
     pub calculation: &'a Calculation,
     /// Its weights, or why they cannot be computed.
     pub weights: Result<&'a Weights, String>,
-}
-
-fn esc(text: &str) -> String {
-    text.replace('&', "&amp;")
-        .replace('<', "&lt;")
-        .replace('>', "&gt;")
-        .replace('"', "&quot;")
-}
-
-fn row(out: &mut String, cells: &[String]) {
-    out.push_str("<tr>");
-    for c in cells {
-        let _ = write!(out, "<td>{}</td>", esc(c));
-    }
-    out.push_str("</tr>\n");
-}
-
-fn head(out: &mut String, cells: &[&str]) {
-    out.push_str("<tr>");
-    for c in cells {
-        let _ = write!(out, "<th>{}</th>", esc(c));
-    }
-    out.push_str("</tr>\n");
-}
-
-fn opt(v: Option<f64>, digits: usize, unit: &str) -> String {
-    v.map_or("—".into(), |v| format!("{v:.digits$} {unit}"))
 }
 
 const STYLE: &str = "body{font-family:sans-serif;font-size:10pt;margin:18mm}\
@@ -303,8 +278,10 @@ fn vessel(o: &mut String, v: &ReportVessel) {
             }
             row(o, &cells);
         }
-        o.push_str("</table><p>UG-37 area replacement, Fig. UG-37.1, radial nozzle set through the wall, no inward projection: A = d·tr; A1 = max(d, 2(t + tn))·(t − tr); A2 = min(5(tn − trn)·t, 5(tn − trn)·tn), with a pad min(5(tn − trn)·t, 2(tn − trn)(2.5·tn + te)); A41, A42 = leg² of the smallest UW-16(d) welds; A5 = pad within the parallel limit max(d, Rn + tn + t) each side. Neck, wall, pad and flange of the vessel's material (fr = 1); F = E1 = 1. B16.5 rating at the design temperature from Table 2-1.1 (Group 1.1), interpolated; the vessel's hydrotest must not exceed 1.5 × the 38 °C rating.</p>\n");
+        o.push_str("</table><p>UG-37 area replacement, Fig. UG-37.1, radial nozzle set through the wall, no inward projection: A = d·tr; A1 = max(d, 2(t + tn))·(t − tr); A2 = min(5(tn − trn)·t, 5(tn − trn)·tn), with a pad min(5(tn − trn)·t, 2(tn − trn)(2.5·tn + te)); A41, A42 = leg² of the smallest UW-16(d) welds; A5 = pad within the parallel limit max(d, Rn + tn + t) each side. Neck, wall, pad and flange of the vessel's material (fr = 1); F = E1 = 1. B16.5 rating at the design temperature from Table 2-1.1, 2-2.2 or 2-2.3 (Groups 1.1, 2.2, 2.3), interpolated; the vessel's hydrotest must not exceed 1.5 × the 38 °C rating.</p>\n");
     }
+    external(o, &v.calculation.parts);
+    saddles(o, &calc.saddles);
     o.push_str("<h3>MAWP / MDMT summary and hydrotest</h3><table>\n");
     row(
         o,

@@ -12,7 +12,8 @@
 //! On top of the formulas: a vessel's design conditions in calculation units
 //! ([`conditions`]), one pressure part ([`part_calc`]), UG-45 for a nozzle neck
 //! with UG-37 reinforcement ([`mod@reinforcement`]) and the B16.5 flange rating
-//! ([`flange`]) ([`nozzle_calc`]) and a whole vessel ([`calculate`]). The ECS system
+//! ([`flange`]) ([`nozzle_calc`]), the supports of a vessel (Zick's saddle
+//! stresses, [`saddles`]) and a whole vessel ([`calculate`]). The ECS system
 //! `systems::update_calculations` keeps the same figures live as components.
 
 pub mod api650;
@@ -27,10 +28,13 @@ pub mod mdmt;
 mod nozzle;
 mod part;
 pub mod reinforcement;
+mod report_tables;
+pub mod saddles;
 mod shape;
 pub mod shells;
 mod summary;
 pub mod vessel;
+pub mod zick;
 
 pub use conditions::{Conditions, DEFAULT_JOINT_EFFICIENCY, TEST_TEMPERATURE, code_of, conditions};
 pub use error::CalcError;
@@ -41,4 +45,5 @@ pub use nozzle::{NozzleCalc, PIPE_UNDERTOLERANCE, nozzle_calc};
 pub use part::{Input, PartCalc, part_calc, pressure_shape};
 pub use reinforcement::{Opening, Reinforcement, reinforcement};
 pub use shape::{Formula, Shape, Strength, mawp, required_thickness};
-pub use summary::{Calculation, Liquid, VesselCalc, calculate};
+pub use summary::{Calculation, Liquid, VesselCalc, calculate, support_calcs};
+pub use vessel::GRAVITY;

@@ -80,9 +80,13 @@ pub fn nozzle_calc(
 ) -> Result<NozzleCalc, String> {
     let fail = |e: String| format!("{mark}: {e}");
     if c.code == "API 650" {
-        return Err(fail(
-            "API 650 shell nozzles (5.7, Tables 5-6 to 5-8) are not calculated".into(),
-        ));
+        return Err(fail(if host.kind == "shell" {
+            "API 650 shell nozzles (5.7, Tables 5-6 to 5-8) are not calculated".into()
+        } else if host.shape == "tank bottom plate" {
+            "API 650 bottom connections (5.7, Fig. 5-14 to 5-16) are not calculated".into()
+        } else {
+            "API 650 roof nozzles (5.8.5, Tables 5-16 to 5-19) are not calculated".into()
+        }));
     }
     let row = pipe(nozzle.nps);
     let nominal = row.wall(nozzle.schedule).map_err(|e| fail(e.to_string()))?;
@@ -108,6 +112,14 @@ pub fn nozzle_calc(
     });
     let mut notes = Vec::new();
     let opening = match host.thickness {
+        _ if host.pressure <= 0.0 => {
+            notes.push(format!(
+                "{mark}: no internal pressure on {}; UG-37(d) reinforcement under external \
+                 pressure is not calculated",
+                host.id
+            ));
+            None
+        }
         _ if host.shape == "flat head" => {
             notes.push(format!(
                 "{mark}: UG-39 (openings in flat heads) is not calculated"

@@ -206,14 +206,27 @@ pub fn part_calc(
         corrosion_allowance: c.corrosion_allowance,
     };
     let pressure = c.pressure + static_head;
-    let required = required_thickness(&shape, pressure, &hot).map_err(fail)?;
     let seamless = Strength {
         joint_efficiency: 1.0,
         ..hot
     };
-    let required_seamless = required_thickness(&shape, pressure, &seamless)
-        .map_err(fail)?
-        .value;
+    let (required, required_seamless) = if pressure > 0.0 {
+        (
+            required_thickness(&shape, pressure, &hot).map_err(fail)?,
+            required_thickness(&shape, pressure, &seamless)
+                .map_err(fail)?
+                .value,
+        )
+    } else {
+        // Vacuum only and no liquid on the part: no internal-pressure thickness;
+        // UG-28 / UG-33 (below) and the UG-16(b) minimum govern.
+        let none = Formula {
+            value: c.corrosion_allowance,
+            paragraph: "UG-28",
+            formula: "no internal pressure: t = CA; the wall is checked under external pressure",
+        };
+        (none, c.corrosion_allowance)
+    };
     let minimum = minimum_thickness(c.corrosion_allowance)
         .map_err(fail)?
         .value;
@@ -309,7 +322,7 @@ pub fn part_calc(
 
 /// A storage tank's part under API 650: a shell course by the one-foot method
 /// (5.6.3.2) with the design liquid level at the top of the shell and the 5.6.1.1
-/// minimum; bottom and roof plates are not calculated (an error saying so).
+/// minimum; a head is its bottom or roof plate (`tank_plate`).
 fn tank_part(
     id: &str,
     geometry: &PartGeometry,
@@ -321,9 +334,9 @@ fn tank_part(
 ) -> Result<Option<PartCalc>, String> {
     let PartGeometry::Shell(shell) = geometry else {
         return match geometry {
-            PartGeometry::Head(_) => Err(format!(
-                "{id}: API 650 bottom (5.4) and roof (5.10) plates are not calculated"
-            )),
+            PartGeometry::Head(h) => {
+                tank_plate(id, h, thickness, static_head, openings, c).map(Some)
+            }
             _ => Ok(None),
         };
     };
@@ -420,4 +433,70 @@ fn external_check(geometry: &PartGeometry, t: f64, c: &Conditions) -> Result<Ext
         }
         _ => Err("UG-28/UG-33: reducers and cones under external pressure are not computed".into()),
     }
+}
+
+/// A tank's bottom or roof by `api650::plate`: the bottom is the head under the
+/// liquid (static head > 0; the design liquid level is the top of the shell, so
+/// the roof carries none).
+fn tank_plate(
+    id: &str,
+    h: &crate::parts::heads::Head,
+    thickness: Option<f64>,
+    static_head: f64,
+    openings: Vec<String>,
+    c: &Conditions,
+) -> Result<PartCalc, String> {
+    let bottom = static_head > 0.0;
+    let p = super::api650::plate(h.kind, h.outside_diameter, bottom, c.corrosion_allowance)
+        .map_err(|e| format!("{id}: {e}"))?;
+    let deficiency = thickness.and_then(|t| {
+        (t < p.required).then(|| {
+            format!(
+                "{id}: {} {t} mm is thinner than {}'s {:.2} mm ({})",
+                p.shape, p.paragraph, p.required, p.formula
+            )
+        })
+    });
+    let mut inputs = vec![Input {
+        name: "D",
+        value: h.outside_diameter * 1e-3,
+        unit: "m",
+    }];
+    if bottom {
+        inputs.push(Input {
+            name: "CA",
+            value: c.corrosion_allowance,
+            unit: "mm",
+        });
+    }
+    if let Some(t) = p.self_supporting {
+        inputs.push(Input {
+            name: "t self-supporting (5.10.5.1, info)",
+            value: t,
+            unit: "mm",
+        });
+    }
+    Ok(PartCalc {
+        id: id.to_string(),
+        kind: "head",
+        shape: p.shape,
+        pressure: static_head,
+        static_head,
+        thickness,
+        required: Formula {
+            value: p.required,
+            paragraph: p.paragraph,
+            formula: p.formula,
+        },
+        required_seamless: p.required,
+        inside_diameter: h.outside_diameter - 2.0 * thickness.unwrap_or(0.0),
+        minimum: p.required,
+        mawp: None,
+        mawp_new_cold: None,
+        inputs,
+        openings,
+        mdmt: None,
+        external: None,
+        deficiency,
+    })
 }

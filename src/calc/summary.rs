@@ -7,6 +7,7 @@
 
 use serde::Serialize;
 
+use super::saddles::{SaddleCase, saddle_cases};
 use super::vessel::{PartPressure, hydrotest_pressure, static_head, vessel_mawp};
 use super::{
     Conditions, Formula, MaterialTable, NozzleCalc, PartCalc, code_of, conditions, nozzle_calc,
@@ -15,6 +16,7 @@ use super::{
 use crate::constraints::{PartGeometry, ResolvedVessel};
 use crate::design::{OperatingDesign, VesselDesign, VesselKind, WATER_DENSITY};
 use crate::operating::thickness;
+use crate::weights::weights;
 
 /// The liquid a vessel holds, as the static head needs it.
 #[derive(Clone, Copy, Debug, PartialEq)]
@@ -113,6 +115,9 @@ pub struct VesselCalc {
     pub deficiencies: Vec<String>,
     /// What could not be calculated, and why.
     pub problems: Vec<String>,
+    /// The saddles checked by Zick's method, per saddle and load case (empty
+    /// for a vessel without saddles); filled by [`support_calcs`].
+    pub saddles: Vec<SaddleCase>,
 }
 
 impl VesselCalc {
@@ -148,6 +153,12 @@ impl VesselCalc {
             .collect();
         let top = vessel_mawp(&pressures).ok().filter(|(m, _)| *m > 0.0);
         let hydrotest = match (&top, &conditions) {
+            (_, Some(c)) if c.vacuum_only() => Some(Formula {
+                value: 1.3 * c.external_pressure,
+                paragraph: "UG-99(f)",
+                formula: "vacuum only: internal test P_test = 1.3 · (atmospheric − minimum \
+                          internal absolute pressure) = 1.3 · P_external",
+            }),
             (Some((m, _)), Some(c)) => hydrotest_pressure(*m, &[(c.stress_test, c.stress)]).ok(),
             _ => None,
         };
@@ -176,7 +187,45 @@ impl VesselCalc {
             hydrotest,
             deficiencies,
             problems,
+            saddles: Vec::new(),
         }
+    }
+}
+
+/// Adds the supports' calculations of vessel `design` resolved as `resolved` to
+/// its gathered figures `vessel`: the weights of the one weight model, and for a
+/// horizontal vessel on two saddles Zick's stresses in the operating and
+/// hydrotest cases; failures become deficiencies, what cannot be computed a
+/// problem. Nothing for a vessel without conditions or supports.
+pub fn support_calcs(design: &VesselDesign, resolved: &ResolvedVessel, vessel: &mut VesselCalc) {
+    let Some(c) = &vessel.conditions else {
+        return;
+    };
+    let has_saddles = resolved
+        .parts
+        .iter()
+        .any(|p| matches!(p.geometry, PartGeometry::Saddle(_)));
+    if !has_saddles || design.kind != VesselKind::Horizontal {
+        return;
+    }
+    let w = match weights(design, resolved) {
+        Ok(w) => w,
+        Err(e) => {
+            vessel
+                .problems
+                .push(format!("saddles: no weights for Zick's method: {e}"));
+            return;
+        }
+    };
+    let test = vessel.hydrotest.as_ref().map(|h| h.value);
+    match saddle_cases(design, resolved, c, &w, test) {
+        Ok(cases) => {
+            for case in &cases {
+                vessel.deficiencies.extend(case.deficiencies());
+            }
+            vessel.saddles = cases;
+        }
+        Err(e) => vessel.problems.push(format!("saddles: {e}")),
     }
 }
 
@@ -255,7 +304,7 @@ pub fn calculate(
             }
         }
     }
-    let vessel = VesselCalc::gather(
+    let mut vessel = VesselCalc::gather(
         &design.tag,
         design.kind,
         conds,
@@ -263,6 +312,7 @@ pub fn calculate(
         &nozzles.iter().collect::<Vec<_>>(),
         problems,
     );
+    support_calcs(design, resolved, &mut vessel);
     Calculation {
         vessel,
         parts,

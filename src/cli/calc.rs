@@ -286,6 +286,30 @@ fn print_text(c: &Calculated) {
         ),
         Err(e) => println!("  weights:          not computed: {e}"),
     }
+    for s in &v.saddles {
+        let worst = s
+            .checks
+            .iter()
+            .max_by(|a, b| (a.stress / a.allowable).total_cmp(&(b.stress / b.allowable)));
+        if let Some(w) = worst {
+            println!(
+                "  {:<8} Zick {:<9} Q {:.1} kN, A {:.0} mm; highest: {} {:.1} of {:.1} MPa ({}) {}",
+                s.saddle,
+                s.case,
+                s.input.load * 1e-3,
+                s.input.a,
+                w.name,
+                w.stress,
+                w.allowable,
+                w.rule,
+                if s.checks.iter().all(|c| c.ok()) {
+                    "ok"
+                } else {
+                    "DEFICIENT"
+                }
+            );
+        }
+    }
     for d in &v.deficiencies {
         println!("  DEFICIENCY:       {d}");
     }

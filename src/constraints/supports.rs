@@ -155,6 +155,18 @@ pub(crate) fn place(
                     );
                     continue;
                 }
+                if let Some(w) = s.wear_plate
+                    && !(w.is_finite() && w > 0.0)
+                {
+                    report.push(
+                        format!("{path}.wear_plate"),
+                        Some(id),
+                        "wear_plate",
+                        w,
+                        "must be a finite thickness > 0 mm (leave it out for no wear plate)",
+                    );
+                    continue;
+                }
                 if !s.width.is_finite() || s.width >= tangent_length / 2.0 {
                     report.push(
                         format!("{path}.width"),

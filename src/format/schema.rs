@@ -313,6 +313,11 @@ pub struct SaddleDesign {
     /// Web thickness, mm; default 12.
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub web_thickness: Option<f64>,
+    /// Thickness of a wear plate welded to the shell over the saddle and reaching
+    /// at least R/10 above its horns, mm: Zick's saddle check counts it in the
+    /// horn and bottom stresses. Default: none.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub wear_plate: Option<f64>,
 }
 
 /// Pipe legs around a small vertical vessel.

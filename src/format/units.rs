@@ -87,6 +87,7 @@ fn for_each_length(design: &mut Design, mut f: impl FnMut(&mut f64)) {
                     scale(&mut p.width);
                     scale(&mut p.height);
                     scale_opt(&mut p.web_thickness, &mut scale);
+                    scale_opt(&mut p.wear_plate, &mut scale);
                 }
                 PartDesign::Legs(p) => scale(&mut p.length),
                 PartDesign::Lugs(p) => {

@@ -223,6 +223,7 @@ fn drum(rng: &mut SplitMix64, index: usize) -> VesselDesign {
             width: 300.0,
             height,
             web_thickness: None,
+            wear_plate: None,
         }));
     }
     let boot = rng.chance(0.3);

@@ -70,8 +70,9 @@ fn support_volume(design: &PartDesign, part: &ResolvedPart, shell_thickness: f64
         }
         // Web (from the bearing plane up to the contact arc, and to the chord's
         // level beyond it), wear plate along the arc, and base plate; wear plate
-        // as thick as the web.
-        (PartGeometry::Saddle(s), _) => {
+        // as thick as the web. A design's separate `wear_plate` on the shell:
+        // the saddle's width, over the contact arc and R/10 beyond each horn.
+        (PartGeometry::Saddle(s), design) => {
             let r = s.shell_diameter / 2.0;
             let half = (s.contact_angle.to_radians() / 2.0).min(PI / 2.0);
             let c = r * half.sin();
@@ -81,7 +82,13 @@ fn support_volume(design: &PartDesign, part: &ResolvedPart, shell_thickness: f64
             let web = (under_arc + beyond) * s.web_thickness;
             let wear = 2.0 * half * r * s.width * s.web_thickness;
             let base = s.base_length * s.base_width * s.base_thickness;
-            web + wear + base
+            let shell_plate = match design {
+                PartDesign::Saddle(d) => d
+                    .wear_plate
+                    .map_or(0.0, |t| (2.0 * half + 0.2) * r * s.width * t),
+                _ => 0.0,
+            };
+            web + wear + base + shell_plate
         }
         // Standard-weight pipe of the leg's size, and a base plate of side twice
         // the pipe's outside diameter.
