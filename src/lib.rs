@@ -60,6 +60,7 @@ pub mod design;
 pub mod drawing;
 pub mod exchange;
 pub mod export;
+pub mod fab;
 pub mod fem;
 pub mod format;
 pub mod json_schema;

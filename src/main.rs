@@ -48,6 +48,9 @@ enum Command {
     /// Write the exact model as STEP (AP214): sewn B-spline faces, shells,
     /// nozzle connection points.
     Export(cli::export::ExportArgs),
+    /// Plan one vessel's fabrication: flat patterns, seams, plate DXFs,
+    /// nesting.
+    Fab(cli::fab::FabArgs),
     /// Write one vessel's shell finite-element model (CalculiX .inp, Gmsh .msh,
     /// VTU) and optionally solve it with ccx.
     Fem(cli::fem::FemArgs),
@@ -74,6 +77,7 @@ fn main() -> ExitCode {
         Command::Simulate(args) => cli::simulate::run(args),
         Command::Bench(args) => cli::bench::run(args),
         Command::Export(args) => cli::export::run(args),
+        Command::Fab(args) => cli::fab::run(args),
         Command::Fem(args) => cli::fem::run(args),
         Command::Store(args) => cli::store::run(args),
     }

@@ -1,6 +1,6 @@
 //! The `vesselcad` command line, one file per command, each a thin layer over
 //! the library that parses arguments, prints and picks the exit status: `build`,
-//! `check`, `serve`, `drawing`, `info`, `plant`, `simulate`, `bench`, `export`, `fem`,
+//! `check`, `serve`, `drawing`, `info`, `plant`, `simulate`, `bench`, `export`, `fab`, `fem`,
 //! `store`.
 //! [`output`] is their standard output (quiet on a closed pipe), [`progress`]
 //! the progress bar and [`alloc`] the heap measurement of `info --memory` and
@@ -13,6 +13,7 @@ pub mod calc;
 pub mod check;
 pub mod drawing;
 pub mod export;
+pub mod fab;
 pub mod fem;
 pub mod info;
 pub mod output;
