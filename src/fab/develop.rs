@@ -333,7 +333,12 @@ fn develop_part(part: &ResolvedPart, index: usize, path: String, t: f64) -> Opti
             let base = top + s.height * s.flare_angle.to_radians().tan();
             rolled(RolledKind::Skirt, (0.0, s.height), (base, top))
         }
-        PartGeometry::Head(h) => Developed::Head(head_blank(h, index, &part.id, path, t)?),
+        PartGeometry::Head(h) => match head_blank(h, index, &part.id, path, t) {
+            Some(blank) => Developed::Head(blank),
+            None => Developed::Skipped(format!(
+                "head: its mid-surface (t = {t} mm) is not a valid head of its kind, no blank"
+            )),
+        },
         PartGeometry::Boot(_) => {
             Developed::Skipped("boot: developed with its drum in a later step".into())
         }

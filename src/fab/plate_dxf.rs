@@ -13,8 +13,8 @@ use dxf::tables::Layer;
 use dxf::{Color, Drawing, LwPolylineVertex, Point};
 use glam::{DVec2, DVec3};
 
-use super::FabError;
 use super::develop::{Outline, Rolled};
+use super::error::FabError;
 use super::plates::Plate;
 use super::seams::Course;
 
@@ -81,15 +81,19 @@ pub fn plate_drawing(plate: &Plate, grade: &str, rolled: &Rolled, course: &Cours
             outer,
             angle,
         } => {
-            // Bisector along +y, apex at the origin; arcs as bulges tan(Δ/4).
+            // Bisector along +y, apex at the origin; each arc as two exact
+            // bulges tan(Δ/4) of half the angle (a bulge spans less than a
+            // full turn).
             let at =
                 |r: f64, a: f64| DVec2::new(r * (FRAC_PI_2 + a).cos(), r * (FRAC_PI_2 + a).sin());
             let half = 0.5 * angle;
-            let bulge = (angle / 4.0).tan();
+            let bulge = (angle / 8.0).tan();
             let points = vec![
                 vertex(at(outer, -half), bulge),
+                vertex(at(outer, 0.0), bulge),
                 vertex(at(outer, half), 0.0),
                 vertex(at(inner, half), -bulge),
+                vertex(at(inner, 0.0), -bulge),
                 vertex(at(inner, -half), 0.0),
             ];
             d.add_entity(entity("CUT", closed(points)));

@@ -26,7 +26,7 @@
 //! across a seam, two openings or pads that overlap or nest, are **errors**
 //! naming both entities.
 
-use std::f64::consts::{PI, TAU};
+use std::f64::consts::TAU;
 
 use glam::{DVec2, DVec3};
 
@@ -146,7 +146,24 @@ pub fn lay_out(
     for &ri in &order {
         let rolled = &developments.rolled[ri];
         let keep = keeps(tag, openings, ri);
-        let joints = course_joints(rolled, &keep, shop);
+        let (joints, faults) = course_joints(rolled, &keep, shop);
+        // Crossings are loop-validity errors (below); the rest deficiencies.
+        for (i, z, crossing) in faults {
+            if !crossing {
+                layout.deficiencies.push(RuleViolation {
+                    path: keep[i].cut.path.clone(),
+                    entity: keep[i].entity.clone(),
+                    field: "elevation".into(),
+                    value: format!("{:.3}", keep[i].cut.centre.y),
+                    rule: format!(
+                        "the circumferential seam of {}/{} at z = {z:.1} mm is closer than the clearance {} mm",
+                        tag,
+                        rolled.id,
+                        shop.clearance_for(rolled.thickness)
+                    ),
+                });
+            }
+        }
         let at = |z: f64| rolled.frame.transform_point3(DVec3::new(0.0, 0.0, z));
         let (first, last) = (at(rolled.z.0), at(rolled.z.1));
         let flipped = first.z > last.z;
@@ -178,7 +195,7 @@ pub fn lay_out(
             let id = format!("{}-C{number}", rolled.id);
             let lower = previous.map(|c| layout.courses[c].clone());
             let lower = lower.as_ref().map(|c| (c, &developments.rolled));
-            let course = place_seams(ri, id, band, rolled, &keep, lower, shop, &mut layout);
+            let course = place_seams(tag, ri, id, band, rolled, &keep, lower, shop, &mut layout);
             layout.courses.push(course);
             previous = Some(layout.courses.len() - 1);
         }
@@ -194,50 +211,84 @@ pub fn lay_out(
     layout
 }
 
-/// The course joints of `rolled` (part-local z, both ends included), inner
-/// joints moved clear of openings and pads where the plate width allows.
-fn course_joints(rolled: &Rolled, keep: &[Keep], shop: &Shop) -> Vec<f64> {
+/// A course joint too close to a loop: (loop index in the keep list, joint
+/// z, whether it crosses the loop).
+type JointFault = (usize, f64, bool);
+
+/// The course joints of `rolled` (part-local z, both ends included): the
+/// fewest courses of at most the plate width, each inner joint moved within
+/// the plate width to the nearest height clear of every opening and pad;
+/// one or two more courses where that is what clears them. Returns the
+/// joints and the faults left.
+fn course_joints(rolled: &Rolled, keep: &[Keep], shop: &Shop) -> (Vec<f64>, Vec<JointFault>) {
     let (z0, z1) = rolled.z;
     let slope = rolled.taper().hypot(1.0);
     let width = shop.max_plate_width / slope;
-    let n = (((z1 - z0) / width) - 1e-9).ceil().max(1.0) as usize;
+    let fewest = (((z1 - z0) / width) - 1e-9).ceil().max(1.0) as usize;
     let clearance = shop.clearance_for(rolled.thickness);
-    let mut joints = vec![z0];
-    for j in 1..n {
-        let prev = *joints.last().expect("starts with z0");
-        let remaining = (n - j) as f64;
-        let lo = (z1 - remaining * width).max(prev + 1e-3);
-        let hi = (prev + width).min(z1 - 1e-3);
-        let preferred = z0 + (z1 - z0) * j as f64 / n as f64;
-        // Heights to avoid: each loop's z-range widened by the clearance.
-        let forbidden: Vec<(f64, f64)> = keep
-            .iter()
-            .map(|k| (k.z.0 - clearance, k.z.1 + clearance))
-            .collect();
-        let ok = |z: f64| forbidden.iter().all(|&(a, b)| z <= a || z >= b);
-        let mut candidates = vec![preferred.clamp(lo, hi)];
-        for &(a, b) in &forbidden {
-            for z in [a, b] {
-                if (lo..=hi).contains(&z) {
-                    candidates.push(z);
+    let faults_at = |z: f64| -> Vec<JointFault> {
+        keep.iter()
+            .enumerate()
+            .filter(|(_, k)| z > k.z.0 - clearance && z < k.z.1 + clearance)
+            .map(|(i, k)| (i, z, z > k.z.0 && z < k.z.1))
+            .collect()
+    };
+    let score = |f: &[JointFault]| (f.iter().filter(|x| x.2).count(), f.len());
+    let attempt = |n: usize| -> (Vec<f64>, Vec<JointFault>) {
+        let mut joints = vec![z0];
+        let mut faults = Vec::new();
+        for j in 1..n {
+            let prev = *joints.last().expect("starts with z0");
+            let remaining = (n - j) as f64;
+            let lo = (z1 - remaining * width).max(prev + 1e-3);
+            let hi = (prev + width).min(z1 - 1e-3);
+            let preferred = (z0 + (z1 - z0) * j as f64 / n as f64).clamp(lo, hi);
+            let mut candidates = vec![preferred];
+            for k in keep {
+                for z in [
+                    k.z.0 - clearance,
+                    k.z.1 + clearance,
+                    k.z.0 - 1e-3,
+                    k.z.1 + 1e-3,
+                ] {
+                    if (lo..=hi).contains(&z) {
+                        candidates.push(z);
+                    }
                 }
             }
+            let z = candidates
+                .iter()
+                .copied()
+                .min_by(|&a, &b| {
+                    let (fa, fb) = (faults_at(a), faults_at(b));
+                    score(&fa)
+                        .cmp(&score(&fb))
+                        .then((a - preferred).abs().total_cmp(&(b - preferred).abs()))
+                })
+                .expect("the preferred height is a candidate");
+            faults.extend(faults_at(z));
+            joints.push(z);
         }
-        candidates.sort_by(|a, b| (a - preferred).abs().total_cmp(&(b - preferred).abs()));
-        let z = candidates
-            .iter()
-            .copied()
-            .find(|&z| ok(z))
-            .unwrap_or(candidates[0]);
-        joints.push(z);
+        joints.push(z1);
+        (joints, faults)
+    };
+    let mut best = attempt(fewest);
+    for n in fewest + 1..=fewest + 2 {
+        if best.1.is_empty() {
+            break;
+        }
+        let next = attempt(n);
+        if score(&next.1) < score(&best.1) {
+            best = next;
+        }
     }
-    joints.push(z1);
-    joints
+    best
 }
 
 /// Chooses the longitudinal seams of one course.
 #[expect(clippy::too_many_arguments, reason = "one course's whole context")]
 fn place_seams(
+    tag: &str,
     rolled_index: usize,
     id: String,
     band: (f64, f64),
@@ -336,19 +387,25 @@ fn place_seams(
         }
         None => 0.0,
     };
-    let broken = |start: f64| -> Vec<usize> {
-        avoid
-            .iter()
-            .enumerate()
-            .filter(|(_, a)| {
-                (0..plates).any(|k| angle_gap(start + k as f64 * pitch, a.centre) < a.half)
-            })
-            .map(|(i, _)| i)
-            .collect()
+    // What a start angle breaks: (seams across a loop, rules broken).
+    let broken = |start: f64| -> (usize, Vec<usize>) {
+        let mut crossings = 0;
+        let mut out = Vec::new();
+        for (i, a) in avoid.iter().enumerate() {
+            let gaps = (0..plates).map(|k| angle_gap(start + k as f64 * pitch, a.centre));
+            let nearest = gaps.fold(f64::INFINITY, f64::min);
+            if nearest < a.half {
+                out.push(i);
+            }
+            if nearest < a.crossing_half {
+                crossings += 1;
+            }
+        }
+        (crossings, out)
     };
     let step = (1.0 / r_max).min(pitch / 8.0);
     let tries = (pitch / step).ceil() as usize;
-    let mut best: Option<(f64, Vec<usize>)> = None;
+    let mut best: Option<(f64, (usize, Vec<usize>))> = None;
     for i in 0..=tries {
         // 0, +1, -1, +2, -2, … steps from the preferred angle.
         let offset = if i % 2 == 1 {
@@ -358,15 +415,16 @@ fn place_seams(
         };
         let start = (preferred + offset * step).rem_euclid(pitch);
         let b = broken(start);
-        if b.is_empty() {
+        if b.1.is_empty() {
             best = Some((start, b));
             break;
         }
-        if best.as_ref().is_none_or(|(_, old)| b.len() < old.len()) {
+        let better = |old: &(usize, Vec<usize>)| (b.0, b.1.len()) < (old.0, old.1.len());
+        if best.as_ref().is_none_or(|(_, old)| better(old)) {
             best = Some((start, b));
         }
     }
-    let (start, broken) = best.expect("at least one try");
+    let (start, (_, broken)) = best.expect("at least one try");
     let course = Course {
         rolled: rolled_index,
         id,
@@ -403,7 +461,7 @@ fn place_seams(
             }),
             AvoidKind::Seam => layout.deficiencies.push(RuleViolation {
                 path: rolled.path.clone(),
-                entity: format!("{}", rolled.id),
+                entity: format!("{tag}/{}", rolled.id),
                 field: "seams".into(),
                 value: format!("{:.1} mm", gap * r_min),
                 rule: format!(
@@ -482,10 +540,13 @@ fn check_loops(
 /// Whether two closed loops in surface coordinates cross or one holds the
 /// other (angles compared within π of each other).
 pub fn loops_meet(a: &[DVec2], b: &[DVec2]) -> bool {
-    let ca = a[0].x;
+    // Each loop is continuous in θ; move `b` as a whole by whole turns to
+    // lie nearest `a`.
+    let mean = |p: &[DVec2]| p.iter().map(|q| q.x).sum::<f64>() / p.len() as f64;
+    let turns = ((mean(a) - mean(b)) / TAU).round();
     let b: Vec<DVec2> = b
         .iter()
-        .map(|p| DVec2::new(ca + (p.x - ca + PI).rem_euclid(TAU) - PI, p.y))
+        .map(|p| DVec2::new(p.x + turns * TAU, p.y))
         .collect();
     let bbox = |p: &[DVec2]| {
         p.iter().fold(

@@ -8,7 +8,7 @@ use std::path::Path;
 
 use serde::{Deserialize, Serialize};
 
-use super::FabError;
+use super::error::FabError;
 
 /// The built-in shop data's text, `data/shop.json`.
 pub const BUILTIN_JSON: &str = include_str!("../../data/shop.json");
@@ -181,17 +181,23 @@ impl Shop {
             value: value.to_string(),
             rule: rule.to_string(),
         };
-        let positive = [
+        let plates = [
             ("max_plate_width", self.max_plate_width),
             ("max_plate_length", self.max_plate_length),
             ("sheet_width", self.sheet_width),
             ("sheet_length", self.sheet_length),
-            ("chord_tolerance", self.chord_tolerance),
         ];
-        for (field, value) in positive {
-            if !(value.is_finite() && value > 0.0 && value <= 1e6) {
-                return Err(bad(field, value, "a length in (0, 10^6] mm"));
+        for (field, value) in plates {
+            if !(value.is_finite() && (100.0..=1e5).contains(&value)) {
+                return Err(bad(field, value, "a plate size in [100, 10^5] mm"));
             }
+        }
+        if !(self.chord_tolerance.is_finite() && self.chord_tolerance > 0.0) {
+            return Err(bad(
+                "chord_tolerance",
+                self.chord_tolerance,
+                "a length in (0, 1] mm",
+            ));
         }
         let mut non_negative = vec![
             ("min_stagger", self.min_stagger),
