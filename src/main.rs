@@ -48,8 +48,8 @@ enum Command {
     /// Write the exact model as STEP (AP214): sewn B-spline faces, shells,
     /// nozzle connection points.
     Export(cli::export::ExportArgs),
-    /// Write one vessel's fabrication files: traveler, BOM, weld map (CSV,
-    /// JSON, GLB, SVG).
+    /// Plan one vessel's fabrication: flat patterns, seams, plate DXFs,
+    /// nesting; traveler, BOM, weld map (CSV, JSON, GLB, SVG).
     Fab(cli::fab::FabArgs),
     /// Write one vessel's shell finite-element model (CalculiX .inp, Gmsh .msh,
     /// VTU) and optionally solve it with ccx.

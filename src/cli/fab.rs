@@ -1,15 +1,21 @@
-//! `vesselcad fab <design> --vessel TAG -o out/ [--rules shop_rules.json]`:
-//! the fabrication files of one vessel (see `vesselcad::fab`): the process
-//! plan — traveler (HTML, CSV), BOM, weld map (CSV, JSON, GLB, SVG) — written
-//! into the output directory, with a summary printed.
+//! `vesselcad fab <design> --vessel TAG -o out/ [--shop shop.json] [--rules
+//! shop_rules.json]`: the fabrication files of one vessel (see
+//! `vesselcad::fab`): flat patterns, head blanks, seams with their
+//! deficiencies, one DXF per plate and the nesting; the process plan —
+//! traveler (HTML, CSV), BOM, weld map (CSV, JSON, GLB, SVG) — written into the
+//! output directory with a summary printed (and saved as `summary.txt`).
 
 use std::path::PathBuf;
 use std::process::ExitCode;
 
 use clap::Args;
-use vesselcad::design::{load, resolve};
+use vesselcad::design::load;
+use vesselcad::fab::plate_dxf::write_plate;
 use vesselcad::fab::process_files::write_process_files;
-use vesselcad::fab::{PlanError, ShopRules, process_plan};
+use vesselcad::fab::{
+    BLANK_RULE, FabError, FabPlan, Nesting, Outline, PlanError, ProcessPlan, Shop, ShopRules,
+    plan, process_plan,
+};
 
 use super::output::outln;
 
@@ -24,13 +30,21 @@ pub struct FabArgs {
     /// The output directory (created if missing).
     #[arg(short, long)]
     output: PathBuf,
+    /// Shop data overriding the built-in `data/shop.json` field by field.
+    #[arg(long)]
+    shop: Option<PathBuf>,
     /// Shop rules (operations, precedence, weld preparations, PWHT) replacing
     /// the built-in `data/shop_rules.json`.
     #[arg(long)]
     rules: Option<PathBuf>,
 }
 
-fn fail(error: &PlanError) -> ExitCode {
+fn fail(error: &FabError) -> ExitCode {
+    eprintln!("error: {error}");
+    ExitCode::from(1)
+}
+
+fn plan_failed(error: &PlanError) -> ExitCode {
     eprintln!("error: {error}");
     ExitCode::from(match error {
         PlanError::Io { .. } => 2,
@@ -44,37 +58,77 @@ pub fn run(args: FabArgs) -> ExitCode {
         Ok(d) => d,
         Err(e) => return super::fail(&e),
     };
+    let shop = match &args.shop {
+        Some(path) => match Shop::load(path) {
+            Ok(s) => s,
+            Err(e) => return fail(&e),
+        },
+        None => Shop::default(),
+    };
     let rules = match &args.rules {
         Some(path) => match ShopRules::from_path(path) {
             Ok(r) => r,
-            Err(e) => return fail(&e),
+            Err(e) => return plan_failed(&e),
         },
         None => ShopRules::builtin(),
     };
-    let Some(index) = design.vessels.iter().position(|v| v.tag == args.vessel) else {
-        let known: Vec<&str> = design.vessels.iter().map(|v| v.tag.as_str()).collect();
-        eprintln!(
-            "error: --vessel {}: no such vessel; the design has {}",
-            args.vessel,
-            known.join(", ")
-        );
-        return ExitCode::from(1);
-    };
-    let resolved = match resolve(&design) {
-        Ok(r) => r,
-        Err(e) => return super::fail(&e),
-    };
-    let (vessel, resolved) = (&design.vessels[index], &resolved[index]);
-    let plan = match process_plan(vessel, resolved, &rules) {
+    let plan = match plan(&design, &args.vessel, &shop) {
         Ok(p) => p,
         Err(e) => return fail(&e),
     };
-    let source = args.design.display().to_string();
-    let written = match write_process_files(&plan, resolved.frame, &source, &args.output) {
-        Ok(w) => w,
-        Err(e) => return fail(&e),
+    if let Err(source) = std::fs::create_dir_all(&args.output) {
+        return fail(&FabError::Io {
+            path: args.output.clone(),
+            source,
+        });
+    }
+    let mut lines = developments(&plan);
+    lines.extend(seams(&plan));
+    for plate in &plan.plates {
+        let course = &plan.seams.courses[plate.course_index];
+        let rolled = &plan.developments.rolled[course.rolled];
+        if let Err(e) = write_plate(&args.output, plate, &plan.grade, rolled, course) {
+            return fail(&e);
+        }
+    }
+    lines.push(format!(
+        "{} plate DXF files in {}",
+        plan.plates.len(),
+        args.output.display()
+    ));
+    lines.extend(nesting(&plan.nesting(&shop)));
+    let Some(vessel) = design.vessels.iter().find(|v| v.tag == args.vessel) else {
+        return fail(&FabError::UnknownVessel {
+            tag: args.vessel.clone(),
+        });
     };
-    outln!(
+    let process = match process_plan(vessel, &plan.resolved, &rules) {
+        Ok(p) => p,
+        Err(e) => return plan_failed(&e),
+    };
+    let source = args.design.display().to_string();
+    let written =
+        match write_process_files(&process, plan.resolved.frame, &source, &args.output) {
+            Ok(w) => w,
+            Err(e) => return plan_failed(&e),
+        };
+    lines.push(process_summary(&process));
+    lines.extend(written.iter().map(|p| format!("  wrote {}", p.display())));
+    for line in &lines {
+        outln!("{line}");
+    }
+    let summary = args.output.join("summary.txt");
+    if let Err(source) = std::fs::write(&summary, lines.join("\n") + "\n") {
+        return fail(&FabError::Io {
+            path: summary,
+            source,
+        });
+    }
+    ExitCode::SUCCESS
+}
+
+fn process_summary(plan: &ProcessPlan) -> String {
+    format!(
         "{}: {} BOM lines, {:.1} kg; {} welds, {:.1} m; {} operations in {} levels; PWHT {}",
         plan.vessel,
         plan.bom.lines.len(),
@@ -88,9 +142,106 @@ pub fn run(args: FabArgs) -> ExitCode {
         } else {
             "not required"
         }
-    );
-    for path in written {
-        outln!("  wrote {}", path.display());
+    )
+}
+
+fn seams(plan: &FabPlan) -> Vec<String> {
+    let mut out = vec!["courses:".to_string()];
+    for c in &plan.seams.courses {
+        let rolled = &plan.developments.rolled[c.rolled];
+        let seams: Vec<String> = (0..c.plates)
+            .map(|k| format!("{:.2}", c.seam(k).to_degrees()))
+            .collect();
+        out.push(format!(
+            "  {:<8} z {:>8.1}..{:<8.1} {} plate(s), long seams at {} deg (local to {})",
+            c.id,
+            c.z.0,
+            c.z.1,
+            c.plates,
+            seams.join(", "),
+            rolled.id
+        ));
     }
-    ExitCode::SUCCESS
+    if plan.seams.deficiencies.is_empty() {
+        out.push("seam rules: all met".into());
+    } else {
+        out.push(format!("deficiencies ({}):", plan.seams.deficiencies.len()));
+        for d in &plan.seams.deficiencies {
+            out.push(format!("  {d}"));
+        }
+    }
+    out
+}
+
+fn nesting(n: &Nesting) -> Vec<String> {
+    let mut out = vec![format!(
+        "nesting (first-fit shelves): {} sheet(s), utilisation {:.1} %",
+        n.sheets.len(),
+        100.0 * n.utilisation
+    )];
+    for (i, s) in n.sheets.iter().enumerate() {
+        let ids: Vec<&str> = s.pieces.iter().map(|p| p.id.as_str()).collect();
+        out.push(format!(
+            "  sheet {} t {} mm {:.0} x {:.0}: {:.1} %  {}",
+            i + 1,
+            s.thickness,
+            s.size.x,
+            s.size.y,
+            100.0 * s.utilisation,
+            ids.join(" ")
+        ));
+    }
+    for p in &n.oversize {
+        out.push(format!(
+            "  oversize (special plate): {} {:.0} x {:.0} t {} mm",
+            p.id, p.size.x, p.size.y, p.thickness
+        ));
+    }
+    out
+}
+
+fn developments(plan: &FabPlan) -> Vec<String> {
+    let mut out = Vec::new();
+    out.push(format!("{} ({})", plan.tag, plan.grade));
+    for r in &plan.developments.rolled {
+        let outline = r.outline(std::f64::consts::TAU, r.z.0, r.z.1);
+        let shape = match outline {
+            Outline::Rectangle { width, height } => {
+                format!("rectangle {width:.1} x {height:.1} mm")
+            }
+            Outline::Sector {
+                inner,
+                outer,
+                angle,
+            } => format!(
+                "sector R {inner:.1}..{outer:.1} mm, {:.3} deg",
+                angle.to_degrees()
+            ),
+        };
+        out.push(format!(
+            "  {:<6} t {:>5.1} mm  developed {shape}, {:.3} m²",
+            r.id,
+            r.thickness,
+            outline.area() * 1e-6
+        ));
+    }
+    for h in &plan.developments.heads {
+        out.push(format!(
+            "  {:<6} t {:>5.1} mm  blank diameter {:.1} mm",
+            h.id, h.thickness, h.diameter
+        ));
+    }
+    if !plan.developments.heads.is_empty() {
+        out.push(format!("  (head blanks: {BLANK_RULE})"));
+    }
+    for s in &plan.developments.skipped {
+        out.push(format!("  {:<6} not developed: {}", s.id, s.reason));
+    }
+    for f in &plan.openings.formed {
+        out.push(format!(
+            "  {:<6} opening on {}: marked and cut after forming",
+            f.mark, f.host
+        ));
+    }
+    out
 }

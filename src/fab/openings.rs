@@ -1,0 +1,353 @@
+//! Nozzle openings, reinforcing pads and neck saddle cuts, developed from the
+//! exact intersection of the cutting cylinder with the plate's surface.
+//!
+//! A neck is a cylinder about its axis; a shell course is a cylinder about
+//! the part's axis. For every angle φ about the neck axis the point of the
+//! cutting cylinder (radius ρ) on the course's cylinder (radius R) is the
+//! larger root of a quadratic in the distance along the neck axis, so every
+//! point of a developed outline is a point of the exact intersection curve
+//! (`crossing`), unrolled by `u = R·θ`, `v = z`. The outlines are sampled
+//! densely enough for the shop's chord tolerance (the curve between two
+//! samples stays within it).
+//!
+//! - **Opening** in the course: the cutting cylinder is the neck's outside
+//!   plus the bevel allowance (set-in) or its bore (set-on), on the
+//!   course's mid-surface.
+//! - **Pad**: the pad is the region of the shell's outside covered by a
+//!   cylinder of the pad's diameter; it is developed on its own mid-surface
+//!   (radius `R_o + t_pad/2`) with the neck's hole in it; its footprint on
+//!   the shell's outside is what seams keep clear of.
+//! - **Saddle**: the neck's end, developed on the neck's own mid-surface
+//!   (`x = r·φ`): the length from the cut to the flange's back at each φ,
+//!   the cut being where the neck meets the shell's inside (set-in) or
+//!   outside (set-on).
+//!
+//! Openings on heads and cones are marked and cut after forming; they are
+//! listed, not developed.
+
+use std::f64::consts::{PI, TAU};
+
+use glam::{DAffine3, DVec2, DVec3};
+
+use super::develop::{Developments, RolledKind};
+use super::shop::{Attachment, Shop};
+use crate::constraints::ResolvedVessel;
+use crate::format::RuleViolation;
+use crate::parts::tables::pipe;
+
+/// A neck axis in a course's local frame.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct NeckAxis {
+    /// Neck start (nozzle local origin), mm.
+    pub origin: DVec3,
+    /// Unit radial directions of the neck's φ = 0 and φ = 90°.
+    pub e1: DVec3,
+    /// See `e1`.
+    pub e2: DVec3,
+    /// Unit axis direction, outwards.
+    pub axis: DVec3,
+}
+
+impl NeckAxis {
+    /// The axis of a nozzle whose local frame maps by `nozzle` into the
+    /// vessel frame, seen from a part whose frame is `part`.
+    pub fn new(part: DAffine3, nozzle: DAffine3) -> Self {
+        let m = part.inverse() * nozzle;
+        NeckAxis {
+            origin: m.translation,
+            e1: m.matrix3.x_axis.normalize(),
+            e2: m.matrix3.y_axis.normalize(),
+            axis: m.matrix3.z_axis.normalize(),
+        }
+    }
+
+    /// The point at angle `phi` of the cylinder of radius `rho` about the
+    /// axis that lies on the cylinder of radius `big` about local +Z (the
+    /// outer crossing), and its distance along the axis; `None` where that
+    /// line misses the cylinder.
+    pub fn crossing(&self, rho: f64, big: f64, phi: f64) -> Option<(DVec3, f64)> {
+        let a = self.origin + rho * (phi.cos() * self.e1 + phi.sin() * self.e2);
+        let (ax, bx) = (a.truncate(), self.axis.truncate());
+        let qa = bx.length_squared();
+        let qb = 2.0 * ax.dot(bx);
+        let qc = ax.length_squared() - big * big;
+        let disc = qb * qb - 4.0 * qa * qc;
+        if qa <= 0.0 || disc < 0.0 {
+            return None;
+        }
+        // The larger root, written without cancellation.
+        let root = disc.sqrt();
+        let s = if qb >= 0.0 {
+            (-qb - root) / (2.0 * qa)
+        } else {
+            2.0 * qc / (-qb + root)
+        };
+        let other = if qb >= 0.0 {
+            2.0 * qc / (-qb - root)
+        } else {
+            (-qb + root) / (2.0 * qa)
+        };
+        let s = s.max(other);
+        Some((a + s * self.axis, s))
+    }
+}
+
+/// A closed curve on a course in surface coordinates `(θ, z)`: θ in radians
+/// about the part's axis from its +X, unwrapped to be continuous about the
+/// curve's centre; z along the part's axis, mm.
+pub type SurfaceLoop = Vec<DVec2>;
+
+/// A reinforcing pad developed as the region of the shell it covers.
+#[derive(Clone, Debug, PartialEq)]
+pub struct PadPiece {
+    /// Pad outside diameter, mm.
+    pub od: f64,
+    /// Thickness, mm.
+    pub thickness: f64,
+    /// Its footprint on the shell's outside, surface coordinates.
+    pub footprint: SurfaceLoop,
+    /// Developed outline on the pad's mid-surface, centred on the nozzle
+    /// axis, mm.
+    pub outline: Vec<DVec2>,
+    /// Developed hole for the neck, same frame, mm.
+    pub hole: Vec<DVec2>,
+}
+
+impl PadPiece {
+    /// Developed area (outline less hole, polygon areas), mm².
+    pub fn area(&self) -> f64 {
+        polygon_area(&self.outline).abs() - polygon_area(&self.hole).abs()
+    }
+}
+
+/// One nozzle's cuts on a cylindrical course.
+#[derive(Clone, Debug, PartialEq)]
+pub struct NozzleCut {
+    /// Index of the nozzle in the resolved vessel.
+    pub nozzle: usize,
+    /// Mark.
+    pub mark: String,
+    /// JSON path, `vessels[0].nozzles[3]`.
+    pub path: String,
+    /// Index in [`Developments::rolled`] of its course.
+    pub rolled: usize,
+    /// The axis in the course's frame.
+    pub neck: NeckAxis,
+    /// Radius of the cutting cylinder, mm.
+    pub cut_radius: f64,
+    /// Where the axis meets the course's mid-surface, `(θ, z)`.
+    pub centre: DVec2,
+    /// The opening on the course's mid-surface.
+    pub hole: SurfaceLoop,
+    /// The pad, if any.
+    pub pad: Option<PadPiece>,
+    /// The neck's end developed on its mid-surface: `(r·φ, length from the
+    /// cut to the flange's back)`, φ from 0 to 360° inclusive.
+    pub saddle: Vec<DVec2>,
+}
+
+/// A nozzle whose opening is cut after forming.
+#[derive(Clone, Debug, PartialEq)]
+pub struct FormedOpening {
+    /// Mark.
+    pub mark: String,
+    /// Host part id.
+    pub host: String,
+}
+
+/// The openings of one vessel.
+#[derive(Clone, Debug, Default, PartialEq)]
+pub struct Openings {
+    /// Cuts on cylindrical courses, in nozzle order.
+    pub cuts: Vec<NozzleCut>,
+    /// Openings on heads and cones, cut after forming.
+    pub formed: Vec<FormedOpening>,
+}
+
+/// Samples for a curve of radius `rho` within `tolerance` (chord sagitta),
+/// with a factor of two to spare for the shell's curvature.
+pub fn samples(rho: f64, tolerance: f64) -> usize {
+    let ratio = (1.0 - tolerance / rho.max(tolerance)).clamp(-1.0, 1.0);
+    let n = (2.0 * PI / ratio.acos()).ceil() * 2.0;
+    (n as usize).clamp(32, 20_000)
+}
+
+/// Signed area of a closed polygon (shoelace), mm².
+pub fn polygon_area(points: &[DVec2]) -> f64 {
+    let n = points.len();
+    (0..n)
+        .map(|i| points[i].perp_dot(points[(i + 1) % n]))
+        .sum::<f64>()
+        * 0.5
+}
+
+/// θ of `p` unwrapped to within π of `about`.
+fn theta_near(p: DVec3, about: f64) -> f64 {
+    let t = p.y.atan2(p.x);
+    about + (t - about + PI).rem_euclid(TAU) - PI
+}
+
+/// The loop where the cylinder of radius `rho` about `neck` meets the
+/// cylinder of radius `big`, in surface coordinates about `centre_theta`;
+/// `None` where part of it misses.
+pub fn surface_loop(
+    neck: &NeckAxis,
+    rho: f64,
+    big: f64,
+    centre_theta: f64,
+    n: usize,
+) -> Option<SurfaceLoop> {
+    (0..n)
+        .map(|i| {
+            let phi = TAU * i as f64 / n as f64;
+            neck.crossing(rho, big, phi)
+                .map(|(p, _)| DVec2::new(theta_near(p, centre_theta), p.z))
+        })
+        .collect()
+}
+
+/// Finds every nozzle's cuts.
+///
+/// # Errors
+///
+/// A violation per nozzle whose neck or pad does not lie wholly on its
+/// course, or whose pipe schedule is not listed.
+pub fn cut_openings(
+    vessel_index: usize,
+    resolved: &ResolvedVessel,
+    developments: &Developments,
+    shop: &Shop,
+) -> Result<Openings, Vec<RuleViolation>> {
+    let mut out = Openings::default();
+    let mut errors = Vec::new();
+    for (index, nozzle) in resolved.nozzles.iter().enumerate() {
+        let path = format!("vessels[{vessel_index}].nozzles[{index}]");
+        let entity = format!("{}/{}", resolved.tag, nozzle.mark);
+        let host = &resolved.parts[nozzle.host];
+        let found = developments
+            .rolled
+            .iter()
+            .position(|r| r.part == nozzle.host && r.kind == RolledKind::Course);
+        let Some(rolled_index) = found else {
+            out.formed.push(FormedOpening {
+                mark: nozzle.mark.clone(),
+                host: host.id.clone(),
+            });
+            continue;
+        };
+        let course = &developments.rolled[rolled_index];
+        let bad = |field: &str, value: String, rule: String| RuleViolation {
+            path: format!("{path}.{field}"),
+            entity: entity.clone(),
+            field: field.into(),
+            value,
+            rule,
+        };
+        let g = &nozzle.geometry;
+        let dims = pipe(g.nps);
+        let wall = match dims.wall(g.schedule) {
+            Ok(w) => w,
+            Err(e) => {
+                errors.push(bad("schedule", g.schedule.label().into(), e.to_string()));
+                continue;
+            }
+        };
+        let od = dims.outside_diameter;
+        let cut_radius = match shop.attachment {
+            Attachment::SetIn => 0.5 * od + shop.bevel_allowance,
+            Attachment::SetOn => 0.5 * od - wall,
+        };
+        let neck = NeckAxis::new(course.frame, nozzle.frame);
+        let r_mid = course.radius.0;
+        let r_out = course.outside.0;
+        let misses = |what: &str| {
+            bad(
+                "offset",
+                "-".into(),
+                format!(
+                    "the {what} must lie wholly on course {}/{} to be developed",
+                    resolved.tag, course.id
+                ),
+            )
+        };
+        let Some((centre, _)) = neck.crossing(0.0, r_mid, 0.0) else {
+            errors.push(misses("nozzle axis"));
+            continue;
+        };
+        let theta = centre.y.atan2(centre.x);
+        let n = samples(cut_radius, shop.chord_tolerance);
+        let Some(hole) = surface_loop(&neck, cut_radius, r_mid, theta, n) else {
+            errors.push(misses("opening"));
+            continue;
+        };
+        let pad = match nozzle.pad {
+            None => None,
+            Some((pad_od, pad_t)) => {
+                let r_pad = r_out + 0.5 * pad_t;
+                let n_pad = samples(0.5 * pad_od, shop.chord_tolerance);
+                let footprint = surface_loop(&neck, 0.5 * pad_od, r_out, theta, n_pad);
+                let develop = |rho: f64, n: usize| -> Option<Vec<DVec2>> {
+                    let (c, _) = neck.crossing(0.0, r_pad, 0.0)?;
+                    let tc = c.y.atan2(c.x);
+                    let curve = surface_loop(&neck, rho, r_pad, tc, n)?;
+                    Some(
+                        curve
+                            .iter()
+                            .map(|q| DVec2::new(r_pad * (q.x - tc), q.y - c.z))
+                            .collect(),
+                    )
+                };
+                let outline = develop(0.5 * pad_od, n_pad);
+                let pad_hole = develop(0.5 * od + shop.bevel_allowance, n);
+                match (footprint, outline, pad_hole) {
+                    (Some(footprint), Some(outline), Some(hole)) => Some(PadPiece {
+                        od: pad_od,
+                        thickness: pad_t,
+                        footprint,
+                        outline,
+                        hole,
+                    }),
+                    _ => {
+                        errors.push(misses("pad"));
+                        continue;
+                    }
+                }
+            }
+        };
+        // The neck meets the shell's inside (set-in) or outside (set-on).
+        let meets = match shop.attachment {
+            Attachment::SetIn => r_out - course.thickness,
+            Attachment::SetOn => r_out,
+        };
+        let neck_mid = 0.5 * (od - wall);
+        let back = g.projection - g.flange_length().unwrap_or(0.0);
+        let saddle: Option<Vec<DVec2>> = (0..=n)
+            .map(|i| {
+                let phi = TAU * i as f64 / n as f64;
+                neck.crossing(neck_mid, meets, phi)
+                    .map(|(_, s)| DVec2::new(neck_mid * phi, back - s))
+            })
+            .collect();
+        let Some(saddle) = saddle else {
+            errors.push(misses("neck"));
+            continue;
+        };
+        out.cuts.push(NozzleCut {
+            nozzle: index,
+            mark: nozzle.mark.clone(),
+            path,
+            rolled: rolled_index,
+            neck,
+            cut_radius,
+            centre: DVec2::new(theta, centre.z),
+            hole,
+            pad,
+            saddle,
+        });
+    }
+    if errors.is_empty() {
+        Ok(out)
+    } else {
+        Err(errors)
+    }
+}
