@@ -24,6 +24,7 @@ mod conditions;
 mod footprints;
 mod frames;
 mod head_limits;
+mod head_seams;
 mod names;
 pub(crate) use head_limits::RATIO as ELLIPSOIDAL_RATIO;
 pub(crate) use names::MAX_NAME_CHARS;
@@ -33,6 +34,7 @@ mod operating;
 mod part_error;
 mod shell_nozzle;
 mod stack;
+mod support_clearances;
 mod supports;
 
 pub use crate::parts::PartGeometry;
@@ -272,6 +274,7 @@ pub fn resolve_vessel(
     conditions::check(vessel, &parts, &mut report);
     let operating = operating::check(vessel, frame, &parts, &mut report);
     let nozzles = nozzles::place(vessel, &parts, &stack.courses, &mut report);
+    head_seams::choose(vessel, &mut parts, &nozzles, &mut report);
     let notes = notes::place(vessel, &parts, &nozzles, &mut report);
     if !report.violations.is_empty() {
         return Err(report.violations);
