@@ -414,8 +414,10 @@ fn a_pad_across_a_head_seam_is_refused_clearly() {
 /// still leave the layout a cut: any angle where both end circles have a vertex
 /// and no opening reaches will do. The vessel meshes without errors and stays
 /// closed. The drum's boot stays: it hangs at 180° round 4000 mm, so the nozzle
-/// at 180° sits at 1800 mm, clear of the boot's opening (one inside it is refused,
-/// see [`a_nozzle_inside_the_boot_opening_is_refused_clearly`]).
+/// at 180° sits at 2400 mm, clear of the boot's opening (one inside it is refused,
+/// see [`a_nozzle_inside_the_boot_opening_is_refused_clearly`]); the nozzles
+/// below the horns (135°, 180°, 225°) stand clear of the saddles' wear plates
+/// (0.2 L and 0.8 L, 300 mm wide), which they may not reach.
 #[test]
 fn a_course_with_openings_on_every_standard_cut_angle_is_meshed() {
     let mut design = example("horizontal-drum");
@@ -427,7 +429,7 @@ fn a_course_with_openings_on_every_standard_cut_angle_is_meshed() {
         let mut n = template.clone();
         n.mark = format!("X{k}");
         n.orientation = 45.0 * k as f64;
-        n.elevation = Some(1800.0 + 600.0 * ((k + 4) % 8) as f64);
+        n.elevation = Some(1800.0 + 600.0 * ((k + 5) % 8) as f64);
         v.nozzles.push(n);
     }
     check_design(&design, 1.0);

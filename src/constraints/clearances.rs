@@ -95,7 +95,9 @@ impl Convex for Block {
         self.axes
             .iter()
             .zip(self.half)
-            .fold(self.centre, |q, (axis, h)| q + *axis * d.dot(*axis).clamp(-h, h))
+            .fold(self.centre, |q, (axis, h)| {
+                q + *axis * d.dot(*axis).clamp(-h, h)
+            })
     }
 }
 
@@ -210,7 +212,10 @@ mod tests {
             radius: 10.5,
         };
         assert!(meet(&plate, &ball));
-        let apart = Ball { radius: 9.5, ..ball };
+        let apart = Ball {
+            radius: 9.5,
+            ..ball
+        };
         assert!(!meet(&apart, &plate));
     }
 

@@ -42,6 +42,7 @@ pub use conditions::{
     ABSOLUTE_ZERO, FULL_VACUUM, MAX_PRESSURE, MAX_REVISION, MAX_TEMPERATURE, MAX_TITLE_TEXT,
 };
 pub use frames::{orientation_direction, vessel_frame};
+pub use head_seams::unturned_frame;
 pub use operating::{stack_of, state_of_design};
 pub use shell_nozzle::{MAX_HILLSIDE, MAX_INCLINATION};
 

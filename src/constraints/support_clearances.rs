@@ -75,9 +75,8 @@ impl WearPlate {
         };
         let off = (from_down.abs() - self.half_angle).max(0.0);
         let dz = (q.z.abs() - self.half_width).max(0.0);
-        let across = (rho * rho + self.radius * self.radius
-            - 2.0 * rho * self.radius * off.cos())
-        .max(0.0);
+        let across =
+            (rho * rho + self.radius * self.radius - 2.0 * rho * self.radius * off.cos()).max(0.0);
         (across + dz * dz).sqrt()
     }
 }
@@ -97,7 +96,7 @@ struct SkirtShell {
 
 impl SkirtShell {
     /// Distance from `p` (vessel frame) to the top circle.
-    fn to_weld(&self, p: DVec3) -> f64 {
+    fn weld_distance(&self, p: DVec3) -> f64 {
         let q = self.to_local.transform_point3(p);
         (q.x.hypot(q.y) - self.top_radius).hypot(q.z - self.height)
     }
@@ -107,8 +106,12 @@ impl SkirtShell {
         if body.axis.cross(self.axis).length() > 1e-9 {
             return false;
         }
-        let a = self.to_local.transform_point3(body.origin + body.axis * body.from);
-        let b = self.to_local.transform_point3(body.origin + body.axis * body.to);
+        let a = self
+            .to_local
+            .transform_point3(body.origin + body.axis * body.from);
+        let b = self
+            .to_local
+            .transform_point3(body.origin + body.axis * body.to);
         let (lo, hi) = (a.z.min(b.z).max(0.0), a.z.max(b.z).min(self.height));
         if lo > hi {
             return false;
@@ -162,7 +165,7 @@ impl Support {
             ));
         }
         if let Some(s) = &self.skirt {
-            if s.to_weld(ball.centre) < ball.radius {
+            if s.weld_distance(ball.centre) < ball.radius {
                 return Some(("opening", "attachment line (its weld to the vessel)".into()));
             }
             if let Some(body) = bodies.iter().find(|b| s.holds(b)) {
@@ -207,10 +210,9 @@ pub(crate) fn supports(vessel: &VesselDesign, parts: &[Option<ResolvedPart>]) ->
                         half: [s.base_length / 2.0, 0.5 * (y1 - y0), half_z],
                     })
                 };
-                support.solids.push((
-                    "web".into(),
-                    block(-s.height, horn, s.web_thickness / 2.0),
-                ));
+                support
+                    .solids
+                    .push(("web".into(), block(-s.height, horn, s.web_thickness / 2.0)));
                 support.solids.push((
                     "base plate".into(),
                     block(-s.height, -s.height + s.base_thickness, s.base_width / 2.0),
@@ -230,7 +232,8 @@ pub(crate) fn supports(vessel: &VesselDesign, parts: &[Option<ResolvedPart>]) ->
             PartGeometry::Legs(l) => {
                 let at = l.shell_diameter / 2.0 + l.pipe_diameter / 2.0;
                 for k in 0..l.count {
-                    let a = (l.first_angle + f64::from(k) * 360.0 / f64::from(l.count)).to_radians();
+                    let a =
+                        (l.first_angle + f64::from(k) * 360.0 / f64::from(l.count)).to_radians();
                     support.solids.push((
                         format!("leg {}", k + 1),
                         Solid::Cylinder(Body {
@@ -254,7 +257,8 @@ pub(crate) fn supports(vessel: &VesselDesign, parts: &[Option<ResolvedPart>]) ->
                 let inner = (radius * radius - half_t * half_t).max(0.0).sqrt();
                 let outer = radius + l.projection;
                 for k in 0..l.count {
-                    let a = (l.first_angle + f64::from(k) * 360.0 / f64::from(l.count)).to_radians();
+                    let a =
+                        (l.first_angle + f64::from(k) * 360.0 / f64::from(l.count)).to_radians();
                     let (r, t) = (
                         DVec3::new(a.cos(), a.sin(), 0.0),
                         DVec3::new(-a.sin(), a.cos(), 0.0),
@@ -330,6 +334,6 @@ mod tests {
             ..drain(900.0, 95.0)
         };
         assert!(!skirt.holds(&deep));
-        assert!(skirt.to_weld(DVec3::new(1000.0, 0.0, 30.0)) - 30.0 < 1e-9);
+        assert!(skirt.weld_distance(DVec3::new(1000.0, 0.0, 30.0)) - 30.0 < 1e-9);
     }
 }

@@ -451,10 +451,7 @@ fn nozzles(
     // The largest opening's radius (a 24-inch manway) and some clearance.
     let reach = 0.5 * 610.0 + 50.0;
     let under_a_saddle = |&&(_, z, orientation): &&(&Course, f64, f64)| {
-        orientation == 180.0
-            && saddles
-                .iter()
-                .any(|&(a, b)| z + reach > a && z - reach < b)
+        orientation == 180.0 && saddles.iter().any(|&(a, b)| z + reach > a && z - reach < b)
     };
     let slots: Vec<(&Course, f64, f64)> = slots
         .iter()
