@@ -303,8 +303,9 @@ mod tests {
         let p = DVec3::new(1000.0 * past.sin(), -1000.0 * past.cos(), 0.0);
         let chord = 2.0 * 1000.0 * (10f64.to_radians() / 2.0).sin();
         assert!((w.distance(p) - chord).abs() < 1e-9);
-        // On top of the shell: the far side.
-        assert!(w.distance(DVec3::new(0.0, 1000.0, 0.0)) > 1900.0);
+        // On top of the shell: 120° past either horn.
+        let top = 2.0 * 1000.0 * 60f64.to_radians().sin();
+        assert!((w.distance(DVec3::new(0.0, 1000.0, 0.0)) - top).abs() < 1e-9);
     }
 
     #[test]
