@@ -307,3 +307,29 @@ fn occt_displacement_solid_volume() {
     );
     assert!(volumes[1] > volumes[0]);
 }
+
+/// The head-seam repros that used to be refused (issue 30 §1: an off-centre
+/// nozzle at an ellipsoidal head's seam angle, a ring of four round a centre
+/// nozzle) go through the same seam choice in the exchange model: with blind
+/// flanges closing every bore, each vessel is one closed shell, each edge used
+/// twice.
+#[test]
+fn head_seam_repros_export_closed_shells() {
+    for name in [
+        "D2-ellipsoidal-head-seam-nozzle",
+        "D5-ring-of-4-plus-centre",
+    ] {
+        let mut design = load(format!(
+            "{}/tests/repros/{name}.json",
+            env!("CARGO_MANIFEST_DIR")
+        ))
+        .expect("the repro is accepted");
+        for n in design.vessels.iter_mut().flat_map(|v| &mut v.nozzles) {
+            n.flange = vesselcad::design::FlangeDesign::Blind;
+        }
+        for brep in breps(&design) {
+            assert_eq!(brep.shells.len(), 1, "{name}");
+            assert!(brep.shells[0].closed, "{name}: the shell is open");
+        }
+    }
+}

@@ -10,7 +10,10 @@
 //! alternating projections (projecting onto a finite solid cylinder is a clamp
 //! of the axial coordinate and of the radius, exact): the iterates approach a
 //! common point when the solids meet, and a pair of closest points otherwise,
-//! each gap found an upper bound of the true distance.
+//! each gap found an upper bound of the true distance. The same test holds for
+//! any two closed convex solids known by their nearest-point projection
+//! ([`Convex`]): boxes ([`Block`], a support's plate or lug) and balls ([`Ball`],
+//! an opening's footprint) too.
 
 use glam::DVec3;
 
@@ -36,6 +39,102 @@ pub(crate) struct Body {
 const STEPS: usize = 400;
 /// A gap below this (mm) is contact.
 const CONTACT: f64 = 1e-6;
+
+/// A closed convex solid, known by its nearest-point projection.
+pub(crate) trait Convex {
+    /// A point of the solid and the radius of a ball round it holding the solid.
+    fn bound(&self) -> (DVec3, f64);
+
+    /// The point of the solid nearest `p`.
+    fn project(&self, p: DVec3) -> DVec3;
+}
+
+/// Whether two convex solids share a point (within [`CONTACT`]), by
+/// alternating projections from the middle of their bounding balls' centres.
+pub(crate) fn meet(a: &dyn Convex, b: &dyn Convex) -> bool {
+    let ((ca, ra), (cb, rb)) = (a.bound(), b.bound());
+    if (ca - cb).length() >= ra + rb {
+        return false;
+    }
+    let mut p = 0.5 * (ca + cb);
+    for _ in 0..STEPS {
+        let q = a.project(p);
+        let r = b.project(q);
+        if (q - r).length() <= CONTACT {
+            return true;
+        }
+        if (r - p).length() <= 1e-12 * (1.0 + p.length()) {
+            // A fixed point with a gap: the closest points, apart.
+            return false;
+        }
+        p = r;
+    }
+    false
+}
+
+/// A box: the points within `half[k]` of `centre` along each of the
+/// orthonormal `axes[k]`, mm (vessel frame).
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub(crate) struct Block {
+    /// Its centre.
+    pub centre: DVec3,
+    /// Three orthonormal directions.
+    pub axes: [DVec3; 3],
+    /// Half its size along each axis.
+    pub half: [f64; 3],
+}
+
+impl Convex for Block {
+    fn bound(&self) -> (DVec3, f64) {
+        let [a, b, c] = self.half;
+        (self.centre, (a * a + b * b + c * c).sqrt())
+    }
+
+    fn project(&self, p: DVec3) -> DVec3 {
+        let d = p - self.centre;
+        self.axes
+            .iter()
+            .zip(self.half)
+            .fold(self.centre, |q, (axis, h)| {
+                q + *axis * d.dot(*axis).clamp(-h, h)
+            })
+    }
+}
+
+/// A ball (an opening's footprint).
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub(crate) struct Ball {
+    /// Its centre.
+    pub centre: DVec3,
+    /// Its radius.
+    pub radius: f64,
+}
+
+impl Convex for Ball {
+    fn bound(&self) -> (DVec3, f64) {
+        (self.centre, self.radius)
+    }
+
+    fn project(&self, p: DVec3) -> DVec3 {
+        let d = p - self.centre;
+        let l = d.length();
+        if l > self.radius {
+            self.centre + d * (self.radius / l)
+        } else {
+            p
+        }
+    }
+}
+
+impl Convex for Body {
+    fn bound(&self) -> (DVec3, f64) {
+        (self.centre(), self.reach())
+    }
+
+    fn project(&self, p: DVec3) -> DVec3 {
+        Body::project(self, p)
+    }
+}
 
 impl Body {
     /// The centre of the cylinder.
@@ -64,24 +163,7 @@ impl Body {
 
     /// Whether the two solids share a point (within [`CONTACT`]).
     pub fn meets(&self, other: &Body) -> bool {
-        let (a, b) = (self.centre(), other.centre());
-        if (a - b).length() >= self.reach() + other.reach() {
-            return false;
-        }
-        let mut p = 0.5 * (a + b);
-        for _ in 0..STEPS {
-            let q = self.project(p);
-            let r = other.project(q);
-            if (q - r).length() <= CONTACT {
-                return true;
-            }
-            if (r - p).length() <= 1e-12 * (1.0 + p.length()) {
-                // A fixed point with a gap: the closest points, apart.
-                return false;
-            }
-            p = r;
-        }
-        false
+        meet(self, other)
     }
 }
 
@@ -111,6 +193,30 @@ mod tests {
         // Apart along the axis: no overlap however close radially.
         let d = along(DVec3::new(0.0, 0.0, 250.0), DVec3::X, 4310.0, 4400.0, 95.25);
         assert!(!a.meets(&d));
+    }
+
+    #[test]
+    fn boxes_and_balls_meet_cylinders_only_when_they_overlap() {
+        let plate = Block {
+            centre: DVec3::new(0.0, -1100.0, 0.0),
+            axes: [DVec3::X, DVec3::Y, DVec3::Z],
+            half: [800.0, 100.0, 6.0],
+        };
+        // A drain straight down through the web's plane, and one beside it.
+        let through = along(DVec3::new(0.0, 0.0, 50.0), -DVec3::Y, 1000.0, 1200.0, 60.0);
+        assert!(meet(&plate, &through));
+        let beside = along(DVec3::new(0.0, 0.0, 70.0), -DVec3::Y, 1000.0, 1200.0, 60.0);
+        assert!(!meet(&plate, &beside));
+        let ball = Ball {
+            centre: DVec3::new(810.0, -1100.0, 0.0),
+            radius: 10.5,
+        };
+        assert!(meet(&plate, &ball));
+        let apart = Ball {
+            radius: 9.5,
+            ..ball
+        };
+        assert!(!meet(&apart, &plate));
     }
 
     #[test]

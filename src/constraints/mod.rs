@@ -24,6 +24,7 @@ mod conditions;
 mod footprints;
 mod frames;
 mod head_limits;
+mod head_seams;
 mod names;
 pub(crate) use head_limits::RATIO as ELLIPSOIDAL_RATIO;
 pub(crate) use names::MAX_NAME_CHARS;
@@ -33,6 +34,7 @@ mod operating;
 mod part_error;
 mod shell_nozzle;
 mod stack;
+mod support_clearances;
 mod supports;
 
 pub use crate::parts::PartGeometry;
@@ -40,6 +42,7 @@ pub use conditions::{
     ABSOLUTE_ZERO, FULL_VACUUM, MAX_PRESSURE, MAX_REVISION, MAX_TEMPERATURE, MAX_TITLE_TEXT,
 };
 pub use frames::{orientation_direction, vessel_frame};
+pub use head_seams::unturned_frame;
 pub use operating::{stack_of, state_of_design};
 pub use shell_nozzle::{MAX_HILLSIDE, MAX_INCLINATION};
 
@@ -272,6 +275,7 @@ pub fn resolve_vessel(
     conditions::check(vessel, &parts, &mut report);
     let operating = operating::check(vessel, frame, &parts, &mut report);
     let nozzles = nozzles::place(vessel, &parts, &stack.courses, &mut report);
+    head_seams::choose(vessel, &mut parts, &nozzles, &mut report);
     let notes = notes::place(vessel, &parts, &nozzles, &mut report);
     if !report.violations.is_empty() {
         return Err(report.violations);

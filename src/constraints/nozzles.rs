@@ -17,11 +17,11 @@ use super::frames::check_angle;
 use super::part_error::report_part_error;
 use super::shell_nozzle::{self, MAX_HILLSIDE, MAX_INCLINATION};
 use super::stack::Course;
+use super::support_clearances;
 use super::{Report, ResolvedNozzle, ResolvedPart, ShowValue, orientation_direction};
 use crate::format::{FacingDesign, FlangeDesign, NozzleDesign, VesselDesign};
 use crate::parts::PartGeometry;
-use crate::parts::heads::HeadKind;
-use crate::parts::tables::{FlangeClass, Nps, PipeSchedule, flange, pipe};
+use crate::parts::tables::{FlangeClass, Nps, PipeSchedule, flange};
 use crate::parts::{Facing, FlangeType, Nozzle};
 
 /// Parses a schedule name as written in design files.
@@ -217,6 +217,8 @@ pub(crate) fn place(
         parts.iter().flatten().filter_map(Footprint::boot).collect();
     // The bodies (neck, flange) of each placed nozzle, by mark.
     let mut bodies: Vec<(String, [Body; 2])> = Vec::new();
+    // What the nozzles must keep clear of: the supports' pieces.
+    let supports = support_clearances::supports(vessel, parts);
     for (k, n) in vessel.nozzles.iter().enumerate() {
         let path = format!("nozzles[{k}]");
         let id = Some(n.mark.as_str());
@@ -440,23 +442,6 @@ pub(crate) fn place(
                     report.push(format!("{path}.offset"), id, "offset", offset, format!("a reinforcing pad round the head's centre (pad OD {pad_od} mm) needs its nozzle round the centre too: the offset must be below the neck radius {} mm, or above the pad radius {} mm", pipe_od / 2.0, pad_od / 2.0));
                     continue;
                 }
-                // A head cut round its pole (a centred nozzle) cannot also be
-                // cut across the seam between two of its patches.
-                let centred_on_head = |m: &NozzleDesign| {
-                    m.host == n.host
-                        && Nps::try_new(m.size).is_ok_and(|nps| {
-                            m.offset.unwrap_or(0.0) < pipe(nps).outside_diameter / 2.0
-                        })
-                };
-                if offset >= pipe_od / 2.0
-                    && let Some(centre) = vessel.nozzles.iter().find(|m| centred_on_head(m))
-                    && let Some(seam) = head_seam_radii(head)
-                        .into_iter()
-                        .find(|&r| (offset - reach / 2.0).abs() <= r && r <= offset + reach / 2.0)
-                {
-                    report.push(format!("{path}.offset"), id, "offset", offset, format!("the opening (the {reach_name} {reach} mm) crosses the seam between the patches of head {} at {seam:.1} mm from its axis, and nozzle {} is centred on that head: a head cut round its centre cannot also be cut across a seam; move the opening clear of that radius", n.host, centre.mark));
-                    continue;
-                }
                 // A pad is laid out on one patch of its head: its footprint may
                 // not reach across (nor to within the end gap of) a seam between
                 // two of the dished patches, such as the knuckle–crown joint.
@@ -483,18 +468,6 @@ pub(crate) fn place(
                 // Work in the head's local frame (dome towards +Z), then map.
                 let inverse = resolved_host.frame.matrix3.inverse();
                 let local_dir = inverse * dir;
-                if let HeadKind::Ellipsoidal { .. } = head.kind
-                    && offset > reach / 2.0
-                {
-                    // The opening's angle round the head's axis, from the head's
-                    // seam angle (its local +X, where the revolution starts).
-                    let angle = local_dir.y.atan2(local_dir.x).abs();
-                    let half = ((reach / 2.0 + end_gap(reach)) / offset).min(1.0).asin();
-                    if angle < half {
-                        report.push(format!("{path}.orientation"), id, "orientation", n.orientation, format!("the opening (the {reach_name} {reach} mm at offset {offset} mm) comes within {:.1}° of the seam of the ellipsoidal head {} ({:.1}° away, the gap included; the seam is where the head's revolution starts), which cannot be meshed yet: turn the nozzle away from it", half.to_degrees(), n.host, angle.to_degrees()));
-                        continue;
-                    }
-                }
                 let origin = DVec3::new(
                     local_dir.x * offset,
                     local_dir.y * offset,
@@ -576,6 +549,28 @@ pub(crate) fn place(
                 format!(
                     "its {ours} collides with the {theirs} of nozzle {mark}: move one of them \
                      (change its orientation, elevation or offset, or its projection)"
+                ),
+            );
+            continue;
+        }
+        if let Some((support, (ours, piece))) = supports
+            .iter()
+            .find_map(|s| s.clash(&footprint, &mine).map(|c| (s, c)))
+        {
+            let (field, value) = match resolved_host.geometry {
+                PartGeometry::Head(_) => ("offset", n.offset.unwrap_or(0.0)),
+                _ => ("elevation", n.elevation.unwrap_or(0.0)),
+            };
+            report.push(
+                format!("{path}.{field}"),
+                id,
+                field,
+                value,
+                format!(
+                    "its {ours} (the {reach_name} {reach} mm, flange OD {flange_od} mm) reaches \
+                     the {piece} of {} ({}.{}): a nozzle must clear the supports; move the \
+                     nozzle (its {field}, orientation or projection) or the support",
+                    support.name, report.prefix, support.path
                 ),
             );
             continue;

@@ -131,7 +131,9 @@ pub(super) fn vessel_source(
             } else {
                 NodeKind::Part
             },
-            frame: part.frame,
+            // Heads with their seam where the design puts it: the exchange
+            // cuts openings across a seam itself.
+            frame: crate::constraints::unturned_frame(part),
             patches,
             nozzle: None,
         });

@@ -253,7 +253,10 @@ fn drum(rng: &mut SplitMix64, index: usize) -> VesselDesign {
         end: length,
         od,
     }];
-    nozzles(rng, &mut v, &courses, orientations, t);
+    // Bottom nozzles stay clear of the saddles (0.2 L and 0.8 L, 300 mm wide):
+    // an opening may not reach a wear plate.
+    let saddles = [0.2 * length, 0.8 * length].map(|p| (p - 150.0, p + 150.0));
+    nozzles(rng, &mut v, &courses, orientations, t, &saddles);
     v.operating = Some(OperatingDesign {
         liquid_level: (rng.range(0.1, 0.8) * (od - 2.0 * t)).round(),
         liquid_density: Some(rng.stepped(600.0, 1100.0, 50.0)),
@@ -326,7 +329,7 @@ fn column(rng: &mut SplitMix64, index: usize) -> VesselDesign {
         rotation: rng.stepped(0.0, 345.0, 15.0),
     };
     let orientations = [(0.0, 180.0), (45.0, 225.0), (90.0, 270.0), (135.0, 315.0)];
-    nozzles(rng, &mut v, &courses, &orientations, t);
+    nozzles(rng, &mut v, &courses, &orientations, t, &[]);
     v.operating = Some(OperatingDesign {
         liquid_level: (rng.range(0.02, 0.3) * z).round(),
         liquid_density: Some(rng.stepped(600.0, 1100.0, 50.0)),
@@ -382,7 +385,7 @@ fn tank(rng: &mut SplitMix64) -> VesselDesign {
         end: height,
         od,
     }];
-    nozzles(rng, &mut v, &courses, &orientations, t);
+    nozzles(rng, &mut v, &courses, &orientations, t, &[]);
     v.operating = Some(OperatingDesign {
         liquid_level: (rng.range(0.1, 0.9) * height).round(),
         liquid_density: Some(rng.stepped(700.0, 1050.0, 50.0)),
@@ -416,13 +419,16 @@ struct Course {
 /// Adds 4–20 shell nozzles (one or two manways among them) on `courses`.
 ///
 /// Each nozzle gets its own axial slot, slots spaced by the largest opening plus
-/// clearance, so openings never overlap whatever their orientations.
+/// clearance, so openings never overlap whatever their orientations. A slot at
+/// the bottom (orientation 180° of a horizontal vessel) is left out where its
+/// largest opening could reach one of the axial spans `saddles`.
 fn nozzles(
     rng: &mut SplitMix64,
     v: &mut VesselDesign,
     courses: &[Course],
     orientations: &[(f64, f64)],
     t: f64,
+    saddles: &[(f64, f64)],
 ) {
     let wanted = rng.int(4, 20) as usize;
     let manways = rng.int(1, 2) as usize;
@@ -443,6 +449,16 @@ fn nozzles(
         let j = rng.int(0, i as u64) as usize;
         slots.swap(i, j);
     }
+    // The largest opening's radius (a 24-inch manway) and some clearance.
+    let reach = 0.5 * 610.0 + 50.0;
+    let under_a_saddle = |&&(_, z, orientation): &&(&Course, f64, f64)| {
+        orientation == 180.0 && saddles.iter().any(|&(a, b)| z + reach > a && z - reach < b)
+    };
+    let slots: Vec<(&Course, f64, f64)> = slots
+        .iter()
+        .filter(|s| !under_a_saddle(s))
+        .copied()
+        .collect();
     let count = wanted.min(slots.len());
     let services = [
         "inlet",

@@ -30,11 +30,11 @@ pub enum LayoutError {
     /// Every seam cut angle of a closed patch lies inside an opening.
     #[error("openings cover every seam cut angle of the patch; spread the nozzles")]
     SeamBlocked,
-    /// An opening across the patch's seam meets a patch that is also cut round its
-    /// pole or trimmed as a nozzle neck.
+    /// An opening across the patch's seam meets a patch that is also trimmed as a
+    /// nozzle neck, or bites into the side a loop round the pole replaces.
     #[error(
-        "an opening crosses the seam of a patch that is also cut round its pole or \
-         trimmed as a nozzle neck; move the nozzle inside one patch"
+        "an opening crosses the seam of a patch that is also trimmed as a nozzle neck, \
+         or the side its loop round the pole replaces; move the nozzle inside one patch"
     )]
     NotchBlocked,
     /// An opening loop does not fit in the patch's parameter domain.
@@ -386,7 +386,11 @@ pub fn host_region_with(
         return Err(LayoutError::SeamBlocked);
     }
     let top = around.first().copied();
-    if !notches.is_empty() && (top.is_some() || bottom.is_some()) {
+    // A loop round the pole replaces the v1 side: notches may bite into the v0
+    // side only (the crown of a head with a centre nozzle and an opening across
+    // its knuckle seam). A neck's cut bottom takes no notch.
+    let notched_top = notches.iter().any(|n| n.side == Side::VMax);
+    if (top.is_some() && notched_top) || (!notches.is_empty() && bottom.is_some()) {
         return Err(LayoutError::NotchBlocked);
     }
     // The u-spans of the holes and notches (after shifting each into one period).
