@@ -143,7 +143,7 @@ fn mesh_options_the_design_cannot_take_are_one_error_naming_the_flag() {
     let v: serde_json::Value = serde_json::from_slice(&o.stdout).unwrap();
     assert_eq!(v["kind"], "options", "{v}");
     assert!(v.get("failures").is_none(), "{v}");
-    for n in ["999", "0", "4294967296", "-5", "many"] {
+    for n in ["999", "0", "4294967296", "many"] {
         let o = vesselcad(&["check", &tank, "--max-vertices", n]);
         let err = String::from_utf8_lossy(&o.stderr);
         assert_eq!(o.status.code(), Some(2), "{n}: {err}");
