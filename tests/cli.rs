@@ -113,6 +113,47 @@ fn unreadable_files_and_bad_options_exit_2() {
     assert_eq!(o.status.code(), Some(2));
 }
 
+/// A tolerance below what `f32` storage lets the mesher work to is one
+/// options error before any meshing, from `check` and `build` alike (it was 33
+/// mesh failures on the tank): it names the flag, the value, the design's
+/// largest part and the smallest tolerance allowed. A vertex budget out of its
+/// range is refused naming the flag and the value.
+#[test]
+fn mesh_options_the_design_cannot_take_are_one_error_naming_the_flag() {
+    let tank = example("storage-tank");
+    let glb = std::env::temp_dir().join(format!("vesselcad-floor-{}.glb", std::process::id()));
+    let glb = glb.to_str().unwrap();
+    for args in [vec!["check", &tank], vec!["build", &tank, "-o", glb]] {
+        let o = vesselcad(&[&args[..], &["--tolerance", "0.000001"]].concat());
+        let err = String::from_utf8_lossy(&o.stderr);
+        assert_eq!(o.status.code(), Some(2), "{args:?}: {err}");
+        assert_eq!(err.lines().count(), 1, "one error: {err}");
+        for part in [
+            "--tolerance 0.000001: ",
+            "finer than f32 storage allows for this design",
+            "its largest part reaches 9000 mm",
+            "the smallest tolerance is 2e-6 mm",
+        ] {
+            assert!(err.contains(part), "{args:?}: {part:?} not in {err}");
+        }
+    }
+    assert!(!std::path::Path::new(glb).exists());
+    let o = vesselcad(&["check", &tank, "--json", "--tolerance", "0.000001"]);
+    assert_eq!(o.status.code(), Some(2));
+    let v: serde_json::Value = serde_json::from_slice(&o.stdout).unwrap();
+    assert_eq!(v["kind"], "options", "{v}");
+    assert!(v.get("failures").is_none(), "{v}");
+    for n in ["999", "0", "4294967296", "many"] {
+        let o = vesselcad(&["check", &tank, "--max-vertices", n]);
+        let err = String::from_utf8_lossy(&o.stderr);
+        assert_eq!(o.status.code(), Some(2), "{n}: {err}");
+        assert!(
+            err.contains("--max-vertices") && err.contains(n),
+            "{n}: {err}"
+        );
+    }
+}
+
 #[test]
 fn info_reports_figures() {
     let o = vesselcad(&["info", &example("vertical-column"), "--json"]);

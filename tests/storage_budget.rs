@@ -9,8 +9,9 @@ mod common;
 use common::examples::example;
 use vesselcad::components::Tessellation;
 use vesselcad::design::{VesselDesign, parse};
-use vesselcad::mesh::{TessellationOptions, storage_options};
-use vesselcad::model::{Edit, Model};
+use vesselcad::mesh::{OptionsError, TessellationOptions, storage_options};
+use vesselcad::model::{Edit, Model, ModelError};
+use vesselcad::plant::build_plant;
 
 fn options() -> TessellationOptions {
     TessellationOptions::chord(2.0)
@@ -98,4 +99,48 @@ fn the_running_maximum_follows_a_large_part_in_and_out() {
     .unwrap();
     assert_eq!(tolerance(&m), floor, "the maximum went with the tank");
     common::full_build::assert_matches_full_build(&m, &options());
+}
+
+/// A tolerance whose storage budget leaves the mesher less than its 1e-6 mm
+/// floor (f32 rounding of at least 0.00165 mm takes half of any tolerance up
+/// to 0.0033 mm) is one options error before any work — from `Model::new`,
+/// `set_tessellation` and `build_plant` (which names the design's largest
+/// part) — not one mesh failure per patch. The 70 m tank rounds coarser but
+/// has the same floor.
+#[test]
+fn a_tolerance_below_the_storage_floor_is_refused_up_front() {
+    let below = |e: &ModelError| match e {
+        ModelError::Options(OptionsError::BelowStorageFloor {
+            tolerance,
+            extent,
+            meshed,
+            smallest,
+            ..
+        }) => Some((*tolerance, *extent, *meshed, *smallest)),
+        _ => None,
+    };
+    let err = Model::new(TessellationOptions::chord(1e-6)).err().unwrap();
+    assert_eq!(below(&err), Some((1e-6, None, 0.5e-6, 2e-6)), "{err}");
+    assert!(Model::new(TessellationOptions::chord(2e-6)).is_ok());
+    let mut m = Model::from_design(&example("horizontal-drum"), options()).unwrap();
+    let err = m
+        .set_tessellation(TessellationOptions::chord(1.9e-6))
+        .unwrap_err();
+    assert_eq!(below(&err).map(|b| b.3), Some(2e-6), "{err}");
+    assert_eq!(m.update(), Default::default(), "the options in force stay");
+    let mut plant = example("horizontal-drum");
+    plant.vessels.push(big_tank());
+    let err = build_plant(&plant, TessellationOptions::chord(1e-6), &mut |_, _| {})
+        .err()
+        .unwrap();
+    let (_, extent, _, smallest) = below(&err).unwrap_or_else(|| panic!("{err}"));
+    // The tank's course: radius 35 000 mm in its part's frame.
+    assert!(extent.is_some_and(|e| (e - 35_000.0).abs() < 1e-6), "{err}");
+    assert_eq!(smallest, 2e-6);
+    let text = err.to_string();
+    assert!(
+        text.contains("largest part reaches 35000 mm")
+            && text.contains("the smallest tolerance is 2e-6 mm"),
+        "{text}"
+    );
 }

@@ -12,13 +12,15 @@ use vesselcad::export::{
     Compression, ExportError, GlbOptions, Granularity, merge_scene, quantization_budget,
     stream_glb_with, stream_glb_with_to, write_tiles,
 };
-use vesselcad::mesh::TessellationOptions;
+use vesselcad::mesh::{
+    DEFAULT_VERTEX_BUDGET, MAX_VERTEX_BUDGET, MIN_VERTEX_BUDGET, TessellationOptions,
+};
 use vesselcad::model::{Model, ModelError};
 use vesselcad::plant::build_plant;
 
-use super::fail;
 use super::output::{is_broken_pipe, outln};
 use super::progress::bar;
+use super::{fail, model_error};
 
 /// Arguments of `vesselcad build`.
 #[derive(Args)]
@@ -39,6 +41,12 @@ pub struct BuildArgs {
     /// for analysis-quality triangles). No limit by default.
     #[arg(long, allow_negative_numbers = true)]
     max_stretch: Option<f64>,
+    /// Most vertices the mesher may give one patch (1000 to 4294967295): a
+    /// patch that needs more is refused, naming it, instead of taking the
+    /// memory and time it would need.
+    #[arg(long, value_name = "N", default_value_t = DEFAULT_VERTEX_BUDGET as u64,
+          value_parser = clap::value_parser!(u64).range(MIN_VERTEX_BUDGET as u64..=MAX_VERTEX_BUDGET as u64))]
+    max_vertices: u64,
     /// Quantize (`KHR_mesh_quantization`): 16-bit positions and 8-bit normals,
     /// with a quarter of the tolerance given to quantization (meshes are made
     /// to 0.75 × the tolerance, so the file holds the tolerance).
@@ -94,6 +102,7 @@ pub fn run(args: BuildArgs) -> ExitCode {
         output,
         tolerance,
         max_stretch,
+        max_vertices,
         quantize,
         compress,
         no_reuse,
@@ -130,7 +139,9 @@ pub fn run(args: BuildArgs) -> ExitCode {
     };
     let model = match build_with_progress(
         &d,
-        TessellationOptions::chord(glb.meshing_tolerance(tolerance)).with_max_stretch(max_stretch),
+        TessellationOptions::chord(glb.meshing_tolerance(tolerance))
+            .with_max_stretch(max_stretch)
+            .with_max_vertices(max_vertices as usize),
     ) {
         Ok(m) => m,
         Err(ModelError::Design(e)) => return fail(&e),
@@ -147,7 +158,7 @@ pub fn run(args: BuildArgs) -> ExitCode {
             return ExitCode::from(2);
         }
         Err(e) => {
-            eprintln!("error: {e}");
+            eprintln!("error: {}: {}", design.display(), model_error(&e));
             return ExitCode::from(2);
         }
     };

@@ -26,12 +26,14 @@ use std::process::ExitCode;
 use clap::Args;
 use serde_json::{Value, json};
 use vesselcad::design::{Design, DesignError, load};
-use vesselcad::mesh::TessellationOptions;
+use vesselcad::mesh::{
+    DEFAULT_VERTEX_BUDGET, MAX_VERTEX_BUDGET, MIN_VERTEX_BUDGET, TessellationOptions,
+};
 use vesselcad::model::{BuildFailure, ModelError};
 use vesselcad::plant::build_plant;
 
-use super::fail;
 use super::output::outln;
+use super::{fail, model_error};
 
 /// The format tag of `check --json`.
 pub const CHECK_FORMAT: &str = "vesselcad-check/1";
@@ -50,6 +52,12 @@ pub struct CheckArgs {
     /// Chordal tolerance the geometry is built to, mm.
     #[arg(long, default_value_t = TessellationOptions::DEFAULT.tolerance, allow_negative_numbers = true)]
     tolerance: f64,
+    /// Most vertices the mesher may give one patch (1000 to 4294967295): a
+    /// patch that needs more is refused, naming it, instead of taking the
+    /// memory and time it would need.
+    #[arg(long, value_name = "N", default_value_t = DEFAULT_VERTEX_BUDGET as u64,
+          value_parser = clap::value_parser!(u64).range(MIN_VERTEX_BUDGET as u64..=MAX_VERTEX_BUDGET as u64))]
+    max_vertices: u64,
     /// Check the design rules only: do not build the geometry.
     #[arg(long)]
     rules_only: bool,
@@ -68,7 +76,8 @@ fn build(design: &Design, args: &CheckArgs) -> Result<(), Unbuilt> {
     if args.rules_only {
         return Ok(());
     }
-    let options = TessellationOptions::chord(args.tolerance);
+    let options =
+        TessellationOptions::chord(args.tolerance).with_max_vertices(args.max_vertices as usize);
     match build_plant(design, options, &mut |_, _| {}) {
         Ok(_) => Ok(()),
         Err(ModelError::Geometry(failures)) => Err(Unbuilt::Geometry(failures)),
@@ -122,7 +131,7 @@ pub fn run(args: CheckArgs) -> ExitCode {
             ExitCode::from(1)
         }
         Err(Unbuilt::Other(e)) => {
-            eprintln!("error: {e}");
+            eprintln!("error: {}: {}", args.design.display(), model_error(&e));
             ExitCode::from(2)
         }
     }
@@ -169,7 +178,7 @@ fn check_json(args: &CheckArgs) -> ExitCode {
                 "file": file,
                 "valid": false,
                 "kind": "options",
-                "error": e.to_string(),
+                "error": model_error(&e),
             }),
             ExitCode::from(2),
         ),

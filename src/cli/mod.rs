@@ -26,6 +26,7 @@ pub mod store;
 use std::process::ExitCode;
 
 use vesselcad::design::DesignError;
+use vesselcad::model::ModelError;
 
 /// Prints a design error and returns the exit status for it: 2 for a file that
 /// cannot be read, 1 otherwise.
@@ -34,5 +35,16 @@ pub fn fail(error: &DesignError) -> ExitCode {
     match error {
         DesignError::Io { .. } => ExitCode::from(2),
         _ => ExitCode::from(1),
+    }
+}
+
+/// The message of a model refusal, bad tessellation options naming the flag
+/// that set them and its value (`--tolerance 0.000001: …`).
+pub fn model_error(error: &ModelError) -> String {
+    match error {
+        ModelError::Options(o) => {
+            format!("--{} {}: {o}", o.field().replace('_', "-"), o.value())
+        }
+        e => e.to_string(),
     }
 }

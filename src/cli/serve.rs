@@ -9,7 +9,9 @@ use std::time::Duration;
 use clap::Args;
 
 use vesselcad::design::DesignError;
-use vesselcad::mesh::TessellationOptions;
+use vesselcad::mesh::{
+    DEFAULT_VERTEX_BUDGET, MAX_VERTEX_BUDGET, MIN_VERTEX_BUDGET, TessellationOptions,
+};
 use vesselcad::model::ModelError;
 use vesselcad::server::{self, ServeError, ServeOptions, VIEWER_SEND_TIMEOUT, limits};
 
@@ -34,6 +36,12 @@ pub struct ServeArgs {
     /// Chordal tolerance of the meshes, mm.
     #[arg(long, default_value_t = TessellationOptions::DEFAULT.tolerance, allow_negative_numbers = true)]
     pub tolerance: f64,
+    /// Most vertices the mesher may give one patch (1000 to 4294967295): a
+    /// patch that needs more is refused, naming it, instead of taking the
+    /// memory and time it would need.
+    #[arg(long, value_name = "N", default_value_t = DEFAULT_VERTEX_BUDGET as u64,
+          value_parser = clap::value_parser!(u64).range(MIN_VERTEX_BUDGET as u64..=MAX_VERTEX_BUDGET as u64))]
+    pub max_vertices: u64,
     /// Seconds a viewer's socket may accept nothing before the viewer is
     /// dropped (a viewer that only falls behind is resynced, not dropped).
     #[arg(long, default_value_t = VIEWER_SEND_TIMEOUT.as_secs_f64(), value_parser = parse_timeout, allow_negative_numbers = true)]
@@ -84,7 +92,8 @@ pub fn run(args: ServeArgs) -> ExitCode {
         bind: args.bind,
         port: args.port,
         token: args.token,
-        tessellation: TessellationOptions::chord(args.tolerance),
+        tessellation: TessellationOptions::chord(args.tolerance)
+            .with_max_vertices(args.max_vertices as usize),
         viewer_timeout: Duration::from_secs_f64(args.viewer_timeout),
         save_on_exit: args.save_on_exit,
         max_connections: usize::from(args.max_connections),
@@ -94,7 +103,14 @@ pub fn run(args: ServeArgs) -> ExitCode {
     match server::run(options) {
         Ok(()) => ExitCode::SUCCESS,
         Err(e) => {
-            eprintln!("error: {e}");
+            match &e {
+                // Bad options named by their flag.
+                ServeError::Design {
+                    path,
+                    source: source @ ModelError::Options(_),
+                } => eprintln!("error: {path}: {}", super::model_error(source)),
+                e => eprintln!("error: {e}"),
+            }
             match e {
                 ServeError::Design {
                     source: ModelError::Design(DesignError::Io { .. }),

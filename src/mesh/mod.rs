@@ -31,9 +31,13 @@ pub use layout::{
     LayoutError, MAX_EDGE_SEGMENTS, PatchSides, SEAM_CUTS, closed_in_u, edge_parameters,
     edge_segments, host_region, host_region_with, pad_region, patch_region,
 };
-pub use options::{OptionsError, TessellationOptions};
+pub use options::{
+    DEFAULT_VERTEX_BUDGET, MAX_VERTEX_BUDGET, MIN_VERTEX_BUDGET, OptionsError, TessellationOptions,
+};
 pub use packed::{OctNormal, PackedMesh};
-pub use storage::{f32_rounding_bound, patch_extent, storage_options};
+pub use storage::{
+    check_storable, f32_rounding_bound, patch_extent, smallest_storable_tolerance, storage_options,
+};
 pub use store::{MeshInstances, WeakTable, mesh_key, mesh_key_of, surface_key};
 pub(crate) use surface::Extrusion;
 

@@ -1,5 +1,5 @@
 //! Tessellation options: the chordal tolerance and optional angle and edge-length
-//! limits that drive meshing.
+//! limits that drive meshing, and the vertex budget that bounds its work.
 
 use thiserror::Error;
 
@@ -25,7 +25,26 @@ pub struct TessellationOptions {
     /// (which belong to it alone) are then sampled with the same cap relative to the
     /// spacing along its other sides.
     pub max_stretch: Option<f64>,
+    /// Most vertices one patch region may get (seeds, loop vertices and
+    /// insertions), from [`MIN_VERTEX_BUDGET`] to [`MAX_VERTEX_BUDGET`]. A patch
+    /// that needs more is refused with
+    /// [`CdtError::BudgetExceeded`](crate::mesh::cdt::CdtError::BudgetExceeded)
+    /// as soon as the seeding estimate or the refinement passes it, so the work
+    /// of one patch is bounded by it (memory and time grow with it linearly).
+    pub max_vertices: usize,
 }
+
+/// The default [`TessellationOptions::max_vertices`]: 4 000 000 vertices, about
+/// 0.5 GB of mesher state for one patch.
+pub const DEFAULT_VERTEX_BUDGET: usize = 4_000_000;
+
+/// The smallest [`TessellationOptions::max_vertices`]: below it a patch with a
+/// few openings cannot even hold its loop vertices and seed rows.
+pub const MIN_VERTEX_BUDGET: usize = 1_000;
+
+/// The largest [`TessellationOptions::max_vertices`]: meshes index their
+/// vertices with `u32`.
+pub const MAX_VERTEX_BUDGET: usize = u32::MAX as usize;
 
 /// A rejected tessellation option.
 #[derive(Debug, Error, Clone, PartialEq)]
@@ -40,15 +59,74 @@ pub enum OptionsError {
         /// The rule.
         rule: &'static str,
     },
+    /// The tolerance is finer than `f32` storage lets the mesher work to: glTF
+    /// stores `f32` metres, whose rounding is budgeted inside the tolerance
+    /// (see [`storage_options`](crate::mesh::storage_options)); when it takes
+    /// half the tolerance or more the patches are meshed to half the tolerance,
+    /// which here falls below the mesher's [`MIN_TOLERANCE`].
+    #[error(
+        "tessellation option tolerance = {tolerance} mm is finer than f32 storage allows{}: \
+         glTF's f32 metres round a point by up to {rounding:.3e} mm at that size, so the \
+         patches would be meshed to {meshed:e} mm, below the mesher's {MIN_TOLERANCE:e} mm \
+         floor; the smallest tolerance is {smallest:e} mm",
+        match extent {
+            Some(e) => format!(
+                " for this design (its largest part reaches {e:.0} mm; storage is \
+                 budgeted for at least {:.0} mm)",
+                crate::mesh::storage::STORAGE_FLOOR_EXTENT
+            ),
+            None => format!(
+                " for any design (storage is budgeted for parts of at least {:.0} mm)",
+                crate::mesh::storage::STORAGE_FLOOR_EXTENT
+            ),
+        }
+    )]
+    BelowStorageFloor {
+        /// The tolerance asked for, mm.
+        tolerance: f64,
+        /// The largest coordinate of any part of the design in its part's
+        /// frame, mm, when the design is known.
+        extent: Option<f64>,
+        /// The `f32` rounding bound budgeted, mm.
+        rounding: f64,
+        /// The tolerance the patches would be meshed to, mm.
+        meshed: f64,
+        /// The smallest tolerance the design can be meshed and stored to, mm.
+        smallest: f64,
+    },
 }
 
+impl OptionsError {
+    /// The option at fault (`tolerance`, `max_vertices`, …): the command line
+    /// names its flag after it (`--max-vertices`).
+    pub fn field(&self) -> &'static str {
+        match self {
+            OptionsError::Invalid { field, .. } => field,
+            OptionsError::BelowStorageFloor { .. } => "tolerance",
+        }
+    }
+
+    /// The value of the option at fault.
+    pub fn value(&self) -> f64 {
+        match *self {
+            OptionsError::Invalid { value, .. } => value,
+            OptionsError::BelowStorageFloor { tolerance, .. } => tolerance,
+        }
+    }
+}
+
+/// The finest chordal tolerance the mesher takes, mm.
+pub const MIN_TOLERANCE: f64 = 1e-6;
+
 impl TessellationOptions {
-    /// 0.5 mm chordal tolerance, 15° angle tolerance, no edge or stretch limit.
+    /// 0.5 mm chordal tolerance, 15° angle tolerance, no edge or stretch limit,
+    /// [`DEFAULT_VERTEX_BUDGET`] vertices per patch.
     pub const DEFAULT: TessellationOptions = TessellationOptions {
         tolerance: 0.5,
         angle_tolerance: Some(15.0),
         max_edge_length: None,
         max_stretch: None,
+        max_vertices: DEFAULT_VERTEX_BUDGET,
     };
 
     /// The default options with chordal tolerance `tolerance` mm.
@@ -77,10 +155,17 @@ impl TessellationOptions {
         self
     }
 
+    /// With a vertex budget per patch.
+    pub fn with_max_vertices(mut self, vertices: usize) -> Self {
+        self.max_vertices = vertices;
+        self
+    }
+
     /// Checks every option.
     pub fn validate(&self) -> Result<(), OptionsError> {
         let bad = |field, value, rule| Err(OptionsError::Invalid { field, value, rule });
-        if !(self.tolerance.is_finite() && self.tolerance >= 1e-6 && self.tolerance <= 1e4) {
+        if !(self.tolerance.is_finite() && self.tolerance >= MIN_TOLERANCE && self.tolerance <= 1e4)
+        {
             return bad(
                 "tolerance",
                 self.tolerance,
@@ -106,6 +191,13 @@ impl TessellationOptions {
         {
             return bad("max_stretch", r, "must be a finite ratio >= 1");
         }
+        if !(MIN_VERTEX_BUDGET..=MAX_VERTEX_BUDGET).contains(&self.max_vertices) {
+            return bad(
+                "max_vertices",
+                self.max_vertices as f64,
+                "must be a whole number of vertices from 1000 to 4294967295",
+            );
+        }
         Ok(())
     }
 }
@@ -122,10 +214,7 @@ mod tests {
 
     /// The field a rejected option names.
     fn field(options: TessellationOptions) -> Option<&'static str> {
-        match options.validate() {
-            Ok(()) => None,
-            Err(OptionsError::Invalid { field, .. }) => Some(field),
-        }
+        options.validate().err().map(|e| e.field())
     }
 
     #[test]
@@ -151,5 +240,11 @@ mod tests {
             assert_eq!(field(d.with_max_stretch(Some(r))), Some("max_stretch"));
         }
         assert_eq!(field(d.with_max_stretch(Some(1.0))), None);
+        for n in [0, 1, MIN_VERTEX_BUDGET - 1, MAX_VERTEX_BUDGET + 1] {
+            assert_eq!(field(d.with_max_vertices(n)), Some("max_vertices"));
+        }
+        for n in [MIN_VERTEX_BUDGET, DEFAULT_VERTEX_BUDGET, MAX_VERTEX_BUDGET] {
+            assert_eq!(field(d.with_max_vertices(n)), None);
+        }
     }
 }

@@ -18,7 +18,8 @@
 //! in their parts' frames, over every patch of every part and nozzle (pads lie on
 //! their hosts, inside the hosts' extents).
 
-use super::TessellationOptions;
+use super::options::MIN_TOLERANCE;
+use super::{OptionsError, TessellationOptions};
 use crate::parts::Patch;
 
 /// Millimetres per metre: glTF positions are metres.
@@ -65,6 +66,54 @@ pub fn storage_options(options: &TessellationOptions, extent: f64) -> Tessellati
         tolerance,
         ..*options
     }
+}
+
+/// The smallest tolerance whose [`storage_options`] for parts reaching
+/// `extent` mm the mesher takes (at least [`MIN_TOLERANCE`]): twice the floor
+/// wherever the rounding is at least the floor — for every design, since the
+/// rounding is budgeted for [`STORAGE_FLOOR_EXTENT`] at least — as the
+/// patches are then meshed to half the tolerance.
+pub fn smallest_storable_tolerance(extent: f64) -> f64 {
+    let rounding = f32_rounding_bound(extent.max(STORAGE_FLOOR_EXTENT));
+    let mut smallest = if rounding >= MIN_TOLERANCE {
+        2.0 * MIN_TOLERANCE
+    } else {
+        MIN_TOLERANCE + rounding
+    };
+    // `t − δ` may round below the floor at `floor + δ`.
+    while storage_options(&TessellationOptions::chord(smallest), extent).tolerance < MIN_TOLERANCE {
+        smallest = smallest.next_up();
+    }
+    smallest
+}
+
+/// Checks that `options`' tolerance, less the `f32` rounding of parts reaching
+/// `extent` mm (`None`: the design is not known yet; the check is the same for
+/// every design up to 32 m, and larger ones differ only in the rounding
+/// named), is one the mesher takes: an error up front instead of one failure
+/// per patch.
+///
+/// # Errors
+///
+/// [`OptionsError::BelowStorageFloor`] naming the tolerance, the extent, the
+/// rounding and the smallest tolerance allowed.
+pub fn check_storable(
+    options: &TessellationOptions,
+    extent: Option<f64>,
+) -> Result<(), OptionsError> {
+    let at = extent.unwrap_or(0.0);
+    let meshed = storage_options(options, at).tolerance;
+    // NaN and out-of-range tolerances are `validate`'s to name.
+    if !(meshed < MIN_TOLERANCE && options.tolerance >= MIN_TOLERANCE) {
+        return Ok(());
+    }
+    Err(OptionsError::BelowStorageFloor {
+        tolerance: options.tolerance,
+        extent,
+        rounding: f32_rounding_bound(at.max(STORAGE_FLOOR_EXTENT)),
+        meshed,
+        smallest: smallest_storable_tolerance(at),
+    })
 }
 
 /// The largest coordinate magnitude, mm, of any point of `patch`'s surface in
@@ -121,5 +170,38 @@ mod tests {
             storage_options(&options, 31_000.0)
         );
         assert!(storage_options(&options, 40_000.0).tolerance < stored.tolerance);
+    }
+
+    /// The smallest storable tolerance is the first the mesher takes once the
+    /// rounding is taken off, at every size; below it the check names it.
+    #[test]
+    fn the_storage_floor_is_the_first_tolerance_the_mesher_takes() {
+        for extent in [0.0, 800.0, 16_000.0, 31_000.0, 50_000.0, 1e6] {
+            let smallest = smallest_storable_tolerance(extent);
+            assert_eq!(smallest, 2.0 * MIN_TOLERANCE, "{extent}");
+            let at = |t: f64| storage_options(&TessellationOptions::chord(t), extent);
+            assert!(at(smallest).validate().is_ok(), "{extent}");
+            assert!(at(smallest.next_down()).validate().is_err(), "{extent}");
+            assert_eq!(
+                check_storable(&TessellationOptions::chord(smallest), Some(extent)),
+                Ok(())
+            );
+            let Err(OptionsError::BelowStorageFloor {
+                tolerance,
+                extent: named,
+                meshed,
+                smallest: named_smallest,
+                ..
+            }) = check_storable(&TessellationOptions::chord(1e-6), Some(extent))
+            else {
+                panic!("1e-6 mm is below the storage floor at {extent} mm");
+            };
+            assert_eq!((tolerance, named, meshed), (1e-6, Some(extent), 0.5e-6));
+            assert_eq!(named_smallest, smallest);
+        }
+        // Invalid tolerances are `validate`'s to name.
+        for t in [f64::NAN, 0.0, -1.0, 1e-7] {
+            assert_eq!(check_storable(&TessellationOptions::chord(t), None), Ok(()));
+        }
     }
 }

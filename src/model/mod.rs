@@ -51,7 +51,7 @@ use crate::components::{
 };
 use crate::design::{Design, DesignError};
 use crate::export::Scene;
-use crate::mesh::{OptionsError, TessellationOptions};
+use crate::mesh::{OptionsError, TessellationOptions, check_storable};
 use crate::systems::build_schedule;
 
 /// Why an edit or model construction was refused. The model is unchanged.
@@ -110,6 +110,7 @@ impl Model {
     /// An empty model meshing with `options`.
     pub fn new(options: TessellationOptions) -> Result<Self, ModelError> {
         options.validate()?;
+        check_storable(&options, None)?;
         let mut world = World::new();
         // The patches are meshed to the options less the storage rounding
         // (`budget_storage_precision`), set on the first update.
@@ -354,6 +355,7 @@ impl Model {
     /// edits applied since the last update) and the failure is reported.
     pub fn set_tessellation(&mut self, options: TessellationOptions) -> Result<(), ModelError> {
         options.validate()?;
+        check_storable(&options, None)?;
         let mut t = self.world.resource_mut::<RequestedTessellation>();
         if t.0 != options {
             let before = std::mem::replace(&mut t.0, options);

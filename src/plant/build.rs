@@ -6,8 +6,10 @@
 //! chunk's patches. Chunks of about 1 % keep the per-update overhead negligible and
 //! let a caller draw a progress bar.
 
-use super::super::design::{Design, units};
-use crate::mesh::TessellationOptions;
+use rayon::prelude::*;
+
+use super::super::design::{Design, resolve, units};
+use crate::mesh::{TessellationOptions, check_storable, patch_extent};
 use crate::model::{Edit, Model, ModelError, Views};
 
 /// Builds `design` into a model, calling `progress(done, total)` after each chunk
@@ -17,7 +19,8 @@ use crate::model::{Edit, Model, ModelError, Views};
 ///
 /// As [`Model::from_design`]: the first invalid chunk's violations, or the
 /// geometry failures of the first chunk that cannot be built (nothing is built
-/// past it).
+/// past it); [`OptionsError::BelowStorageFloor`](crate::mesh::OptionsError::BelowStorageFloor) up front, naming the
+/// design's largest part, for a tolerance finer than its `f32` storage allows.
 pub fn build_plant(
     design: &Design,
     options: TessellationOptions,
@@ -26,6 +29,11 @@ pub fn build_plant(
     let mut design = design.clone();
     units::to_millimetres(&mut design);
     design.units = crate::design::Units::Mm;
+    if check_storable(&options, None).is_err() {
+        // One options error before any meshing, naming the design's size.
+        let extent = largest_part_extent(&design);
+        check_storable(&options, extent)?;
+    }
     let total = design.vessels.len();
     let chunk = (total / 100).clamp(32, 200);
     let mut model = Model::new(options)?;
@@ -47,4 +55,21 @@ pub fn build_plant(
         progress(done, total);
     }
     Ok(model)
+}
+
+/// The largest coordinate magnitude, mm, of any part or nozzle patch of
+/// `design` in its part's frame (what `f32` storage is budgeted for), without
+/// meshing; `None` when the design cannot be resolved or a part not built.
+fn largest_part_extent(design: &Design) -> Option<f64> {
+    let resolved = resolve(design).ok()?;
+    let extents: Result<Vec<f64>, _> = resolved
+        .par_iter()
+        .flat_map_iter(|v| {
+            let parts = v.parts.iter().map(|p| p.geometry.patches());
+            let nozzles = v.nozzles.iter().map(|n| n.geometry.patches());
+            parts.chain(nozzles)
+        })
+        .map(|patches| Ok(patches?.iter().map(patch_extent).fold(0.0, f64::max)))
+        .collect::<Result<Vec<f64>, crate::parts::PartError>>();
+    Some(extents.ok()?.into_iter().fold(0.0, f64::max))
 }

@@ -71,8 +71,12 @@ pub enum CdtError {
         /// 0 for the outer loop, 1 + k for hole k.
         loop_index: usize,
     },
-    /// Meshing would need more vertices than the budget allows.
-    #[error("meshing needs more than {limit} vertices (tolerance too small for the patch)")]
+    /// Meshing would need more vertices than the budget allows
+    /// ([`TessellationOptions::max_vertices`](crate::mesh::TessellationOptions::max_vertices)).
+    #[error(
+        "meshing needs more than {limit} vertices, the vertex budget max_vertices \
+         (the tolerance is too small for the patch)"
+    )]
     BudgetExceeded {
         /// The vertex budget.
         limit: usize,

@@ -14,9 +14,6 @@ use crate::mesh::{Mesh, TessellationOptions};
 use crate::nurbs::NurbsSurface;
 use crate::parts::{Analytic, Patch};
 
-/// Most vertices one region may get (seeds, loop vertices and insertions); beyond
-/// it meshing stops with [`CdtError::BudgetExceeded`].
-pub const VERTEX_BUDGET: usize = 4_000_000;
 /// Share of the tolerance the seed lattice aims at, leaving room for the lattice's
 /// irregularities so that refinement has little to add.
 const SEED_SHARE: f64 = 0.96;
@@ -135,7 +132,9 @@ fn mesh_oriented(
     })
     .with_analytic(analytic);
     let mut stats = MeshStats::default();
-    let budget = VERTEX_BUDGET.saturating_sub(region.vertex_count());
+    // The options' vertex budget bounds each region (seeds, loop vertices and
+    // insertions); beyond it meshing stops with `CdtError::BudgetExceeded`.
+    let budget = options.max_vertices.saturating_sub(region.vertex_count());
     let plan = plan(&info, region);
     if let Some((path, mut rings)) =
         structured::triangulate(&info, region, &plan, options, budget, memo)?
@@ -178,7 +177,13 @@ fn mesh_oriented(
         let mut mesh = TriMesh::new(verts, tris, |a, b| {
             fixed.contains(&(a, b)) || fixed.contains(&(b, a))
         });
-        refine::refine_assessed(&info, &mut mesh, VERTEX_BUDGET, &mut stats, assessment)?;
+        refine::refine_assessed(
+            &info,
+            &mut mesh,
+            options.max_vertices,
+            &mut stats,
+            assessment,
+        )?;
         return finish(&info, &mesh, None, stats);
     }
     // The general path: no cavity of the structured attempt is in this mesh.
@@ -187,7 +192,7 @@ fn mesh_oriented(
     let poled = seed::with_pole_vertices(&info, region, &seeds);
     let region = poled.as_ref().unwrap_or(region);
     let mut mesh = initial::triangulate(&info, region, &seeds, &mut stats)?;
-    refine::refine(&info, &mut mesh, options, VERTEX_BUDGET, &mut stats)?;
+    refine::refine(&info, &mut mesh, options, options.max_vertices, &mut stats)?;
     finish(&info, &mesh, None, stats)
 }
 
@@ -224,7 +229,7 @@ mod tests {
             &region,
             &plan,
             options,
-            VERTEX_BUDGET,
+            options.max_vertices,
             &mut Memo::default(),
         )
         .expect("meshed");

@@ -55,8 +55,7 @@ const MIN_VERTICES: usize = 64;
 pub use error::CdtError;
 pub use kept::KeptCavities;
 pub use mesher::{
-    VERTEX_BUDGET, mesh_patch_region, mesh_patch_region_keeping, mesh_region, mesh_region_on,
-    mesh_region_with_uvs,
+    mesh_patch_region, mesh_patch_region_keeping, mesh_region, mesh_region_on, mesh_region_with_uvs,
 };
 pub use output::{MeshStats, RegionMesh};
 pub use patch::wrap_u;

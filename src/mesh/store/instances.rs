@@ -70,12 +70,14 @@ pub fn surface_key(patch: &Patch, options: &TessellationOptions) -> u128 {
         angle_tolerance,
         max_edge_length,
         max_stretch,
+        max_vertices,
     } = *options;
     let optional = |x: Option<f64>| x.map_or(u64::MAX, f64::to_bits);
     write(tolerance.to_bits());
     write(optional(angle_tolerance));
     write(optional(max_edge_length));
     write(optional(max_stretch));
+    write(max_vertices as u64);
     key.finish()
 }
 
