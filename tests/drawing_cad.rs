@@ -65,6 +65,18 @@ fn dxf_model_space_measures_millimetres_with_real_dimensions() {
         .expect("the T/T dimension is a DIMENSION entity");
     let run = (tt.definition_point_3.x - tt.definition_point_2.x).abs();
     assert!((run - 7300.0).abs() < 1e-6, "T/T measures {run} mm");
+    // Every handle is unique (the dxf crate gives an ENDBLK its BLOCK's).
+    let mut handles = std::collections::BTreeSet::new();
+    let lines: Vec<&str> = std::str::from_utf8(&bytes).unwrap().lines().collect();
+    for pair in lines.chunks(2) {
+        if pair.len() == 2 && pair[0].trim() == "5" {
+            assert!(
+                handles.insert(pair[1].trim()),
+                "handle {} repeated",
+                pair[1]
+            );
+        }
+    }
     // Layers with line weights, HIDDEN and CENTER line types.
     let text = String::from_utf8(bytes.clone()).unwrap();
     assert!(text.contains("HIDDEN") && text.contains("CENTER"));
@@ -100,7 +112,13 @@ print("dimensions", len(doc.modelspace().query("DIMENSION")))
         .output()
         .unwrap();
     std::fs::remove_file(&path).ok();
-    let report = String::from_utf8_lossy(&out.stdout).to_string();
+    let report = format!(
+        "{}{}",
+        String::from_utf8_lossy(&out.stdout),
+        String::from_utf8_lossy(&out.stderr)
+    );
+    // Every handle once (ezdxf warns of a repeated one and validates).
+    assert!(!report.contains("non-unique"), "{report}");
     assert!(
         out.status.success(),
         "ezdxf failed (is it installed?): {}",

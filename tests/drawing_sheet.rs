@@ -220,6 +220,21 @@ fn dimensions_do_not_overlap_each_other_or_the_views() {
     assert!(s.dimensions.iter().any(|d| d.text == "OD 2400 (S1)"));
     assert!(s.dimensions.iter().any(|d| d.text.starts_with("SADDLES ")));
     assert!(s.dimensions.iter().any(|d| d.text == "N1 POS 800"));
+    // Each head's depth runs from its tangent line to its crown: the line is as
+    // long as its text says (the first head's once ran from the other tangent
+    // line, 7300 mm long, labelled 650).
+    let heads: Vec<_> = s
+        .dimensions
+        .iter()
+        .filter(|d| d.text.starts_with("HEAD "))
+        .collect();
+    assert_eq!(heads.len(), 2);
+    for d in heads {
+        let said: f64 = d.text["HEAD ".len()..].parse().unwrap();
+        let drawn = d.line_box.size().max_element() * s.scale;
+        assert!((drawn - said).abs() < 0.5, "{}: drawn {drawn} mm", d.text);
+        assert!(said > 500.0 && said < 800.0, "{}", d.text);
+    }
 }
 
 #[test]

@@ -164,7 +164,9 @@ pub fn plan(data: &VesselData) -> Dimensions {
             }
             (_, PartGeometry::Head(_)) => {
                 // Head depth: from its tangent line on the outline to the crown.
-                let bottom = part.span.1 <= 1e-6;
+                // (A head's span may reach past its tangent line into the
+                // course: which end it closes is told by its middle.)
+                let bottom = 0.5 * (part.span.0 + part.span.1) < 0.5 * tt;
                 let (tl, crown) = if bottom {
                     (0.0, part.span.0)
                 } else {
@@ -175,7 +177,7 @@ pub fn plan(data: &VesselData) -> Dimensions {
                     side: axial_side,
                     a: p(outline_at(data, radial, tl)),
                     b: p(DVec3::new(t.x, t.y, crown)),
-                    text: format!("HEAD {}", format_mm(part.span.1 - part.span.0)),
+                    text: format!("HEAD {}", format_mm((crown - tl).abs())),
                 });
             }
             (PartDesign::Skirt(_), _) => {

@@ -1,5 +1,6 @@
 //! What the `dxf` crate (0.6) does not write, added to its output as group-code
-//! pairs: handles on the table heads (readers repair them otherwise), the
+//! pairs: handles on the table heads (readers repair them otherwise), a handle
+//! of its own for each `ENDBLK` (the crate repeats its `BLOCK`'s), the
 //! layers' line weights (its `LineWeight` cannot be set to a value), and the
 //! paper-space `VIEWPORT` entities (it has no such entity): the sheet's own
 //! viewport, one on the drawing area at the sheet's scale and, for an enlarged
@@ -129,6 +130,13 @@ pub fn fix_up(text: &str, sheet: &Sheet) -> Result<String, DrawingError> {
             p.insert(i + 3, pair(330, 0));
         }
         i += 1;
+    }
+    // Every ENDBLK its own handle (the crate repeats its BLOCK's).
+    for i in 0..p.len().saturating_sub(1) {
+        if p[i].0 == 0 && p[i].1.trim() == "ENDBLK" && p[i + 1].0 == 5 {
+            let h = fresh();
+            p[i + 1].1 = format!("{h:X}");
+        }
     }
     // Layer line weights.
     let weight_of = |name: &str| {
