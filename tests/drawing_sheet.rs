@@ -40,8 +40,22 @@ fn the_nozzle_schedule_lists_exactly_the_models_nozzles() {
             .collect();
         assert_eq!(marks, expected, "{name}");
         for (row, n) in s.schedule.iter().zip(&design.vessels[0].nozzles) {
-            assert_eq!(row.cells[7], vesselcad::drawing::format_mm(n.projection));
-            assert_eq!(row.cells[2], format!("CL {}", n.rating));
+            assert_eq!(row.cells[11], vesselcad::drawing::format_mm(n.projection));
+            assert_eq!(row.cells[3], format!("CL {}", n.rating));
+            assert_eq!(row.cells[1], "1");
+            assert!(["WN", "SO", "BLIND"].contains(&row.cells[5].as_str()));
+            assert!(row.cells[6].starts_with(&n.schedule), "{row:?}");
+            match &n.pad {
+                Some(p) => assert_eq!(
+                    row.cells[7],
+                    format!(
+                        "{}×{}",
+                        vesselcad::drawing::format_mm(p.od),
+                        vesselcad::drawing::format_mm(p.thickness)
+                    )
+                ),
+                None => assert_eq!(row.cells[7], "—"),
+            }
         }
         // Remove one nozzle (one no note points at): the schedule follows.
         let gone = expected
@@ -103,6 +117,27 @@ fn the_title_block_and_design_data_come_from_the_design_file() {
     ] {
         assert!(texts.contains(t), "{t:?} missing from the sheet");
     }
+    // The title block's signature rows and revision history, blank where no
+    // value is known.
+    for t in [
+        "DRAWN",
+        "CHECKED",
+        "APPROVED",
+        "REVISIONS",
+        "DESCRIPTION",
+        "ISSUED",
+    ] {
+        assert!(texts.contains(t), "{t:?} missing from the title block");
+    }
+    // Design data from the calculation: code, MAWP, hydrotest and MDMT rows.
+    for t in [
+        "CODE",
+        "MAWP (HOT & CORRODED, TOP)",
+        "HYDROTEST (UG-99(b), TOP)",
+    ] {
+        assert!(texts.contains(t), "{t:?} missing from the design data");
+    }
+    assert!(texts.iter().any(|t| t.starts_with("MDMT")), "MDMT row");
     assert!(texts.iter().any(|t| t.ends_with(" m³")), "volume");
     assert!(texts.iter().any(|t| t.ends_with(" kg")), "empty weight");
     // The revision triangle: a closed three-point border line.
@@ -185,6 +220,21 @@ fn dimensions_do_not_overlap_each_other_or_the_views() {
     assert!(s.dimensions.iter().any(|d| d.text == "OD 2400 (S1)"));
     assert!(s.dimensions.iter().any(|d| d.text.starts_with("SADDLES ")));
     assert!(s.dimensions.iter().any(|d| d.text == "N1 POS 800"));
+    // Each head's depth runs from its tangent line to its crown: the line is as
+    // long as its text says (the first head's once ran from the other tangent
+    // line, 7300 mm long, labelled 650).
+    let heads: Vec<_> = s
+        .dimensions
+        .iter()
+        .filter(|d| d.text.starts_with("HEAD "))
+        .collect();
+    assert_eq!(heads.len(), 2);
+    for d in heads {
+        let said: f64 = d.text["HEAD ".len()..].parse().unwrap();
+        let drawn = d.line_box.size().max_element() * s.scale;
+        assert!((drawn - said).abs() < 0.5, "{}: drawn {drawn} mm", d.text);
+        assert!(said > 500.0 && said < 800.0, "{}", d.text);
+    }
 }
 
 #[test]
@@ -239,12 +289,22 @@ fn svg_is_well_formed_and_dxf_reads_back_with_its_layers() {
             .entities()
             .filter(|e| matches!(e.specific, dxf::entities::EntityType::Text(_)))
             .count();
+        // Dimension texts are in their dimensions' blocks.
+        let block_texts: usize = drawing
+            .blocks()
+            .map(|b| {
+                b.entities
+                    .iter()
+                    .filter(|e| matches!(e.specific, dxf::entities::EntityType::Text(_)))
+                    .count()
+            })
+            .sum();
         let sheet_texts = s
             .items
             .iter()
             .filter(|i| matches!(i, Item::Text { .. }))
             .count();
-        assert_eq!(texts, sheet_texts);
+        assert_eq!(texts + block_texts, sheet_texts);
     }
 }
 

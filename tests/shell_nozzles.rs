@@ -234,5 +234,5 @@ fn the_schedule_shows_offset_and_inclination() {
     let data = vesselcad::drawing::vessel_data(&model, "V").unwrap();
     let sheet = vesselcad::drawing::compose(&data, &vesselcad::drawing::SheetOptions::default());
     let row = &sheet.schedule[0];
-    assert_eq!(row.cells[5], "30° OFS 500 INC -20°", "{row:?}");
+    assert_eq!(row.cells[9], "30° OFS 500 INC -20°", "{row:?}");
 }

@@ -1,8 +1,10 @@
-//! `vesselcad drawing`: build a design and write one vessel's drawing sheet as SVG
-//! (and optionally DXF).
+//! `vesselcad drawing`: build a design and write one vessel's drawing sheet as SVG,
+//! or as PDF when the output ends in `.pdf` (the SVG printed by headless
+//! Chromium on a page of the sheet's size, line weights as drawn), and
+//! optionally as DXF.
 
-use std::path::PathBuf;
-use std::process::ExitCode;
+use std::path::{Path, PathBuf};
+use std::process::{Command, ExitCode};
 use std::time::Instant;
 
 use clap::{Args, ValueEnum};
@@ -51,7 +53,8 @@ pub struct DrawingArgs {
     /// Tag of the vessel to draw.
     #[arg(long)]
     vessel: String,
-    /// Output SVG file, or `-` for standard output.
+    /// Output SVG file, a `.pdf` file (printed with headless Chromium), or `-`
+    /// for SVG on standard output.
     #[arg(short, long)]
     output: PathBuf,
     /// Also write the sheet as DXF (R2000) to this file.
@@ -116,7 +119,19 @@ pub fn run(args: DrawingArgs) -> ExitCode {
         }
     };
     let to_stdout = args.output.as_os_str() == "-";
-    let written = if to_stdout {
+    let is_pdf = args
+        .output
+        .extension()
+        .is_some_and(|e| e.eq_ignore_ascii_case("pdf"));
+    let written = if is_pdf {
+        match print_pdf(&to_svg(&sheet), size, &args.output) {
+            Ok(()) => Ok(()),
+            Err(e) => {
+                eprintln!("error: {e}");
+                return ExitCode::from(2);
+            }
+        }
+    } else if to_stdout {
         use std::io::Write;
         let mut out = std::io::stdout().lock();
         out.write_all(to_svg(&sheet).as_bytes())
@@ -168,4 +183,56 @@ pub fn run(args: DrawingArgs) -> ExitCode {
         outln!("{summary}");
     }
     ExitCode::SUCCESS
+}
+
+/// Where Debian installs Chromium.
+const CHROMIUM: &str = "/usr/bin/chromium";
+
+/// Prints the sheet's `svg` to `out` as a one-page PDF of the sheet's `size`
+/// with headless Chromium.
+fn print_pdf(svg: &str, size: SheetSize, out: &Path) -> Result<(), String> {
+    if !Path::new(CHROMIUM).exists() {
+        return Err(format!(
+            "{CHROMIUM} is not installed (Debian: apt-get install chromium); write .svg instead"
+        ));
+    }
+    let paper = size.dimensions();
+    let page = format!(
+        "<!doctype html><html><head><meta charset=\"utf-8\"><style>\
+         @page{{size:{w}mm {h}mm;margin:0}}html,body{{margin:0;padding:0}}\
+         svg{{display:block;width:{w}mm;height:{h}mm}}</style></head><body>{svg}</body></html>",
+        w = paper.x,
+        h = paper.y,
+    );
+    let dir = std::env::temp_dir().join(format!("vesselcad-sheet-{}", std::process::id()));
+    std::fs::create_dir_all(&dir).map_err(|e| e.to_string())?;
+    let html = dir.join("sheet.html");
+    std::fs::write(&html, page).map_err(|e| e.to_string())?;
+    let target = std::path::absolute(out).map_err(|e| e.to_string())?;
+    std::fs::remove_file(&target).ok();
+    let result = Command::new(CHROMIUM)
+        .args([
+            "--headless",
+            "--no-sandbox",
+            "--disable-gpu",
+            "--no-first-run",
+            "--disable-background-networking",
+            "--disable-component-update",
+            "--disable-sync",
+            "--no-pdf-header-footer",
+        ])
+        .arg(format!("--user-data-dir={}", dir.join("profile").display()))
+        .arg(format!("--print-to-pdf={}", target.display()))
+        .arg(format!("file://{}", html.display()))
+        .output();
+    std::fs::remove_dir_all(&dir).ok();
+    match result {
+        Ok(o) if o.status.success() && target.exists() => Ok(()),
+        Ok(o) => Err(format!(
+            "chromium could not print {}: {}",
+            out.display(),
+            String::from_utf8_lossy(&o.stderr)
+        )),
+        Err(e) => Err(format!("could not run {CHROMIUM}: {e}")),
+    }
 }

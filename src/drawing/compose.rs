@@ -7,12 +7,14 @@ use glam::DVec2;
 
 use super::data::VesselData;
 use super::dimensions::{self, format_mm};
-use super::layout::{Margins, Placement, lay_out};
+use super::labels::{self, Movable};
+use super::layout::{Margins, Placement, enlarged_scale, lay_out};
+use super::orientation;
 use super::sheet::{
     Align, HiddenLines, Item, Layer, PlacedDimension, Rect, Sheet, SheetOptions, SheetSize,
-    text_width,
 };
 use super::tables;
+use super::text::text_width;
 use crate::project::{LineKind, plan_north};
 
 /// Titles written under the views.
@@ -21,8 +23,8 @@ const VIEW_TITLES: [&str; 4] = ["ELEVATION", "PLAN", "SIDE ELEVATION", "ISOMETRI
 /// Border margin and table column width, mm.
 fn frame_sizes(size: SheetSize) -> (f64, f64) {
     match size {
-        SheetSize::AnsiB | SheetSize::IsoA3 => (8.0, 130.0),
-        SheetSize::AnsiD | SheetSize::IsoA1 => (12.0, 200.0),
+        SheetSize::AnsiB | SheetSize::IsoA3 => (8.0, 150.0),
+        SheetSize::AnsiD | SheetSize::IsoA1 => (12.0, 230.0),
     }
 }
 
@@ -72,10 +74,48 @@ pub fn compose(data: &VesselData, options: &SheetOptions) -> Sheet {
         m[1].right += 16.0;
         m
     };
-    let first = lay_out(&bounds, &margins_at(1.0), area);
-    let mut placement = lay_out(&bounds, &margins_at(first.scale), area);
-    if placement.scale < first.scale {
-        placement = lay_out(&bounds, &margins_at(placement.scale), area);
+    // The plan (the angle view of a horizontal vessel) needs room for the
+    // orientation circle's labels; a plan smaller than `min_plan` at the sheet's
+    // scale is drawn at a larger standard scale of its own.
+    let ov = orientation::angle_view(data);
+    let min_plan = match size {
+        SheetSize::AnsiB | SheetSize::IsoA3 => 60.0,
+        SheetSize::AnsiD | SheetSize::IsoA1 => 100.0,
+    };
+    let margins_with = |scale: f64| {
+        let mut m = margins_at(scale);
+        let extra = orientation::label_margin(h);
+        m[ov].left += extra;
+        m[ov].right += extra;
+        m[ov].top += extra;
+        m[ov].bottom += extra;
+        m
+    };
+    let plan_extent = {
+        let (lo, hi) = bounds[1];
+        (hi - lo).max_element()
+    };
+    let settle = |factors: [f64; 4]| {
+        let first = lay_out(&bounds, &margins_with(1.0), area, factors);
+        let mut p = lay_out(&bounds, &margins_with(first.scale), area, factors);
+        if p.scale < first.scale {
+            p = lay_out(&bounds, &margins_with(p.scale), area, factors);
+        }
+        p
+    };
+    let mut factors = [1.0; 4];
+    let mut placement = settle(factors);
+    for _ in 0..4 {
+        let want = if plan_extent / placement.scale < min_plan {
+            (placement.scale / enlarged_scale(plan_extent, min_plan)).max(1.0)
+        } else {
+            1.0
+        };
+        if (want - factors[1]).abs() < 1e-9 {
+            break;
+        }
+        factors[1] = want;
+        placement = settle(factors);
     }
     let view_boxes: [Rect; 4] = std::array::from_fn(|k| {
         Rect::new(
@@ -84,6 +124,7 @@ pub fn compose(data: &VesselData, options: &SheetOptions) -> Sheet {
         )
     });
     // Views.
+    let mut titles = Vec::new();
     for (k, view) in data.views.iter().enumerate() {
         for line in view.entities.iter().flat_map(|e| &e.lines) {
             let layer = match line.kind {
@@ -107,8 +148,9 @@ pub fn compose(data: &VesselData, options: &SheetOptions) -> Sheet {
             "{} ({} {})",
             VIEW_TITLES[k],
             data.design.tag,
-            scale_text(placement.scale)
+            scale_text(placement.view_scale(k))
         );
+        titles.push(items.len());
         items.push(Item::Text {
             at: DVec2::new(
                 0.5 * (b.min.x + b.max.x),
@@ -121,6 +163,7 @@ pub fn compose(data: &VesselData, options: &SheetOptions) -> Sheet {
         });
     }
     let mut placed = Vec::new();
+    let mut dim_texts = Vec::new();
     dimensions::place(
         &dims,
         0,
@@ -129,8 +172,23 @@ pub fn compose(data: &VesselData, options: &SheetOptions) -> Sheet {
         h,
         &mut items,
         &mut placed,
+        &mut dim_texts,
     );
-    notes(data, &placement, area, &placed, h, &mut items);
+    let mut movable: Vec<Movable> = dim_texts
+        .iter()
+        .map(|&item| Movable {
+            item,
+            target: None,
+            outside_views: true,
+        })
+        .collect();
+    movable.extend(orientation::draw(data, &placement, h, &mut items));
+    movable.extend(notes(data, &placement, area, &placed, h, &mut items));
+    movable.extend(titles.iter().map(|&item| Movable {
+        item,
+        target: None,
+        outside_views: false,
+    }));
     north_arrow(data, view_boxes[1], h, &mut items);
     let schedule = tables::schedule(data);
     let (_, revision_at) = tables::draw(
@@ -144,6 +202,13 @@ pub fn compose(data: &VesselData, options: &SheetOptions) -> Sheet {
     );
     let revision = tables::title_fields(data).revision;
     revision_triangle(revision_at, &revision, h, &mut items);
+    // Every movable text where it touches no other text and no outline.
+    labels::place_labels(&mut items, &movable, paper, area, &[], &view_boxes, h);
+    for (d, &item) in placed.iter_mut().zip(&dim_texts) {
+        if let Some(b) = items.get(item).and_then(labels::item_box) {
+            d.text_box = b;
+        }
+    }
     Sheet {
         size,
         scale: placement.scale,
@@ -151,6 +216,22 @@ pub fn compose(data: &VesselData, options: &SheetOptions) -> Sheet {
         view_boxes,
         dimensions: placed,
         schedule,
+        factors: placement.factors,
+        plan_region: {
+            let m = if ov == 1 {
+                orientation::label_margin(h)
+            } else {
+                2.0 * h
+            };
+            Rect::new(
+                view_boxes[1].min - DVec2::splat(m),
+                view_boxes[1].max + DVec2::splat(m),
+            )
+        },
+        tables: Rect::new(
+            DVec2::new(column_left, inner.min.y),
+            DVec2::new(inner.max.x, inner.max.y),
+        ),
     }
 }
 
@@ -168,9 +249,9 @@ fn front_bottom(k: usize, dims: &dimensions::Dimensions, h: f64, scale: f64) -> 
     }
 }
 
-/// Notes in the front elevation: text at the note's position, a leader with an
-/// arrowhead to its target's anchor (both follow the target: they are resolved
-/// from it on every update). A text that would cover a dimension is moved out
+/// Notes in the front elevation: text at the note's position, handed to the
+/// label placer with its target's anchor, where its leader points (both follow
+/// the target: they are resolved from it on every update). A text that would cover a dimension is moved out
 /// past the dimensions on its side; every text stays on the drawing area.
 fn notes(
     data: &VesselData,
@@ -179,7 +260,8 @@ fn notes(
     dims: &[PlacedDimension],
     h: f64,
     items: &mut Vec<Item>,
-) {
+) -> Vec<Movable> {
+    let mut movable = Vec::new();
     let front = data.views[0].projection;
     for n in &data.notes {
         let anchor = placement.to_sheet(0, front.project(n.anchor));
@@ -229,22 +311,11 @@ fn notes(
         } else {
             x.clamp((area.min.x + w).min(area.max.x), area.max.x)
         };
-        let shoulder = DVec2::new(x + if right { -1.0 } else { 1.0 }, y + 0.4 * h);
-        if (shoulder - anchor).length() > 1e-6 {
-            items.push(Item::Line {
-                layer: Layer::Dimension,
-                points: vec![shoulder, anchor],
-                closed: false,
-            });
-            let dir = (anchor - shoulder).normalize();
-            let len = 0.9 * h;
-            let back = anchor - dir * len;
-            let side = dir.perp() * len / 6.0;
-            items.push(Item::Fill {
-                layer: Layer::Dimension,
-                points: vec![anchor, back + side, back - side],
-            });
-        }
+        movable.push(Movable {
+            item: items.len(),
+            target: Some(anchor),
+            outside_views: false,
+        });
         items.push(Item::Text {
             at: DVec2::new(x, y),
             height: h,
@@ -253,6 +324,7 @@ fn notes(
             text: n.text.clone(),
         });
     }
+    movable
 }
 
 /// The north arrow beside the plan view's upper right corner.

@@ -1,5 +1,7 @@
 //! Automatic dimensions of the front elevation: overall tangent-to-tangent length,
-//! the OD of each course, skirt height, saddle spacing, nozzle projections (where
+//! overall length or height over heads and supports, head depths, the tangent
+//! lines and the base marked, the OD of each course, skirt height, saddle
+//! spacing and the centreline's height above the saddles' base, nozzle projections (where
 //! the nozzle lies in the view plane, so the length is true) and nozzle elevations
 //! or positions as ordinate callouts.
 //!
@@ -15,7 +17,8 @@ use glam::{DVec2, DVec3};
 
 use super::data::VesselData;
 use super::layout::{Margins, Placement};
-use super::sheet::{Align, Item, Layer, PlacedDimension, Rect, text_width};
+use super::sheet::{Align, Item, Layer, Measure, PlacedDimension, Rect};
+use super::text::text_width;
 use crate::constraints::PartGeometry;
 use crate::design::PartDesign;
 use crate::project::{Projection, ViewKind};
@@ -78,6 +81,8 @@ pub struct Ordinate {
     pub at: DVec2,
     /// Label, e.g. `"N1 EL 10000"`.
     pub text: String,
+    /// The elevation or position it labels, mm from the datum.
+    pub value: f64,
 }
 
 /// The dimensions of a front view.
@@ -157,6 +162,24 @@ pub fn plan(data: &VesselData) -> Dimensions {
                     text: format!("OD {} ({})", format_mm(g.outside_diameter), s.id),
                 });
             }
+            (_, PartGeometry::Head(_)) => {
+                // Head depth: from its tangent line on the outline to the crown.
+                // (A head's span may reach past its tangent line into the
+                // course: which end it closes is told by its middle.)
+                let bottom = 0.5 * (part.span.0 + part.span.1) < 0.5 * tt;
+                let (tl, crown) = if bottom {
+                    (0.0, part.span.0)
+                } else {
+                    (tt, part.span.1)
+                };
+                let t = part.frame.translation;
+                dims.linear.push(LinearDim {
+                    side: axial_side,
+                    a: p(outline_at(data, radial, tl)),
+                    b: p(DVec3::new(t.x, t.y, crown)),
+                    text: format!("HEAD {}", format_mm((crown - tl).abs())),
+                });
+            }
             (PartDesign::Skirt(_), _) => {
                 let edge = outline_at(data, radial, 0.0);
                 dims.linear.push(LinearDim {
@@ -168,6 +191,16 @@ pub fn plan(data: &VesselData) -> Dimensions {
             }
             _ => {}
         }
+    }
+    // Overall length or height, over heads and supports.
+    let (lo, hi) = data.summary.extent;
+    if hi - lo > tt + 1e-6 {
+        dims.linear.push(LinearDim {
+            side: axial_side,
+            a: p(DVec3::Z * lo),
+            b: p(DVec3::Z * hi),
+            text: format!("OVERALL {}", format_mm(hi - lo)),
+        });
     }
     // Saddle spacing.
     let saddles: Vec<(f64, f64)> = data
@@ -190,6 +223,14 @@ pub fn plan(data: &VesselData) -> Dimensions {
             a: DVec2::new(p(DVec3::Z * z0).x, bottom),
             b: DVec2::new(p(DVec3::Z * z1).x, bottom),
             text: format!("SADDLES {}", format_mm((z1 - z0).abs())),
+        });
+        // Height of the vessel's centreline above the saddles' base.
+        let x = p(DVec3::Z * z0.max(z1)).x;
+        dims.linear.push(LinearDim {
+            side: DimSide::Right,
+            a: DVec2::new(x, bottom),
+            b: DVec2::new(x, p(DVec3::ZERO).y),
+            text: format!("C/L {}", format_mm(p(DVec3::ZERO).y - bottom)),
         });
     }
     // Nozzles: projections where true length, elevations/positions as ordinates.
@@ -230,6 +271,7 @@ pub fn plan(data: &VesselData) -> Dimensions {
                 side,
                 at,
                 text: format!("{mark} {label} {}", format_mm(elevation)),
+                value: elevation,
             });
         } else if along_vessel && true_length(&front, axis) {
             // Head nozzle: projection from the head's tangent line to the face.
@@ -249,6 +291,32 @@ pub fn plan(data: &VesselData) -> Dimensions {
                 side: DimSide::Left,
                 at: p(outline_at(data, -radial, z)),
                 text: format!("{name} EL {}", format_mm(z)),
+                value: z,
+            });
+        }
+        // The base (skirt, legs or bottom head) below the datum.
+        if lo < -1e-6 {
+            let base = data
+                .view(ViewKind::Front)
+                .bounds()
+                .map_or(p(DVec3::Z * lo), |(b, _)| {
+                    DVec2::new(p(DVec3::Z * lo).x, b.y)
+                });
+            dims.ordinates.push(Ordinate {
+                side: DimSide::Left,
+                at: base,
+                text: format!("BASE EL {}", format_mm(lo)),
+                value: lo,
+            });
+        }
+    } else {
+        // Tangent lines marked at the outline's bottom.
+        for (z, name) in [(0.0, "LTL"), (tt, "RTL")] {
+            dims.ordinates.push(Ordinate {
+                side: DimSide::Below,
+                at: p(outline_at(data, -radial, z)),
+                text: format!("{name} POS {}", format_mm(z)),
+                value: z,
             });
         }
     }
@@ -359,7 +427,8 @@ fn arrow(tip: DVec2, dir: DVec2, len: f64) -> Item {
 }
 
 /// Places the dimensions of view `k` whose lines lie in `view_box`; appends the
-/// items and the placed dimensions.
+/// items, the placed dimensions and, in the same order, the indices of their
+/// text items (for the label placer).
 pub fn place(
     dims: &Dimensions,
     k: usize,
@@ -368,6 +437,7 @@ pub fn place(
     h: f64,
     items: &mut Vec<Item>,
     placed: &mut Vec<PlacedDimension>,
+    texts: &mut Vec<usize>,
 ) {
     let view = ViewKind::ALL[k];
     let to_sheet = |p: DVec2| placement.to_sheet(k, p);
@@ -388,11 +458,11 @@ pub fn place(
     };
     // Ordinates.
     for side in DimSide::ALL {
-        let mut list: Vec<(DVec2, &str)> = dims
+        let mut list: Vec<(DVec2, &str, f64)> = dims
             .ordinates
             .iter()
             .filter(|o| o.side == side)
-            .map(|o| (to_sheet(o.at), o.text.as_str()))
+            .map(|o| (to_sheet(o.at), o.text.as_str(), o.value))
             .collect();
         if list.is_empty() {
             continue;
@@ -409,7 +479,8 @@ pub fn place(
             points: vec![with_across(side, lo, base), with_across(side, hi, base)],
             closed: false,
         });
-        for (p, text) in list {
+        for (p, text, value) in list {
+            let first = items.len();
             let level = along(p);
             let slot = level.max(last + 1.5 * h);
             last = slot;
@@ -469,6 +540,7 @@ pub fn place(
                     ),
                 ),
             };
+            texts.push(items.len());
             items.push(Item::Text {
                 at,
                 height: h,
@@ -484,12 +556,20 @@ pub fn place(
                     with_across(side, level, base),
                     with_across(side, level, base),
                 ),
+                measure: Measure::Ordinate {
+                    feature: p,
+                    leader_end: with_across(side, slot, label_at),
+                    vertical: side.vertical(),
+                    value,
+                },
+                items: first..items.len(),
             });
         }
     }
     // Linear dimensions.
     let (assigned, _) = pack(dims, h, placement.scale);
     for (d, &t) in dims.linear.iter().zip(&assigned) {
+        let first = items.len();
         let s = DimSide::ALL.iter().position(|&x| x == d.side).unwrap_or(0);
         let side = d.side;
         let out = side.outward();
@@ -540,6 +620,7 @@ pub fn place(
                 ),
             )
         };
+        texts.push(items.len());
         items.push(Item::Text {
             at,
             height: h,
@@ -552,6 +633,14 @@ pub fn place(
             text: d.text.clone(),
             text_box,
             line_box: Rect::new(pa, pb),
+            measure: Measure::Linear {
+                a,
+                b,
+                line: pa,
+                vertical: side.vertical(),
+                value: (along(d.b) - along(d.a)).abs(),
+            },
+            items: first..items.len(),
         });
     }
 }

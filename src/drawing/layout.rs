@@ -4,7 +4,10 @@
 //! round it. The views are tried in two arrangements — third-angle (plan above the
 //! elevation, side view right of it, isometric top right) and all four in a row
 //! (for tall columns) — and the arrangement that allows the largest standard scale
-//! wins. Views are centred in their cells; the leftover space is shared out.
+//! wins. Views are centred in their cells; the leftover space is shared out. A
+//! view may be drawn larger than the sheet's scale (a column's plan, which at the
+//! elevation's scale would be a few centimetres across): it is laid out at its
+//! enlarged size and titled with its own scale.
 
 use glam::DVec2;
 
@@ -26,17 +29,37 @@ pub struct Margins {
 /// The chosen scale and where each view's model origin lands on the sheet.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct Placement {
-    /// Model mm per paper mm (the `n` of 1:n).
+    /// Model mm per paper mm (the `n` of 1:n) of the sheet.
     pub scale: f64,
-    /// Sheet position of each view's model origin: `paper = offset + model / scale`.
+    /// How much larger than the sheet's scale each view is drawn (1 but for a
+    /// plan enlarged to stay legible).
+    pub factors: [f64; 4],
+    /// Sheet position of each view's model origin:
+    /// `paper = offset + model · factor / scale`.
     pub offsets: [DVec2; 4],
 }
 
 impl Placement {
     /// Sheet position of view `k`'s model point `p`.
     pub fn to_sheet(self, k: usize, p: DVec2) -> DVec2 {
-        self.offsets[k] + p / self.scale
+        self.offsets[k] + p * self.factors[k] / self.scale
     }
+
+    /// The scale (model mm per paper mm) view `k` is drawn at.
+    pub fn view_scale(self, k: usize) -> f64 {
+        self.scale / self.factors[k]
+    }
+}
+
+/// The largest standard scale at which `extent` (model mm) spans at least
+/// `paper` mm, or 1:1.
+pub fn enlarged_scale(extent: f64, paper: f64) -> f64 {
+    SCALES
+        .iter()
+        .rev()
+        .copied()
+        .find(|&n| extent / n >= paper)
+        .unwrap_or(1.0)
 }
 
 /// Standard drawing scales 1:n.
@@ -52,8 +75,16 @@ const GAP: f64 = 6.0;
 /// order (0 front, 1 top, 2 side, 3 iso).
 const ARRANGEMENTS: [&[&[usize]]; 2] = [&[&[1, 3], &[0, 2]], &[&[0, 2, 1, 3]]];
 
-/// Lays out views with model `bounds` and paper `margins` in `area`.
-pub fn lay_out(bounds: &[(DVec2, DVec2); 4], margins: &[Margins; 4], area: Rect) -> Placement {
+/// Lays out views with model `bounds` and paper `margins` in `area`, view `k`
+/// drawn `factors[k]` times larger than the sheet's scale.
+pub fn lay_out(
+    bounds: &[(DVec2, DVec2); 4],
+    margins: &[Margins; 4],
+    area: Rect,
+    factors: [f64; 4],
+) -> Placement {
+    let bounds: [(DVec2, DVec2); 4] =
+        std::array::from_fn(|k| (bounds[k].0 * factors[k], bounds[k].1 * factors[k]));
     let size = |k: usize| (bounds[k].1 - bounds[k].0).max(DVec2::splat(1.0));
     let mut best: Option<(f64, &[&[usize]])> = None;
     for rows in ARRANGEMENTS {
@@ -128,5 +159,9 @@ pub fn lay_out(bounds: &[(DVec2, DVec2); 4], margins: &[Margins; 4], area: Rect)
         }
         top = cell_bottom - gap_y;
     }
-    Placement { scale, offsets }
+    Placement {
+        scale,
+        factors,
+        offsets,
+    }
 }

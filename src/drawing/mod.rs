@@ -18,25 +18,31 @@ mod compose;
 mod data;
 mod dimensions;
 mod dxf;
+mod dxf_fixup;
+mod labels;
 mod layout;
+mod orientation;
 mod sheet;
 mod single;
 mod svg;
 mod tables;
+mod text;
 
 pub use compose::compose;
 pub use data::{
     NoteData, NozzleData, PartData, VesselData, vessel_data, vessel_views, view_inputs,
 };
 pub use dimensions::format_mm;
-pub use dxf::{to_dxf, to_dxf_bytes};
+pub use dxf::{cad_text, to_dxf, to_dxf_bytes};
+pub use labels::{collisions, item_box};
 pub use sheet::{
-    Align, HiddenLines, Item, Layer, PlacedDimension, Rect, ScheduleRow, Sheet, SheetOptions,
-    SheetSize, text_width,
+    Align, HiddenLines, Item, Layer, Measure, PlacedDimension, Rect, ScheduleRow, Sheet,
+    SheetOptions, SheetSize,
 };
 pub use single::{LISTED_TAGS, SheetModelError, list_tags, sheet_model};
 pub use svg::to_svg;
 pub use tables::{SCHEDULE_COLUMNS, design_data};
+pub use text::{text_box, text_width};
 
 use thiserror::Error;
 

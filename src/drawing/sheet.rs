@@ -259,14 +259,48 @@ pub struct PlacedDimension {
     pub text_box: Rect,
     /// Box of the dimension line (arrow to arrow), mm.
     pub line_box: Rect,
+    /// What it measures, for writers that keep dimensions as entities (DXF).
+    pub measure: Measure,
+    /// The items that draw it (extension and dimension lines, arrowheads, text).
+    pub items: std::ops::Range<usize>,
+}
+
+/// What a placed dimension measures, in sheet mm (model values in model mm).
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub enum Measure {
+    /// A linear dimension between two feature points.
+    Linear {
+        /// First feature point.
+        a: DVec2,
+        /// Second feature point.
+        b: DVec2,
+        /// A point on the dimension line.
+        line: DVec2,
+        /// Whether it measures vertically (else horizontally).
+        vertical: bool,
+        /// The model distance, mm.
+        value: f64,
+    },
+    /// An ordinate: a feature's elevation or position from the datum.
+    Ordinate {
+        /// The feature point.
+        feature: DVec2,
+        /// Where its leader ends at the label.
+        leader_end: DVec2,
+        /// Whether it measures vertically (an elevation).
+        vertical: bool,
+        /// The model coordinate from the datum, mm.
+        value: f64,
+    },
 }
 
 /// A row of the nozzle schedule.
 #[derive(Clone, Debug, PartialEq, Eq)]
 pub struct ScheduleRow {
-    /// Cells: mark, size, rating, facing, service, orientation, elevation/position,
-    /// projection.
-    pub cells: [String; 8],
+    /// Cells, in [`SCHEDULE_COLUMNS`](super::SCHEDULE_COLUMNS) order: mark,
+    /// quantity, size, rating, facing, flange type, schedule and wall, pad,
+    /// service, orientation, elevation/position, projection.
+    pub cells: [String; 12],
 }
 
 /// A drawing sheet: size, display list and where things went.
@@ -284,9 +318,12 @@ pub struct Sheet {
     pub dimensions: Vec<PlacedDimension>,
     /// The nozzle schedule's rows, in design order.
     pub schedule: Vec<ScheduleRow>,
-}
-
-/// Approximate advance width of `text` at cap height `height` in a sans-serif face.
-pub fn text_width(text: &str, height: f64) -> f64 {
-    0.62 * height * text.chars().count() as f64
+    /// How much larger than the sheet's scale each view is drawn (1 but for an
+    /// enlarged plan), in [`ViewKind::ALL`](crate::project::ViewKind::ALL) order.
+    pub factors: [f64; 4],
+    /// The region of the plan view with its orientation labels, mm.
+    pub plan_region: Rect,
+    /// The table column at the right (title block, design data, schedule,
+    /// notes), mm.
+    pub tables: Rect,
 }

@@ -7,6 +7,7 @@ use svg::Document;
 use svg::node::element::{Circle, Group, Polygon, Polyline, Rectangle, Style, Text};
 
 use super::sheet::{Align, Item, Layer, Sheet};
+use super::text::{CAP_HEIGHT_EM, text_width};
 
 /// The style sheet: line weights (mm) and dash patterns per layer.
 const STYLE: &str = "\
@@ -101,12 +102,15 @@ pub fn to_svg(sheet: &Sheet) -> String {
                         Align::Middle => "middle",
                         Align::End => "end",
                     };
-                    // Cap height ≈ 0.72 of the font size in common sans faces.
+                    // The font size whose cap height is `height`; the stated
+                    // length keeps the text in the box the layout reserved.
                     let mut t = Text::new(text.clone())
                         .set("x", num(p.x))
                         .set("y", num(p.y))
-                        .set("font-size", num(height / 0.72))
-                        .set("text-anchor", anchor);
+                        .set("font-size", num(height / CAP_HEIGHT_EM))
+                        .set("text-anchor", anchor)
+                        .set("textLength", num(text_width(text, *height)))
+                        .set("lengthAdjust", "spacingAndGlyphs");
                     if *rotation != 0.0 {
                         t = t.set(
                             "transform",

@@ -9,25 +9,39 @@ use glam::DVec2;
 
 use super::data::VesselData;
 use super::dimensions::format_mm;
-use super::sheet::{Align, Item, Layer, Rect, ScheduleRow, SheetSize, text_width};
+use super::sheet::{Align, Item, Layer, Rect, ScheduleRow, SheetSize};
+use super::text::text_width;
+use crate::calc::mdmt::vessel_mdmt;
 use crate::calc::{DEFAULT_JOINT_EFFICIENCY, MaterialTable, calculate, code_of};
 use crate::design::{Design, FORMAT, Units, VesselKind};
+use crate::parts::tables::pipe;
 use crate::weights::weights;
 
-/// Titles of the nozzle schedule's columns.
-pub const SCHEDULE_COLUMNS: [&str; 8] = [
-    "MARK",
-    "SIZE",
-    "RATING",
-    "FACING",
-    "SERVICE",
-    "ORIENT.",
-    "ELEV./POS.",
-    "PROJ.",
+/// Titles of the nozzle schedule's columns: mark, quantity, size, rating,
+/// facing, flange type, neck schedule and wall, pad (OD × thickness), service,
+/// orientation, elevation or position, projection.
+pub const SCHEDULE_COLUMNS: [&str; 12] = [
+    "MARK", "QTY", "SIZE", "RATING", "FACE", "FLG", "SCH/THK", "PAD", "SERVICE", "ORIENT",
+    "EL/POS", "PROJ",
 ];
 
 /// Relative widths of the schedule's columns.
-const SCHEDULE_WIDTHS: [f64; 8] = [0.08, 0.08, 0.10, 0.08, 0.26, 0.10, 0.16, 0.14];
+const SCHEDULE_WIDTHS: [f64; 12] = [
+    0.065, 0.045, 0.06, 0.085, 0.055, 0.055, 0.105, 0.11, 0.14, 0.085, 0.115, 0.08,
+];
+
+/// `cell` cut to fit `width` at lettering height `h`, with an ellipsis when cut.
+fn fit_cell(cell: &str, width: f64, h: f64) -> String {
+    if text_width(cell, h) <= width {
+        return cell.to_string();
+    }
+    let mut t: String = cell.to_string();
+    while !t.is_empty() && text_width(&t, h) + text_width("…", h) > width {
+        t.pop();
+    }
+    t.push('…');
+    t
+}
 
 /// A table cursor: draws rows upward from `bottom` across `[left, right]`.
 struct Table<'a> {
@@ -52,14 +66,7 @@ impl Table<'_> {
         let mut x = self.left;
         for (cell, w) in cells.iter().zip(widths) {
             let cw = w * total;
-            let max_chars = ((cw - 1.5) / (0.62 * self.h)).floor().max(1.0) as usize;
-            let text: String = if cell.chars().count() > max_chars {
-                let mut t: String = cell.chars().take(max_chars.saturating_sub(1)).collect();
-                t.push('…');
-                t
-            } else {
-                (*cell).to_string()
-            };
+            let text = fit_cell(cell, cw - 1.6, self.h);
             self.items.push(Item::Text {
                 at: DVec2::new(x + 0.8, bottom + 0.45 * self.h),
                 height: self.h,
@@ -117,7 +124,15 @@ pub fn design_data(data: &VesselData) -> Vec<(&'static str, String)> {
     let resolved = crate::design::resolve(&design).ok();
     let resolved = resolved.as_ref().and_then(|r| r.first());
     let weights = resolved.and_then(|r| weights(&data.design, r).ok());
-    let calc = resolved.map(|r| calculate(&data.design, r, &MaterialTable::builtin()).vessel);
+    let calculation = resolved.map(|r| calculate(&data.design, r, &MaterialTable::builtin()));
+    let mdmt = calculation.as_ref().and_then(|c| {
+        vessel_mdmt(
+            c.parts
+                .iter()
+                .filter_map(|p| p.mdmt.as_ref().map(|m| (p.id.as_str(), m))),
+        )
+    });
+    let calc = calculation.map(|c| c.vessel);
     let e = match data.design.design.joint_efficiency {
         Some(e) => format_mm(e),
         None => format!("{} (default)", format_mm(DEFAULT_JOINT_EFFICIENCY)),
@@ -165,6 +180,12 @@ pub fn design_data(data: &VesselData) -> Vec<(&'static str, String)> {
             "WEIGHT TEST (FULL OF WATER)",
             weights.as_ref().map_or_else(dash, |w| kg(w.test)),
         ),
+        (
+            "MDMT (UCS-66, NO IMPACT TEST)",
+            mdmt.map_or_else(dash, |(_, t)| {
+                format!("{} °C", format_mm((t * 10.0).round() / 10.0))
+            }),
+        ),
         ("DEFICIENCIES", deficiencies),
     ]
 }
@@ -210,12 +231,35 @@ pub fn schedule(data: &VesselData) -> Vec<ScheduleRow> {
                 Some(e) => format!("{position} {}", format_mm(e)),
                 None => format!("{} +{}", n.host, format_mm(n.offset.unwrap_or(0.0))),
             };
+            let flange = match n.flange {
+                crate::design::FlangeDesign::WeldNeck => "WN",
+                crate::design::FlangeDesign::SlipOn => "SO",
+                crate::design::FlangeDesign::Blind => "BLIND",
+            };
+            // The neck's wall from the B36.10M table for the resolved nozzle.
+            let wall = data
+                .nozzles
+                .iter()
+                .find(|r| r.design.mark == n.mark)
+                .and_then(|r| pipe(r.geometry.nps).wall(r.geometry.schedule).ok());
+            let schedule = match wall {
+                Some(t) => format!("{} / {:.2}", n.schedule, t),
+                None => n.schedule.clone(),
+            };
+            let pad = n.pad.as_ref().map_or_else(
+                || "—".to_string(),
+                |p| format!("{}×{}", format_mm(p.od), format_mm(p.thickness)),
+            );
             ScheduleRow {
                 cells: [
                     n.mark.clone(),
+                    "1".to_string(),
                     size,
                     format!("CL {}", n.rating),
                     facing.to_string(),
+                    flange.to_string(),
+                    schedule,
+                    pad,
                     if n.service.is_empty() {
                         "—".to_string()
                     } else {
@@ -295,8 +339,23 @@ pub fn draw(
     t.row(&["DWG. NO.", &fields.number], &two);
     t.row(&["TITLE", &fields.title], &two);
     t.row(&["VESSEL", &data.design.tag], &two);
+    // Signatures are written by hand on the issued print: the fields are left
+    // blank, never filled with invented names.
+    let sign = [0.25, 0.35, 0.15, 0.25];
+    t.row(&["APPROVED", "", "DATE", ""], &sign);
+    t.row(&["CHECKED", "", "DATE", ""], &sign);
+    t.row(&["DRAWN", "vesselcad", "DATE", &fields.date], &sign);
     t.heading("vesselcad — GENERATED FROM THE DESIGN MODEL");
     t.frame(bottom);
+    // Revision history: the current revision, then blank rows for the next.
+    let history_bottom = t.top + h;
+    t.top = history_bottom;
+    let rev = [0.12, 0.22, 0.48, 0.18];
+    t.row(&["", "", "", ""], &rev);
+    t.row(&[&fields.revision, &fields.date, "ISSUED", ""], &rev);
+    t.row(&["REV", "DATE", "DESCRIPTION", "BY"], &rev);
+    t.heading("REVISIONS");
+    t.frame(history_bottom);
     let revision_at = DVec2::new(
         left + 0.19 * (right - left) + 0.8 + text_width(&fields.revision, h) + 2.0 * h,
         rev_y + 0.95 * h,

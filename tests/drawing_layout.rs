@@ -1,0 +1,69 @@
+//! The layout of every sheet: on every example vessel and on generated vessels,
+//! on every sheet size, no two texts overlap, no text crosses a view's outline and
+//! every text lies on the paper. (`examples/drawing_layout.rs` runs the same check
+//! over 100 generated vessels.)
+
+mod common;
+
+use common::examples::{EXAMPLES, example};
+use vesselcad::design::Design;
+use vesselcad::drawing::{Item, SheetOptions, SheetSize, collisions, item_box, sheet, sheet_model};
+use vesselcad::mesh::TessellationOptions;
+use vesselcad::plant::generate_plant;
+
+/// Every layout problem of vessel `tag`'s sheets on every size.
+fn problems(design: &Design, tag: &str) -> Vec<String> {
+    let (model, _) = sheet_model(design, tag, TessellationOptions::chord(2.0)).unwrap();
+    let mut out = Vec::new();
+    for size in SheetSize::ALL {
+        let s = sheet(&model, tag, &SheetOptions::sized(size)).unwrap();
+        let paper = size.dimensions();
+        out.extend(
+            collisions(&s.items)
+                .into_iter()
+                .map(|p| format!("{tag} {size:?}: {p}")),
+        );
+        for item in &s.items {
+            if let (Item::Text { text, .. }, Some(b)) = (item, item_box(item)) {
+                if b.min.x < 0.0 || b.min.y < 0.0 || b.max.x > paper.x || b.max.y > paper.y {
+                    out.push(format!(
+                        "{tag} {size:?}: {text:?} runs off the paper at {b:?}"
+                    ));
+                }
+            }
+        }
+    }
+    out
+}
+
+#[test]
+fn example_sheets_have_no_colliding_text() {
+    let mut all = Vec::new();
+    for name in EXAMPLES {
+        let design = example(name);
+        for v in &design.vessels {
+            all.extend(problems(&design, &v.tag));
+        }
+    }
+    assert!(
+        all.is_empty(),
+        "{} problems:\n{}",
+        all.len(),
+        all.join("\n")
+    );
+}
+
+#[test]
+fn generated_vessel_sheets_have_no_colliding_text() {
+    let design = generate_plant(4, 39).unwrap();
+    let mut all = Vec::new();
+    for v in &design.vessels {
+        all.extend(problems(&design, &v.tag));
+    }
+    assert!(
+        all.is_empty(),
+        "{} problems:\n{}",
+        all.len(),
+        all.join("\n")
+    );
+}
