@@ -54,6 +54,10 @@ enum Command {
     /// The design store: import, list, log, show, diff, tag, checkout, export,
     /// search (SQLite file or PostgreSQL URL).
     Store(cli::store::StoreArgs),
+    /// Scans against the design: `scan simulate` draws a synthetic scan with
+    /// known defects; `scan fit` registers a scan, fits it part by part and
+    /// reports the code checks (HTML, JSON, a coloured GLB).
+    Scan(cli::scan::ScanArgs),
 }
 
 fn main() -> ExitCode {
@@ -76,5 +80,6 @@ fn main() -> ExitCode {
         Command::Export(args) => cli::export::run(args),
         Command::Fem(args) => cli::fem::run(args),
         Command::Store(args) => cli::store::run(args),
+        Command::Scan(args) => cli::scan::run(args),
     }
 }
