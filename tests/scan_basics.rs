@@ -171,7 +171,8 @@ fn samples_of(env: &vesselcad::scan::Envelope, points: &[DVec3], surface: usize)
         .iter()
         .filter_map(|p| {
             let q = to_vessel.transform_point3(*p);
-            let f = env.project(q, Targets::Envelope, 100.0)?;
+            // Nozzle points land on their nozzles, not on the shell around them.
+            let f = env.project(q, Targets::WithNozzles, 100.0)?;
             (f.surface == surface && f.inside).then(|| Sample {
                 u: f.u,
                 v: f.v,

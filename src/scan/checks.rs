@@ -471,7 +471,7 @@ fn course_checks(
                 s.frame
                     .transform_point3(design.point(u_of_angle(angles[it]), v))
             };
-            if sign > 0.0 && z_extent >= 0.5 * length && arc_extent <= BOARD {
+            if sign > 0.0 && z_extent >= (2.0 * arc_extent).max(500.0) && arc_extent <= BOARD {
                 // A ridge along a long seam: peaking by the sweep board.
                 let mut readings = Vec::new();
                 let mut at = Vec::new();
@@ -494,6 +494,27 @@ fn course_checks(
                 let value = median(readings);
                 let column = median(at) as usize;
                 let mid = place((zmin + zmax) / 2, column);
+                // A ridge split in pieces along its seam is one seam: keep the
+                // longest piece's reading.
+                let same_seam = checks.findings.iter_mut().find(|f| {
+                    f.kind == "peaking"
+                        && f.part == part.id
+                        && super::defects::wrap(
+                            (f.orientation - envelope.orientation_of(mid)).to_radians(),
+                        )
+                        .abs()
+                            * r
+                            < BOARD / 2.0
+                });
+                if let Some(f) = same_seam {
+                    if f.extent.unwrap_or(0.0) < z_extent {
+                        f.size = value;
+                        f.elevation = mid.z;
+                        f.orientation = envelope.orientation_of(mid);
+                    }
+                    f.extent = Some(f.extent.unwrap_or(0.0) + z_extent);
+                    continue;
+                }
                 checks.findings.push(Finding {
                     kind: "peaking",
                     part: part.id.clone(),
@@ -540,16 +561,19 @@ fn settlement(envelope: &Envelope, points: &[DVec3], feet: &[Option<Foot>]) -> O
         .min_by(|a, b| a.1.span.0.total_cmp(&b.1.span.0))?;
     let d = part.diameter;
     let band = 300.0_f64.min(0.5 * (part.span.1 - part.span.0));
+    const EDGE_POINTS: usize = 8;
+    // Points of the shell near its bottom, by distance from the axis: those
+    // below the design's bottom (the low side) project off the course.
+    let _ = (bottom, feet);
     let edge: Vec<(f64, f64)> = points
         .iter()
-        .zip(feet)
-        .filter_map(|(p, f)| {
-            let f = (*f)?;
-            (f.inside
-                && envelope.surfaces[f.surface].part == bottom
-                && p.z < part.span.0 + 3.0 * band)
-                .then(|| (p.y.atan2(p.x), p.z))
+        .filter(|p| {
+            let r = p.x.hypot(p.y);
+            (r - d / 2.0).abs() < 0.02 * d + 20.0
+                && p.z < part.span.0 + 3.0 * band
+                && p.z > part.span.0 - 3.0 * band
         })
+        .map(|p| (p.y.atan2(p.x), p.z))
         .collect();
     let stations = ((PI * d / 9754.0).ceil() as usize).max(8);
     let mut model = [part.span.0, 0.0, 0.0];
@@ -559,18 +583,20 @@ fn settlement(envelope: &Envelope, points: &[DVec3], feet: &[Option<Foot>]) -> O
         let width = TAU / stations as f64;
         for (k, value) in values.iter_mut().enumerate() {
             let centre = k as f64 * width;
-            let estimates: Vec<f64> = edge
+            // The edge from the lowest points of the station, heights taken
+            // relative to the current model: the lowest less the mean gap of
+            // the next ones (points fall uniformly above an edge).
+            let mut lowest: Vec<f64> = edge
                 .iter()
-                .filter(|(t, z)| {
-                    super::defects::wrap(t - centre).abs() <= 0.5 * width
-                        && *z < at(&model, *t) + band
-                })
-                .map(|&(t, z)| at(&model, centre) + 2.0 * (z - at(&model, t)) - band)
+                .filter(|(t, _)| super::defects::wrap(t - centre).abs() <= 0.5 * width)
+                .map(|&(t, z)| z - at(&model, t))
                 .collect();
-            *value = if estimates.is_empty() {
+            lowest.sort_by(f64::total_cmp);
+            let k = lowest.len().min(EDGE_POINTS);
+            *value = if k < 3 {
                 f64::NAN
             } else {
-                estimates.iter().sum::<f64>() / estimates.len() as f64
+                at(&model, centre) + lowest[0] - (lowest[k - 1] - lowest[0]) / (k - 1) as f64
             };
         }
         let rows: Vec<[f64; 5]> = (0..stations)

@@ -177,6 +177,20 @@ pub fn fit_patch(
             needed: 16,
         });
     }
+    // At least quadratic both ways (a course is linear along its axis), so the
+    // fitted deviation is smooth; elevation leaves the design unchanged.
+    let elevated;
+    let design = if design.v_degree() < 2 {
+        elevated = design
+            .elevate_degree_v(2 - design.v_degree())
+            .map_err(|e| ScanError::Singular {
+                what: what.to_string(),
+                rule: e.to_string(),
+            })?;
+        &elevated
+    } else {
+        design
+    };
     let (lu, lv) = net_lengths(design);
     let mut spacing = (lu.max(lv) / 8.0).max(options.min_spacing);
     let mut rounds = 0;
