@@ -1,6 +1,6 @@
 //! Benchmarks of vesselcad: one criterion entry point, one module per topic.
 //!
-//! Run with `cargo bench --bench vesselcad` (or `-- exchange` / `-- grid` / `-- mesh` / `-- model` / `-- opening` / `-- plant` / `-- project` / `-- server` for one
+//! Run with `cargo bench --bench vesselcad` (or `-- exchange` / `-- grid` / `-- mesh` / `-- model` / `-- opening` / `-- plant` / `-- project` / `-- scan` / `-- server` for one
 //! topic); each topic keeps its measurement short so the whole run takes a few
 //! minutes.
 
@@ -22,6 +22,8 @@ mod opening;
 mod plant;
 #[path = "vesselcad/project.rs"]
 mod project;
+#[path = "vesselcad/scan.rs"]
+mod scan;
 #[path = "vesselcad/server.rs"]
 mod server;
 
@@ -33,5 +35,6 @@ criterion_main!(
     opening::group,
     plant::group,
     project::group,
+    scan::group,
     server::group
 );

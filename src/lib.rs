@@ -72,6 +72,7 @@ pub mod parts;
 pub mod plant;
 pub mod project;
 pub mod report;
+pub mod scan;
 pub mod server;
 pub mod store;
 #[path = "../systems/mod.rs"]

@@ -57,6 +57,10 @@ enum Command {
     /// The design store: import, list, log, show, diff, tag, checkout, export,
     /// search (SQLite file or PostgreSQL URL).
     Store(cli::store::StoreArgs),
+    /// Scans against the design: `scan simulate` draws a synthetic scan with
+    /// known defects; `scan fit` registers a scan, fits it part by part and
+    /// reports the code checks (HTML, JSON, a coloured GLB).
+    Scan(cli::scan::ScanArgs),
 }
 
 fn main() -> ExitCode {
@@ -80,5 +84,6 @@ fn main() -> ExitCode {
         Command::Fab(args) => cli::fab::run(args),
         Command::Fem(args) => cli::fem::run(args),
         Command::Store(args) => cli::store::run(args),
+        Command::Scan(args) => cli::scan::run(args),
     }
 }

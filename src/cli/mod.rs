@@ -1,7 +1,7 @@
 //! The `vesselcad` command line, one file per command, each a thin layer over
 //! the library that parses arguments, prints and picks the exit status: `build`,
 //! `check`, `serve`, `drawing`, `info`, `plant`, `simulate`, `bench`, `export`, `fab`, `fem`,
-//! `store`.
+//! `store`, `scan`.
 //! [`output`] is their standard output (quiet on a closed pipe), [`progress`]
 //! the progress bar and [`alloc`] the heap measurement of `info --memory` and
 //! `bench`.
@@ -19,6 +19,7 @@ pub mod info;
 pub mod output;
 pub mod plant;
 pub mod progress;
+pub mod scan;
 pub mod serve;
 pub mod simulate;
 pub mod store;

@@ -14,6 +14,7 @@ pub mod glb;
 pub mod heads;
 pub mod numbers;
 pub mod occt;
+pub mod scan;
 pub mod stores;
 pub mod supports;
 pub mod triangle;

@@ -1,0 +1,155 @@
+//! A symmetric positive definite banded matrix and its Cholesky factorization:
+//! the normal equations of a tensor-product least-squares fit, whose unknowns
+//! ordered v-major couple only within `q·n_u + p` of each other.
+
+/// Lower band of a symmetric matrix: `rows[i * (width + 1) + k]` is entry
+/// (i, i − k).
+#[derive(Clone, Debug)]
+pub struct Band {
+    size: usize,
+    width: usize,
+    values: Vec<f64>,
+}
+
+impl Band {
+    /// A zero matrix of `size` with `width` sub-diagonals.
+    pub fn zeros(size: usize, width: usize) -> Self {
+        let width = width.min(size.saturating_sub(1));
+        Self {
+            size,
+            width,
+            values: vec![0.0; size * (width + 1)],
+        }
+    }
+
+    /// Adds `value` to entries (i, j) and (j, i); `|i − j|` must be within the band.
+    #[inline]
+    pub fn add(&mut self, i: usize, j: usize, value: f64) {
+        let (i, j) = if i >= j { (i, j) } else { (j, i) };
+        debug_assert!(i - j <= self.width);
+        self.values[i * (self.width + 1) + (i - j)] += value;
+    }
+
+    /// Entry (i, i).
+    pub fn diagonal(&self, i: usize) -> f64 {
+        self.values[i * (self.width + 1)]
+    }
+
+    /// Adds another matrix of the same shape.
+    pub fn add_all(&mut self, other: &Band) {
+        for (a, b) in self.values.iter_mut().zip(&other.values) {
+            *a += b;
+        }
+    }
+
+    /// Factors in place (L Lᵀ) and solves for each right-hand side; the index of
+    /// the first pivot that is not positive on failure.
+    pub fn solve(mut self, rhs: &mut [Vec<f64>]) -> Result<(), usize> {
+        let w = self.width;
+        let stride = w + 1;
+        let at = |i: usize, j: usize| i * stride + (i - j);
+        for i in 0..self.size {
+            let j0 = i.saturating_sub(w);
+            for j in j0..=i {
+                let mut sum = self.values[at(i, j)];
+                let k0 = j0.max(j.saturating_sub(w));
+                for k in k0..j {
+                    sum -= self.values[at(i, k)] * self.values[at(j, k)];
+                }
+                if i == j {
+                    if sum <= 0.0 || !sum.is_finite() {
+                        return Err(i);
+                    }
+                    self.values[at(i, i)] = sum.sqrt();
+                } else {
+                    self.values[at(i, j)] = sum / self.values[at(j, j)];
+                }
+            }
+        }
+        for b in rhs.iter_mut() {
+            for i in 0..self.size {
+                let mut sum = b[i];
+                for k in i.saturating_sub(w)..i {
+                    sum -= self.values[at(i, k)] * b[k];
+                }
+                b[i] = sum / self.values[at(i, i)];
+            }
+            for i in (0..self.size).rev() {
+                let mut sum = b[i];
+                for k in i + 1..(i + w + 1).min(self.size) {
+                    sum -= self.values[at(k, i)] * b[k];
+                }
+                b[i] = sum / self.values[at(i, i)];
+            }
+        }
+        Ok(())
+    }
+}
+
+/// Solves the small dense system `a x = b` (Gaussian elimination with partial
+/// pivoting); `None` when singular.
+pub fn solve_dense(mut a: Vec<Vec<f64>>, mut b: Vec<f64>) -> Option<Vec<f64>> {
+    let n = b.len();
+    for c in 0..n {
+        let pivot = (c..n).max_by(|&i, &j| a[i][c].abs().total_cmp(&a[j][c].abs()))?;
+        if a[pivot][c].abs() < 1e-300 {
+            return None;
+        }
+        a.swap(c, pivot);
+        b.swap(c, pivot);
+        for r in 0..n {
+            if r != c {
+                let f = a[r][c] / a[c][c];
+                if f != 0.0 {
+                    for k in c..n {
+                        a[r][k] -= f * a[c][k];
+                    }
+                    b[r] -= f * b[c];
+                }
+            }
+        }
+    }
+    Some((0..n).map(|i| b[i] / a[i][i]).collect())
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn solves_a_banded_system() {
+        // Tridiagonal 2, -1 plus a small shift: exact solution of ones.
+        let n = 50;
+        let mut m = Band::zeros(n, 3);
+        for i in 0..n {
+            m.add(i, i, 2.5);
+            if i > 0 {
+                m.add(i, i - 1, -1.0);
+            }
+            if i > 2 {
+                m.add(i, i - 3, 0.2);
+            }
+        }
+        let mut b = vec![0.0; n];
+        for i in 0..n {
+            b[i] += 2.5;
+            if i > 0 {
+                b[i] -= 1.0;
+            }
+            if i + 1 < n {
+                b[i] -= 1.0;
+            }
+            if i > 2 {
+                b[i] += 0.2;
+            }
+            if i + 3 < n {
+                b[i] += 0.2;
+            }
+        }
+        let mut rhs = vec![b];
+        m.solve(&mut rhs).unwrap();
+        for x in &rhs[0] {
+            assert!((x - 1.0).abs() < 1e-12, "{x}");
+        }
+    }
+}

@@ -1,0 +1,36 @@
+//! As-built against as-designed: laser scans of a vessel compared with its exact
+//! design surfaces, part by part, in the vessel's own coordinates.
+//!
+//! ```text
+//! points (XYZ/CSV, PLY; streamed) ──▶ register (ICP on the exact NURBS, trimmed)
+//!   ──▶ project (point inversion: part, patch, u, v, signed normal deviation)
+//!   ──▶ fit (least-squares NURBS per patch with smoothing, net grown to the noise)
+//!   ──▶ checks (UG-80 roundness, UG-81 heads, dents, peaking, plumbness,
+//!       API 653 settlement, volume) ──▶ report (HTML, JSON) and a coloured GLB
+//! ```
+//!
+//! `simulate` draws synthetic scans with known defects, noise, gaps and a site
+//! pose from the same exact surfaces, for tests and demos.
+
+mod band;
+mod envelope;
+mod error;
+mod profile;
+mod project;
+mod random;
+
+pub mod checks;
+pub mod defects;
+pub mod fit;
+pub mod glb;
+pub mod inspect;
+pub mod points;
+pub mod register;
+pub mod report;
+pub mod simulate;
+
+pub use envelope::{Envelope, Role, ScanPart, ScanSurface};
+pub use error::ScanError;
+pub use profile::{angle_of_u, u_of_angle};
+pub use project::{Foot, Targets};
+pub use random::Random;
