@@ -47,10 +47,10 @@ fn main() -> ExitCode {
             let paper = size.dimensions();
             let mut found = collisions(&s.items);
             for item in &s.items {
-                if let (Item::Text { text, .. }, Some(b)) = (item, item_box(item)) {
-                    if b.min.x < 0.0 || b.min.y < 0.0 || b.max.x > paper.x || b.max.y > paper.y {
-                        found.push(format!("{text:?} runs off the paper"));
-                    }
+                if let (Item::Text { text, .. }, Some(b)) = (item, item_box(item))
+                    && (b.min.x < 0.0 || b.min.y < 0.0 || b.max.x > paper.x || b.max.y > paper.y)
+                {
+                    found.push(format!("{text:?} runs off the paper"));
                 }
             }
             for p in &found {

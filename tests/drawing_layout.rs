@@ -24,12 +24,12 @@ fn problems(design: &Design, tag: &str) -> Vec<String> {
                 .map(|p| format!("{tag} {size:?}: {p}")),
         );
         for item in &s.items {
-            if let (Item::Text { text, .. }, Some(b)) = (item, item_box(item)) {
-                if b.min.x < 0.0 || b.min.y < 0.0 || b.max.x > paper.x || b.max.y > paper.y {
-                    out.push(format!(
-                        "{tag} {size:?}: {text:?} runs off the paper at {b:?}"
-                    ));
-                }
+            if let (Item::Text { text, .. }, Some(b)) = (item, item_box(item))
+                && (b.min.x < 0.0 || b.min.y < 0.0 || b.max.x > paper.x || b.max.y > paper.y)
+            {
+                out.push(format!(
+                    "{tag} {size:?}: {text:?} runs off the paper at {b:?}"
+                ));
             }
         }
     }

@@ -13,8 +13,8 @@ use vesselcad::design::load;
 use vesselcad::fab::plate_dxf::write_plate;
 use vesselcad::fab::process_files::write_process_files;
 use vesselcad::fab::{
-    BLANK_RULE, FabError, FabPlan, Nesting, Outline, PlanError, ProcessPlan, Shop, ShopRules,
-    plan, process_plan,
+    BLANK_RULE, FabError, FabPlan, Nesting, Outline, PlanError, ProcessPlan, Shop, ShopRules, plan,
+    process_plan,
 };
 
 use super::output::outln;
@@ -107,11 +107,10 @@ pub fn run(args: FabArgs) -> ExitCode {
         Err(e) => return plan_failed(&e),
     };
     let source = args.design.display().to_string();
-    let written =
-        match write_process_files(&process, plan.resolved.frame, &source, &args.output) {
-            Ok(w) => w,
-            Err(e) => return plan_failed(&e),
-        };
+    let written = match write_process_files(&process, plan.resolved.frame, &source, &args.output) {
+        Ok(w) => w,
+        Err(e) => return plan_failed(&e),
+    };
     lines.push(process_summary(&process));
     lines.extend(written.iter().map(|p| format!("  wrote {}", p.display())));
     for line in &lines {

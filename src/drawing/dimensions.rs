@@ -429,6 +429,10 @@ fn arrow(tip: DVec2, dir: DVec2, len: f64) -> Item {
 /// Places the dimensions of view `k` whose lines lie in `view_box`; appends the
 /// items, the placed dimensions and, in the same order, the indices of their
 /// text items (for the label placer).
+#[expect(
+    clippy::too_many_arguments,
+    reason = "the view's dimensions are placed into the sheet's shared item, dimension and text lists"
+)]
 pub fn place(
     dims: &Dimensions,
     k: usize,

@@ -231,14 +231,15 @@ fn item_entity(item: &Item, space: &Space) -> Option<Entity> {
 /// the whole-millimetre value, the text as drawn otherwise.
 fn dimension_text(text: &str, value: f64) -> String {
     let shown = format_mm(value);
-    if (value - value.round()).abs() < 1e-6 && value >= 0.0 {
-        if let Some(i) = text.find(&shown) {
-            let end = i + shown.len();
-            let bounded = !text[end..].starts_with(|c: char| c.is_ascii_digit())
-                && !text[..i].ends_with(|c: char| c.is_ascii_digit());
-            if bounded {
-                return cad_text(&format!("{}<>{}", &text[..i], &text[end..]));
-            }
+    if (value - value.round()).abs() < 1e-6
+        && value >= 0.0
+        && let Some(i) = text.find(&shown)
+    {
+        let end = i + shown.len();
+        let bounded = !text[end..].starts_with(|c: char| c.is_ascii_digit())
+            && !text[..i].ends_with(|c: char| c.is_ascii_digit());
+        if bounded {
+            return cad_text(&format!("{}<>{}", &text[..i], &text[end..]));
         }
     }
     cad_text(text)

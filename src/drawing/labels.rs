@@ -182,10 +182,10 @@ pub fn place_labels(
     }
     let is_movable: std::collections::HashSet<usize> = movable.iter().map(|m| m.item).collect();
     for (i, item) in items.iter().enumerate() {
-        if !is_movable.contains(&i) {
-            if let Some(r) = item_box(item) {
-                grid.add_box(r);
-            }
+        if !is_movable.contains(&i)
+            && let Some(r) = item_box(item)
+        {
+            grid.add_box(r);
         }
     }
     let allowed = |m: &Movable, r: &Rect| {

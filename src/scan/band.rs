@@ -44,6 +44,10 @@ impl Band {
 
     /// Factors in place (L Lᵀ) and solves for each right-hand side; the index of
     /// the first pivot that is not positive on failure.
+    #[expect(
+        clippy::needless_range_loop,
+        reason = "index arithmetic over matrix rows and columns reads as the algorithm"
+    )]
     pub fn solve(mut self, rhs: &mut [Vec<f64>]) -> Result<(), usize> {
         let w = self.width;
         let stride = w + 1;
@@ -88,6 +92,10 @@ impl Band {
 
 /// Solves the small dense system `a x = b` (Gaussian elimination with partial
 /// pivoting); `None` when singular.
+#[expect(
+    clippy::needless_range_loop,
+    reason = "index arithmetic over matrix rows and columns reads as the algorithm"
+)]
 pub fn solve_dense(mut a: Vec<Vec<f64>>, mut b: Vec<f64>) -> Option<Vec<f64>> {
     let n = b.len();
     for c in 0..n {
@@ -117,6 +125,10 @@ mod tests {
     use super::*;
 
     #[test]
+    #[expect(
+        clippy::needless_range_loop,
+        reason = "index arithmetic over matrix rows and columns reads as the algorithm"
+    )]
     fn solves_a_banded_system() {
         // Tridiagonal 2, -1 plus a small shift: exact solution of ones.
         let n = 50;

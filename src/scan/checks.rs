@@ -306,30 +306,36 @@ pub fn check(
             }
         }
     }
-    if tank {
-        if let Some(s) = settlement(envelope, points, feet) {
-            if s.amplitude > options.settlement_floor {
-                checks.findings.push(Finding {
-                    kind: "settlement",
-                    part: envelope.tag.clone(),
-                    size: s.amplitude,
-                    unit: "mm",
-                    elevation: 0.0,
-                    orientation: s.lowest,
-                    extent: None,
-                    limit: None,
-                    exceeds: false,
-                    rule: "API 653 Annex B: cosine (planar tilt) fit of the shell's bottom edge",
-                });
-            }
-            checks.settlement = Some(s);
+    if tank && let Some(s) = settlement(envelope, points, feet) {
+        if s.amplitude > options.settlement_floor {
+            checks.findings.push(Finding {
+                kind: "settlement",
+                part: envelope.tag.clone(),
+                size: s.amplitude,
+                unit: "mm",
+                elevation: 0.0,
+                orientation: s.lowest,
+                extent: None,
+                limit: None,
+                exceeds: false,
+                rule: "API 653 Annex B: cosine (planar tilt) fit of the shell's bottom edge",
+            });
         }
+        checks.settlement = Some(s);
     }
     checks
 }
 
 /// The course checks: roundness per section, section centres, dents, bulges,
 /// peaking.
+#[expect(
+    clippy::too_many_arguments,
+    reason = "one pass over a course's sections fills several outputs"
+)]
+#[expect(
+    clippy::needless_range_loop,
+    reason = "index arithmetic over matrix rows and columns reads as the algorithm"
+)]
 fn course_checks(
     envelope: &Envelope,
     index: usize,

@@ -135,6 +135,10 @@ fn refined(design: &NurbsSurface, spacing: f64) -> Result<NurbsSurface, ScanErro
 }
 
 /// The nonzero rational basis functions at (u, v): (u index, v index, value).
+#[expect(
+    clippy::needless_range_loop,
+    reason = "index arithmetic over matrix rows and columns reads as the algorithm"
+)]
 fn rational_basis(s: &NurbsSurface, u: f64, v: f64, out: &mut Vec<(usize, usize, f64)>) {
     out.clear();
     let (p, q) = (s.u_degree(), s.v_degree());
@@ -292,7 +296,7 @@ fn solve(
     let same =
         |a: usize, b: usize| (points[a] - points[b]).length() <= 1e-9 * (1.0 + points[a].length());
     // Closed in u: column 0 and column nu − 1 coincide.
-    let closed = (0..nv).all(|j| same(0 * nv + j, (nu - 1) * nv + j));
+    let closed = (0..nv).all(|j| same(j, (nu - 1) * nv + j));
     let mut penalty = |entries: &[(usize, f64)], weight: f64| {
         for &(a, ca) in entries {
             for &(b, cb) in entries {

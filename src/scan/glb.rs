@@ -127,7 +127,7 @@ pub fn deviation_glb(envelope: &Envelope, inspection: &Inspection, scale: f64) -
         let mut push = |bytes: &[u8], target: Target, root: &mut json::Root| {
             let offset = bin.len();
             bin.extend_from_slice(bytes);
-            while bin.len() % 4 != 0 {
+            while !bin.len().is_multiple_of(4) {
                 bin.push(0);
             }
             view(root, offset, bytes.len(), target)
@@ -212,7 +212,7 @@ pub fn deviation_glb(envelope: &Envelope, inspection: &Inspection, scale: f64) -
     });
     root.scene = Some(json::Index::new(0));
     let mut text = json::serialize::to_vec(&root).unwrap_or_default();
-    while text.len() % 4 != 0 {
+    while !text.len().is_multiple_of(4) {
         text.push(b' ');
     }
     let total = 12 + 8 + text.len() + 8 + bin.len();
