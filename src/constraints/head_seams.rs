@@ -166,7 +166,7 @@ pub(super) fn choose(
     }
 }
 
-/// The frame a head `part` had before [`choose`] turned it about its axis (any
+/// The frame a head `part` had before `choose` turned it about its axis (any
 /// other part's frame as it is). Unturned, a head's local +X is the vessel's
 /// +X: a top head's frame is a translation, a bottom head's a half turn about
 /// X. The exchange model writes heads unturned: its faces keep their

@@ -63,7 +63,7 @@ pub enum OptionsError {
     /// stores `f32` metres, whose rounding is budgeted inside the tolerance
     /// (see [`storage_options`](crate::mesh::storage_options)); when it takes
     /// half the tolerance or more the patches are meshed to half the tolerance,
-    /// which here falls below the mesher's [`MIN_TOLERANCE`].
+    /// which here falls below the mesher's `MIN_TOLERANCE` (1e-6 mm).
     #[error(
         "tessellation option tolerance = {tolerance} mm is finer than f32 storage allows{}: \
          glTF's f32 metres round a point by up to {rounding:.3e} mm at that size, so the \

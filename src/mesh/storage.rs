@@ -69,9 +69,9 @@ pub fn storage_options(options: &TessellationOptions, extent: f64) -> Tessellati
 }
 
 /// The smallest tolerance whose [`storage_options`] for parts reaching
-/// `extent` mm the mesher takes (at least [`MIN_TOLERANCE`]): twice the floor
+/// `extent` mm the mesher takes (at least `MIN_TOLERANCE`): twice the floor
 /// wherever the rounding is at least the floor — for every design, since the
-/// rounding is budgeted for [`STORAGE_FLOOR_EXTENT`] at least — as the
+/// rounding is budgeted for `STORAGE_FLOOR_EXTENT` at least — as the
 /// patches are then meshed to half the tolerance.
 pub fn smallest_storable_tolerance(extent: f64) -> f64 {
     let rounding = f32_rounding_bound(extent.max(STORAGE_FLOOR_EXTENT));
