@@ -25,6 +25,7 @@ use glam::DVec2;
 use super::DrawingError;
 use super::dimensions::format_mm;
 use super::dxf_fixup;
+use super::dxf_spaces::{Space, line_weight, spaces};
 use super::labels::item_box;
 use super::sheet::{Align, Item, Layer, Measure, Sheet};
 
@@ -50,16 +51,6 @@ fn colour(layer: Layer) -> u8 {
     }
 }
 
-/// Line weight of a layer, hundredths of a mm (the SVG's stroke widths rounded
-/// to the standard DXF weights).
-pub fn line_weight(layer: Layer) -> i16 {
-    match layer {
-        Layer::Border | Layer::Outline => 50,
-        Layer::Hidden | Layer::Text => 25,
-        Layer::Centre | Layer::Dimension => 18,
-    }
-}
-
 /// A text as every CAD reader shows it: ° and ⌀ (and ±) as `%%d`, `%%c`,
 /// `%%p`; the few other non-ASCII characters the sheets use spelt in ASCII.
 pub fn cad_text(text: &str) -> String {
@@ -79,57 +70,6 @@ pub fn cad_text(text: &str) -> String {
         }
     }
     out
-}
-
-/// Where an item goes and how its sheet coordinates map there.
-#[derive(Clone, Copy, Debug, PartialEq)]
-pub struct Space {
-    /// Paper space (border, tables) or model space.
-    pub paper: bool,
-    /// Model (or paper) mm per sheet mm.
-    pub factor: f64,
-    /// Model point of the sheet origin.
-    pub offset: DVec2,
-}
-
-impl Space {
-    fn map(&self, q: DVec2) -> DVec2 {
-        self.offset + q * self.factor
-    }
-
-    fn point(&self, q: DVec2) -> Point {
-        let p = self.map(q);
-        Point::new(p.x, p.y, 0.0)
-    }
-}
-
-/// The three spaces of a sheet: paper, the main model area, the enlarged plan.
-pub fn spaces(sheet: &Sheet) -> [Space; 3] {
-    let paper = Space {
-        paper: true,
-        factor: 1.0,
-        offset: DVec2::ZERO,
-    };
-    let main = Space {
-        paper: false,
-        factor: sheet.scale,
-        offset: DVec2::ZERO,
-    };
-    // The plan at 1:1 beside the sheet's model extent, its region's centre at
-    // the same height.
-    let f = sheet.scale / sheet.factors[1];
-    let c = 0.5 * (sheet.plan_region.min + sheet.plan_region.max);
-    let size = sheet.size.dimensions();
-    let target = DVec2::new(
-        (size.x + 0.5 * sheet.plan_region.size().x) * sheet.scale,
-        c.y * sheet.scale,
-    );
-    let plan = Space {
-        paper: false,
-        factor: f,
-        offset: target - c * f,
-    };
-    [paper, main, plan]
 }
 
 /// The space an item belongs to.

@@ -10,7 +10,7 @@
 use glam::DVec2;
 
 use super::DrawingError;
-use super::dxf::{line_weight, spaces};
+use super::dxf_spaces::{line_weight, spaces};
 use super::sheet::{Layer, Sheet};
 
 /// The layer of the viewports' frames (not plotted).

@@ -19,6 +19,7 @@ mod data;
 mod dimensions;
 mod dxf;
 mod dxf_fixup;
+mod dxf_spaces;
 mod labels;
 mod layout;
 mod orientation;

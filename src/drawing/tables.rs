@@ -30,17 +30,28 @@ const SCHEDULE_WIDTHS: [f64; 12] = [
     0.065, 0.045, 0.06, 0.085, 0.055, 0.055, 0.105, 0.11, 0.14, 0.085, 0.115, 0.08,
 ];
 
-/// `cell` cut to fit `width` at lettering height `h`, with an ellipsis when cut.
-fn fit_cell(cell: &str, width: f64, h: f64) -> String {
-    if text_width(cell, h) <= width {
-        return cell.to_string();
+/// The smallest lettering a cell is condensed to before it is cut, as a
+/// fraction of the table's lettering height.
+const SMALLEST_CELL_LETTERING: f64 = 0.7;
+
+/// `cell` fitted to `width` at lettering height `h`: whole at `h`, else whole at
+/// a smaller height (down to [`SMALLEST_CELL_LETTERING`]·`h`), else cut with an
+/// ellipsis at that height. Returns the text and its height.
+fn fit_cell(cell: &str, width: f64, h: f64) -> (String, f64) {
+    let full = text_width(cell, h);
+    if full <= width {
+        return (cell.to_string(), h);
+    }
+    let condensed = (h * width / full * (1.0 - 1e-9)).max(SMALLEST_CELL_LETTERING * h);
+    if text_width(cell, condensed) <= width {
+        return (cell.to_string(), condensed);
     }
     let mut t: String = cell.to_string();
-    while !t.is_empty() && text_width(&t, h) + text_width("…", h) > width {
+    while !t.is_empty() && text_width(&t, condensed) + text_width("…", condensed) > width {
         t.pop();
     }
     t.push('…');
-    t
+    (t, condensed)
 }
 
 /// A table cursor: draws rows upward from `bottom` across `[left, right]`.
@@ -66,10 +77,10 @@ impl Table<'_> {
         let mut x = self.left;
         for (cell, w) in cells.iter().zip(widths) {
             let cw = w * total;
-            let text = fit_cell(cell, cw - 1.6, self.h);
+            let (text, height) = fit_cell(cell, cw - 1.6, self.h);
             self.items.push(Item::Text {
                 at: DVec2::new(x + 0.8, bottom + 0.45 * self.h),
-                height: self.h,
+                height,
                 align: Align::Start,
                 rotation: 0.0,
                 text,

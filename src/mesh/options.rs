@@ -34,6 +34,11 @@ pub struct TessellationOptions {
     pub max_vertices: usize,
 }
 
+/// The extent, mm, the storage budget is taken for at least: parts up to 32 m
+/// (every part of the example designs and of generated plants) share one budget,
+/// so a vessel drawn or exported alone is meshed as it is in its plant.
+pub const STORAGE_FLOOR_EXTENT: f64 = 16_000.0;
+
 /// The default [`TessellationOptions::max_vertices`]: 4 000 000 vertices, about
 /// 0.5 GB of mesher state for one patch.
 pub const DEFAULT_VERTEX_BUDGET: usize = 4_000_000;
@@ -73,11 +78,11 @@ pub enum OptionsError {
             Some(e) => format!(
                 " for this design (its largest part reaches {e:.0} mm; storage is \
                  budgeted for at least {:.0} mm)",
-                crate::mesh::storage::STORAGE_FLOOR_EXTENT
+                STORAGE_FLOOR_EXTENT
             ),
             None => format!(
                 " for any design (storage is budgeted for parts of at least {:.0} mm)",
-                crate::mesh::storage::STORAGE_FLOOR_EXTENT
+                STORAGE_FLOOR_EXTENT
             ),
         }
     )]

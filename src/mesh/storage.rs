@@ -19,16 +19,12 @@
 //! their hosts, inside the hosts' extents).
 
 use super::options::MIN_TOLERANCE;
+pub use super::options::STORAGE_FLOOR_EXTENT;
 use super::{OptionsError, TessellationOptions};
 use crate::parts::Patch;
 
 /// Millimetres per metre: glTF positions are metres.
 const MM_PER_M: f64 = 1e3;
-
-/// The extent, mm, the storage budget is taken for at least: parts up to 32 m
-/// (every part of the example designs and of generated plants) share one budget,
-/// so a vessel drawn or exported alone is meshed as it is in its plant.
-pub const STORAGE_FLOOR_EXTENT: f64 = 16_000.0;
 
 /// The largest distance, mm, that storing a point as `f32` metres moves it,
 /// for a point whose coordinates are all at most `extent` mm in magnitude:

@@ -722,6 +722,8 @@ function showMessage(message) {
 async function post(url, patch) {
   // The guard wants a JSON content type on every POST: undo and redo send `{}`.
   const headers = { ...authHeaders(), 'Content-Type': patch ? 'application/json-patch+json' : 'application/json' };
+  // A new request: the last one's error or success no longer stands.
+  clearMessages();
   state.sentAt = performance.now();
   try {
     const response = await fetch(url, { method: 'POST', headers, body: patch ? JSON.stringify(patch) : '{}' });
