@@ -25,7 +25,7 @@ use glam::DVec2;
 use super::DrawingError;
 use super::dimensions::format_mm;
 use super::dxf_fixup;
-use super::dxf_spaces::{Space, line_weight, spaces};
+use super::dxf_spaces::{Space, spaces};
 use super::labels::item_box;
 use super::sheet::{Align, Item, Layer, Measure, Sheet};
 
