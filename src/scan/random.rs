@@ -1,12 +1,13 @@
-//! The deterministic random numbers of `scan simulate`: SplitMix64 (Steele,
-//! Lea and Flood 2014), uniform doubles from its top 53 bits and normal deviates by
-//! the Box–Muller transform. A few lines, so no crate: the same seed gives the
-//! same scan on every platform and release.
+//! The deterministic random numbers of `scan simulate`: the plant generator's
+//! SplitMix64 ([`crate::plant::rng`]), with normal deviates by the Box–Muller
+//! transform: the same seed gives the same scan on every platform and release.
 
-/// A SplitMix64 generator.
+use crate::plant::rng::SplitMix64;
+
+/// The plant generator's SplitMix64 with normal deviates.
 #[derive(Clone, Debug)]
 pub struct Random {
-    state: u64,
+    bits: SplitMix64,
     spare: Option<f64>,
 }
 
@@ -14,23 +15,19 @@ impl Random {
     /// A generator from a seed.
     pub fn new(seed: u64) -> Self {
         Self {
-            state: seed ^ 0x5DEE_CE66_D1CE_4E5B,
+            bits: SplitMix64::new(seed ^ 0x5DEE_CE66_D1CE_4E5B),
             spare: None,
         }
     }
 
     /// The next 64 random bits.
     pub fn next_u64(&mut self) -> u64 {
-        self.state = self.state.wrapping_add(0x9E37_79B9_7F4A_7C15);
-        let mut z = self.state;
-        z = (z ^ (z >> 30)).wrapping_mul(0xBF58_476D_1CE4_E5B9);
-        z = (z ^ (z >> 27)).wrapping_mul(0x94D0_49BB_1331_11EB);
-        z ^ (z >> 31)
+        self.bits.next_u64()
     }
 
     /// A uniform double in [0, 1).
     pub fn uniform(&mut self) -> f64 {
-        (self.next_u64() >> 11) as f64 * (1.0 / (1u64 << 53) as f64)
+        self.bits.unit()
     }
 
     /// A standard normal deviate (Box–Muller, the second of each pair kept).
