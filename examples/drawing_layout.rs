@@ -9,7 +9,7 @@
 
 use std::process::ExitCode;
 
-use vesselcad::drawing::{Item, SheetOptions, SheetSize, collisions, item_box, sheet, sheet_model};
+use vesselcad::drawing::{SheetOptions, SheetSize, layout_problems, sheet, sheet_model};
 use vesselcad::mesh::TessellationOptions;
 use vesselcad::plant::generate_plant;
 
@@ -44,15 +44,7 @@ fn main() -> ExitCode {
                 }
             };
             sheets += 1;
-            let paper = size.dimensions();
-            let mut found = collisions(&s.items);
-            for item in &s.items {
-                if let (Item::Text { text, .. }, Some(b)) = (item, item_box(item))
-                    && (b.min.x < 0.0 || b.min.y < 0.0 || b.max.x > paper.x || b.max.y > paper.y)
-                {
-                    found.push(format!("{text:?} runs off the paper"));
-                }
-            }
+            let found = layout_problems(&s);
             for p in &found {
                 println!("{} {size:?} 1:{}: {p}", v.tag, s.scale);
             }

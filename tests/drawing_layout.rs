@@ -7,7 +7,7 @@ mod common;
 
 use common::examples::{EXAMPLES, example};
 use vesselcad::design::Design;
-use vesselcad::drawing::{Item, SheetOptions, SheetSize, collisions, item_box, sheet, sheet_model};
+use vesselcad::drawing::{SheetOptions, SheetSize, layout_problems, sheet, sheet_model};
 use vesselcad::mesh::TessellationOptions;
 use vesselcad::plant::generate_plant;
 
@@ -17,21 +17,11 @@ fn problems(design: &Design, tag: &str) -> Vec<String> {
     let mut out = Vec::new();
     for size in SheetSize::ALL {
         let s = sheet(&model, tag, &SheetOptions::sized(size)).unwrap();
-        let paper = size.dimensions();
         out.extend(
-            collisions(&s.items)
+            layout_problems(&s)
                 .into_iter()
                 .map(|p| format!("{tag} {size:?}: {p}")),
         );
-        for item in &s.items {
-            if let (Item::Text { text, .. }, Some(b)) = (item, item_box(item))
-                && (b.min.x < 0.0 || b.min.y < 0.0 || b.max.x > paper.x || b.max.y > paper.y)
-            {
-                out.push(format!(
-                    "{tag} {size:?}: {text:?} runs off the paper at {b:?}"
-                ));
-            }
-        }
     }
     out
 }

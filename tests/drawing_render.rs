@@ -1,6 +1,8 @@
 //! Renders every example sheet in headless Chromium and checks the screenshot is a
-//! drawing: not blank, with drawn content in each view's region. The PNGs are kept
-//! in `target/drawings/` for a person to look at.
+//! drawing: not blank, with drawn content in each view's region; renders the
+//! same sheet's DXF (ezdxf's drawing add-on, paper space through its viewports)
+//! and PDF (PyMuPDF) and checks that they draw what the SVG draws, where it
+//! draws it. The PNGs are kept in `target/drawings/` for a person to look at.
 
 mod common;
 
@@ -143,5 +145,146 @@ fn every_example_sheet_renders_as_a_drawing_in_chromium() {
             glam::DVec2::new(paper.x, paper.y * 0.12),
         );
         assert!(corner > 0.01, "{name}: title block blank ({corner})");
+    }
+}
+
+/// The Python with ezdxf, matplotlib and PyMuPDF (`.ci/run` makes it).
+fn python() -> PathBuf {
+    let python = Path::new(env!("CARGO_MANIFEST_DIR")).join("target/occt-venv/bin/python");
+    assert!(
+        python.exists(),
+        "{} is missing (.ci/run makes the venv)",
+        python.display()
+    );
+    python
+}
+
+/// Runs `tests/support/render_sheet.py` with `args`.
+fn render_with_python(args: &[&str]) {
+    let script = Path::new(env!("CARGO_MANIFEST_DIR")).join("tests/support/render_sheet.py");
+    let out = Command::new(python())
+        .arg(script)
+        .args(args)
+        .output()
+        .expect("run python");
+    assert!(
+        out.status.success(),
+        "render_sheet.py {args:?}: {}",
+        String::from_utf8_lossy(&out.stderr)
+    );
+}
+
+/// Size of a comparison cell, paper mm.
+const CELL: f64 = 4.0;
+
+/// The paper as a grid of `CELL`-sized cells, each true where any pixel in it
+/// is drawn (any channel below 200: coloured layers count).
+fn drawn_cells(image: &(usize, usize, usize, Vec<u8>), paper: glam::DVec2) -> Vec<Vec<bool>> {
+    let (w, h, bpp, data) = image;
+    let nx = (paper.x / CELL) as usize;
+    let ny = (paper.y / CELL) as usize;
+    let mut cells = vec![vec![false; nx]; ny];
+    for y in 0..*h {
+        for x in 0..*w {
+            let i = (y * w + x) * bpp;
+            if data[i..i + 3].iter().any(|&c| c < 200) {
+                cells[(y * ny / h).min(ny - 1)][(x * nx / w).min(nx - 1)] = true;
+            }
+        }
+    }
+    cells
+}
+
+/// Share of the drawn cells of `a` that have a drawn cell of `b` within one
+/// cell (the renderers' fonts and line caps differ by a fraction of a cell),
+/// leaving out the cells within 8 mm of the paper's edge (in DXF the paper's
+/// own outline is the layout itself, not a line).
+fn covered(a: &[Vec<bool>], b: &[Vec<bool>]) -> f64 {
+    let (ny, nx) = (a.len(), a[0].len());
+    let edge = (8.0 / CELL) as usize;
+    let near = |j: usize, i: usize| {
+        (j.saturating_sub(1)..=(j + 1).min(ny - 1))
+            .any(|y| (i.saturating_sub(1)..=(i + 1).min(nx - 1)).any(|x| b[y][x]))
+    };
+    let mut drawn = 0usize;
+    let mut hit = 0usize;
+    for j in edge..ny - edge {
+        for i in edge..nx - edge {
+            if a[j][i] {
+                drawn += 1;
+                hit += usize::from(near(j, i));
+            }
+        }
+    }
+    hit as f64 / drawn.max(1) as f64
+}
+
+#[test]
+fn dxf_and_pdf_draw_what_the_svg_draws_where_it_draws_it() {
+    if !Path::new(CHROMIUM).exists() {
+        panic!("{CHROMIUM} is not installed (.ci/run installs Debian's chromium)");
+    }
+    let cases = [
+        ("horizontal-drum", "V-101", SheetSize::AnsiD, "ansi-d"),
+        ("vertical-column", "C-201", SheetSize::IsoA3, "a3"),
+    ];
+    let dir = out_dir();
+    for (name, tag, size, flag) in cases {
+        let design = common::examples::example(name);
+        let model = Model::from_design(&design, TessellationOptions::chord(0.5)).unwrap();
+        let s = sheet(&model, tag, &SheetOptions::sized(size)).unwrap();
+        let paper = size.dimensions();
+        let base = format!("{name}-{tag}-{flag}");
+        let svg = decode(&render(&s, &base));
+        // The DXF's paper-space layout, through its viewports.
+        let dxf = dir.join(format!("{base}.dxf"));
+        std::fs::write(&dxf, vesselcad::drawing::to_dxf_bytes(&s).unwrap()).unwrap();
+        let dxf_png = dir.join(format!("{base}-dxf.png"));
+        render_with_python(&[
+            "dxf",
+            dxf.to_str().unwrap(),
+            dxf_png.to_str().unwrap(),
+            &WIDTH.to_string(),
+            &paper.x.to_string(),
+            &paper.y.to_string(),
+        ]);
+        // The PDF the drawing command prints.
+        let pdf = dir.join(format!("{base}.pdf"));
+        let out = Command::new(env!("CARGO_BIN_EXE_vesselcad"))
+            .arg("drawing")
+            .arg(common::examples::example_path(name))
+            .args(["--vessel", tag, "--sheet", flag, "--tolerance", "0.5", "-o"])
+            .arg(&pdf)
+            .output()
+            .unwrap();
+        assert!(
+            out.status.success(),
+            "{}",
+            String::from_utf8_lossy(&out.stderr)
+        );
+        let pdf_png = dir.join(format!("{base}-pdf.png"));
+        render_with_python(&[
+            "pdf",
+            pdf.to_str().unwrap(),
+            pdf_png.to_str().unwrap(),
+            &WIDTH.to_string(),
+        ]);
+        let reference = drawn_cells(&svg, paper);
+        for (what, png) in [("DXF", &dxf_png), ("PDF", &pdf_png)] {
+            let image = decode(png);
+            for (k, b) in s.view_boxes.iter().enumerate() {
+                let share = ink(&image, &s, b.min, b.max);
+                assert!(share > 0.002, "{name} {what}: view {k} is blank ({share})");
+            }
+            let cells = drawn_cells(&image, paper);
+            let recall = covered(&reference, &cells);
+            let precision = covered(&cells, &reference);
+            assert!(
+                recall > 0.97 && precision > 0.97,
+                "{name} {what}: {recall:.4} of the SVG's drawn cells are drawn, \
+                 {precision:.4} of its own are the SVG's ({})",
+                png.display()
+            );
+        }
     }
 }

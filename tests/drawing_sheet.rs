@@ -431,3 +431,109 @@ fn notes_follow_their_targets() {
         "{before} → {after}"
     );
 }
+
+/// The length a placed linear dimension is drawn at, in model mm.
+fn drawn_length(s: &Sheet, d: &vesselcad::drawing::PlacedDimension) -> f64 {
+    let k = ViewKind::ALL.iter().position(|v| *v == d.view).unwrap();
+    d.line_box.size().max_element() * s.scale / s.factors[k]
+}
+
+#[test]
+fn course_lengths_base_ring_and_side_view_projections_are_dimensioned() {
+    let m = model("vertical-column");
+    let s = sheet(&m, "C-201", &SheetOptions::default()).unwrap();
+    let find = |text: &str| {
+        s.dimensions
+            .iter()
+            .find(|d| d.text == text)
+            .unwrap_or_else(|| panic!("no dimension {text:?} in {:?}", texts(&s)))
+    };
+    // The courses and the reducer as a chain that adds up to the T/T length,
+    // each drawn as long as it says.
+    let chain = ["S1 12000", "R1 900", "S2 8000"];
+    let mut total = 0.0;
+    for text in chain {
+        let d = find(text);
+        assert_eq!(d.view, ViewKind::Front);
+        let said: f64 = text.rsplit(' ').next().unwrap().parse().unwrap();
+        assert!((drawn_length(&s, d) - said).abs() < 0.5, "{text}");
+        total += said;
+    }
+    // With the heads' straight flanges (inside the tangent lines), the chain
+    // closes on the T/T length.
+    let design = m.design();
+    let flanges: f64 = design.vessels[0]
+        .parts
+        .iter()
+        .filter_map(|p| match p {
+            vesselcad::design::PartDesign::Head(h) => Some(h.straight_flange),
+            _ => None,
+        })
+        .sum();
+    assert!(flanges > 0.0);
+    assert_eq!(format!("T/T {}", total + flanges), find("T/T 21000").text);
+    // The skirt's base ring: the skirt's OD plus twice the ring's width.
+    let ring = design.vessels[0]
+        .parts
+        .iter()
+        .find_map(|p| match p {
+            vesselcad::design::PartDesign::Skirt(s) => Some(s.base_ring_width),
+            _ => None,
+        })
+        .unwrap();
+    assert!(ring > 0.0);
+    let d = find("BASE RING OD 2300");
+    assert!((drawn_length(&s, d) - 2300.0).abs() < 0.5);
+    // Shell nozzles the elevation foreshortens (at 0° and 180°) have their
+    // projection on the side elevation, at true length; the others do not.
+    let side: Vec<_> = s
+        .dimensions
+        .iter()
+        .filter(|d| d.view == ViewKind::Side)
+        .collect();
+    let mut expected: Vec<String> = design.vessels[0]
+        .nozzles
+        .iter()
+        .filter(|n| n.elevation.is_some() && [0.0, 180.0].contains(&n.orientation))
+        .map(|n| format!("{} {}", n.mark, vesselcad::drawing::format_mm(n.projection)))
+        .collect();
+    let mut got: Vec<String> = side.iter().map(|d| d.text.clone()).collect();
+    expected.sort();
+    got.sort();
+    assert!(!expected.is_empty());
+    assert_eq!(got, expected);
+    for d in side {
+        let said: f64 = d.text.rsplit(' ').next().unwrap().parse().unwrap();
+        assert!((drawn_length(&s, d) - said).abs() < 0.5, "{}", d.text);
+    }
+    // A one-course drum has no chain (the T/T is the course), but its side
+    // nozzles are dimensioned on the end view.
+    let m = model("horizontal-drum");
+    let s = sheet(&m, "V-101", &SheetOptions::default()).unwrap();
+    assert!(!s.dimensions.iter().any(|d| d.text.starts_with("S1 ")));
+    let side: BTreeSet<&str> = s
+        .dimensions
+        .iter()
+        .filter(|d| d.view == ViewKind::Side)
+        .map(|d| d.text.as_str())
+        .collect();
+    assert_eq!(side, BTreeSet::from(["N6 1450", "N7 1450"]));
+}
+
+fn texts(s: &Sheet) -> Vec<&str> {
+    s.dimensions.iter().map(|d| d.text.as_str()).collect()
+}
+
+#[test]
+fn schedule_headers_are_whole_on_every_sheet_size() {
+    for (name, tag) in EXAMPLES {
+        let m = model(name);
+        for size in SheetSize::ALL {
+            let s = sheet(&m, tag, &SheetOptions::sized(size)).unwrap();
+            let all = text_of(&s);
+            for header in vesselcad::drawing::SCHEDULE_COLUMNS {
+                assert!(all.contains(header), "{name} {size:?}: {header} cut");
+            }
+        }
+    }
+}

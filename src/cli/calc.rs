@@ -15,9 +15,6 @@ use vesselcad::weights::{Weights, weights};
 /// The format tag of `calc --json`.
 pub const CALC_FORMAT: &str = "vesselcad-calc/1";
 
-/// Where headless Chromium is looked for (Debian's package, as `.ci/run` installs it).
-pub const CHROMIUM: &str = "/usr/bin/chromium";
-
 /// Arguments of `vesselcad calc`.
 #[derive(Args)]
 pub struct CalcArgs {
@@ -317,39 +314,5 @@ fn print_text(c: &Calculated) {
 
 /// Prints `page` to `out` as PDF with headless Chromium.
 fn print_pdf(page: &str, out: &Path) -> Result<(), String> {
-    if !Path::new(CHROMIUM).exists() {
-        return Err(format!(
-            "{CHROMIUM} is not installed (Debian: apt-get install chromium); write .html instead"
-        ));
-    }
-    let dir = std::env::temp_dir().join(format!("vesselcad-calc-{}", std::process::id()));
-    std::fs::create_dir_all(&dir).map_err(|e| e.to_string())?;
-    let html = dir.join("report.html");
-    std::fs::write(&html, page).map_err(|e| e.to_string())?;
-    let target = std::path::absolute(out).map_err(|e| e.to_string())?;
-    let result = Command::new(CHROMIUM)
-        .args([
-            "--headless",
-            "--no-sandbox",
-            "--disable-gpu",
-            "--no-first-run",
-            "--disable-background-networking",
-            "--disable-component-update",
-            "--disable-sync",
-            "--no-pdf-header-footer",
-        ])
-        .arg(format!("--user-data-dir={}", dir.join("profile").display()))
-        .arg(format!("--print-to-pdf={}", target.display()))
-        .arg(format!("file://{}", html.display()))
-        .output();
-    std::fs::remove_dir_all(&dir).ok();
-    match result {
-        Ok(o) if o.status.success() && target.exists() => Ok(()),
-        Ok(o) => Err(format!(
-            "chromium could not print {}: {}",
-            out.display(),
-            String::from_utf8_lossy(&o.stderr)
-        )),
-        Err(e) => Err(format!("could not run {CHROMIUM}: {e}")),
-    }
+    super::pdf::print_html(page, out, ".html")
 }

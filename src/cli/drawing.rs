@@ -185,17 +185,9 @@ pub fn run(args: DrawingArgs) -> ExitCode {
     ExitCode::SUCCESS
 }
 
-/// Where Debian installs Chromium.
-const CHROMIUM: &str = "/usr/bin/chromium";
-
 /// Prints the sheet's `svg` to `out` as a one-page PDF of the sheet's `size`
 /// with headless Chromium.
 fn print_pdf(svg: &str, size: SheetSize, out: &Path) -> Result<(), String> {
-    if !Path::new(CHROMIUM).exists() {
-        return Err(format!(
-            "{CHROMIUM} is not installed (Debian: apt-get install chromium); write .svg instead"
-        ));
-    }
     let paper = size.dimensions();
     let page = format!(
         "<!doctype html><html><head><meta charset=\"utf-8\"><style>\
@@ -204,35 +196,5 @@ fn print_pdf(svg: &str, size: SheetSize, out: &Path) -> Result<(), String> {
         w = paper.x,
         h = paper.y,
     );
-    let dir = std::env::temp_dir().join(format!("vesselcad-sheet-{}", std::process::id()));
-    std::fs::create_dir_all(&dir).map_err(|e| e.to_string())?;
-    let html = dir.join("sheet.html");
-    std::fs::write(&html, page).map_err(|e| e.to_string())?;
-    let target = std::path::absolute(out).map_err(|e| e.to_string())?;
-    std::fs::remove_file(&target).ok();
-    let result = Command::new(CHROMIUM)
-        .args([
-            "--headless",
-            "--no-sandbox",
-            "--disable-gpu",
-            "--no-first-run",
-            "--disable-background-networking",
-            "--disable-component-update",
-            "--disable-sync",
-            "--no-pdf-header-footer",
-        ])
-        .arg(format!("--user-data-dir={}", dir.join("profile").display()))
-        .arg(format!("--print-to-pdf={}", target.display()))
-        .arg(format!("file://{}", html.display()))
-        .output();
-    std::fs::remove_dir_all(&dir).ok();
-    match result {
-        Ok(o) if o.status.success() && target.exists() => Ok(()),
-        Ok(o) => Err(format!(
-            "chromium could not print {}: {}",
-            out.display(),
-            String::from_utf8_lossy(&o.stderr)
-        )),
-        Err(e) => Err(format!("could not run {CHROMIUM}: {e}")),
-    }
+    super::pdf::print_html(&page, out, ".svg")
 }

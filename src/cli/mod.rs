@@ -17,6 +17,7 @@ pub mod fab;
 pub mod fem;
 pub mod info;
 pub mod output;
+pub mod pdf;
 pub mod plant;
 pub mod progress;
 pub mod scan;

@@ -56,6 +56,7 @@ pub fn compose(data: &VesselData, options: &SheetOptions) -> Sheet {
     let bounds: [(DVec2, DVec2); 4] =
         std::array::from_fn(|k| data.views[k].bounds().unwrap_or((DVec2::ZERO, DVec2::ONE)));
     let dims = dimensions::plan(data);
+    let side_dims = dimensions::plan_side(data);
     let title_room = 2.8 * h + 2.0;
     let margins_at = |scale: f64| -> [Margins; 4] {
         let mut m = [Margins {
@@ -66,6 +67,13 @@ pub fn compose(data: &VesselData, options: &SheetOptions) -> Sheet {
         }; 4];
         let d = dimensions::margins(&dims, h, scale);
         m[0] = Margins {
+            left: d.left.max(2.0),
+            right: d.right.max(2.0),
+            bottom: d.bottom + title_room,
+            top: d.top.max(2.0),
+        };
+        let d = dimensions::margins(&side_dims, h, scale);
+        m[2] = Margins {
             left: d.left.max(2.0),
             right: d.right.max(2.0),
             bottom: d.bottom + title_room,
@@ -154,7 +162,7 @@ pub fn compose(data: &VesselData, options: &SheetOptions) -> Sheet {
         items.push(Item::Text {
             at: DVec2::new(
                 0.5 * (b.min.x + b.max.x),
-                b.min.y - 2.2 * h - front_bottom(k, &dims, h, placement.scale),
+                b.min.y - 2.2 * h - dims_bottom(k, [&dims, &side_dims], h, placement.scale),
             ),
             height: h,
             align: Align::Middle,
@@ -168,6 +176,16 @@ pub fn compose(data: &VesselData, options: &SheetOptions) -> Sheet {
         &dims,
         0,
         view_boxes[0],
+        &placement,
+        h,
+        &mut items,
+        &mut placed,
+        &mut dim_texts,
+    );
+    dimensions::place(
+        &side_dims,
+        2,
+        view_boxes[2],
         &placement,
         h,
         &mut items,
@@ -240,12 +258,13 @@ fn scale_text(scale: f64) -> String {
     format!("1:{}", format_mm(scale))
 }
 
-/// How far below the front view's box its dimensions reach (0 for other views).
-fn front_bottom(k: usize, dims: &dimensions::Dimensions, h: f64, scale: f64) -> f64 {
-    if k == 0 {
-        dimensions::margins(dims, h, scale).bottom
-    } else {
-        0.0
+/// How far below view `k`'s box its dimensions reach (the front and side
+/// elevations carry dimensions; 0 for the other views).
+fn dims_bottom(k: usize, [front, side]: [&dimensions::Dimensions; 2], h: f64, scale: f64) -> f64 {
+    match k {
+        0 => dimensions::margins(front, h, scale).bottom,
+        2 => dimensions::margins(side, h, scale).bottom,
+        _ => 0.0,
     }
 }
 

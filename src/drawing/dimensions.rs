@@ -180,7 +180,7 @@ pub fn plan(data: &VesselData) -> Dimensions {
                     text: format!("HEAD {}", format_mm((crown - tl).abs())),
                 });
             }
-            (PartDesign::Skirt(_), _) => {
+            (PartDesign::Skirt(_), geometry) => {
                 let edge = outline_at(data, radial, 0.0);
                 dims.linear.push(LinearDim {
                     side: DimSide::Right,
@@ -188,10 +188,25 @@ pub fn plan(data: &VesselData) -> Dimensions {
                     b: p(edge),
                     text: format!("SKIRT {}", format_mm(-part.span.0)),
                 });
+                // The base ring's outside diameter, on the bearing plane.
+                if let PartGeometry::Skirt(g) = geometry
+                    && g.base_ring_width > 0.0
+                {
+                    let od = g.bottom_diameter() + 2.0 * g.base_ring_width;
+                    let t = part.frame.translation;
+                    let centre = DVec3::new(t.x, t.y, part.span.0);
+                    dims.linear.push(LinearDim {
+                        side: DimSide::Below,
+                        a: p(centre - radial * (od / 2.0)),
+                        b: p(centre + radial * (od / 2.0)),
+                        text: format!("BASE RING OD {}", format_mm(od)),
+                    });
+                }
             }
             _ => {}
         }
     }
+    course_lengths(data, axial_side, &mut dims);
     // Overall length or height, over heads and supports.
     let (lo, hi) = data.summary.extent;
     if hi - lo > tt + 1e-6 {
@@ -321,6 +336,81 @@ pub fn plan(data: &VesselData) -> Dimensions {
         }
     }
     dims
+}
+
+/// Chooses the side elevation's dimensions: the projection of every shell nozzle
+/// the front elevation foreshortens and the side view shows at true length (its
+/// elevation is already on the front view, where the axis is true length).
+pub fn plan_side(data: &VesselData) -> Dimensions {
+    let front = data.view(ViewKind::Front).projection;
+    let side_view = data.view(ViewKind::Side).projection;
+    let tt = data.summary.tangent_length;
+    let mut dims = Dimensions::default();
+    for n in &data.nozzles {
+        let Some(elevation) = n.design.elevation else {
+            continue;
+        };
+        let axis = (n.frame.matrix3 * DVec3::Z).normalize();
+        if true_length(&front, axis) || !true_length(&side_view, axis) {
+            continue;
+        }
+        let foot = n.frame.translation;
+        let face = foot + axis * n.design.projection;
+        let shown = side_view.project(axis);
+        // Measured across the view's axis: below/above (horizontal) or
+        // left/right (vertical), on the half where the nozzle sits.
+        let side = if shown.x.abs() >= shown.y.abs() {
+            if data.is_vertical() && elevation >= tt / 2.0 {
+                DimSide::Above
+            } else {
+                DimSide::Below
+            }
+        } else if shown.y > 0.0 {
+            DimSide::Right
+        } else {
+            DimSide::Left
+        };
+        dims.linear.push(LinearDim {
+            side,
+            a: side_view.project(foot),
+            b: side_view.project(face),
+            text: format!("{} {}", n.design.mark, format_mm(n.design.projection)),
+        });
+    }
+    dims
+}
+
+/// The length of each course and reducer along the axis, as a chain beside the
+/// T/T dimension, where the stack has more than one of them (one course is the
+/// T/T itself).
+fn course_lengths(data: &VesselData, side: DimSide, dims: &mut Dimensions) {
+    let front = data.view(ViewKind::Front).projection;
+    let radial = if data.is_vertical() {
+        front.right
+    } else {
+        front.up
+    };
+    let mut courses: Vec<(f64, f64, &str)> = data
+        .parts
+        .iter()
+        .filter_map(|part| match &part.design {
+            PartDesign::Shell(s) => Some((part.span.0, part.span.1, s.id.as_str())),
+            PartDesign::Reducer(r) => Some((part.span.0, part.span.1, r.id.as_str())),
+            _ => None,
+        })
+        .collect();
+    if courses.len() < 2 {
+        return;
+    }
+    courses.sort_by(|a, b| a.0.total_cmp(&b.0));
+    for (z0, z1, id) in courses {
+        dims.linear.push(LinearDim {
+            side,
+            a: front.project(outline_at(data, radial, z0)),
+            b: front.project(outline_at(data, radial, z1)),
+            text: format!("{id} {}", format_mm(z1 - z0)),
+        });
+    }
 }
 
 /// Whether a direction shows its true length in the view.

@@ -35,7 +35,7 @@ pub use data::{
 };
 pub use dimensions::format_mm;
 pub use dxf::{cad_text, to_dxf, to_dxf_bytes};
-pub use labels::{collisions, item_box};
+pub use labels::{collisions, item_box, layout_problems};
 pub use sheet::{
     Align, HiddenLines, Item, Layer, Measure, PlacedDimension, Rect, ScheduleRow, Sheet,
     SheetOptions, SheetSize,
