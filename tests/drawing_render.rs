@@ -208,9 +208,9 @@ fn covered(a: &[Vec<bool>], b: &[Vec<bool>]) -> f64 {
     };
     let mut drawn = 0usize;
     let mut hit = 0usize;
-    for j in edge..ny - edge {
-        for i in edge..nx - edge {
-            if a[j][i] {
+    for (j, row) in a.iter().enumerate().take(ny - edge).skip(edge) {
+        for (i, &drawn_here) in row.iter().enumerate().take(nx - edge).skip(edge) {
+            if drawn_here {
                 drawn += 1;
                 hit += usize::from(near(j, i));
             }

@@ -3,7 +3,7 @@
 //! by headless Chromium). Also the deficiency list `check` prints.
 
 use std::path::{Path, PathBuf};
-use std::process::{Command, ExitCode};
+use std::process::ExitCode;
 
 use clap::Args;
 use serde_json::json;
