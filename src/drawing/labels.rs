@@ -359,6 +359,22 @@ pub fn collisions(items: &[Item]) -> Vec<String> {
     out
 }
 
+/// Every layout problem of a sheet: the [`collisions`] of its items and every
+/// text that runs off its paper; each described for a failing test or the
+/// layout example.
+pub fn layout_problems(sheet: &super::sheet::Sheet) -> Vec<String> {
+    let paper = sheet.size.dimensions();
+    let mut out = collisions(&sheet.items);
+    for item in &sheet.items {
+        if let (Item::Text { text, .. }, Some(b)) = (item, item_box(item))
+            && (b.min.x < 0.0 || b.min.y < 0.0 || b.max.x > paper.x || b.max.y > paper.y)
+        {
+            out.push(format!("text {text:?} runs off the paper at {b:?}"));
+        }
+    }
+    out
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
@@ -440,20 +456,4 @@ mod tests {
             .count();
         assert!(leaders <= 2);
     }
-}
-
-/// Every layout problem of a sheet: the [`collisions`] of its items and every
-/// text that runs off its paper; each described for a failing test or the
-/// layout example.
-pub fn layout_problems(sheet: &super::sheet::Sheet) -> Vec<String> {
-    let paper = sheet.size.dimensions();
-    let mut out = collisions(&sheet.items);
-    for item in &sheet.items {
-        if let (Item::Text { text, .. }, Some(b)) = (item, item_box(item))
-            && (b.min.x < 0.0 || b.min.y < 0.0 || b.max.x > paper.x || b.max.y > paper.y)
-        {
-            out.push(format!("text {text:?} runs off the paper at {b:?}"));
-        }
-    }
-    out
 }
