@@ -18,16 +18,18 @@
 //! opening's loop meets it and runs it only up to there, so such openings do not
 //! count. Turning a head about its own axis changes neither its shape nor any
 //! nozzle's frame (nozzles are placed before), only where its patches'
-//! parameters start. Openings that cover all eight seam angles are refused.
-//! The exchange model writes heads unturned ([`unturned_frame`]).
+//! parameters start. A head whose openings cover all eight seam angles (a ring
+//! of eight nozzles) is left unturned: the layout then cuts each of its patches
+//! at a vertex its circles share between two openings, the one farthest from
+//! them, so the head still conforms with its course. The exchange model writes
+//! heads unturned ([`unturned_frame`]).
 
 use std::f64::consts::TAU;
 
 use glam::{DAffine3, DVec3};
 
 use super::nozzles::end_gap;
-use super::{Report, ResolvedNozzle, ResolvedPart};
-use crate::format::VesselDesign;
+use super::{ResolvedNozzle, ResolvedPart};
 use crate::parts::PartGeometry;
 
 /// A gap narrower than this (radians) is none: spans that touch.
@@ -87,14 +89,14 @@ fn clearest_angle(spans: &[Span]) -> Option<(f64, f64)> {
 }
 
 /// The angular spans of the off-centre openings on `head` (the resolved part at
-/// `index`), with their nozzles; with `widen`, each opening's radius is taken
-/// with its end gap (`nozzles::end_gap`) added.
-fn spans_on<'a>(
+/// `index`); with `widen`, each opening's radius is taken with its end gap
+/// (`nozzles::end_gap`) added.
+fn spans_on(
     head: &ResolvedPart,
     index: usize,
-    nozzles: &'a [ResolvedNozzle],
+    nozzles: &[ResolvedNozzle],
     widen: bool,
-) -> Vec<(Span, &'a ResolvedNozzle)> {
+) -> Vec<Span> {
     let to_local = head.frame.inverse();
     nozzles
         .iter()
@@ -108,58 +110,29 @@ fn spans_on<'a>(
             }
             let r = if widen { r + end_gap(reach) } else { r };
             let half = (r / d).min(1.0).asin();
-            Some((Span::about(p.y.atan2(p.x), half), n))
+            Some(Span::about(p.y.atan2(p.x), half))
         })
         .collect()
 }
 
 /// Turns every head of `parts` whose openings cover its seam meridian (local +X,
 /// with each opening's end gap) about its axis, to the seam angle farthest
-/// from them; reports a head whose openings cover every seam angle.
-pub(super) fn choose(
-    vessel: &VesselDesign,
-    parts: &mut [Option<ResolvedPart>],
-    nozzles: &[ResolvedNozzle],
-    report: &mut Report,
-) {
+/// from them; a head whose openings cover every seam angle stays unturned.
+pub(super) fn choose(parts: &mut [Option<ResolvedPart>], nozzles: &[ResolvedNozzle]) {
     for (index, slot) in parts.iter_mut().enumerate() {
         let Some(head) = slot.as_mut() else { continue };
         if !matches!(head.geometry, PartGeometry::Head(_)) {
             continue;
         }
-        let widened = spans_on(head, index, nozzles, true);
-        if !widened.iter().any(|(s, _)| s.holds(0.0) || s.start == 0.0) {
+        let wide = spans_on(head, index, nozzles, true);
+        if !wide.iter().any(|s| s.holds(0.0) || s.start == 0.0) {
             continue;
         }
-        let plain = spans_on(head, index, nozzles, false);
-        let bare: Vec<Span> = plain.iter().map(|(s, _)| *s).collect();
-        let wide: Vec<Span> = widened.iter().map(|(s, _)| *s).collect();
+        let bare = spans_on(head, index, nozzles, false);
+        // Openings on all eight steps (a ring of eight nozzles): the head
+        // stays as it is, and the layout cuts each of its patches at a sample of
+        // its circles between two openings (`mesh::layout`'s `other_cut`).
         let Some((angle, _)) = clearest_angle(&wide).or_else(|| clearest_angle(&bare)) else {
-            let marks: Vec<&str> = plain.iter().map(|(_, n)| n.mark.as_str()).collect();
-            let last = plain
-                .last()
-                .map(|(_, n)| n.mark.as_str())
-                .unwrap_or_default();
-            let k = vessel
-                .nozzles
-                .iter()
-                .position(|n| n.mark == last)
-                .unwrap_or_default();
-            report.push(
-                format!("nozzles[{k}].orientation"),
-                Some(last),
-                "orientation",
-                vessel.nozzles[k].orientation,
-                format!(
-                    "the openings of nozzles {} on head {}, seen along its axis, cover each of \
-                     the head's {TURNS} seam angles (every {}° about its axis): its seam (a meridian from its tangent line to the pole, \
-                     or to a centre nozzle's opening) must pass between two of them; turn or \
-                     move one so that one of those meridians stays clear",
-                    marks.join(", "),
-                    head.id,
-                    360 / TURNS
-                ),
-            );
             continue;
         };
         head.frame *= DAffine3::from_rotation_z(angle);
