@@ -275,7 +275,7 @@ pub fn resolve_vessel(
     conditions::check(vessel, &parts, &mut report);
     let operating = operating::check(vessel, frame, &parts, &mut report);
     let nozzles = nozzles::place(vessel, &parts, &stack.courses, &mut report);
-    head_seams::choose(&mut parts, &nozzles);
+    head_seams::choose(vessel, &mut parts, &nozzles, &mut report);
     let notes = notes::place(vessel, &parts, &nozzles, &mut report);
     if !report.violations.is_empty() {
         return Err(report.violations);
