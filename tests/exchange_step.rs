@@ -310,7 +310,7 @@ fn occt_displacement_solid_volume() {
 
 /// The head-seam repros that used to be refused (issue 30 §1: an off-centre
 /// nozzle at an ellipsoidal head's seam angle, a ring of four round a centre
-/// nozzle) go through the same seam choice in the exchange model: with blind
+/// nozzle, a ring of eight on every seam step) go through the same seam choice in the exchange model: with blind
 /// flanges closing every bore, each vessel is one closed shell, each edge used
 /// twice.
 #[test]
@@ -318,6 +318,7 @@ fn head_seam_repros_export_closed_shells() {
     for name in [
         "D2-ellipsoidal-head-seam-nozzle",
         "D5-ring-of-4-plus-centre",
+        "D8-ring-of-8-on-every-seam-angle",
     ] {
         let mut design = load(format!(
             "{}/tests/repros/{name}.json",

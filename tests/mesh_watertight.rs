@@ -694,8 +694,6 @@ fn repro_outcome(path: &std::path::Path) -> Result<String, String> {
 /// head's seam meridian (its local +X) runs clear of its off-centre openings.
 #[test]
 fn head_seam_layouts_build_closed_within_the_bound() {
-    use common::triangle::largest_distance;
-    use vesselcad::components::{PatchMesh, PatchSurface};
     use vesselcad::parts::PartGeometry;
     for name in [
         "D2-ellipsoidal-head-seam-nozzle",
@@ -727,31 +725,58 @@ fn head_seam_layouts_build_closed_within_the_bound() {
                 }
             }
         }
-        for tolerance in [1.0, 0.5] {
-            let start = std::time::Instant::now();
-            let mut model = check_design(&design, tolerance);
-            let took = start.elapsed().as_secs_f64();
-            let mut query = model.query::<(&PatchSurface, &PatchMesh)>();
-            let world = model.world();
-            let (mut triangles, mut worst) = (0usize, 0.0f64);
-            for (surface, mesh) in query.iter(world) {
-                let m = mesh.0.unpack();
-                for t in m.indices.chunks_exact(3) {
-                    let p = [t[0], t[1], t[2]].map(|i| m.positions[i as usize]);
-                    let d = largest_distance(&surface.0.analytic, p) / tolerance;
-                    assert!(
-                        d <= 1.0 + 1e-9,
-                        "{name} at {tolerance} mm: a triangle of {} is {d:.5}× off",
-                        surface.0.name
-                    );
-                    worst = worst.max(d);
-                    triangles += 1;
-                }
-            }
-            eprintln!(
-                "{name} at {tolerance} mm: {triangles} triangles, worst {worst:.4}×, built in \
-                 {took:.2} s"
-            );
-        }
+        closed_within_the_bound(name, &design);
     }
+}
+
+/// Builds `design` at 1 and 0.5 mm, closed (`check_design`), and asserts every
+/// point of every triangle lies within the tolerance of its exact surface.
+fn closed_within_the_bound(name: &str, design: &Design) {
+    use common::triangle::largest_distance;
+    use vesselcad::components::{PatchMesh, PatchSurface};
+    for tolerance in [1.0, 0.5] {
+        let start = std::time::Instant::now();
+        let mut model = check_design(design, tolerance);
+        let took = start.elapsed().as_secs_f64();
+        let mut query = model.query::<(&PatchSurface, &PatchMesh)>();
+        let world = model.world();
+        let (mut triangles, mut worst) = (0usize, 0.0f64);
+        for (surface, mesh) in query.iter(world) {
+            let m = mesh.0.unpack();
+            for t in m.indices.chunks_exact(3) {
+                let p = [t[0], t[1], t[2]].map(|i| m.positions[i as usize]);
+                let d = largest_distance(&surface.0.analytic, p) / tolerance;
+                assert!(
+                    d <= 1.0 + 1e-9,
+                    "{name} at {tolerance} mm: a triangle of {} is {d:.5}× off",
+                    surface.0.name
+                );
+                worst = worst.max(d);
+                triangles += 1;
+            }
+        }
+        eprintln!(
+            "{name} at {tolerance} mm: {triangles} triangles, worst {worst:.4}×, built in \
+             {took:.2} s"
+        );
+    }
+}
+
+/// A ring of eight nozzles on an ellipsoidal head, one on each of its eight
+/// seam steps (D8), was refused ("cover each of the head's 8 seam angles";
+/// issue 30). The head now keeps its seam (no step is clear) and the layout
+/// cuts its crown at a vertex of its rim between two openings: it builds
+/// closed with its course, every point of every triangle within the
+/// tolerance, at 1 and 0.5 mm.
+#[test]
+fn a_ring_of_eight_on_every_seam_step_builds_closed_within_the_bound() {
+    let name = "D8-ring-of-8-on-every-seam-angle";
+    let path = format!("{}/tests/repros/{name}.json", env!("CARGO_MANIFEST_DIR"));
+    let design = load(&path).unwrap_or_else(|e| panic!("{name} is refused: {e}"));
+    let head = &design.vessels[0].nozzles;
+    assert_eq!(head.len(), 8);
+    for (k, n) in head.iter().enumerate() {
+        assert_eq!((n.host.as_str(), n.orientation), ("H2", 45.0 * k as f64));
+    }
+    closed_within_the_bound(name, &design);
 }

@@ -4,45 +4,26 @@
 //! model as it was — design, meshes, errors and change log. The library's other
 //! path, `Model::apply` then `Model::update` (or `try_update`), is the same
 //! transaction: a failed update puts back every edit applied since the last
-//! update that built.
+//! update that built. The edit is `common::unbuildable`'s: head H2 of the
+//! horizontal drum made hemispherical under a vertex budget its crown then
+//! needs more than.
 
-use vesselcad::design::{Design, load, validate};
+use vesselcad::design::validate;
 use vesselcad::export::write_glb;
 use vesselcad::mesh::TessellationOptions;
 use vesselcad::mesh::cdt::CdtError;
 use vesselcad::model::{BuildCause, Edit, Model, ModelError, ModelFailure};
 
-/// The plant whose storage tank's conical roof could not be meshed at 1 mm
-/// with nozzle N3 (`vessels[3].nozzles[1]`): a loop segment along a cone
-/// generator, fanned to the apex. The roof now builds (see
-/// `mesh_watertight::the_fuzz_plants_conical_roof_builds_closed_at_1_and_0_7_mm`),
-/// so the tests using it are ignored until they get another design that
-/// `check` accepts and `build` refuses, or an injected mesher failure.
-fn unbuildable() -> Design {
-    load(format!(
-        "{}/tests/repros/fuzz-seed1-accepted-edit-roof-4M-vertices.json",
-        env!("CARGO_MANIFEST_DIR")
-    ))
-    .unwrap()
-}
+mod common;
 
-/// The same plant without the tank's roof nozzle N3: it builds at 1 mm.
-fn buildable() -> Design {
-    let mut design = unbuildable();
-    let tank = &mut design.vessels[3];
-    let n3 = tank.nozzles.remove(1);
-    assert_eq!(n3.mark, "N3");
-    tank.notes.retain(|n| n.target != n3.mark);
-    design
-}
-
-const TOLERANCE: f64 = 1.0;
+use common::unbuildable::{
+    ENTITY, MAX_VERTICES, PATCH, PATH, TOLERANCE, buildable, options, unbuildable,
+};
 
 #[test]
-#[ignore = "needs an edit that check accepts and the mesher cannot build: the fuzz plant's roof at 1 mm, the last one known, builds since the pole-row fix (issue 30)"]
 fn an_edit_whose_geometry_fails_is_refused_and_changes_nothing() {
     let design = buildable();
-    let mut model = Model::from_design(&design, TessellationOptions::chord(TOLERANCE)).unwrap();
+    let mut model = Model::from_design(&design, options()).unwrap();
     model.take_changes();
     let before = model.design();
     let glb = write_glb(&model.scene()).unwrap();
@@ -54,22 +35,18 @@ fn an_edit_whose_geometry_fails_is_refused_and_changes_nothing() {
     };
     assert_eq!(failures.len(), 1, "{err}");
     let v = &failures[0];
-    assert_eq!(
-        (v.path.as_str(), v.entity.as_str()),
-        ("vessels[3].parts[2]", "TK-301/ROOF"),
-        "{v}"
-    );
-    // A mesher failure, typed, of the roof's cone: not a broken rule.
+    assert_eq!((v.path.as_str(), v.entity.as_str()), (PATH, ENTITY), "{v}");
+    // A mesher failure, typed, of the head's crown: not a broken rule.
     assert_eq!(
         (v.cause.stage(), v.cause.patch()),
-        ("mesh", Some("cone")),
+        ("mesh", Some(PATCH)),
         "{v}"
     );
     assert!(
         matches!(
             &v.cause,
             BuildCause::Mesh {
-                source: CdtError::RefinementRunaway { .. } | CdtError::NotConverged { .. },
+                source: CdtError::BudgetExceeded { .. },
                 ..
             }
         ),
@@ -94,11 +71,11 @@ fn an_edit_whose_geometry_fails_is_refused_and_changes_nothing() {
 
 /// A geometry failure names the part by its JSON path, never an ECS entity
 /// (a pad's patch was named `103v0`); a design that cannot be built is refused
-/// by `from_design` with every failure.
+/// by `from_design` with every failure. The fixture fails by the budget alone:
+/// with the default budget it builds.
 #[test]
-#[ignore = "needs an edit that check accepts and the mesher cannot build: the fuzz plant's roof at 1 mm, the last one known, builds since the pole-row fix (issue 30)"]
 fn a_failure_is_named_by_the_design_not_by_the_entity() {
-    let err = Model::from_design(&unbuildable(), TessellationOptions::chord(TOLERANCE))
+    let err = Model::from_design(&unbuildable(), options())
         .err()
         .expect("the design cannot be built");
     let ModelError::Geometry(failures) = &err else {
@@ -106,9 +83,11 @@ fn a_failure_is_named_by_the_design_not_by_the_entity() {
     };
     assert!(!failures.is_empty());
     for v in failures {
-        assert!(v.entity.starts_with("TK-301/"), "{v}");
-        assert_eq!(v.path, "vessels[3].parts[2]", "{v}");
+        assert_eq!((v.path.as_str(), v.entity.as_str()), (PATH, ENTITY), "{v}");
     }
+    let model = Model::from_design(&unbuildable(), TessellationOptions::chord(TOLERANCE))
+        .expect("within the default budget, the edit builds");
+    assert!(model.errors().0.is_empty(), "{:?}", model.errors());
 }
 
 /// `apply` then `update`: the update that cannot build puts back every edit
@@ -116,10 +95,9 @@ fn a_failure_is_named_by_the_design_not_by_the_entity() {
 /// nozzle), keeps the failures in `errors()` and counts them; the next update
 /// builds nothing and reports nothing.
 #[test]
-#[ignore = "needs an edit that check accepts and the mesher cannot build: the fuzz plant's roof at 1 mm, the last one known, builds since the pole-row fix (issue 30)"]
 fn apply_then_update_rolls_back_a_failed_build() {
     let design = buildable();
-    let mut model = Model::from_design(&design, TessellationOptions::chord(TOLERANCE)).unwrap();
+    let mut model = Model::from_design(&design, options()).unwrap();
     model.take_changes();
     let before = model.design();
     let glb = write_glb(&model.scene()).unwrap();
@@ -134,7 +112,7 @@ fn apply_then_update_rolls_back_a_failed_build() {
     let ModelFailure::Build(failure) = &errors[0] else {
         panic!("a build failure, not a rule: {errors:?}");
     };
-    assert_eq!(failure.path, "vessels[3].parts[2]");
+    assert_eq!(failure.path, PATH);
     assert_eq!(model.design(), before, "both edits are undone");
     assert_eq!(write_glb(&model.scene()).unwrap(), glb);
     let changes = model.take_changes();
@@ -178,15 +156,14 @@ fn apply_then_update_rolls_back_a_failed_build() {
 /// the options in force, the failure is reported typed, and no mesh of other
 /// options stands as current (the GLB is byte for byte the one before).
 #[test]
-#[ignore = "needs an edit that check accepts and the mesher cannot build: the fuzz plant's roof at 1 mm, the last one known, builds since the pole-row fix (issue 30)"]
 fn options_that_cannot_be_meshed_are_put_back() {
-    // Builds at the default 0.5 mm; its roof cannot be meshed at 1 mm.
-    let mut model = Model::from_design(&unbuildable(), TessellationOptions::DEFAULT).unwrap();
+    // Builds at 1 mm within the budget; its crowns cannot be meshed within
+    // it at 0.5 mm.
+    let mut model = Model::from_design(&buildable(), options()).unwrap();
     model.take_changes();
     let glb = write_glb(&model.scene()).unwrap();
-    model
-        .set_tessellation(TessellationOptions::chord(TOLERANCE))
-        .unwrap();
+    let finer = TessellationOptions::chord(TOLERANCE / 2.0).with_max_vertices(MAX_VERTICES);
+    model.set_tessellation(finer).unwrap();
     let err = model.try_update().unwrap_err();
     let ModelError::Geometry(failures) = &err else {
         panic!("expected a geometry refusal, got {err}");
@@ -194,7 +171,7 @@ fn options_that_cannot_be_meshed_are_put_back() {
     assert!(
         failures
             .iter()
-            .any(|f| f.path == "vessels[3].parts[2]" && f.cause.stage() == "mesh"),
+            .any(|f| f.path == PATH && f.cause.stage() == "mesh"),
         "{err}"
     );
     assert_eq!(write_glb(&model.scene()).unwrap(), glb);
@@ -202,9 +179,7 @@ fn options_that_cannot_be_meshed_are_put_back() {
     assert_eq!(model.update(), Default::default());
     assert!(model.errors().0.is_empty(), "{:?}", model.errors());
     // `update` does the same, keeping the failures in `errors()`.
-    model
-        .set_tessellation(TessellationOptions::chord(TOLERANCE))
-        .unwrap();
+    model.set_tessellation(finer).unwrap();
     let work = model.update();
     assert!(work.failures > 0, "{work:?}");
     assert!(!model.errors().0.is_empty());

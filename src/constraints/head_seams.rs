@@ -18,8 +18,12 @@
 //! opening's loop meets it and runs it only up to there, so such openings do not
 //! count. Turning a head about its own axis changes neither its shape nor any
 //! nozzle's frame (nozzles are placed before), only where its patches'
-//! parameters start. Openings that cover all eight seam angles are refused.
-//! The exchange model writes heads unturned ([`unturned_frame`]).
+//! parameters start. A head whose openings cover all eight seam angles (a ring
+//! of eight nozzles) is left unturned: the layout then cuts each of its patches
+//! at a vertex its circles share between two openings, the one farthest from
+//! them, so the head still conforms with its course; with an opening round its
+//! pole too (whose crown must be cut at a seam angle) it is refused. The
+//! exchange model writes heads unturned ([`unturned_frame`]).
 
 use std::f64::consts::TAU;
 
@@ -87,14 +91,14 @@ fn clearest_angle(spans: &[Span]) -> Option<(f64, f64)> {
 }
 
 /// The angular spans of the off-centre openings on `head` (the resolved part at
-/// `index`), with their nozzles; with `widen`, each opening's radius is taken
-/// with its end gap (`nozzles::end_gap`) added.
-fn spans_on<'a>(
+/// `index`); with `widen`, each opening's radius is taken with its end gap
+/// (`nozzles::end_gap`) added.
+fn spans_on(
     head: &ResolvedPart,
     index: usize,
-    nozzles: &'a [ResolvedNozzle],
+    nozzles: &[ResolvedNozzle],
     widen: bool,
-) -> Vec<(Span, &'a ResolvedNozzle)> {
+) -> Vec<Span> {
     let to_local = head.frame.inverse();
     nozzles
         .iter()
@@ -108,14 +112,15 @@ fn spans_on<'a>(
             }
             let r = if widen { r + end_gap(reach) } else { r };
             let half = (r / d).min(1.0).asin();
-            Some((Span::about(p.y.atan2(p.x), half), n))
+            Some(Span::about(p.y.atan2(p.x), half))
         })
         .collect()
 }
 
 /// Turns every head of `parts` whose openings cover its seam meridian (local +X,
 /// with each opening's end gap) about its axis, to the seam angle farthest
-/// from them; reports a head whose openings cover every seam angle.
+/// from them; a head whose openings cover every seam angle stays unturned,
+/// unless it also has an opening round its pole: that is reported.
 pub(super) fn choose(
     vessel: &VesselDesign,
     parts: &mut [Option<ResolvedPart>],
@@ -127,43 +132,83 @@ pub(super) fn choose(
         if !matches!(head.geometry, PartGeometry::Head(_)) {
             continue;
         }
-        let widened = spans_on(head, index, nozzles, true);
-        if !widened.iter().any(|(s, _)| s.holds(0.0) || s.start == 0.0) {
+        let wide = spans_on(head, index, nozzles, true);
+        if !wide.iter().any(|s| s.holds(0.0) || s.start == 0.0) {
             continue;
         }
-        let plain = spans_on(head, index, nozzles, false);
-        let bare: Vec<Span> = plain.iter().map(|(s, _)| *s).collect();
-        let wide: Vec<Span> = widened.iter().map(|(s, _)| *s).collect();
+        let bare = spans_on(head, index, nozzles, false);
+        // Openings on all eight steps (a ring of eight nozzles): the head
+        // stays as it is, and the layout cuts each of its patches at a sample of
+        // its circles between two openings (`mesh::layout`'s `other_cut`) —
+        // unless an opening goes round its pole: a crown cut round its centre
+        // is cut at its seam, which an opening covers.
         let Some((angle, _)) = clearest_angle(&wide).or_else(|| clearest_angle(&bare)) else {
-            let marks: Vec<&str> = plain.iter().map(|(_, n)| n.mark.as_str()).collect();
-            let last = plain
-                .last()
-                .map(|(_, n)| n.mark.as_str())
-                .unwrap_or_default();
-            let k = vessel
-                .nozzles
-                .iter()
-                .position(|n| n.mark == last)
-                .unwrap_or_default();
-            report.push(
-                format!("nozzles[{k}].orientation"),
-                Some(last),
-                "orientation",
-                vessel.nozzles[k].orientation,
-                format!(
-                    "the openings of nozzles {} on head {}, seen along its axis, cover each of \
-                     the head's {TURNS} seam angles (every {}° about its axis): its seam (a meridian from its tangent line to the pole, \
-                     or to a centre nozzle's opening) must pass between two of them; turn or \
-                     move one so that one of those meridians stays clear",
-                    marks.join(", "),
-                    head.id,
-                    360 / TURNS
-                ),
-            );
+            if let Some(centre) = round_the_pole(head, index, nozzles) {
+                refuse(vessel, head, nozzles, index, centre, report);
+            }
             continue;
         };
         head.frame *= DAffine3::from_rotation_z(angle);
     }
+}
+
+/// The mark of a nozzle on `head` (the resolved part at `index`) whose opening
+/// goes round the head's pole, if any.
+fn round_the_pole<'a>(
+    head: &ResolvedPart,
+    index: usize,
+    nozzles: &'a [ResolvedNozzle],
+) -> Option<&'a str> {
+    let to_local = head.frame.inverse();
+    nozzles
+        .iter()
+        .filter(|n| n.host == index)
+        .find(|n| {
+            let reach = n.pad.map_or(n.geometry.outside_diameter(), |p| p.0);
+            let p = to_local.transform_point3(n.frame.translation);
+            p.x.hypot(p.y) <= reach / 2.0
+        })
+        .map(|n| n.mark.as_str())
+}
+
+/// Reports that the off-centre openings of `head` cover each of its seam
+/// angles while nozzle `centre` goes round its pole, on the last off-centre
+/// nozzle's orientation.
+fn refuse(
+    vessel: &VesselDesign,
+    head: &ResolvedPart,
+    nozzles: &[ResolvedNozzle],
+    index: usize,
+    centre: &str,
+    report: &mut Report,
+) {
+    let marks: Vec<&str> = nozzles
+        .iter()
+        .filter(|n| n.host == index && n.mark != centre)
+        .map(|n| n.mark.as_str())
+        .collect();
+    let last = marks.last().copied().unwrap_or_default();
+    let k = vessel
+        .nozzles
+        .iter()
+        .position(|n| n.mark == last)
+        .unwrap_or_default();
+    report.push(
+        format!("nozzles[{k}].orientation"),
+        Some(last),
+        "orientation",
+        vessel.nozzles[k].orientation,
+        format!(
+            "the openings of nozzles {} on head {}, seen along its axis, cover each of the \
+             head's {TURNS} seam angles (every {}° about its axis), and nozzle {centre} goes \
+             round its centre: its crown is then cut along a seam (a meridian from the \
+             centre nozzle's opening outwards) at one of those angles, which must stay clear; \
+             turn or move one so that one of those meridians stays clear",
+            marks.join(", "),
+            head.id,
+            360 / TURNS
+        ),
+    );
 }
 
 /// The frame a head `part` had before `choose` turned it about its axis (any

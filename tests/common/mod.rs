@@ -18,6 +18,7 @@ pub mod scan;
 pub mod stores;
 pub mod supports;
 pub mod triangle;
+pub mod unbuildable;
 
 use glam::DVec3;
 use vesselcad::nurbs::NurbsSurface;
