@@ -4,12 +4,13 @@
 
 use rayon::prelude::*;
 
-use super::kept::{KeptCavities, Memo};
+use super::general::{initial, refine, seed};
 use super::output::{RegionMesh, finish};
 use super::patch::{PatchInfo, wants_transpose};
 use super::plan::plan;
+use super::structured::kept::{KeptCavities, Memo};
 use super::trimesh::TriMesh;
-use super::{CdtError, MeshStats, Region, initial, metric::Sizing, refine, seed, structured};
+use super::{CdtError, MeshStats, Region, metric::Sizing, structured};
 use crate::mesh::{Mesh, TessellationOptions};
 use crate::nurbs::NurbsSurface;
 use crate::parts::{Analytic, Patch};
@@ -199,7 +200,7 @@ fn mesh_oriented(
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::mesh::cdt::sector::turn;
+    use crate::mesh::cdt::quarter::turn;
     use crate::parts::Patch;
     use crate::parts::heads::{Head, HeadKind};
 
@@ -209,7 +210,7 @@ mod tests {
     fn with_rings(
         patch: &Patch,
         options: &TessellationOptions,
-        f: impl FnOnce(&PatchInfo, &super::super::lattice::Rings),
+        f: impl FnOnce(&PatchInfo, &crate::mesh::cdt::structured::lattice::Rings),
     ) {
         let region =
             crate::mesh::patch_region(&patch.surface, options, &[], None).expect("a region");
@@ -293,7 +294,7 @@ mod tests {
     /// tolerance (they see as little as 15/16 of the peak): the bound does not.
     #[test]
     fn the_closed_form_bound_is_the_screen_verdict() {
-        use super::super::screen::Screen;
+        use crate::mesh::cdt::checks::screen::Screen;
         use crate::parts::Shell;
         let (mut bounded, mut total, mut missed) = (0usize, 0usize, 0usize);
         let mut patches: Vec<crate::parts::Patch> = Vec::new();

@@ -21,29 +21,19 @@
 //! cylinders, spheres), `peak` (the cubic deviation model). `patch` holds the
 //! facts about the surface every stage uses.
 
-mod cavity;
-mod cavity_fill;
-mod certify;
+mod checks;
 mod error;
 mod flip;
-mod initial;
-mod kept;
-mod lattice;
-mod measure;
-mod mend;
+mod general;
 mod mesher;
 mod metric;
 mod output;
 mod patch;
-mod peak;
 mod plan;
-mod refine;
+mod quarter;
 mod region;
-mod screen;
-mod sector;
-mod seed;
+mod stats;
 mod structured;
-mod sweep;
 mod trimesh;
 
 /// Fewest vertices or triangles per parallel task in the mesher's per-item loops:
@@ -53,11 +43,12 @@ mod trimesh;
 const MIN_VERTICES: usize = 64;
 
 pub use error::CdtError;
-pub use kept::KeptCavities;
 pub use mesher::{
     mesh_patch_region, mesh_patch_region_keeping, mesh_region, mesh_region_on, mesh_region_with_uvs,
 };
-pub use output::{MeshStats, RegionMesh};
+pub use output::RegionMesh;
 pub use patch::wrap_u;
 pub use plan::{CAVITY_FILLS, CavityFill, MeshPath};
 pub use region::{Region, UvLoop};
+pub use stats::MeshStats;
+pub use structured::kept::KeptCavities;
