@@ -1,6 +1,7 @@
 //! The counts of what happened while meshing a region ([`MeshStats`]), which
-//! every stage adds to: a leaf of the mesher beside the decision table whose path
-//! and cavity fills it records.
+//! every stage adds to. Apart from `output` (which reads the structured path's
+//! types), so that the stages count without depending on the output; it reads
+//! only the decision table, whose path and cavity fills it records.
 
 use super::plan::{CAVITY_FILLS, MeshPath};
 

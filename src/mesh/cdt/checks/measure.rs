@@ -13,7 +13,9 @@
 //! plane, cylinder, cone, sphere, torus or spheroid, on which the NURBS lies to
 //! rounding), the second distance is that surface's closed-form distance and the
 //! first needs only S, not its derivatives: the cheap path the mesher takes for
-//! every vessel patch.
+//! every vessel patch. The probes of an edge (its midpoint, towards a pole along
+//! the other end's meridian) and the normals at its ends are here too, shared by
+//! refinement and the screen.
 
 use glam::{DVec2, DVec3};
 
