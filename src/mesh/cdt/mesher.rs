@@ -136,9 +136,18 @@ fn mesh_oriented(
     // The options' vertex budget bounds each region (seeds, loop vertices and
     // insertions); beyond it meshing stops with `CdtError::BudgetExceeded`.
     let budget = options.max_vertices.saturating_sub(region.vertex_count());
+    // The seeds' and the structured path's errors count what they place within
+    // `budget`; the error names the option and counts the loop vertices too.
+    let named = |e: CdtError| match e {
+        CdtError::BudgetExceeded { needed, .. } => CdtError::BudgetExceeded {
+            max_vertices: options.max_vertices,
+            needed: needed.saturating_add(region.vertex_count()),
+        },
+        e => e,
+    };
     let plan = plan(&info, region);
     if let Some((path, mut rings)) =
-        structured::triangulate(&info, region, &plan, options, budget, memo)?
+        structured::triangulate(&info, region, &plan, options, budget, memo).map_err(named)?
         && rings
             .seam
             .iter()
@@ -189,7 +198,7 @@ fn mesh_oriented(
     }
     // The general path: no cavity of the structured attempt is in this mesh.
     memo.restart();
-    let seeds = seed::seeds(&info, region, budget)?;
+    let seeds = seed::seeds(&info, region, budget).map_err(named)?;
     let poled = seed::with_pole_vertices(&info, region, &seeds);
     let region = poled.as_ref().unwrap_or(region);
     let mut mesh = initial::triangulate(&info, region, &seeds, &mut stats)?;

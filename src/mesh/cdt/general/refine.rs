@@ -257,7 +257,10 @@ fn run(
         .max(REFINEMENT_FLOOR);
     let over = |limit: usize| {
         if limit == budget {
-            CdtError::BudgetExceeded { limit }
+            CdtError::BudgetExceeded {
+                max_vertices: limit,
+                needed: limit + 1,
+            }
         } else {
             CdtError::RefinementRunaway { seeded, limit }
         }
@@ -351,7 +354,10 @@ fn add_shadows(
                 continue;
             };
             if mesh.verts.len() >= budget {
-                return Err(CdtError::BudgetExceeded { limit: budget });
+                return Err(CdtError::BudgetExceeded {
+                    max_vertices: budget,
+                    needed: mesh.verts.len() + 1,
+                });
             }
             let x = mesh.push_vertex(info.vertex(uv)?);
             let edges = mesh.split_edge(t, i, x);

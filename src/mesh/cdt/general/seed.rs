@@ -124,7 +124,8 @@ struct Plan {
 }
 
 /// Plans the lattice of `region`, or [`CdtError::BudgetExceeded`] when it would
-/// exceed `budget` points.
+/// exceed `budget` points (the error counts seeds alone: the caller adds the
+/// loop vertices and names the option).
 fn plan(info: &PatchInfo, region: &Region, budget: usize) -> Result<Plan, CdtError> {
     let (lo, hi) = region.bounds();
     let (us, v_spans) = sample_grid(info, lo, hi);
@@ -160,7 +161,14 @@ fn plan(info: &PatchInfo, region: &Region, budget: usize) -> Result<Plan, CdtErr
             }
         }
         if estimate.is_nan() || estimate > budget as f64 {
-            return Err(CdtError::BudgetExceeded { limit: budget });
+            return Err(CdtError::BudgetExceeded {
+                max_vertices: budget,
+                needed: if estimate.is_nan() {
+                    budget + 1
+                } else {
+                    estimate.ceil() as usize
+                },
+            });
         }
         let total = cumulative(vs, &density);
         let count = total[total.len() - 1].ceil() as usize;
@@ -194,7 +202,10 @@ fn plan(info: &PatchInfo, region: &Region, budget: usize) -> Result<Plan, CdtErr
     let counts = row_counts(&profiles);
     let total: usize = counts.iter().sum();
     if total > budget {
-        return Err(CdtError::BudgetExceeded { limit: budget });
+        return Err(CdtError::BudgetExceeded {
+            max_vertices: budget,
+            needed: total,
+        });
     }
     Ok(Plan {
         us,

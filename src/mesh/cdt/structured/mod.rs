@@ -87,7 +87,10 @@ pub(super) fn triangulate(
     if let Some(quarter) = &plan.quarter
         && let Some(part) = structured(info, quarter, options, budget / QUARTERS, QUARTERS, memo)
             .map_err(|e| match e {
-                CdtError::BudgetExceeded { .. } => CdtError::BudgetExceeded { limit: budget },
+                CdtError::BudgetExceeded { needed, .. } => CdtError::BudgetExceeded {
+                    max_vertices: budget,
+                    needed: needed.saturating_mul(QUARTERS),
+                },
                 e => e,
             })?
         && let Some(whole) = sector::whole_turn(info, quarter, part)?
@@ -188,7 +191,10 @@ fn structured(
         chains[k].len = us.len();
     }
     if mesh.verts.len() + region.vertex_count() > budget {
-        return Err(CdtError::BudgetExceeded { limit: budget });
+        return Err(CdtError::BudgetExceeded {
+            max_vertices: budget,
+            needed: mesh.verts.len() + region.vertex_count(),
+        });
     }
     let cavities = if region.holes.is_empty() {
         Vec::new()
