@@ -326,6 +326,41 @@ fn bad_input_is_a_typed_error() {
     ));
 }
 
+/// A patch over the vertex budget is refused with the option's value as the
+/// user set it (not the budget left after the loop vertices), the option's
+/// name, and at least how many vertices the patch needed (issue 31).
+#[test]
+fn the_budget_error_names_the_option_its_value_and_what_the_patch_needs() {
+    let head = Head::new(2000.0, HeadKind::Hemispherical);
+    let crown = &head.patches().unwrap()[0].surface;
+    let region = full_region(crown, 1.0);
+    for max_vertices in [1_000, 20_000] {
+        let result = mesh_region(
+            crown,
+            &region,
+            &options(0.01).with_max_vertices(max_vertices),
+        );
+        let Err(
+            e @ CdtError::BudgetExceeded {
+                max_vertices: named,
+                needed,
+            },
+        ) = &result
+        else {
+            panic!("{result:?}");
+        };
+        assert_eq!(*named, max_vertices, "{e}");
+        assert!(*needed > max_vertices, "{e}");
+        let message = e.to_string();
+        assert!(
+            message.contains(&format!("max_vertices = {max_vertices}"))
+                && message.contains("--max-vertices")
+                && message.contains(&format!("at least {needed} vertices")),
+            "{message}"
+        );
+    }
+}
+
 /// A hole inside another hole (two openings one inside the other): the region
 /// would lie on both sides of the outer hole's loop, so it is refused instead of
 /// meshed over that hole.

@@ -10,7 +10,10 @@
 //! An edge `a → b` joins the first modules where the file's path and the named path
 //! part, under their common parent. A pair of edges `a → b`, `b → a` under the same
 //! parent is a cycle. A second test holds every ECS `Component` and `Resource` in
-//! `components/`.
+//! `components/`. Inside the mesher (`mesh` and everything under it) the test is
+//! stricter: no cycle of any length among sibling modules, with names a
+//! directory module re-exports (`pub use error::CdtError`, named as
+//! `super::CdtError`) followed to the module that defines them.
 
 use std::collections::{BTreeMap, BTreeSet};
 use std::fs;
@@ -437,18 +440,72 @@ fn sources() -> Vec<Source> {
     out
 }
 
+/// The children of `module` among `modules`.
+fn children_of(modules: &BTreeSet<ModPath>, module: &ModPath) -> BTreeSet<String> {
+    modules
+        .iter()
+        .filter(|m| m.len() == module.len() + 1 && m.starts_with(module))
+        .map(|m| m.last().unwrap().clone())
+        .collect()
+}
+
+/// The names each directory module imports from below it (`use error::CdtError`
+/// in `mesh::cdt` maps `CdtError` to `mesh::cdt::error`): a child that names
+/// `super::CdtError` uses `mesh::cdt::error`. Only imports that resolve to a
+/// module under the directory module count.
+fn reexports(
+    sources: &[Source],
+    modules: &BTreeSet<ModPath>,
+) -> BTreeMap<ModPath, BTreeMap<String, ModPath>> {
+    let mut out: BTreeMap<ModPath, BTreeMap<String, ModPath>> = BTreeMap::new();
+    for source in sources.iter().filter(|s| s.is_dir) {
+        let binary = source.module.first().is_some_and(|m| m == BINARY);
+        let children = children_of(modules, &source.module);
+        for path in use_paths(&source.code).0 {
+            let Some(target) = resolve(&path, &source.module, true, &children, binary) else {
+                continue;
+            };
+            // `use child::Item` or `use child::grandchild`: the module that holds
+            // the name, or the module named.
+            let (Some(name), Some(module)) = (target.last(), deepest(modules, &target)) else {
+                continue;
+            };
+            if module.len() + 1 >= target.len()
+                && module.len() > source.module.len()
+                && module.starts_with(&source.module)
+            {
+                out.entry(source.module.clone())
+                    .or_default()
+                    .insert(name.clone(), module);
+            }
+        }
+    }
+    out
+}
+
+/// The deepest module of `modules` that `path` names (a prefix of it).
+fn deepest(modules: &BTreeSet<ModPath>, path: &[String]) -> Option<ModPath> {
+    (1..=path.len())
+        .rev()
+        .map(|n| path[..n].to_vec())
+        .find(|m| modules.contains(m))
+}
+
 /// Edges `(parent, from, to)`: the module `parent::from` names `parent::to`.
-fn edges() -> BTreeSet<(String, String, String)> {
+/// With `follow`, a name a directory module imports from below it counts as the
+/// module that defines it (see [`reexports`]).
+fn edges(follow: bool) -> BTreeSet<(String, String, String)> {
     let sources = sources();
     let modules: BTreeSet<ModPath> = sources.iter().map(|s| s.module.clone()).collect();
+    let imported = if follow {
+        reexports(&sources, &modules)
+    } else {
+        BTreeMap::new()
+    };
     let mut edges = BTreeSet::new();
     for source in &sources {
         let binary = source.module.first().is_some_and(|m| m == BINARY);
-        let children: BTreeSet<String> = modules
-            .iter()
-            .filter(|m| m.len() == source.module.len() + 1 && m.starts_with(&source.module))
-            .map(|m| m.last().unwrap().clone())
-            .collect();
+        let children = children_of(&modules, &source.module);
         let (mut paths, rest) = use_paths(&source.code);
         paths.extend(inline_paths(&rest));
         for path in paths {
@@ -456,14 +513,17 @@ fn edges() -> BTreeSet<(String, String, String)> {
             else {
                 continue;
             };
-            // The deepest module the path names.
-            let Some(target) = (1..=target.len())
-                .rev()
-                .map(|n| target[..n].to_vec())
-                .find(|m| modules.contains(m))
-            else {
+            // The deepest module the path names, through imports when followed.
+            let Some(mut module) = deepest(&modules, &target) else {
                 continue;
             };
+            if let Some(inner) = target
+                .get(module.len())
+                .and_then(|name| imported.get(&module)?.get(name))
+            {
+                module = inner.clone();
+            }
+            let target = module;
             let common = source
                 .module
                 .iter()
@@ -484,7 +544,7 @@ fn edges() -> BTreeSet<(String, String, String)> {
 
 #[test]
 fn no_two_modules_name_each_other() {
-    let edges = edges();
+    let edges = edges(false);
     let mut cycles = Vec::new();
     for (parent, a, b) in &edges {
         if a < b && edges.contains(&(parent.clone(), b.clone(), a.clone())) {
@@ -518,7 +578,7 @@ fn no_two_modules_name_each_other() {
 #[test]
 fn print_top_level_graph() {
     let mut graph: BTreeMap<String, BTreeSet<String>> = BTreeMap::new();
-    for (parent, a, b) in edges() {
+    for (parent, a, b) in edges(false) {
         if parent.is_empty() {
             graph.entry(a).or_default().insert(b);
         }
@@ -530,6 +590,120 @@ fn print_top_level_graph() {
         );
     }
     assert!(graph.contains_key("model"), "the graph was read: {graph:?}");
+}
+
+/// The modules under which no cycle of any length is allowed (each parent
+/// whose path starts with one of these).
+const ACYCLIC: &[&str] = &["mesh"];
+
+/// A cycle in `graph`, as its modules in order, or `None` (a depth-first search;
+/// a node on the stack reached again closes a cycle).
+fn find_cycle(graph: &BTreeMap<String, BTreeSet<String>>) -> Option<Vec<String>> {
+    #[derive(Clone, Copy, PartialEq)]
+    enum Mark {
+        Open,
+        Done,
+    }
+    fn visit(
+        node: &str,
+        graph: &BTreeMap<String, BTreeSet<String>>,
+        marks: &mut BTreeMap<String, Mark>,
+        stack: &mut Vec<String>,
+    ) -> Option<Vec<String>> {
+        marks.insert(node.to_string(), Mark::Open);
+        stack.push(node.to_string());
+        for next in graph.get(node).into_iter().flatten() {
+            match marks.get(next) {
+                Some(Mark::Open) => {
+                    let from = stack.iter().position(|m| m == next).unwrap();
+                    return Some(stack[from..].to_vec());
+                }
+                Some(Mark::Done) => {}
+                None => {
+                    if let Some(cycle) = visit(next, graph, marks, stack) {
+                        return Some(cycle);
+                    }
+                }
+            }
+        }
+        stack.pop();
+        marks.insert(node.to_string(), Mark::Done);
+        None
+    }
+    let mut marks = BTreeMap::new();
+    for node in graph.keys() {
+        if !marks.contains_key(node)
+            && let Some(cycle) = visit(node, graph, &mut marks, &mut Vec::new())
+        {
+            return Some(cycle);
+        }
+    }
+    None
+}
+
+/// The cycles among sibling modules under the [`ACYCLIC`] parents, one per
+/// parent that has any, as `parent: a -> b -> … -> a`.
+fn cycles_under_acyclic_parents(edges: &BTreeSet<(String, String, String)>) -> Vec<String> {
+    let mut graphs: BTreeMap<&str, BTreeMap<String, BTreeSet<String>>> = BTreeMap::new();
+    for (parent, a, b) in edges {
+        if ACYCLIC
+            .iter()
+            .any(|p| parent == p || parent.starts_with(&format!("{p}::")))
+        {
+            graphs
+                .entry(parent)
+                .or_default()
+                .entry(a.clone())
+                .or_default()
+                .insert(b.clone());
+        }
+    }
+    graphs
+        .iter()
+        .filter_map(|(parent, graph)| {
+            let mut cycle = find_cycle(graph)?;
+            cycle.push(cycle[0].clone());
+            Some(format!("{parent}: {}", cycle.join(" -> ")))
+        })
+        .collect()
+}
+
+#[test]
+fn no_cycles_inside_the_mesher() {
+    let edges = edges(true);
+    assert!(
+        edges
+            .iter()
+            .any(|(p, a, b)| p == "mesh::cdt" && a == "mesher" && b == "error"),
+        "the mesher's graph was read, its re-exports followed"
+    );
+    let cycles = cycles_under_acyclic_parents(&edges);
+    assert!(
+        cycles.is_empty(),
+        "module cycles inside the mesher:\n  {}",
+        cycles.join("\n  ")
+    );
+}
+
+/// The cycle search finds a three-module cycle and passes a chain.
+#[test]
+fn the_cycle_search_finds_a_three_module_cycle() {
+    let edge = |p: &str, a: &str, b: &str| (p.to_string(), a.to_string(), b.to_string());
+    let mut edges: BTreeSet<_> = [
+        edge("mesh::cdt", "structured", "plan"),
+        edge("mesh::cdt", "plan", "sector"),
+        edge("mesh::cdt", "sector", "patch"),
+        edge("crate", "a", "b"),
+        edge("crate", "b", "a"),
+    ]
+    .into_iter()
+    .collect();
+    assert!(cycles_under_acyclic_parents(&edges).is_empty());
+    edges.insert(edge("mesh::cdt", "sector", "structured"));
+    assert_eq!(
+        cycles_under_acyclic_parents(&edges),
+        ["mesh::cdt: plan -> sector -> structured -> plan"]
+    );
 }
 
 /// Every ECS component and resource is declared in `components/`: no

@@ -72,14 +72,19 @@ pub enum CdtError {
         loop_index: usize,
     },
     /// Meshing would need more vertices than the budget allows
-    /// ([`TessellationOptions::max_vertices`](crate::mesh::TessellationOptions::max_vertices)).
+    /// ([`TessellationOptions::max_vertices`](crate::mesh::TessellationOptions::max_vertices),
+    /// `--max-vertices` on the command line).
     #[error(
-        "meshing needs more than {limit} vertices, the vertex budget max_vertices \
-         (the tolerance is too small for the patch)"
+        "the patch needs at least {needed} vertices, more than max_vertices = \
+         {max_vertices} allows (--max-vertices; or the tolerance is too small for \
+         the patch)"
     )]
     BudgetExceeded {
-        /// The vertex budget.
-        limit: usize,
+        /// The option's value: the most vertices one patch region may have.
+        max_vertices: usize,
+        /// Vertices the region was found to need when meshing stopped (its loop
+        /// vertices included): at least this many, more than `max_vertices`.
+        needed: usize,
     },
     /// Refinement would grow the mesh it was given many times over: the
     /// surface's sizing does not describe it (a degenerate or nearly degenerate

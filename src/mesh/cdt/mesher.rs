@@ -4,12 +4,13 @@
 
 use rayon::prelude::*;
 
-use super::kept::{KeptCavities, Memo};
+use super::general::{initial, refine, seed};
 use super::output::{RegionMesh, finish};
 use super::patch::{PatchInfo, wants_transpose};
 use super::plan::plan;
+use super::structured::kept::{KeptCavities, Memo};
 use super::trimesh::TriMesh;
-use super::{CdtError, MeshStats, Region, initial, metric::Sizing, refine, seed, structured};
+use super::{CdtError, MeshStats, Region, metric::Sizing, structured};
 use crate::mesh::{Mesh, TessellationOptions};
 use crate::nurbs::NurbsSurface;
 use crate::parts::{Analytic, Patch};
@@ -135,9 +136,18 @@ fn mesh_oriented(
     // The options' vertex budget bounds each region (seeds, loop vertices and
     // insertions); beyond it meshing stops with `CdtError::BudgetExceeded`.
     let budget = options.max_vertices.saturating_sub(region.vertex_count());
+    // The seeds' and the structured path's errors count what they place within
+    // `budget`; the error names the option and counts the loop vertices too.
+    let named = |e: CdtError| match e {
+        CdtError::BudgetExceeded { needed, .. } => CdtError::BudgetExceeded {
+            max_vertices: options.max_vertices,
+            needed: needed.saturating_add(region.vertex_count()),
+        },
+        e => e,
+    };
     let plan = plan(&info, region);
     if let Some((path, mut rings)) =
-        structured::triangulate(&info, region, &plan, options, budget, memo)?
+        structured::triangulate(&info, region, &plan, options, budget, memo).map_err(named)?
         && rings
             .seam
             .iter()
@@ -188,7 +198,7 @@ fn mesh_oriented(
     }
     // The general path: no cavity of the structured attempt is in this mesh.
     memo.restart();
-    let seeds = seed::seeds(&info, region, budget)?;
+    let seeds = seed::seeds(&info, region, budget).map_err(named)?;
     let poled = seed::with_pole_vertices(&info, region, &seeds);
     let region = poled.as_ref().unwrap_or(region);
     let mut mesh = initial::triangulate(&info, region, &seeds, &mut stats)?;
@@ -199,7 +209,7 @@ fn mesh_oriented(
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::mesh::cdt::sector::turn;
+    use crate::mesh::cdt::quarter::turn;
     use crate::parts::Patch;
     use crate::parts::heads::{Head, HeadKind};
 
@@ -209,7 +219,7 @@ mod tests {
     fn with_rings(
         patch: &Patch,
         options: &TessellationOptions,
-        f: impl FnOnce(&PatchInfo, &super::super::lattice::Rings),
+        f: impl FnOnce(&PatchInfo, &crate::mesh::cdt::structured::lattice::Rings),
     ) {
         let region =
             crate::mesh::patch_region(&patch.surface, options, &[], None).expect("a region");
@@ -293,7 +303,7 @@ mod tests {
     /// tolerance (they see as little as 15/16 of the peak): the bound does not.
     #[test]
     fn the_closed_form_bound_is_the_screen_verdict() {
-        use super::super::screen::Screen;
+        use crate::mesh::cdt::checks::screen::Screen;
         use crate::parts::Shell;
         let (mut bounded, mut total, mut missed) = (0usize, 0usize, 0usize);
         let mut patches: Vec<crate::parts::Patch> = Vec::new();

@@ -7,43 +7,34 @@
 //! within the chordal tolerance of the exact surface.
 //!
 //! Pipeline: `region` (validate) → `plan` (the decision table: which path
-//! meshes the region, and the order a cavity's fills are tried) → the sector or
-//! structured path (`structured`: the lattice's rows zipped seam to seam round
-//! the `cavity` of each opening, each cavity filled by `cavity_fill` (zip, `sweep`,
-//! ears) or taken from `kept`; `sector` turns a first quarter round; the types
-//! in `lattice`; triangles screened by `screen`, mended by `mend`) or the
-//! general path (`seed`: curvature-sized lattice clipped to the region, in the
-//! size `metric` of the surface → `initial`: spade's constrained Delaunay
-//! triangulation of loop vertices and seeds, inside found by flood fill →
-//! `refine`: chordal refinement, deviations by `measure`, with metric-Delaunay
-//! `flip`s on a `trimesh`) → `output` (weld poles and seams, check every
-//! triangle, statistics). The checks: `certify` (closed form on planes,
-//! cylinders, spheres), `peak` (the cubic deviation model). `patch` holds the
-//! facts about the surface every stage uses.
+//! meshes the region, and the order a cavity's fills are tried; `quarter` tells
+//! whether the sector path applies) → `structured/` (the lattice's rows zipped
+//! seam to seam round each opening's cavity, cavities filled or kept, failures
+//! mended; `sector` turns a first quarter round) or `general/` (`seed`: a
+//! curvature-sized lattice → `initial`: spade's constrained Delaunay
+//! triangulation → `refine`: chordal refinement) → `output` (weld poles and
+//! seams, check every triangle). `checks/` holds the measures every path is held
+//! to (`measure`, `certify`, `peak`, and the structured path's batch `screen`).
+//! Shared by all: `patch` (the facts about the surface), `metric` (its size
+//! metric), `trimesh` and `flip` (the triangulation and its predicates),
+//! `stats` ([`MeshStats`]), `error` ([`CdtError`]). The modules form a DAG
+//! (`tests/module_graph.rs` fails on any cycle here): the groups use the shared
+//! modules, `structured/` uses `checks/` and `general/`, `general/` uses
+//! `checks/`, and only `mesher` and `output` use a group from outside.
 
-mod cavity;
-mod cavity_fill;
-mod certify;
+mod checks;
 mod error;
 mod flip;
-mod initial;
-mod kept;
-mod lattice;
-mod measure;
-mod mend;
+mod general;
 mod mesher;
 mod metric;
 mod output;
 mod patch;
-mod peak;
 mod plan;
-mod refine;
+mod quarter;
 mod region;
-mod screen;
-mod sector;
-mod seed;
+mod stats;
 mod structured;
-mod sweep;
 mod trimesh;
 
 /// Fewest vertices or triangles per parallel task in the mesher's per-item loops:
@@ -53,11 +44,12 @@ mod trimesh;
 const MIN_VERTICES: usize = 64;
 
 pub use error::CdtError;
-pub use kept::KeptCavities;
 pub use mesher::{
     mesh_patch_region, mesh_patch_region_keeping, mesh_region, mesh_region_on, mesh_region_with_uvs,
 };
-pub use output::{MeshStats, RegionMesh};
+pub use output::RegionMesh;
 pub use patch::wrap_u;
 pub use plan::{CAVITY_FILLS, CavityFill, MeshPath};
 pub use region::{Region, UvLoop};
+pub use stats::MeshStats;
+pub use structured::kept::KeptCavities;

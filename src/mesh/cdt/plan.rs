@@ -7,8 +7,8 @@
 //! Tessellate stage's `WorkCounters`.
 
 use super::patch::PatchInfo;
+use super::quarter;
 use super::region::Region;
-use super::sector;
 
 /// How a patch region was meshed: the rows of the mesher's decision table (see
 /// `cdt::plan`).
@@ -94,7 +94,7 @@ pub(super) struct Plan {
 /// `output::finish` (weld poles and seams, check every triangle).
 pub(super) fn plan(info: &PatchInfo, region: &Region) -> Plan {
     Plan {
-        quarter: sector::quarter(info, region),
+        quarter: quarter::quarter(info, region),
         structured: info.closed_u,
     }
 }

@@ -225,9 +225,9 @@ impl TriMesh {
 mod tests {
     use glam::{DVec2, DVec3};
 
-    use super::super::flip::strictly_ccw;
-    use super::super::metric::Metric;
     use super::*;
+    use crate::mesh::cdt::flip::strictly_ccw;
+    use crate::mesh::cdt::metric::Metric;
 
     fn vertex(uv: DVec2) -> Vertex {
         Vertex {

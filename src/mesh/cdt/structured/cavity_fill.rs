@@ -13,9 +13,9 @@
 
 use glam::DVec2;
 
-use super::flip::{orient, strictly_ccw};
-use super::metric::Metric;
-use super::trimesh::TriMesh;
+use crate::mesh::cdt::flip::{orient, strictly_ccw};
+use crate::mesh::cdt::metric::Metric;
+use crate::mesh::cdt::trimesh::TriMesh;
 use zip::Walk;
 
 #[cfg(test)]

@@ -14,10 +14,10 @@
 use glam::DVec2;
 use rayon::prelude::*;
 
-use super::CdtError;
-use super::metric::Metric;
-use super::patch::PatchInfo;
-use super::region::{Region, inside_by_crossings};
+use crate::mesh::cdt::CdtError;
+use crate::mesh::cdt::metric::Metric;
+use crate::mesh::cdt::patch::PatchInfo;
+use crate::mesh::cdt::region::{Region, inside_by_crossings};
 
 /// Evaluation samples per knot span when integrating spacings.
 const SAMPLES_PER_SPAN: usize = 8;
@@ -34,7 +34,7 @@ const ROW_SAMPLES_PER_U_SPAN: usize = 4;
 /// small patch's planning time.
 const GRID_SAMPLES_PER_U_SPAN: usize = 2;
 /// Seeds closer to a loop than this many local spacings are dropped.
-pub(super) const MARGIN: f64 = 0.55;
+pub(in crate::mesh::cdt) const MARGIN: f64 = 0.55;
 /// Consecutive rows keep one point count while it is at most this factor above
 /// what the row needs.
 const COUNT_SLACK: f64 = 1.1;
@@ -124,7 +124,8 @@ struct Plan {
 }
 
 /// Plans the lattice of `region`, or [`CdtError::BudgetExceeded`] when it would
-/// exceed `budget` points.
+/// exceed `budget` points (the error counts seeds alone: the caller adds the
+/// loop vertices and names the option).
 fn plan(info: &PatchInfo, region: &Region, budget: usize) -> Result<Plan, CdtError> {
     let (lo, hi) = region.bounds();
     let (us, v_spans) = sample_grid(info, lo, hi);
@@ -160,7 +161,14 @@ fn plan(info: &PatchInfo, region: &Region, budget: usize) -> Result<Plan, CdtErr
             }
         }
         if estimate.is_nan() || estimate > budget as f64 {
-            return Err(CdtError::BudgetExceeded { limit: budget });
+            return Err(CdtError::BudgetExceeded {
+                max_vertices: budget,
+                needed: if estimate.is_nan() {
+                    budget + 1
+                } else {
+                    estimate.ceil() as usize
+                },
+            });
         }
         let total = cumulative(vs, &density);
         let count = total[total.len() - 1].ceil() as usize;
@@ -194,7 +202,10 @@ fn plan(info: &PatchInfo, region: &Region, budget: usize) -> Result<Plan, CdtErr
     let counts = row_counts(&profiles);
     let total: usize = counts.iter().sum();
     if total > budget {
-        return Err(CdtError::BudgetExceeded { limit: budget });
+        return Err(CdtError::BudgetExceeded {
+            max_vertices: budget,
+            needed: total,
+        });
     }
     Ok(Plan {
         us,
@@ -205,7 +216,7 @@ fn plan(info: &PatchInfo, region: &Region, budget: usize) -> Result<Plan, CdtErr
 
 /// The seed points of `region` (rows of constant v, increasing u), or
 /// [`CdtError::BudgetExceeded`] when the lattice would exceed `budget` points.
-pub(super) fn seeds(
+pub(in crate::mesh::cdt) fn seeds(
     info: &PatchInfo,
     region: &Region,
     budget: usize,
@@ -300,7 +311,7 @@ fn pole_rows(info: &PatchInfo, region: &Region, us: &[f64], seeds: &[DVec2]) -> 
 /// so refinement ran away (a conical roof with an opening near its apex reached
 /// millions of vertices). With a pole vertex under every gap of the nearest row,
 /// the row and the pole are zipped like any two rows instead.
-pub(super) fn with_pole_vertices(
+pub(in crate::mesh::cdt) fn with_pole_vertices(
     info: &PatchInfo,
     region: &Region,
     seeds: &[DVec2],
@@ -356,7 +367,7 @@ pub(super) fn with_pole_vertices(
         outer.extend(mids.into_iter().map(|u| DVec2::new(u, v)));
     }
     added.then(|| Region {
-        outer: super::region::UvLoop::new(outer),
+        outer: crate::mesh::cdt::region::UvLoop::new(outer),
         holes: region.holes.clone(),
     })
 }
@@ -365,7 +376,7 @@ pub(super) fn with_pole_vertices(
 /// region, as `(v, u values)`: every row runs from `lo.x` to `hi.x` (the ends
 /// included), every other one shifted by half a step in between. The rows of the
 /// structured path for whole closed patches, where the row ends lie on the seam.
-pub(super) fn rows(
+pub(in crate::mesh::cdt) fn rows(
     info: &PatchInfo,
     region: &Region,
     budget: usize,

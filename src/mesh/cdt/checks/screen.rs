@@ -28,12 +28,12 @@ use std::ops::Range;
 use glam::{DVec2, DVec3};
 
 use super::certify::Bound;
-use super::patch::PatchInfo;
+use super::measure::{edge_probe_uv, edge_uv_at, end_normal};
 use super::peak::{Cubic, PEAK_GATE, THIRDS, point_at, uv_at};
-use super::refine::{edge_probe_uv, edge_uv_at, end_normal};
+use crate::mesh::cdt::patch::PatchInfo;
 use rustc_hash::FxHashMap;
 
-use super::trimesh::TriMesh;
+use crate::mesh::cdt::trimesh::TriMesh;
 use crate::mesh::{Extrusion, TessellationOptions};
 use crate::nurbs::SurfaceRow;
 use crate::parts::Analytic;
@@ -55,7 +55,7 @@ struct Probe {
 }
 
 /// The screen of one patch: the patch, its analytic surface and the limits.
-pub(super) struct Screen<'a> {
+pub(in crate::mesh::cdt) struct Screen<'a> {
     info: &'a PatchInfo<'a>,
     analytic: Analytic,
     /// The closed-form bound of a plane or cylinder (`certify`).

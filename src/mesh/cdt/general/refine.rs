@@ -27,16 +27,18 @@
 use glam::{DVec2, DVec3};
 use rayon::prelude::*;
 
-use super::MIN_VERTICES as MIN_TRIANGLES;
+use crate::mesh::cdt::MIN_VERTICES as MIN_TRIANGLES;
 
-use super::certify::Bound;
-use super::flip::{effective_uv, should_flip, strictly_ccw};
-use super::measure::{deviation, deviation_and_height};
-use super::patch::{PatchInfo, Vertex};
-use super::peak::{Cubic, PEAK_GATE, THIRDS, point_at, uv_at};
-use super::trimesh::TriMesh;
-use super::{CdtError, MeshStats};
 use crate::mesh::TessellationOptions;
+use crate::mesh::cdt::checks::certify::Bound;
+use crate::mesh::cdt::checks::measure::{
+    deviation, deviation_and_height, edge_probe_uv, edge_uv_at, end_normal,
+};
+use crate::mesh::cdt::checks::peak::{Cubic, PEAK_GATE, THIRDS, point_at, uv_at};
+use crate::mesh::cdt::flip::{effective_uv, should_flip, strictly_ccw};
+use crate::mesh::cdt::patch::PatchInfo;
+use crate::mesh::cdt::trimesh::TriMesh;
+use crate::mesh::cdt::{CdtError, MeshStats};
 
 /// Most refinement passes.
 const MAX_PASSES: usize = 200;
@@ -125,19 +127,9 @@ fn loop_allowances(info: &PatchInfo, mesh: &TriMesh) -> Vec<(f64, f64)> {
     out
 }
 
-/// The normal at vertex `w` of an edge whose other end is at `other`: at a pole,
-/// the limit along the edge's meridian.
-pub(super) fn end_normal(info: &PatchInfo, w: &Vertex, other: DVec2) -> DVec3 {
-    if w.pole {
-        info.normal(DVec2::new(other.x, w.uv.y))
-    } else {
-        w.normal
-    }
-}
-
 /// Refines `mesh` until every triangle is within `options`; at most `budget`
 /// vertices.
-pub(super) fn refine(
+pub(in crate::mesh::cdt) fn refine(
     info: &PatchInfo,
     mesh: &mut TriMesh,
     options: &TessellationOptions,
@@ -156,7 +148,7 @@ pub(super) fn refine(
 
 /// Every triangle of a mesh measured against the limits: what [`refine`] starts
 /// from, computed once when the caller wants to know whether any work is left.
-pub(super) struct Assessment {
+pub(in crate::mesh::cdt) struct Assessment {
     limits: Limits,
     cache: Vec<Option<Candidate>>,
 }
@@ -177,7 +169,7 @@ impl Assessment {
 /// Measures every triangle of `mesh` (in parallel) without changing it; with
 /// `within`, only the triangles a faster check (`screen`) did not already find
 /// within the limits.
-pub(super) fn assess_all(
+pub(in crate::mesh::cdt) fn assess_all(
     info: &PatchInfo,
     mesh: &TriMesh,
     options: &TessellationOptions,
@@ -201,7 +193,7 @@ pub(super) fn assess_all(
 /// Whether the edge `i` of triangle `t` — a loop segment the caller chose itself
 /// (a seam that belongs to the patch alone) — is within the limits as an interior
 /// edge would have to be.
-pub(super) fn edge_within(
+pub(in crate::mesh::cdt) fn edge_within(
     info: &PatchInfo,
     mesh: &TriMesh,
     t: u32,
@@ -225,7 +217,7 @@ pub(super) fn edge_within(
 /// [`refine`] of a mesh already measured by [`assess_all`] (no initial flips: the
 /// caller built it well shaped); `mesh` must have its neighbour links and be
 /// unchanged since.
-pub(super) fn refine_assessed(
+pub(in crate::mesh::cdt) fn refine_assessed(
     info: &PatchInfo,
     mesh: &mut TriMesh,
     budget: usize,
@@ -265,7 +257,10 @@ fn run(
         .max(REFINEMENT_FLOOR);
     let over = |limit: usize| {
         if limit == budget {
-            CdtError::BudgetExceeded { limit }
+            CdtError::BudgetExceeded {
+                max_vertices: limit,
+                needed: limit + 1,
+            }
         } else {
             CdtError::RefinementRunaway { seeded, limit }
         }
@@ -359,7 +354,10 @@ fn add_shadows(
                 continue;
             };
             if mesh.verts.len() >= budget {
-                return Err(CdtError::BudgetExceeded { limit: budget });
+                return Err(CdtError::BudgetExceeded {
+                    max_vertices: budget,
+                    needed: mesh.verts.len() + 1,
+                });
             }
             let x = mesh.push_vertex(info.vertex(uv)?);
             let edges = mesh.split_edge(t, i, x);
@@ -382,28 +380,6 @@ fn shadow_at(mesh: &TriMesh, t: u32, i: usize) -> Option<DVec2> {
     let (pa, ab) = (v(a).uv, v(b).uv - v(a).uv);
     let s = (v(c).uv - pa).dot(ab) / ab.length_squared();
     (s > 1e-9 && s < 1.0 - 1e-9).then(|| pa + ab * s)
-}
-
-/// The parameters probed on the edge between `x` and `y`: the midpoint, except
-/// that towards a pole the edge follows the meridian of its other end.
-pub(super) fn edge_probe_uv(x: &Vertex, y: &Vertex) -> DVec2 {
-    edge_uv_at(x, y, 0.5)
-}
-
-/// The parameters at share `s` of the way from `x` to `y` along the edge, as
-/// [`edge_probe_uv`] takes them.
-pub(super) fn edge_uv_at(x: &Vertex, y: &Vertex, s: f64) -> DVec2 {
-    let (mut ux, mut uy) = (x.uv, y.uv);
-    if x.pole && !y.pole {
-        ux.x = uy.x;
-    } else if y.pole && !x.pole {
-        uy.x = ux.x;
-    }
-    if s == 0.5 {
-        0.5 * (ux + uy)
-    } else {
-        ux + (uy - ux) * s
-    }
 }
 
 /// The badness of edge `i` of triangle `tri` (plane through `origin` with unit

@@ -26,14 +26,14 @@ use glam::DVec2;
 use rayon::prelude::*;
 
 use super::cavity_fill::{Loops, Triangle, numbering};
-use super::initial;
 use super::kept::{CavityInput, Kept, Memo};
 use super::lattice::{Chain, Kind};
-use super::patch::{PatchInfo, Vertex};
-use super::plan::{CAVITY_FILLS, CavityFill};
-use super::region::{Region, UvLoop, bounds_of};
-use super::trimesh::{NONE, TriMesh};
-use super::{CdtError, MeshStats};
+use crate::mesh::cdt::general::initial;
+use crate::mesh::cdt::patch::{PatchInfo, Vertex};
+use crate::mesh::cdt::plan::{CAVITY_FILLS, CavityFill};
+use crate::mesh::cdt::region::{Region, UvLoop, bounds_of};
+use crate::mesh::cdt::trimesh::{NONE, TriMesh};
+use crate::mesh::cdt::{CdtError, MeshStats};
 
 /// The cavity of one or more holes.
 #[derive(Clone, Debug)]
@@ -220,7 +220,7 @@ pub(super) fn fill(
         return Ok(None);
     }
     let chunks: Vec<Vec<Vertex>> = uvs
-        .par_chunks(super::MIN_VERTICES)
+        .par_chunks(crate::mesh::cdt::MIN_VERTICES)
         .map(|chunk| info.vertices_lazy(chunk))
         .collect::<Result<_, _>>()?;
     mesh.verts.reserve(uvs.len());

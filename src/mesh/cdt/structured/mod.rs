@@ -19,22 +19,40 @@
 //! like any other mesh. No spade, no flood fill, no neighbour links and no second
 //! derivatives beyond the vertices' own in the common case: this is where whole
 //! heads and courses get their speed.
+//!
+//! The files: this one (rows and strips); `lattice` (the types it builds: chains,
+//! the whole patch's mesh, a sector's copies); `cavity` (each opening's cavity cut
+//! out of the strips and filled) with `cavity_fill` (the fills: zip, then `sweep`,
+//! ears, spade) and `kept` (cavities kept from a previous meshing); `mend` (fans
+//! and bisections of what the screen fails); `sector` (a whole turn from its first
+//! quarter). It uses the checks (`checks::screen`) and, for seeds and spade, the
+//! general path (`general::seed`, `general::initial`); neither uses it.
 
 use std::ops::Range;
 
 use glam::DVec2;
 use rayon::prelude::*;
 
-use super::cavity::{self, Cavity};
-use super::kept::Memo;
-use super::lattice::{Chain, Kind, Rings};
+use super::CdtError;
+use super::checks::screen::Screen;
+use super::general::seed;
 use super::patch::{PatchInfo, Vertex};
 use super::plan::{MeshPath, Plan};
+use super::quarter::QUARTERS;
 use super::region::Region;
-use super::screen::Screen;
 use super::trimesh::{NONE, TriMesh};
-use super::{CdtError, mend, sector, seed};
 use crate::mesh::TessellationOptions;
+use cavity::Cavity;
+use kept::Memo;
+use lattice::{Chain, Kind, Rings};
+
+mod cavity;
+mod cavity_fill;
+pub(super) mod kept;
+pub(super) mod lattice;
+mod mend;
+mod sector;
+mod sweep;
 
 /// Relative tolerance (to the region's extent) of "on a side of the rectangle".
 const ON_SIDE: f64 = 1e-12;
@@ -67,18 +85,14 @@ pub(super) fn triangulate(
     // A whole surface of revolution: its first quarter, turned round (within a
     // quarter of the budget, as the whole turn has four times its vertices).
     if let Some(quarter) = &plan.quarter
-        && let Some(part) = structured(
-            info,
-            quarter,
-            options,
-            budget / sector::QUARTERS,
-            sector::QUARTERS,
-            memo,
-        )
-        .map_err(|e| match e {
-            CdtError::BudgetExceeded { .. } => CdtError::BudgetExceeded { limit: budget },
-            e => e,
-        })?
+        && let Some(part) = structured(info, quarter, options, budget / QUARTERS, QUARTERS, memo)
+            .map_err(|e| match e {
+                CdtError::BudgetExceeded { needed, .. } => CdtError::BudgetExceeded {
+                    max_vertices: budget,
+                    needed: needed.saturating_mul(QUARTERS),
+                },
+                e => e,
+            })?
         && let Some(whole) = sector::whole_turn(info, quarter, part)?
     {
         return Ok(Some((MeshPath::Sector, whole)));
@@ -177,7 +191,10 @@ fn structured(
         chains[k].len = us.len();
     }
     if mesh.verts.len() + region.vertex_count() > budget {
-        return Err(CdtError::BudgetExceeded { limit: budget });
+        return Err(CdtError::BudgetExceeded {
+            max_vertices: budget,
+            needed: mesh.verts.len() + region.vertex_count(),
+        });
     }
     let cavities = if region.holes.is_empty() {
         Vec::new()

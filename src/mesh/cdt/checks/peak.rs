@@ -60,17 +60,17 @@ use glam::{DVec2, DVec3};
 /// built and its peak probed: under it, the quadratic part's peak is at most
 /// 16/15 of it, 0.853 of the tolerance, leaving 15 % for the cubic and higher
 /// terms.
-pub(super) const PEAK_GATE: f64 = 0.8;
+pub(in crate::mesh::cdt) const PEAK_GATE: f64 = 0.8;
 
 /// Where on an edge the cubic model is sampled, from its first vertex.
-pub(super) const THIRDS: [f64; 2] = [1.0 / 3.0, 2.0 / 3.0];
+pub(in crate::mesh::cdt) const THIRDS: [f64; 2] = [1.0 / 3.0, 2.0 / 3.0];
 
 /// The cubic vanishing at a triangle's vertices through given heights at its
 /// edges' third points and its centroid (the cubic Lagrange element):
 /// `f = Σ λ_i λ_j (a_ij λ_i + b_ij λ_j) + c λ_0 λ_1 λ_2` over the edges
 /// `i → j = i + 1`.
 #[derive(Clone, Copy, Debug)]
-pub(super) struct Cubic {
+pub(in crate::mesh::cdt) struct Cubic {
     /// Per edge `i → i + 1`, the coefficients of `λ_i² λ_j` and `λ_i λ_j²`.
     edges: [[f64; 2]; 3],
     /// The coefficient of the bubble `λ_0 λ_1 λ_2`.
@@ -207,12 +207,12 @@ impl Cubic {
 }
 
 /// The 3D point of barycentric coordinates `l` in triangle `p`.
-pub(super) fn point_at(p: [DVec3; 3], l: [f64; 3]) -> DVec3 {
+pub(in crate::mesh::cdt) fn point_at(p: [DVec3; 3], l: [f64; 3]) -> DVec3 {
     p[0] * l[0] + p[1] * l[1] + p[2] * l[2]
 }
 
 /// The parameters of barycentric coordinates `l` among `uv`.
-pub(super) fn uv_at(uv: [DVec2; 3], l: [f64; 3]) -> DVec2 {
+pub(in crate::mesh::cdt) fn uv_at(uv: [DVec2; 3], l: [f64; 3]) -> DVec2 {
     uv[0] * l[0] + uv[1] * l[1] + uv[2] * l[2]
 }
 

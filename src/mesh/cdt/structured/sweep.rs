@@ -21,7 +21,7 @@
 
 use glam::DVec2;
 
-use super::flip::orient;
+use crate::mesh::cdt::flip::orient;
 
 /// A vertex's role in the sweep.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]

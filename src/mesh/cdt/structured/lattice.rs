@@ -4,10 +4,10 @@
 //! (`cavity`), the sector turns and the output (`output`) read these types
 //! without using the path that makes them.
 
-use super::trimesh::TriMesh;
+use crate::mesh::cdt::trimesh::TriMesh;
 
 /// A structured mesh of a whole closed patch.
-pub(super) struct Rings {
+pub(in crate::mesh::cdt) struct Rings {
     /// The triangles, strip by strip from the bottom chain up.
     pub mesh: TriMesh,
     /// The seam edges, as `(triangle, edge)`: left unfixed so that the checks probe
@@ -27,7 +27,7 @@ pub(super) struct Rings {
 /// quarter's: triangle `t` (past the first quarter) is one when
 /// `exact[t % per_quarter]`, so the output's checks, which give a triangle and
 /// its exact quarter turn the same verdict, need only the first quarter's.
-pub(super) struct Copies {
+pub(in crate::mesh::cdt) struct Copies {
     pub per_quarter: usize,
     pub exact: Vec<bool>,
 }
@@ -36,14 +36,14 @@ pub(super) struct Copies {
 /// seam to seam, or a pole — one pole vertex under the middle of each segment of
 /// the neighbouring row (they weld into one on output).
 #[derive(Clone, Copy, Debug)]
-pub(super) enum Kind {
+pub(in crate::mesh::cdt) enum Kind {
     Row,
     Pole,
 }
 
 /// One chain: its vertices `first..first + len` of the mesh's vertices.
 #[derive(Clone, Copy, Debug)]
-pub(super) struct Chain {
+pub(in crate::mesh::cdt) struct Chain {
     pub v: f64,
     pub kind: Kind,
     pub first: u32,

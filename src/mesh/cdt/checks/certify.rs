@@ -27,7 +27,7 @@ use crate::parts::Analytic;
 
 /// The closed-form bound of one analytic surface (set up once per screen).
 #[derive(Clone, Copy, Debug)]
-pub(super) enum Bound {
+pub(in crate::mesh::cdt) enum Bound {
     Plane {
         point: DVec3,
         normal: DVec3,

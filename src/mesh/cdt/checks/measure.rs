@@ -13,11 +13,13 @@
 //! plane, cylinder, cone, sphere, torus or spheroid, on which the NURBS lies to
 //! rounding), the second distance is that surface's closed-form distance and the
 //! first needs only S, not its derivatives: the cheap path the mesher takes for
-//! every vessel patch.
+//! every vessel patch. The probes of an edge (its midpoint, towards a pole along
+//! the other end's meridian) and the normals at its ends are here too, shared by
+//! refinement and the screen.
 
 use glam::{DVec2, DVec3};
 
-use super::patch::PatchInfo;
+use crate::mesh::cdt::patch::{PatchInfo, Vertex};
 
 /// Most Gauss–Newton steps per probe (two are usual).
 const MAX_STEPS: usize = 8;
@@ -27,7 +29,7 @@ const CONVERGED: f64 = 1e-2;
 
 /// The deviation at a probe: `point` on the triangle, `uv` its parameters, and
 /// the triangle's plane through `origin` with unit normal `unit`.
-pub(super) fn deviation(
+pub(in crate::mesh::cdt) fn deviation(
     info: &PatchInfo,
     point: DVec3,
     uv: DVec2,
@@ -39,7 +41,7 @@ pub(super) fn deviation(
 
 /// [`deviation`] and the signed height of S at `uv` over the plane (along
 /// `unit`): what the triangle's quadratic model is built from (`peak`).
-pub(super) fn deviation_and_height(
+pub(in crate::mesh::cdt) fn deviation_and_height(
     info: &PatchInfo,
     point: DVec3,
     uv: DVec2,
@@ -79,4 +81,36 @@ pub(super) fn deviation_and_height(
     }
     let height = height.unwrap_or(0.0);
     (nearest.max(height.abs()), height)
+}
+
+/// The normal at vertex `w` of an edge whose other end is at `other`: at a pole,
+/// the limit along the edge's meridian.
+pub(in crate::mesh::cdt) fn end_normal(info: &PatchInfo, w: &Vertex, other: DVec2) -> DVec3 {
+    if w.pole {
+        info.normal(DVec2::new(other.x, w.uv.y))
+    } else {
+        w.normal
+    }
+}
+
+/// The parameters probed on the edge between `x` and `y`: the midpoint, except
+/// that towards a pole the edge follows the meridian of its other end.
+pub(in crate::mesh::cdt) fn edge_probe_uv(x: &Vertex, y: &Vertex) -> DVec2 {
+    edge_uv_at(x, y, 0.5)
+}
+
+/// The parameters at share `s` of the way from `x` to `y` along the edge, as
+/// [`edge_probe_uv`] takes them.
+pub(in crate::mesh::cdt) fn edge_uv_at(x: &Vertex, y: &Vertex, s: f64) -> DVec2 {
+    let (mut ux, mut uy) = (x.uv, y.uv);
+    if x.pole && !y.pole {
+        ux.x = uy.x;
+    } else if y.pole && !x.pole {
+        uy.x = ux.x;
+    }
+    if s == 0.5 {
+        0.5 * (ux + uy)
+    } else {
+        ux + (uy - ux) * s
+    }
 }

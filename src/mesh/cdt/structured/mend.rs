@@ -19,10 +19,10 @@ use std::ops::Range;
 use glam::DVec2;
 use rayon::prelude::*;
 
-use super::CdtError;
-use super::patch::PatchInfo;
-use super::screen::Screen;
-use super::trimesh::{NONE, TriMesh};
+use crate::mesh::cdt::CdtError;
+use crate::mesh::cdt::checks::screen::Screen;
+use crate::mesh::cdt::patch::PatchInfo;
+use crate::mesh::cdt::trimesh::{NONE, TriMesh};
 
 /// Mends the strips of `mesh` (triangles `strips[k]`, screened `flags[k]`;
 /// `zipped[k]` when strip k lies between two rows, the only strips mended) and
@@ -246,7 +246,7 @@ pub(super) fn bisect(
         };
         let wanted: rustc_hash::FxHashMap<(u32, u32), (u32, usize)> = failing
             .par_iter()
-            .with_min_len(super::MIN_VERTICES)
+            .with_min_len(crate::mesh::cdt::MIN_VERTICES)
             .filter_map(choose)
             .collect();
         // The triangles across those edges: each holds the wanted edge's first
@@ -279,7 +279,7 @@ pub(super) fn bisect(
         added += cuts.len();
         let mids: Vec<_> = cuts
             .par_iter()
-            .with_min_len(super::MIN_VERTICES)
+            .with_min_len(crate::mesh::cdt::MIN_VERTICES)
             .map(|[(t, i), _]| {
                 let tri = mesh.tris[*t as usize];
                 let (p, q) = (tri[*i], tri[(*i + 1) % 3]);

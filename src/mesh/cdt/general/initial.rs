@@ -23,11 +23,11 @@ use rayon::prelude::*;
 use spade::handles::FixedVertexHandle;
 use spade::{ConstrainedDelaunayTriangulation, HasPosition, Point2, Triangulation};
 
-use super::metric::Metric;
-use super::patch::PatchInfo;
-use super::region::Region;
-use super::trimesh::TriMesh;
-use super::{CdtError, MeshStats};
+use crate::mesh::cdt::metric::Metric;
+use crate::mesh::cdt::patch::PatchInfo;
+use crate::mesh::cdt::region::Region;
+use crate::mesh::cdt::trimesh::TriMesh;
+use crate::mesh::cdt::{CdtError, MeshStats};
 
 /// A vertex in spade's chart, carrying its index in the mesher's vertex list.
 #[derive(Clone, Copy, Debug)]
@@ -112,7 +112,7 @@ fn chart_metric(info: &PatchInfo, region: &Region) -> Metric {
 
 /// The triangles inside a region, in (u, v) only: nothing evaluated on the
 /// surface yet.
-pub(super) struct Inside {
+pub(in crate::mesh::cdt) struct Inside {
     /// Every vertex's (u, v): the loop vertices first, in loop order, then the
     /// seeds spade kept.
     uvs: Vec<DVec2>,
@@ -133,7 +133,7 @@ impl Inside {
 
 /// Triangulates the region with its loop vertices (first, in loop order) and the
 /// seeds; returns the mesh of the triangles inside.
-pub(super) fn triangulate(
+pub(in crate::mesh::cdt) fn triangulate(
     info: &PatchInfo,
     region: &Region,
     seeds: &[DVec2],
@@ -157,7 +157,7 @@ pub(super) fn triangulate(
     }
     let verts = kept
         .par_iter()
-        .with_min_len(super::MIN_VERTICES)
+        .with_min_len(crate::mesh::cdt::MIN_VERTICES)
         .map(|&k| info.vertex(uvs[k as usize]))
         .collect::<Result<Vec<_>, _>>()?;
     let tris: Vec<[u32; 3]> = inside
@@ -172,7 +172,7 @@ pub(super) fn triangulate(
 /// [`triangulate`] in (u, v) only: the constrained Delaunay triangles inside the
 /// region, without evaluating a vertex on the surface (for a cavity, whose
 /// vertices the mesh already holds).
-pub(super) fn triangulate_uv(
+pub(in crate::mesh::cdt) fn triangulate_uv(
     info: &PatchInfo,
     region: &Region,
     seeds: &[DVec2],

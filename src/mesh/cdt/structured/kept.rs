@@ -26,8 +26,8 @@ use glam::DVec2;
 use rustc_hash::{FxHashMap, FxHasher};
 
 use super::cavity_fill::Triangle;
-use super::metric::Metric;
-use super::plan::CAVITY_FILLS;
+use crate::mesh::cdt::metric::Metric;
+use crate::mesh::cdt::plan::CAVITY_FILLS;
 
 /// The cavities met by one meshing of a patch (shared with the meshings that
 /// met them before).
@@ -41,7 +41,7 @@ pub struct KeptCavities {
 /// One cavity's inputs and its triangles in the cavity's local numbering (its
 /// boundary's vertices, then each hole's), with the screen's verdicts on them.
 #[derive(Debug)]
-pub(super) struct Kept {
+pub(in crate::mesh::cdt) struct Kept {
     input: CavityInput,
     triangles: Box<[Triangle]>,
     /// The screen's verdict on each triangle and the key of the surface, the
@@ -91,7 +91,7 @@ impl Kept {
 /// first, where each hole starts in that list, and the size metric at its
 /// centre.
 #[derive(Clone, Debug, PartialEq)]
-pub(super) struct CavityInput {
+pub(in crate::mesh::cdt) struct CavityInput {
     uvs: Box<[DVec2]>,
     starts: Box<[u32]>,
     metric: [f64; 3],
@@ -134,7 +134,7 @@ impl CavityInput {
 
 impl KeptCavities {
     /// The cavities `found`.
-    pub(super) fn new(cavities: Vec<Arc<Kept>>) -> Self {
+    pub(in crate::mesh::cdt) fn new(cavities: Vec<Arc<Kept>>) -> Self {
         let mut by_hash = FxHashMap::default();
         for (i, kept) in cavities.iter().enumerate() {
             by_hash.entry(kept.input.hash).or_insert(i as u32);
@@ -143,7 +143,7 @@ impl KeptCavities {
     }
 
     /// The cavity kept with exactly these inputs.
-    pub(super) fn find(&self, input: &CavityInput) -> Option<&Arc<Kept>> {
+    pub(in crate::mesh::cdt) fn find(&self, input: &CavityInput) -> Option<&Arc<Kept>> {
         let kept = &self.cavities[*self.by_hash.get(&input.hash)? as usize];
         kept.input.same(input).then_some(kept)
     }
@@ -175,7 +175,7 @@ impl KeptCavities {
 /// The kept cavities a meshing may take from and the ones it meets, handed
 /// down to `cavity::fill`.
 #[derive(Default)]
-pub(super) struct Memo<'k> {
+pub(in crate::mesh::cdt) struct Memo<'k> {
     pub kept: Option<&'k KeptCavities>,
     /// The key of the surface, its analytic surface and the options
     /// (`mesh::surface_key`): kept cavities' screen verdicts are
