@@ -66,6 +66,15 @@ pub struct WorkCounters {
     /// Vessels whose process plan (BOM, weld map, operations) was made again
     /// (only while the model keeps process plans).
     pub process_plans: u64,
+    /// Of those vessels' flat patterns (`fab::plan_vessel`): rolled parts and
+    /// heads developed again.
+    pub fab_parts_developed: u64,
+    /// Nozzle openings, pads and neck ends developed again.
+    pub fab_openings_developed: u64,
+    /// Courses whose seams were laid out and checked again.
+    pub fab_courses_laid_out: u64,
+    /// Plates cut again.
+    pub fab_plates_cut: u64,
     /// Vessels whose supports were calculated again (Zick's saddle stresses
     /// from the weight model: any edit of a vessel on saddles changes its weights).
     pub supports_calculated: u64,

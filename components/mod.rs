@@ -43,7 +43,7 @@ pub use operating::{OperatingProblem, OperatingState};
 pub use params::{
     DesignOrder, NoteSpec, NozzleSpec, OperatingSpec, PartSpec, VesselSpec, same_in_order,
 };
-pub use process::{ProcessPlanning, VesselProcessPlan};
+pub use process::{ProcessPlanning, VesselFabPlan, VesselProcessPlan};
 pub use relations::{AnnotatedBy, Annotates, MountedOn, Mounts, PadOf, PadPatch, PatchOf, Patches};
 pub use resolutions::{CheckedResolutions, PendingResolutions};
 pub use stage_times::{STAGES, StageTimes};

@@ -1,6 +1,13 @@
-//! Process plans kept live: while the model has `ProcessPlanning` (its shop
-//! rules), every vessel carries a `VesselProcessPlan` — BOM, weld map and
-//! operations in levels, `fab::process_plan` of its design.
+//! Fabrication plans kept live: while the model has `ProcessPlanning` (its
+//! shop rules), every vessel carries a `VesselFabPlan` — its flat patterns and
+//! seams, `fab::plan_vessel` from its previous plan, so that moving a nozzle
+//! develops that nozzle's opening and its plate(s) again and lays out the
+//! seams of its part, and nothing else (the `fab_*` counters) — and a
+//! `VesselProcessPlan` on that layout: BOM, weld map and operations in levels.
+//!
+//! The plans run in the Validate stage, beside the resolution they are made
+//! from (the Constrain stage consumes it): they read the resolved vessel
+//! only, none of the patches or meshes the later stages build.
 //!
 //! Runs in the Validate stage after the vessels an edit touched were resolved:
 //! a vessel is planned again when it was resolved in this run (its parts,
@@ -21,10 +28,10 @@ use rayon::prelude::*;
 use super::validate::read_vessel;
 use crate::components::{
     DesignOrder, NoteSpec, NozzleSpec, PartSpec, PendingResolutions, ProcessPlanning,
-    VesselProcessPlan, VesselSpec, WorkCounters,
+    VesselFabPlan, VesselProcessPlan, VesselSpec, WorkCounters,
 };
 use crate::constraints::resolve_vessel;
-use crate::fab::process_plan;
+use crate::fab::{FabWork, plan_vessel, process_plan};
 
 type VesselRow<'a> = (
     Entity,
@@ -32,6 +39,7 @@ type VesselRow<'a> = (
     &'a DesignOrder,
     Option<&'a Children>,
     Option<&'a VesselProcessPlan>,
+    Option<&'a VesselFabPlan>,
 );
 
 /// Whether the model keeps process plans.
@@ -53,36 +61,54 @@ pub fn update_process_plans(
 ) {
     let all = planning.is_changed();
     let mut jobs = Vec::new();
-    for (entity, spec, order, children, plan) in &vessels {
+    for (entity, spec, order, children, plan, fab) in &vessels {
         let resolved = pending.0.iter().find(|(e, _)| *e == entity).map(|(_, r)| r);
         if !(all || plan.is_none() || resolved.is_some()) {
             continue;
         }
         let design = read_vessel(spec, children, &parts, &nozzles, &notes);
-        jobs.push((entity, design, order.0, resolved, plan));
+        let previous = fab.and_then(|f| f.0.as_ref().ok()).map(Arc::clone);
+        jobs.push((entity, design, order.0, resolved, plan, previous));
     }
     if jobs.is_empty() {
         return;
     }
     counters.process_plans += jobs.len() as u64;
     let rules = &planning.0;
-    let results: Vec<_> = jobs
-        .into_par_iter()
-        .map(|(entity, design, order, resolved, old)| {
-            let plan = match resolved {
-                Some(r) => process_plan(&design, r, rules).map_err(|e| e.to_string()),
-                None => match resolve_vessel(&design, order as usize) {
-                    Ok(r) => process_plan(&design, &r, rules).map_err(|e| e.to_string()),
-                    Err(v) => Err(format!("{} broken rules", v.len())),
-                },
-            };
-            (entity, plan.map(Arc::new), old)
-        })
-        .collect();
-    for (entity, plan, old) in results {
+    let results: Vec<_> =
+        jobs.into_par_iter()
+            .map(|(entity, design, order, resolved, old, previous)| {
+                let index = order as usize;
+                let resolved = match resolved {
+                    Some(r) => Ok(r.clone()),
+                    None => resolve_vessel(&design, index)
+                        .map_err(|v| format!("{} broken rules", v.len())),
+                };
+                let fab = resolved.and_then(|r| {
+                    plan_vessel(&design, index, &r, &rules.plates, previous.as_deref())
+                        .map_err(|e| e.to_string())
+                });
+                let (fab, work) = match fab {
+                    Ok((f, w)) => (Ok(Arc::new(f)), w),
+                    Err(e) => (Err(e), FabWork::default()),
+                };
+                let plan = fab
+                    .as_ref()
+                    .map_err(Clone::clone)
+                    .and_then(|f| process_plan(f, rules).map_err(|e| e.to_string()));
+                (entity, VesselFabPlan(fab), plan.map(Arc::new), old, work)
+            })
+            .collect();
+    for (entity, fab, plan, old, work) in results {
+        counters.fab_parts_developed += work.parts as u64;
+        counters.fab_openings_developed += work.openings as u64;
+        counters.fab_courses_laid_out += work.courses as u64;
+        counters.fab_plates_cut += work.plates as u64;
         let new = VesselProcessPlan(plan);
+        let mut e = commands.entity(entity);
+        e.insert(fab);
         if old != Some(&new) {
-            commands.entity(entity).insert(new);
+            e.insert(new);
         }
     }
 }

@@ -1,9 +1,12 @@
-//! `vesselcad fab <design> --vessel TAG -o out/ [--shop shop.json] [--rules
-//! shop_rules.json]`: the fabrication files of one vessel (see
+//! `vesselcad fab <design> --vessel TAG -o out/ [--rules shop_rules.json]
+//! [--shop plates.json]`: the fabrication files of one vessel (see
 //! `vesselcad::fab`): flat patterns, head blanks, seams with their
-//! deficiencies, one DXF per plate and the nesting; the process plan —
-//! traveler (HTML, CSV), BOM, weld map (CSV, JSON, GLB, SVG) — written into the
-//! output directory with a summary printed (and saved as `summary.txt`).
+//! deficiencies, one DXF per plate and the nesting; the process plan on that
+//! plate layout — traveler (HTML, CSV), BOM, weld map (CSV, JSON, GLB, SVG) —
+//! written into the output directory with a summary printed (and saved as
+//! `summary.txt`). One shop file holds it all (`data/shop_rules.json`: its
+//! `plates` object is the plate data); `--shop` overrides `plates` field by
+//! field.
 
 use std::path::PathBuf;
 use std::process::ExitCode;
@@ -30,11 +33,12 @@ pub struct FabArgs {
     /// The output directory (created if missing).
     #[arg(short, long)]
     output: PathBuf,
-    /// Shop data overriding the built-in `data/shop.json` field by field.
+    /// Plate data (the `plates` object of the shop rules alone) overriding
+    /// the rules' plates field by field.
     #[arg(long)]
     shop: Option<PathBuf>,
-    /// Shop rules (operations, precedence, weld preparations, PWHT) replacing
-    /// the built-in `data/shop_rules.json`.
+    /// Shop rules (plates, operations, precedence, weld preparations, PWHT)
+    /// replacing the built-in `data/shop_rules.json`.
     #[arg(long)]
     rules: Option<PathBuf>,
 }
@@ -58,20 +62,20 @@ pub fn run(args: FabArgs) -> ExitCode {
         Ok(d) => d,
         Err(e) => return super::fail(&e),
     };
-    let shop = match &args.shop {
-        Some(path) => match Shop::load(path) {
-            Ok(s) => s,
-            Err(e) => return fail(&e),
-        },
-        None => Shop::default(),
-    };
-    let rules = match &args.rules {
+    let mut rules = match &args.rules {
         Some(path) => match ShopRules::from_path(path) {
             Ok(r) => r,
             Err(e) => return plan_failed(&e),
         },
         None => ShopRules::builtin(),
     };
+    if let Some(path) = &args.shop {
+        match Shop::load_over(path, rules.plates.clone()) {
+            Ok(s) => rules.plates = s,
+            Err(e) => return fail(&e),
+        }
+    }
+    let shop = rules.plates.clone();
     let plan = match plan(&design, &args.vessel, &shop) {
         Ok(p) => p,
         Err(e) => return fail(&e),
@@ -97,12 +101,7 @@ pub fn run(args: FabArgs) -> ExitCode {
         args.output.display()
     ));
     lines.extend(nesting(&plan.nesting(&shop)));
-    let Some(vessel) = design.vessels.iter().find(|v| v.tag == args.vessel) else {
-        return fail(&FabError::UnknownVessel {
-            tag: args.vessel.clone(),
-        });
-    };
-    let process = match process_plan(vessel, &plan.resolved, &rules) {
+    let process = match process_plan(&plan, &rules) {
         Ok(p) => p,
         Err(e) => return plan_failed(&e),
     };

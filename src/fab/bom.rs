@@ -1,13 +1,18 @@
-//! The bill of materials of one vessel, from the model: plates of the rolled
-//! parts (grade, thickness, developed size, area, mass), formed heads, nozzle
-//! pipe (NPS, schedule, cut length) and flanges (type, class, facing, B16.5
-//! bolting and gasket), reinforcing pads and supports.
+//! The bill of materials of one vessel, from the model and its plate layout
+//! ([`FabPlan`]): one line per plate of the rolled parts (grade, thickness,
+//! the plate's exact developed size, area, mass), formed heads with their
+//! blanks, nozzle pipe (NPS, schedule, cut length) and flanges (type, class,
+//! facing, B16.5 bolting and gasket), reinforcing pads and supports.
 //!
 //! Masses are the weight model's (`crate::weights`), item by item, so the BOM
 //! total is the vessel's empty (metal) weight: pressure parts by their walls
-//! (`plate_size::wall_mass`), supports, boot and pads as `weights::metal`
-//! weighs them, and each nozzle split into its pipe (the neck outside the
-//! host, B36.10M wall) and its flange (the rest of the model's nozzle body).
+//! (`plate_size::wall_mass`), shared among the part's plates by their
+//! developed mid-surface areas; supports, boot and pads as `weights::metal`
+//! weighs them (a skirt's mass shared among its plates likewise); and each
+//! nozzle split into its pipe (the neck outside the host, B36.10M wall) and
+//! its flange (the rest of the model's nozzle body). A part the development
+//! leaves out (an eccentric reducer) keeps one line with the closed-form size
+//! of `plate_size`.
 //! Bolts and gaskets are listed on their flange's line, not weighed (the
 //! weight model does not carry them).
 //!
@@ -19,8 +24,9 @@ use std::f64::consts::PI;
 
 use serde::Serialize;
 
+use super::develop::Outline;
 use super::plate_size::{Developed, developed, wall_mass};
-use crate::constraints::ResolvedVessel;
+use super::vessel_plan::FabPlan;
 use crate::design::{FacingDesign, FlangeDesign, PartDesign, VesselDesign};
 use crate::operating::{STAINLESS_DENSITY, metal_density, thickness};
 use crate::parts::tables::{flange, pipe};
@@ -32,8 +38,11 @@ const MM3_TO_M3: f64 = 1e-9;
 /// One line of the BOM.
 #[derive(Clone, Debug, PartialEq, Serialize)]
 pub struct BomLine {
-    /// Part id, nozzle mark, or `mark/flange`, `mark/pad`.
+    /// Plate id (`V-1-S1-P2`), part id, nozzle mark, or `mark/flange`,
+    /// `mark/pad`.
     pub item: String,
+    /// The part or nozzle the line belongs to (a plate's part id).
+    pub part: String,
     /// `plate`, `head`, `pipe`, `flange`, `pad`, `support`.
     pub kind: &'static str,
     /// What it is.
@@ -107,8 +116,67 @@ fn gasket(facing: FacingDesign, nps: &str, class: u32, outside: f64, raised: f64
     }
 }
 
-/// The BOM of vessel `design` resolved as `resolved`.
-pub fn bom(design: &VesselDesign, resolved: &ResolvedVessel) -> Bom {
+/// The developed plate of a plate of the layout.
+fn plate_developed(fab: &FabPlan, plate: &super::plates::Plate) -> Developed {
+    let course = &fab.seams.courses[plate.course_index];
+    let rolled = &fab.developments.rolled[course.rolled];
+    let rolling_radius = 0.5 * (rolled.radius_at(course.z.0) + rolled.radius_at(course.z.1));
+    match plate.outline {
+        Outline::Rectangle { width, height } => Developed::Rectangle {
+            width,
+            length: height,
+            rolling_radius,
+        },
+        Outline::Sector {
+            inner,
+            outer,
+            angle,
+        } => Developed::Sector {
+            inner,
+            outer,
+            angle: angle.to_degrees(),
+            rolling_radius,
+        },
+    }
+}
+
+/// One line per plate of part `part`, sharing `mass` by developed area; none
+/// when the layout has no plate of it.
+fn plate_lines(
+    fab: &FabPlan,
+    part: &str,
+    description: &str,
+    grade: &str,
+    mass: f64,
+) -> Vec<BomLine> {
+    let plates: Vec<_> = fab.plates.iter().filter(|p| p.part == part).collect();
+    let total: f64 = plates.iter().map(|p| p.mid_area).sum();
+    plates
+        .iter()
+        .map(|p| {
+            let d = plate_developed(fab, p);
+            BomLine {
+                item: p.id.clone(),
+                part: part.to_string(),
+                kind: "plate",
+                description: format!("{description}, course {}", p.course),
+                material: grade.to_string(),
+                thickness: Some(p.thickness),
+                size: d.label(),
+                developed: Some(d),
+                area: Some(p.mid_area * 1e-6),
+                quantity: 1,
+                mass: mass * p.mid_area / total,
+                bolting: None,
+                gasket: None,
+            }
+        })
+        .collect()
+}
+
+/// The BOM of the vessel planned as `fab`.
+pub fn bom(fab: &FabPlan) -> Bom {
+    let (design, resolved) = (&fab.vessel, &fab.resolved);
     let density = metal_density(&design.design);
     let kg = |mm3: f64| mm3 * MM3_TO_M3 * density;
     let g = grades(design);
@@ -122,16 +190,32 @@ pub fn bom(design: &VesselDesign, resolved: &ResolvedVessel) -> Bom {
             let Some(mass) = wall_mass(&part.geometry, t, density) else {
                 continue;
             };
-            let dev = developed(&part.geometry, t);
             let head = matches!(d, PartDesign::Head(_));
+            let description = match d {
+                PartDesign::Head(h) => format!("{:?} head", h.shape).to_lowercase(),
+                PartDesign::Reducer(_) => "cone (reducer)".into(),
+                _ => "shell course".into(),
+            };
+            let plates = plate_lines(fab, &part.id, &description, &g.plate, mass);
+            if !plates.is_empty() {
+                lines.extend(plates);
+                continue;
+            }
+            let blank = fab.developments.heads.iter().find(|h| h.id == part.id);
+            let dev = match blank {
+                Some(b) => Some((
+                    Developed::Blank {
+                        diameter: b.diameter,
+                    },
+                    b.mid_area,
+                )),
+                None => developed(&part.geometry, t),
+            };
             lines.push(BomLine {
                 item: part.id.clone(),
+                part: part.id.clone(),
                 kind: if head { "head" } else { "plate" },
-                description: match d {
-                    PartDesign::Head(h) => format!("{:?} head", h.shape).to_lowercase(),
-                    PartDesign::Reducer(_) => "cone (reducer)".into(),
-                    _ => "shell course".into(),
-                },
+                description,
                 material: g.plate.clone(),
                 thickness: Some(t),
                 size: dev.as_ref().map(|(d, _)| d.label()).unwrap_or_default(),
@@ -151,9 +235,15 @@ pub fn bom(design: &VesselDesign, resolved: &ResolvedVessel) -> Bom {
                 PartDesign::Saddle(s) => s.web_thickness,
                 _ => None,
             };
+            let plates = plate_lines(fab, &part.id, "skirt", &g.plate, item.mass);
+            if !plates.is_empty() {
+                lines.extend(plates);
+                continue;
+            }
             let dev = developed(&part.geometry, t.unwrap_or(DEFAULT_PLATE));
             lines.push(BomLine {
                 item: part.id.clone(),
+                part: part.id.clone(),
                 kind: "support",
                 description: part.geometry.kind().to_string(),
                 material: g.plate.clone(),
@@ -187,6 +277,7 @@ pub fn bom(design: &VesselDesign, resolved: &ResolvedVessel) -> Bom {
             let pipe_mass = kg(PI * (ro * ro - ri * ri) * cut);
             lines.push(BomLine {
                 item: n.mark.clone(),
+                part: n.mark.clone(),
                 kind: "pipe",
                 description: format!("nozzle neck NPS {nps} Sch {}", geo.schedule.label()),
                 material: g.pipe.into(),
@@ -207,6 +298,7 @@ pub fn bom(design: &VesselDesign, resolved: &ResolvedVessel) -> Bom {
             };
             lines.push(BomLine {
                 item: format!("{}/flange", n.mark),
+                part: n.mark.clone(),
                 kind: "flange",
                 description: format!("{kind} NPS {nps} Class {} {:?}", nd.rating, nd.facing),
                 material: g.forging.into(),
@@ -243,6 +335,7 @@ pub fn bom(design: &VesselDesign, resolved: &ResolvedVessel) -> Bom {
             let neck = geo.outside_diameter();
             lines.push(BomLine {
                 item: format!("{}/pad", n.mark),
+                part: n.mark.clone(),
                 kind: "pad",
                 description: format!("reinforcing pad, bore Ø{neck:.1}"),
                 material: g.plate.clone(),

@@ -236,6 +236,76 @@ fn thickness_of(
     })
 }
 
+/// What the development of one part gives.
+#[derive(Clone, Debug, PartialEq)]
+pub enum PartDevelopment {
+    /// A rolled part.
+    Rolled(Rolled),
+    /// A head's blank.
+    Head(HeadBlank),
+    /// A part left out, and why.
+    Skipped(Skipped),
+}
+
+impl Developments {
+    /// Adds one part's development in its list.
+    pub fn push(&mut self, d: PartDevelopment) {
+        match d {
+            PartDevelopment::Rolled(r) => self.rolled.push(r),
+            PartDevelopment::Head(h) => self.heads.push(h),
+            PartDevelopment::Skipped(s) => self.skipped.push(s),
+        }
+    }
+
+    /// The development of part `index` of the resolved vessel (`id` its id),
+    /// if it has one.
+    pub fn of_part(&self, index: usize, id: &str) -> Option<PartDevelopment> {
+        if let Some(r) = self.rolled.iter().find(|r| r.part == index) {
+            return Some(PartDevelopment::Rolled(r.clone()));
+        }
+        if let Some(h) = self.heads.iter().find(|h| h.part == index) {
+            return Some(PartDevelopment::Head(h.clone()));
+        }
+        self.skipped
+            .iter()
+            .find(|s| s.id == id)
+            .map(|s| PartDevelopment::Skipped(s.clone()))
+    }
+}
+
+/// Develops part `index` of `resolved` (vessel `vessel_index` of its design,
+/// `vessel`): `None` for parts that are neither rolled nor formed (saddles,
+/// legs, lugs).
+///
+/// # Errors
+///
+/// A violation naming the part when it has no thickness.
+pub fn develop_one(
+    vessel: &VesselDesign,
+    vessel_index: usize,
+    resolved: &ResolvedVessel,
+    index: usize,
+) -> Result<Option<PartDevelopment>, RuleViolation> {
+    let part = &resolved.parts[index];
+    let Some(design_index) = vessel.parts.iter().position(|p| p.id() == part.id) else {
+        return Ok(None);
+    };
+    let path = format!("vessels[{vessel_index}].parts[{design_index}]");
+    let needs_thickness = matches!(
+        part.geometry,
+        PartGeometry::Shell(_)
+            | PartGeometry::Reducer(_)
+            | PartGeometry::Skirt(_)
+            | PartGeometry::Head(_)
+    );
+    let thickness = if needs_thickness {
+        thickness_of(vessel, vessel_index, design_index)?
+    } else {
+        0.0
+    };
+    Ok(develop_part(part, index, path, thickness))
+}
+
 /// Develops every rolled part and head of `resolved` (vessel `vessel_index`
 /// of its design, `vessel`).
 ///
@@ -249,37 +319,11 @@ pub fn develop(
 ) -> Result<Developments, Vec<RuleViolation>> {
     let mut out = Developments::default();
     let mut errors = Vec::new();
-    for (index, part) in resolved.parts.iter().enumerate() {
-        let Some(design_index) = vessel.parts.iter().position(|p| p.id() == part.id) else {
-            continue;
-        };
-        let path = format!("vessels[{vessel_index}].parts[{design_index}]");
-        let needs_thickness = matches!(
-            part.geometry,
-            PartGeometry::Shell(_)
-                | PartGeometry::Reducer(_)
-                | PartGeometry::Skirt(_)
-                | PartGeometry::Head(_)
-        );
-        let thickness = if needs_thickness {
-            match thickness_of(vessel, vessel_index, design_index) {
-                Ok(t) => t,
-                Err(e) => {
-                    errors.push(e);
-                    continue;
-                }
-            }
-        } else {
-            0.0
-        };
-        match develop_part(part, index, path, thickness) {
-            Some(Developed::Rolled(r)) => out.rolled.push(r),
-            Some(Developed::Head(h)) => out.heads.push(h),
-            Some(Developed::Skipped(reason)) => out.skipped.push(Skipped {
-                id: part.id.clone(),
-                reason,
-            }),
-            None => {}
+    for index in 0..resolved.parts.len() {
+        match develop_one(vessel, vessel_index, resolved, index) {
+            Ok(Some(d)) => out.push(d),
+            Ok(None) => {}
+            Err(e) => errors.push(e),
         }
     }
     if errors.is_empty() {
@@ -289,19 +333,24 @@ pub fn develop(
     }
 }
 
-enum Developed {
-    Rolled(Rolled),
-    Head(HeadBlank),
-    Skipped(String),
-}
-
-fn develop_part(part: &ResolvedPart, index: usize, path: String, t: f64) -> Option<Developed> {
+fn develop_part(
+    part: &ResolvedPart,
+    index: usize,
+    path: String,
+    t: f64,
+) -> Option<PartDevelopment> {
+    let skipped = |reason: String| {
+        PartDevelopment::Skipped(Skipped {
+            id: part.id.clone(),
+            reason,
+        })
+    };
     let rolled = |kind, z: (f64, f64), outside: (f64, f64)| {
         // The mid-surface lies t/2 in from the outside along the wall's
         // normal: t/(2 cos α) in radius.
         let taper = (outside.1 - outside.0) / (z.1 - z.0);
         let inset = 0.5 * t * taper.hypot(1.0);
-        Developed::Rolled(Rolled {
+        PartDevelopment::Rolled(Rolled {
             part: index,
             id: part.id.clone(),
             path: path.clone(),
@@ -325,7 +374,7 @@ fn develop_part(part: &ResolvedPart, index: usize, path: String, t: f64) -> Opti
                 (0.5 * r.large_diameter, 0.5 * r.small_diameter),
             ),
             ReducerAlignment::Eccentric { .. } => {
-                Developed::Skipped("eccentric reducer (an oblique cone): not developed yet".into())
+                skipped("eccentric reducer (an oblique cone): not developed yet".into())
             }
         },
         PartGeometry::Skirt(s) => {
@@ -334,14 +383,12 @@ fn develop_part(part: &ResolvedPart, index: usize, path: String, t: f64) -> Opti
             rolled(RolledKind::Skirt, (0.0, s.height), (base, top))
         }
         PartGeometry::Head(h) => match head_blank(h, index, &part.id, path, t) {
-            Some(blank) => Developed::Head(blank),
-            None => Developed::Skipped(format!(
+            Some(blank) => PartDevelopment::Head(blank),
+            None => skipped(format!(
                 "head: its mid-surface (t = {t} mm) is not a valid head of its kind, no blank"
             )),
         },
-        PartGeometry::Boot(_) => {
-            Developed::Skipped("boot: developed with its drum in a later step".into())
-        }
+        PartGeometry::Boot(_) => skipped("boot: developed with its drum in a later step".into()),
         _ => return None,
     })
 }

@@ -39,6 +39,10 @@ pub enum FabError {
     /// value and rule (the rule names the other entity where there is one).
     #[error("{}", list(.0))]
     Rules(Vec<RuleViolation>),
+    /// The process plan cannot be made (a shop rule, a cycle, a model
+    /// measure).
+    #[error(transparent)]
+    Plan(#[from] super::plan_error::PlanError),
     /// A DXF file could not be written.
     #[error("{path}: cannot write DXF: {message}")]
     Dxf {

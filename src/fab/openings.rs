@@ -206,6 +206,26 @@ pub fn surface_loop(
         .collect()
 }
 
+/// What one nozzle gives: a cut developed on its course, or an opening cut
+/// after forming.
+#[derive(Clone, Debug, PartialEq)]
+pub enum NozzleOutcome {
+    /// On a cylindrical course.
+    Cut(Box<NozzleCut>),
+    /// On a head or cone.
+    Formed(FormedOpening),
+}
+
+impl Openings {
+    /// Adds one nozzle's outcome in its list.
+    pub fn push(&mut self, o: NozzleOutcome) {
+        match o {
+            NozzleOutcome::Cut(c) => self.cuts.push(*c),
+            NozzleOutcome::Formed(f) => self.formed.push(f),
+        }
+    }
+}
+
 /// Finds every nozzle's cuts.
 ///
 /// # Errors
@@ -220,134 +240,154 @@ pub fn cut_openings(
 ) -> Result<Openings, Vec<RuleViolation>> {
     let mut out = Openings::default();
     let mut errors = Vec::new();
-    for (index, nozzle) in resolved.nozzles.iter().enumerate() {
-        let path = format!("vessels[{vessel_index}].nozzles[{index}]");
-        let entity = format!("{}/{}", resolved.tag, nozzle.mark);
-        let host = &resolved.parts[nozzle.host];
-        let found = developments
-            .rolled
-            .iter()
-            .position(|r| r.part == nozzle.host && r.kind == RolledKind::Course);
-        let Some(rolled_index) = found else {
-            out.formed.push(FormedOpening {
-                mark: nozzle.mark.clone(),
-                host: host.id.clone(),
-            });
-            continue;
-        };
-        let course = &developments.rolled[rolled_index];
-        let bad = |field: &str, value: String, rule: String| RuleViolation {
-            path: format!("{path}.{field}"),
-            entity: entity.clone(),
-            field: field.into(),
-            value,
-            rule,
-        };
-        let g = &nozzle.geometry;
-        let dims = pipe(g.nps);
-        let wall = match dims.wall(g.schedule) {
-            Ok(w) => w,
-            Err(e) => {
-                errors.push(bad("schedule", g.schedule.label().into(), e.to_string()));
-                continue;
-            }
-        };
-        let od = dims.outside_diameter;
-        let cut_radius = match shop.attachment {
-            Attachment::SetIn => 0.5 * od + shop.bevel_allowance,
-            Attachment::SetOn => 0.5 * od - wall,
-        };
-        let neck = NeckAxis::new(course.frame, nozzle.frame);
-        let r_mid = course.radius.0;
-        let r_out = course.outside.0;
-        let misses = |what: &str| {
-            bad(
-                "offset",
-                "-".into(),
-                format!(
-                    "the {what} must lie wholly on course {}/{} to be developed",
-                    resolved.tag, course.id
-                ),
-            )
-        };
-        let Some((centre, _)) = neck.crossing(0.0, r_mid, 0.0) else {
-            errors.push(misses("nozzle axis"));
-            continue;
-        };
-        let theta = centre.y.atan2(centre.x);
-        let n = samples(cut_radius, shop.chord_tolerance);
-        let Some(hole) = surface_loop(&neck, cut_radius, r_mid, theta, n) else {
-            errors.push(misses("opening"));
-            continue;
-        };
-        let pad = match nozzle.pad {
-            None => None,
-            Some((pad_od, pad_t)) => {
-                let r_pad = r_out + 0.5 * pad_t;
-                let n_pad = samples(0.5 * pad_od, shop.chord_tolerance);
-                let footprint = surface_loop(&neck, 0.5 * pad_od, r_out, theta, n_pad);
-                let develop = |rho: f64, n: usize| -> Option<Vec<DVec2>> {
-                    let (c, _) = neck.crossing(0.0, r_pad, 0.0)?;
-                    let tc = c.y.atan2(c.x);
-                    let curve = surface_loop(&neck, rho, r_pad, tc, n)?;
-                    Some(
-                        curve
-                            .iter()
-                            .map(|q| DVec2::new(r_pad * (q.x - tc), q.y - c.z))
-                            .collect(),
-                    )
-                };
-                let outline = develop(0.5 * pad_od, n_pad);
-                let pad_hole = develop(0.5 * od + shop.bevel_allowance, n);
-                match (footprint, outline, pad_hole) {
-                    (Some(footprint), Some(outline), Some(hole)) => Some(PadPiece {
-                        od: pad_od,
-                        thickness: pad_t,
-                        footprint,
-                        outline,
-                        hole,
-                    }),
-                    _ => {
-                        errors.push(misses("pad"));
-                        continue;
-                    }
-                }
-            }
-        };
-        // The neck meets the shell's inside (set-in) or outside (set-on).
-        let meets = match shop.attachment {
-            Attachment::SetIn => r_out - course.thickness,
-            Attachment::SetOn => r_out,
-        };
-        let neck_mid = 0.5 * (od - wall);
-        let back = g.projection - g.flange_length().unwrap_or(0.0);
-        let saddle: Option<Vec<DVec2>> = (0..=n)
-            .map(|i| {
-                let phi = TAU * i as f64 / n as f64;
-                neck.crossing(neck_mid, meets, phi)
-                    .map(|(_, s)| DVec2::new(neck_mid * phi, back - s))
-            })
-            .collect();
-        let Some(saddle) = saddle else {
-            errors.push(misses("neck"));
-            continue;
-        };
-        out.cuts.push(NozzleCut {
-            nozzle: index,
-            mark: nozzle.mark.clone(),
-            path,
-            rolled: rolled_index,
-            neck,
-            cut_radius,
-            centre: DVec2::new(theta, centre.z),
-            hole,
-            pad,
-            saddle,
-        });
+    for index in 0..resolved.nozzles.len() {
+        match cut_nozzle(vessel_index, resolved, developments, shop, index) {
+            Ok(o) => out.push(o),
+            Err(e) => errors.push(e),
+        }
     }
     if errors.is_empty() {
         Ok(out)
     } else {
         Err(errors)
     }
+}
+
+/// The index in `developments.rolled` of the course nozzle `index` of
+/// `resolved` is cut into, if its host is a cylindrical course.
+pub fn host_course(
+    resolved: &ResolvedVessel,
+    developments: &Developments,
+    index: usize,
+) -> Option<usize> {
+    let host = resolved.nozzles[index].host;
+    developments
+        .rolled
+        .iter()
+        .position(|r| r.part == host && r.kind == RolledKind::Course)
+}
+
+/// Develops the cuts of nozzle `index` of `resolved`.
+///
+/// # Errors
+///
+/// A violation naming the nozzle when its neck or pad does not lie wholly on
+/// its course, or its pipe schedule is not listed.
+pub fn cut_nozzle(
+    vessel_index: usize,
+    resolved: &ResolvedVessel,
+    developments: &Developments,
+    shop: &Shop,
+    index: usize,
+) -> Result<NozzleOutcome, RuleViolation> {
+    let nozzle = &resolved.nozzles[index];
+    let path = format!("vessels[{vessel_index}].nozzles[{index}]");
+    let entity = format!("{}/{}", resolved.tag, nozzle.mark);
+    let host = &resolved.parts[nozzle.host];
+    let Some(rolled_index) = host_course(resolved, developments, index) else {
+        return Ok(NozzleOutcome::Formed(FormedOpening {
+            mark: nozzle.mark.clone(),
+            host: host.id.clone(),
+        }));
+    };
+    let course = &developments.rolled[rolled_index];
+    let bad = |field: &str, value: String, rule: String| RuleViolation {
+        path: format!("{path}.{field}"),
+        entity: entity.clone(),
+        field: field.into(),
+        value,
+        rule,
+    };
+    let g = &nozzle.geometry;
+    let dims = pipe(g.nps);
+    let wall = match dims.wall(g.schedule) {
+        Ok(w) => w,
+        Err(e) => return Err(bad("schedule", g.schedule.label().into(), e.to_string())),
+    };
+    let od = dims.outside_diameter;
+    let cut_radius = match shop.attachment {
+        Attachment::SetIn => 0.5 * od + shop.bevel_allowance,
+        Attachment::SetOn => 0.5 * od - wall,
+    };
+    let neck = NeckAxis::new(course.frame, nozzle.frame);
+    let r_mid = course.radius.0;
+    let r_out = course.outside.0;
+    let misses = |what: &str| {
+        bad(
+            "offset",
+            "-".into(),
+            format!(
+                "the {what} must lie wholly on course {}/{} to be developed",
+                resolved.tag, course.id
+            ),
+        )
+    };
+    let Some((centre, _)) = neck.crossing(0.0, r_mid, 0.0) else {
+        return Err(misses("nozzle axis"));
+    };
+    let theta = centre.y.atan2(centre.x);
+    let n = samples(cut_radius, shop.chord_tolerance);
+    let Some(hole) = surface_loop(&neck, cut_radius, r_mid, theta, n) else {
+        return Err(misses("opening"));
+    };
+    let pad = match nozzle.pad {
+        None => None,
+        Some((pad_od, pad_t)) => {
+            let r_pad = r_out + 0.5 * pad_t;
+            let n_pad = samples(0.5 * pad_od, shop.chord_tolerance);
+            let footprint = surface_loop(&neck, 0.5 * pad_od, r_out, theta, n_pad);
+            let develop = |rho: f64, n: usize| -> Option<Vec<DVec2>> {
+                let (c, _) = neck.crossing(0.0, r_pad, 0.0)?;
+                let tc = c.y.atan2(c.x);
+                let curve = surface_loop(&neck, rho, r_pad, tc, n)?;
+                Some(
+                    curve
+                        .iter()
+                        .map(|q| DVec2::new(r_pad * (q.x - tc), q.y - c.z))
+                        .collect(),
+                )
+            };
+            let outline = develop(0.5 * pad_od, n_pad);
+            let pad_hole = develop(0.5 * od + shop.bevel_allowance, n);
+            match (footprint, outline, pad_hole) {
+                (Some(footprint), Some(outline), Some(hole)) => Some(PadPiece {
+                    od: pad_od,
+                    thickness: pad_t,
+                    footprint,
+                    outline,
+                    hole,
+                }),
+                _ => return Err(misses("pad")),
+            }
+        }
+    };
+    // The neck meets the shell's inside (set-in) or outside (set-on).
+    let meets = match shop.attachment {
+        Attachment::SetIn => r_out - course.thickness,
+        Attachment::SetOn => r_out,
+    };
+    let neck_mid = 0.5 * (od - wall);
+    let back = g.projection - g.flange_length().unwrap_or(0.0);
+    let saddle: Option<Vec<DVec2>> = (0..=n)
+        .map(|i| {
+            let phi = TAU * i as f64 / n as f64;
+            neck.crossing(neck_mid, meets, phi)
+                .map(|(_, s)| DVec2::new(neck_mid * phi, back - s))
+        })
+        .collect();
+    let Some(saddle) = saddle else {
+        return Err(misses("neck"));
+    };
+    Ok(NozzleOutcome::Cut(Box::new(NozzleCut {
+        nozzle: index,
+        mark: nozzle.mark.clone(),
+        path,
+        rolled: rolled_index,
+        neck,
+        cut_radius,
+        centre: DVec2::new(theta, centre.z),
+        hole,
+        pad,
+        saddle,
+    })))
 }

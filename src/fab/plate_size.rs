@@ -1,13 +1,14 @@
 //! Developed sizes of the rolled and formed parts as the BOM and the traveler
 //! print them, and the wall metal of each pressure part.
 //!
-//! Until the flat patterns of `fab::develop` (issue 38 §1) land, these are the
-//! closed forms of the mid-surface: a course develops to a rectangle
-//! π·D_mid × length; a cone (reducer or skirt) to an annular sector of slant
-//! length s between mid radii r₁, r₂ (area π·(r₁ + r₂)·s); a head's blank is
-//! the disc of the mid-surface's area (equal-area rule, no forming allowance).
-//! [`developed`] is the one function the BOM calls, so it can later take the
-//! plate layout from the development.
+//! The BOM takes plates and head blanks from the plate layout (`fab::develop`,
+//! `fab::plates`); these closed forms of the mid-surface are its fallback for
+//! a part the development leaves out (an eccentric reducer) and for supports:
+//! a course develops to a rectangle π·D_mid × length; a cone (reducer or
+//! skirt) to an annular sector of slant length s between mid radii r₁, r₂
+//! (area π·(r₁ + r₂)·s); a head's blank is the disc of the mid-surface's area
+//! (equal-area rule, no forming allowance). [`developed`] is the one function
+//! the BOM calls for them.
 //!
 //! Wall masses are the weight model's: the mid-surface of each part alone
 //! (`operating::profile`) times its thickness, integrated as

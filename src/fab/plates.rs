@@ -8,13 +8,15 @@
 //! bisector along +y about the apex; it carries no openings (they are cut
 //! after forming).
 
+use std::collections::BTreeMap;
 use std::f64::consts::{PI, TAU};
+use std::sync::Arc;
 
 use glam::DVec2;
 
 use super::develop::{Developments, Outline};
-use super::openings::Openings;
-use super::seams::SeamLayout;
+use super::openings::{NozzleCut, Openings};
+use super::seams::{Course, Prior, SeamLayout};
 
 /// An opening developed onto a plate.
 #[derive(Clone, Debug, PartialEq)]
@@ -65,39 +67,93 @@ pub fn cut_plates(
     developments: &Developments,
     openings: &Openings,
     seams: &SeamLayout,
-) -> Vec<Plate> {
+) -> Vec<Arc<Plate>> {
+    cut_plates_reusing(tag, developments, openings, seams, None).0
+}
+
+/// The cuts whose nozzle axis falls in plate `k` of `course` (cylinders
+/// only: a cone's openings are cut after forming).
+pub fn cuts_in<'a>(
+    course: &Course,
+    k: usize,
+    developments: &Developments,
+    openings: &'a Openings,
+) -> Vec<&'a NozzleCut> {
+    if !developments.rolled[course.rolled].is_cylinder() {
+        return Vec::new();
+    }
+    let theta0 = course.seam(k);
+    openings
+        .cuts
+        .iter()
+        .filter(|c| c.rolled == course.rolled)
+        .filter(|c| {
+            let rel = (c.centre.x - theta0).rem_euclid(TAU);
+            rel < course.pitch() && c.centre.y >= course.z.0 && c.centre.y < course.z.1
+        })
+        .collect()
+}
+
+/// Cuts every course into its plates, keeping from `prior` (a plan made with
+/// the same shop data, and its plates) every plate of the same id whose
+/// course, part and openings are unchanged. Returns the plates and the
+/// number cut again.
+pub fn cut_plates_reusing(
+    tag: &str,
+    developments: &Developments,
+    openings: &Openings,
+    seams: &SeamLayout,
+    prior: Option<(Prior, &[Arc<Plate>])>,
+) -> (Vec<Arc<Plate>>, usize) {
     let mut plates = Vec::new();
+    let mut cut = 0;
     let mut numbers: Vec<usize> = vec![0; developments.rolled.len()];
+    let old: BTreeMap<&str, &Arc<Plate>> = prior
+        .map(|(_, p)| p.iter().map(|p| (p.id.as_str(), p)).collect())
+        .unwrap_or_default();
     for (ci, course) in seams.courses.iter().enumerate() {
         let rolled = &developments.rolled[course.rolled];
         let pitch = course.pitch();
         for k in 0..course.plates {
             numbers[course.rolled] += 1;
+            let id = format!("{tag}-{}-P{}", rolled.id, numbers[course.rolled]);
+            let cuts = cuts_in(course, k, developments, openings);
+            let kept = prior.and_then(|(p, _)| {
+                let plate = old.get(id.as_str())?;
+                let old_course = p.seams.courses.get(plate.course_index)?;
+                let same = plate.course_index == ci
+                    && plate.seam == k
+                    && old_course == course
+                    && p.developments.rolled.get(course.rolled) == Some(rolled)
+                    && cuts_in(old_course, k, p.developments, p.openings) == cuts;
+                same.then(|| Arc::clone(plate))
+            });
+            if let Some(plate) = kept {
+                plates.push(plate);
+                continue;
+            }
+            cut += 1;
             let theta0 = course.seam(k);
             let r = rolled.radius_at(course.z.0);
-            let mut holes = Vec::new();
-            if rolled.is_cylinder() {
-                for cut in openings.cuts.iter().filter(|c| c.rolled == course.rolled) {
+            let holes = cuts
+                .iter()
+                .map(|cut| {
                     let rel = (cut.centre.x - theta0).rem_euclid(TAU);
-                    let within_z = cut.centre.y >= course.z.0 && cut.centre.y < course.z.1;
-                    if rel >= pitch || !within_z {
-                        continue;
-                    }
                     let map = |p: DVec2| {
                         let t = theta0 + rel + (p.x - cut.centre.x + PI).rem_euclid(TAU) - PI;
                         DVec2::new(r * (t - theta0), p.y - course.z.0)
                     };
                     let reach = cut.pad.as_ref().map_or(cut.cut_radius, |p| 0.5 * p.od) + 50.0;
-                    holes.push(PlateOpening {
+                    PlateOpening {
                         mark: cut.mark.clone(),
                         contour: cut.hole.iter().map(|&p| map(p)).collect(),
                         centre: map(cut.centre),
                         reach: DVec2::splat(reach),
-                    });
-                }
-            }
-            plates.push(Plate {
-                id: format!("{tag}-{}-P{}", rolled.id, numbers[course.rolled]),
+                    }
+                })
+                .collect();
+            plates.push(Arc::new(Plate {
+                id,
                 part: rolled.id.clone(),
                 course: course.id.clone(),
                 course_index: ci,
@@ -106,8 +162,8 @@ pub fn cut_plates(
                 outline: rolled.outline(pitch, course.z.0, course.z.1),
                 openings: holes,
                 mid_area: rolled.area(pitch, course.z.0, course.z.1),
-            });
+            }));
         }
     }
-    plates
+    (plates, cut)
 }

@@ -12,10 +12,11 @@ use std::collections::BTreeMap;
 
 use serde::Serialize;
 
-use super::bom::{Bom, bom};
+use super::bom::{Bom, BomLine, bom};
 use super::operations::{Item, Operation, plan_operations};
 use super::plan_error::PlanError;
 use super::shop_rules::{ShopRules, VESSEL_ITEM};
+use super::vessel_plan::FabPlan;
 use super::welds::{Weld, WeldKind, weld_map};
 use crate::constraints::{PartGeometry, ResolvedVessel};
 use crate::design::VesselDesign;
@@ -129,33 +130,58 @@ fn items(resolved: &ResolvedVessel, welds: &[Weld]) -> Vec<Item> {
 /// What an operation takes from the model, as the traveler prints it.
 fn inputs(kind: &str, item: &Item, plan: &(Bom, Vec<Weld>, Pwht)) -> String {
     let (bom, welds, pwht) = plan;
-    let line = bom.lines.iter().find(|l| l.item == item.id);
-    let weld = |k: WeldKind| {
+    let lines: Vec<&BomLine> = bom
+        .lines
+        .iter()
+        .filter(|l| l.item == item.id || (l.kind == "plate" && l.part == item.id))
+        .collect();
+    let line = lines.first().copied();
+    let weld = |k: WeldKind| -> Vec<&Weld> {
         welds
             .iter()
-            .find(|w| w.kind == k && (w.item == item.id || w.joins[0] == item.id))
+            .filter(|w| w.kind == k && (w.item == item.id || w.joins[0] == item.id))
+            .collect()
     };
-    let weld_text = |w: Option<&Weld>| {
-        w.map_or(String::new(), |w| {
-            format!(
-                "weld {} {:.0} mm, t {:.1} mm, {} ({}), {:.2} L metal",
-                w.id,
-                w.length,
-                w.thickness,
-                w.joint,
-                w.prep,
-                w.volume * 1e-6
-            )
-        })
+    let weld_text = |ws: Vec<&Weld>| match ws.as_slice() {
+        [] => String::new(),
+        [w] => format!(
+            "weld {} {:.0} mm, t {:.1} mm, {} ({}), {:.2} L metal",
+            w.id,
+            w.length,
+            w.thickness,
+            w.joint,
+            w.prep,
+            w.volume * 1e-6
+        ),
+        [w, ..] => format!(
+            "{} welds {}…, {:.0} mm in all, t {:.1} mm, {} ({}), {:.2} L metal",
+            ws.len(),
+            w.id,
+            ws.iter().map(|w| w.length).sum::<f64>(),
+            w.thickness,
+            w.joint,
+            w.prep,
+            ws.iter().map(|w| w.volume).sum::<f64>() * 1e-6
+        ),
     };
     let plate = || {
+        let sizes: Vec<String> = lines
+            .iter()
+            .map(|l| {
+                if l.item == item.id {
+                    l.size.clone()
+                } else {
+                    format!("{} {}", l.item, l.size)
+                }
+            })
+            .collect();
         line.map_or(String::new(), |l| {
             format!(
                 "{} {} t {} mm, {}",
                 l.material,
                 l.description,
                 l.thickness.map_or("—".into(), |t| format!("{t:.1}")),
-                l.size
+                sizes.join("; ")
             )
         })
     };
@@ -203,19 +229,17 @@ fn inputs(kind: &str, item: &Item, plan: &(Bom, Vec<Weld>, Pwht)) -> String {
     }
 }
 
-/// The fabrication plan of vessel `design` resolved as `resolved`.
+/// The process plan of the vessel whose plate layout is `fab` (planned
+/// with `rules.plates`).
 ///
 /// # Errors
 ///
 /// [`PlanError::Model`] for an opening that cannot be cut; [`PlanError::Cycle`]
 /// when the rules' precedence has a cycle.
-pub fn process_plan(
-    design: &VesselDesign,
-    resolved: &ResolvedVessel,
-    rules: &ShopRules,
-) -> Result<ProcessPlan, PlanError> {
-    let welds = weld_map(design, resolved, rules)?;
-    let bom = bom(design, resolved);
+pub fn process_plan(fab: &FabPlan, rules: &ShopRules) -> Result<ProcessPlan, PlanError> {
+    let (design, resolved) = (&fab.vessel, &fab.resolved);
+    let welds = weld_map(fab, rules)?;
+    let bom = bom(fab);
     let pwht = pwht(design, &welds, rules);
     let items = items(resolved, &welds);
     let context = (bom, welds, pwht);
@@ -231,4 +255,20 @@ pub fn process_plan(
         items,
         operations,
     })
+}
+
+/// Plans vessel `tag` of `design` with `rules` (plates by `rules.plates`):
+/// its plate layout and its process plan.
+///
+/// # Errors
+///
+/// As [`super::plan`] and [`process_plan`].
+pub fn plan_process(
+    design: &crate::design::Design,
+    tag: &str,
+    rules: &ShopRules,
+) -> Result<(FabPlan, ProcessPlan), super::FabError> {
+    let fab = super::vessel_plan::plan(design, tag, &rules.plates)?;
+    let process = process_plan(&fab, rules)?;
+    Ok((fab, process))
 }

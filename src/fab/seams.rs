@@ -76,6 +76,38 @@ pub struct SeamLayout {
     pub deficiencies: Vec<RuleViolation>,
     /// Broken loop-validity rules.
     pub errors: Vec<RuleViolation>,
+    /// The same, part by part from the bottom of the stack up, with what
+    /// each part's seams were laid out from (so a new layout can keep the
+    /// parts whose inputs did not change).
+    pub parts: Vec<PartSeams>,
+}
+
+/// The seams of one rolled part, and the inputs besides the part and its
+/// openings they were laid out from.
+#[derive(Clone, Debug, PartialEq)]
+pub struct PartSeams {
+    /// Index in [`Developments::rolled`].
+    pub rolled: usize,
+    /// The course below the part's first course in the stack and the part it
+    /// belongs to: the seams the part's first course is staggered from.
+    pub below: Option<(Course, Rolled)>,
+    /// Its courses, from the bottom up.
+    pub courses: Vec<Course>,
+    /// Its deficiencies.
+    pub deficiencies: Vec<RuleViolation>,
+    /// Its loop-validity errors.
+    pub errors: Vec<RuleViolation>,
+}
+
+/// A previous plan's layout and what it was laid out from.
+#[derive(Clone, Copy)]
+pub struct Prior<'a> {
+    /// Its developments.
+    pub developments: &'a Developments,
+    /// Its openings.
+    pub openings: &'a Openings,
+    /// Its seams.
+    pub seams: &'a SeamLayout,
 }
 
 /// The angle of part-local `theta` in the vessel frame of `rolled`.
@@ -130,7 +162,31 @@ pub fn lay_out(
     openings: &Openings,
     shop: &Shop,
 ) -> SeamLayout {
+    lay_out_reusing(tag, developments, openings, shop, None).0
+}
+
+/// The cuts on rolled part `rolled`.
+fn cuts_on(openings: &Openings, rolled: usize) -> Vec<&NozzleCut> {
+    openings
+        .cuts
+        .iter()
+        .filter(|c| c.rolled == rolled)
+        .collect()
+}
+
+/// Lays out the seams of every rolled part, keeping from `prior` (a layout
+/// made with the same shop data) each part whose development, openings and
+/// course below are unchanged. Returns the layout and the number of courses
+/// laid out again.
+pub fn lay_out_reusing(
+    tag: &str,
+    developments: &Developments,
+    openings: &Openings,
+    shop: &Shop,
+    prior: Option<Prior>,
+) -> (SeamLayout, usize) {
     let mut layout = SeamLayout::default();
+    let mut laid_out = 0;
     // Rolled parts bottom-up in the vessel frame; skirts are not butt-welded
     // to the stack, so they stagger against nothing but themselves.
     let mut order: Vec<usize> = (0..developments.rolled.len()).collect();
@@ -140,75 +196,119 @@ pub fn lay_out(
         a.min(b)
     };
     order.sort_by(|&a, &b| low(&developments.rolled[a]).total_cmp(&low(&developments.rolled[b])));
-    // The course below the next one, in the stack: (index in `layout`,
-    // vessel z of its top, the axis point there).
-    let mut below: Option<(usize, f64, DVec3)> = None;
+    // The top course of the stack so far: (course, its part, vessel z of its
+    // top, the axis point there).
+    let mut below: Option<(Course, usize, f64, DVec3)> = None;
     for &ri in &order {
         let rolled = &developments.rolled[ri];
-        let keep = keeps(tag, openings, ri);
-        let (joints, faults) = course_joints(rolled, &keep, shop);
-        // Crossings are loop-validity errors (below); the rest deficiencies.
-        for (i, z, crossing) in faults {
-            if !crossing {
-                layout.deficiencies.push(RuleViolation {
-                    path: keep[i].cut.path.clone(),
-                    entity: keep[i].entity.clone(),
-                    field: "elevation".into(),
-                    value: format!("{:.3}", keep[i].cut.centre.y),
-                    rule: format!(
-                        "the circumferential seam of {}/{} at z = {z:.1} mm is closer than the clearance {} mm",
-                        tag,
-                        rolled.id,
-                        shop.clearance_for(rolled.thickness)
-                    ),
-                });
-            }
-        }
         let at = |z: f64| rolled.frame.transform_point3(DVec3::new(0.0, 0.0, z));
         let (first, last) = (at(rolled.z.0), at(rolled.z.1));
-        let flipped = first.z > last.z;
-        let (bottom, top) = if flipped {
+        let (bottom, top) = if first.z > last.z {
             (last, first)
         } else {
             (first, last)
         };
         let in_stack = rolled.kind != RolledKind::Skirt;
-        let mut previous = match below {
-            Some((c, z, axis))
+        let lower = match &below {
+            Some((c, r, z, axis))
                 if in_stack
                     && (z - bottom.z).abs() < 1e-6
                     && (axis.truncate() - bottom.truncate()).length() < 1e-6 =>
             {
-                Some(c)
+                Some((c.clone(), developments.rolled[*r].clone()))
             }
             _ => None,
         };
-        let mut bands: Vec<(usize, (f64, f64))> = joints
-            .windows(2)
-            .enumerate()
-            .map(|(k, w)| (k + 1, (w[0], w[1])))
-            .collect();
-        if flipped {
-            bands.reverse();
+        let kept = prior.and_then(|p| {
+            let old = p.seams.parts.iter().find(|o| o.rolled == ri)?;
+            let same = p.developments.rolled.get(ri) == Some(rolled)
+                && old.below == lower
+                && cuts_on(p.openings, ri) == cuts_on(openings, ri);
+            same.then(|| old.clone())
+        });
+        let part = kept.unwrap_or_else(|| {
+            let part = lay_out_part(tag, ri, developments, openings, lower, shop);
+            laid_out += part.courses.len();
+            part
+        });
+        if in_stack && let Some(c) = part.courses.last() {
+            below = Some((c.clone(), ri, top.z, top));
         }
-        for (number, band) in bands {
-            let id = format!("{}-C{number}", rolled.id);
-            let lower = previous.map(|c| layout.courses[c].clone());
-            let lower = lower.as_ref().map(|c| (c, &developments.rolled));
-            let course = place_seams(tag, ri, id, band, rolled, &keep, lower, shop, &mut layout);
-            layout.courses.push(course);
-            previous = Some(layout.courses.len() - 1);
-        }
-        if in_stack {
-            below = previous.map(|c| (c, top.z, top));
-        }
+        layout.parts.push(part);
+    }
+    for part in &layout.parts {
+        layout.courses.extend(part.courses.iter().cloned());
+        layout
+            .deficiencies
+            .extend(part.deficiencies.iter().cloned());
+        layout.errors.extend(part.errors.iter().cloned());
     }
     // Courses by part in design order, then from the part's start.
     layout
         .courses
         .sort_by(|a, b| a.rolled.cmp(&b.rolled).then(a.z.0.total_cmp(&b.z.0)));
-    check_loops(tag, developments, openings, &mut layout);
-    layout
+    (layout, laid_out)
+}
+
+/// Lays out the courses and seams of rolled part `ri`, its first course
+/// staggered from `lower` (the course below it in the stack, with its part).
+fn lay_out_part(
+    tag: &str,
+    ri: usize,
+    developments: &Developments,
+    openings: &Openings,
+    lower: Option<(Course, Rolled)>,
+    shop: &Shop,
+) -> PartSeams {
+    let rolled = &developments.rolled[ri];
+    let mut part = PartSeams {
+        rolled: ri,
+        below: lower.clone(),
+        courses: Vec::new(),
+        deficiencies: Vec::new(),
+        errors: Vec::new(),
+    };
+    let keep = keeps(tag, openings, ri);
+    let (joints, faults) = course_joints(rolled, &keep, shop);
+    // Crossings are loop-validity errors (below); the rest deficiencies.
+    for (i, z, crossing) in faults {
+        if !crossing {
+            part.deficiencies.push(RuleViolation {
+                path: keep[i].cut.path.clone(),
+                entity: keep[i].entity.clone(),
+                field: "elevation".into(),
+                value: format!("{:.3}", keep[i].cut.centre.y),
+                rule: format!(
+                    "the circumferential seam of {}/{} at z = {z:.1} mm is closer than the clearance {} mm",
+                    tag,
+                    rolled.id,
+                    shop.clearance_for(rolled.thickness)
+                ),
+            });
+        }
+    }
+    let flipped = {
+        let at = |z: f64| rolled.frame.transform_point3(DVec3::new(0.0, 0.0, z)).z;
+        at(rolled.z.0) > at(rolled.z.1)
+    };
+    let mut bands: Vec<(usize, (f64, f64))> = joints
+        .windows(2)
+        .enumerate()
+        .map(|(k, w)| (k + 1, (w[0], w[1])))
+        .collect();
+    if flipped {
+        bands.reverse();
+    }
+    let mut previous = lower;
+    for (number, band) in bands {
+        let id = format!("{}-C{number}", rolled.id);
+        let below = previous.as_ref().map(|(c, r)| (c, r));
+        let course = place_seams(tag, ri, id, band, rolled, &keep, below, shop, &mut part);
+        previous = Some((course.clone(), rolled.clone()));
+        part.courses.push(course);
+    }
+    check_loops(rolled, &keep, &mut part);
+    part
 }
 
 /// A course joint too close to a loop: (loop index in the keep list, joint
@@ -294,9 +394,9 @@ fn place_seams(
     band: (f64, f64),
     rolled: &Rolled,
     keep: &[Keep],
-    below: Option<(&Course, &Vec<Rolled>)>,
+    below: Option<(&Course, &Rolled)>,
     shop: &Shop,
-    layout: &mut SeamLayout,
+    layout: &mut PartSeams,
 ) -> Course {
     let r_max = rolled.radius_at(band.0).max(rolled.radius_at(band.1));
     let r_min = rolled.radius_at(band.0).min(rolled.radius_at(band.1));
@@ -357,8 +457,7 @@ fn place_seams(
             kind: AvoidKind::Loop,
         });
     }
-    if let Some((lower, rolled_all)) = below {
-        let lower_rolled = &rolled_all[lower.rolled];
+    if let Some((lower, lower_rolled)) = below {
         let joint_r = lower_rolled
             .radius_at(lower.z.0)
             .min(lower_rolled.radius_at(lower.z.1))
@@ -379,8 +478,7 @@ fn place_seams(
         }
     }
     let preferred = match below {
-        Some((lower, rolled_all)) => {
-            let lower_rolled = &rolled_all[lower.rolled];
+        Some((lower, lower_rolled)) => {
             let va = vessel_angle(lower_rolled, lower.seam(0) + 0.5 * lower.pitch());
             let local = rolled.frame.matrix3.inverse() * DVec3::new(va.cos(), va.sin(), 0.0);
             local.y.atan2(local.x).rem_euclid(pitch)
@@ -480,58 +578,52 @@ enum AvoidKind {
     Seam,
 }
 
-/// Loop validity: openings and pads against course joints and each other.
-fn check_loops(
-    tag: &str,
-    developments: &Developments,
-    openings: &Openings,
-    layout: &mut SeamLayout,
-) {
-    for (ri, rolled) in developments.rolled.iter().enumerate() {
-        let keep = keeps(tag, openings, ri);
-        // Course joints, part ends included.
-        let mut joints: Vec<(f64, String)> = Vec::new();
-        let ours: Vec<&Course> = layout.courses.iter().filter(|c| c.rolled == ri).collect();
-        for c in &ours {
-            joints.push((c.z.0, format!("{}/{} bottom", rolled.id, c.id)));
-        }
-        if let Some(c) = ours.last() {
-            joints.push((c.z.1, format!("{}/{} top", rolled.id, c.id)));
-        }
-        for k in &keep {
-            for (z, name) in &joints {
-                if k.z.0 < *z && k.z.1 > *z {
-                    layout.errors.push(RuleViolation {
-                        path: k.cut.path.clone(),
-                        entity: k.entity.clone(),
-                        field: "elevation".into(),
-                        value: format!("{:.3}", k.cut.centre.y),
-                        rule: format!(
-                            "crosses the circumferential seam at {name} (z = {z:.1} mm of {})",
-                            rolled.id
-                        ),
-                    });
-                }
+/// Loop validity: openings and pads of one part against its course joints
+/// and each other.
+fn check_loops(rolled: &Rolled, keep: &[Keep], part: &mut PartSeams) {
+    // Course joints, part ends included.
+    let mut ours: Vec<&Course> = part.courses.iter().collect();
+    ours.sort_by(|a, b| a.z.0.total_cmp(&b.z.0));
+    let mut joints: Vec<(f64, String)> = Vec::new();
+    for c in &ours {
+        joints.push((c.z.0, format!("{}/{} bottom", rolled.id, c.id)));
+    }
+    if let Some(c) = ours.last() {
+        joints.push((c.z.1, format!("{}/{} top", rolled.id, c.id)));
+    }
+    for k in keep {
+        for (z, name) in &joints {
+            if k.z.0 < *z && k.z.1 > *z {
+                part.errors.push(RuleViolation {
+                    path: k.cut.path.clone(),
+                    entity: k.entity.clone(),
+                    field: "elevation".into(),
+                    value: format!("{:.3}", k.cut.centre.y),
+                    rule: format!(
+                        "crosses the circumferential seam at {name} (z = {z:.1} mm of {})",
+                        rolled.id
+                    ),
+                });
             }
         }
-        for (i, a) in keep.iter().enumerate() {
-            for b in &keep[i + 1..] {
-                if std::ptr::eq(a.cut, b.cut) {
-                    continue;
-                }
-                if loops_meet(a.points, b.points) {
-                    layout.errors.push(RuleViolation {
-                        path: a.cut.path.clone(),
-                        entity: a.entity.clone(),
-                        field: "position".into(),
-                        value: format!(
-                            "({:.3} deg, {:.1} mm)",
-                            a.cut.centre.x.to_degrees(),
-                            a.cut.centre.y
-                        ),
-                        rule: format!("overlaps {} (loops must not cross or nest)", b.entity),
-                    });
-                }
+    }
+    for (i, a) in keep.iter().enumerate() {
+        for b in &keep[i + 1..] {
+            if std::ptr::eq(a.cut, b.cut) {
+                continue;
+            }
+            if loops_meet(a.points, b.points) {
+                part.errors.push(RuleViolation {
+                    path: a.cut.path.clone(),
+                    entity: a.entity.clone(),
+                    field: "position".into(),
+                    value: format!(
+                        "({:.3} deg, {:.1} mm)",
+                        a.cut.centre.x.to_degrees(),
+                        a.cut.centre.y
+                    ),
+                    rule: format!("overlaps {} (loops must not cross or nest)", b.entity),
+                });
             }
         }
     }

@@ -1,17 +1,31 @@
 //! Shop data: the limits and allowances of the fabricator that the flat
-//! patterns, seams and nesting follow. The built-in defaults are
-//! `data/shop.json` (embedded at compile time); a user file given with
-//! `--shop` replaces any of its fields. Every value is checked: a bad one is a
-//! [`FabError::Shop`] naming the file, the field, the value and the rule.
+//! patterns, seams and nesting follow. They are the `plates` object of the
+//! shop rules (`data/shop_rules.json`, embedded at compile time; see
+//! [`super::shop_rules`]); a user rules file may leave out any field, and a
+//! file given with `--shop` (the same object alone) replaces any of them.
+//! Every value is checked: a bad one is a [`FabError::Shop`] naming the file,
+//! the field, the value and the rule.
 
 use std::path::Path;
+use std::sync::LazyLock;
 
 use serde::{Deserialize, Serialize};
 
 use super::error::FabError;
 
-/// The built-in shop data's text, `data/shop.json`.
-pub const BUILTIN_JSON: &str = include_str!("../../data/shop.json");
+/// The built-in shop rules' text (`data/shop_rules.json`), whose `plates`
+/// are the built-in shop data.
+pub(super) const BUILTIN_RULES: &str = include_str!("../../data/shop_rules.json");
+
+/// Where the built-in shop data is, as errors name it.
+pub const BUILTIN_NAME: &str = "data/shop_rules.json plates";
+
+/// The built-in shop data: the `plates` object of the built-in rules.
+fn builtin_json() -> String {
+    let rules: serde_json::Value = serde_json::from_str(BUILTIN_RULES)
+        .expect("the built-in shop rules are JSON (tested)");
+    rules["plates"].to_string()
+}
 
 /// How a nozzle neck is attached to its host, which sets the opening's size.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Serialize, Deserialize)]
@@ -74,10 +88,15 @@ fn some_option<'de, D: serde::Deserializer<'de>>(d: D) -> Result<Option<Option<f
     Option::<f64>::deserialize(d).map(Some)
 }
 
+/// The built-in shop data, parsed once.
+static BUILTIN: LazyLock<Shop> = LazyLock::new(|| {
+    Shop::from_json(BUILTIN_NAME, &builtin_json(), None)
+        .expect("the built-in shop data is valid (tested)")
+});
+
 impl Default for Shop {
     fn default() -> Self {
-        Shop::from_json("data/shop.json", BUILTIN_JSON, None)
-            .expect("the built-in shop data is valid (tested)")
+        BUILTIN.clone()
     }
 }
 
@@ -94,18 +113,28 @@ impl Shop {
         (5.0 * thickness).max(self.min_stagger)
     }
 
-    /// Reads a shop file over `base` (the built-in defaults when `None`).
+    /// Reads a shop file over the built-in defaults.
     ///
     /// # Errors
     ///
     /// [`FabError::Io`] when the file cannot be read, [`FabError::Shop`] for
     /// bad JSON, an unknown field or a value out of range.
     pub fn load(path: &Path) -> Result<Shop, FabError> {
+        Shop::load_over(path, Shop::default())
+    }
+
+    /// Reads a shop file over `base`: the fields it leaves out keep `base`'s
+    /// values.
+    ///
+    /// # Errors
+    ///
+    /// As [`Shop::load`].
+    pub fn load_over(path: &Path, base: Shop) -> Result<Shop, FabError> {
         let text = std::fs::read_to_string(path).map_err(|source| FabError::Io {
             path: path.to_path_buf(),
             source,
         })?;
-        Shop::from_json(&path.display().to_string(), &text, Some(Shop::default()))
+        Shop::from_json(&path.display().to_string(), &text, Some(base))
     }
 
     /// Parses shop data named `name` from `text`, over `base`: a field the

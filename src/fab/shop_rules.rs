@@ -13,12 +13,13 @@ use std::path::Path;
 use serde::{Deserialize, Serialize};
 
 use super::plan_error::PlanError;
+use super::shop::Shop;
 
 /// The format tag of a shop-rules file.
 pub const SHOP_RULES_FORMAT: &str = "vesselcad-shop/1";
 
-/// The built-in rules.
-const BUILTIN: &str = include_str!("../../data/shop_rules.json");
+/// The built-in rules' text.
+const BUILTIN: &str = super::shop::BUILTIN_RULES;
 
 /// Kinds of item the plan makes operations for.
 pub const ITEM_KINDS: [&str; 9] = [
@@ -183,6 +184,10 @@ pub struct ShopRules {
     /// Free text.
     #[serde(default)]
     pub note: String,
+    /// Plate sizes, seam rules and stock sheets of the flat patterns; a
+    /// file's `plates` may leave out any field (the built-in value stands).
+    #[serde(default = "Shop::default", deserialize_with = "plates_over_builtin")]
+    pub plates: Shop,
     /// Operation kinds, in traveler order.
     pub operations: Vec<OperationRule>,
     /// Precedence rules.
@@ -193,6 +198,13 @@ pub struct ShopRules {
     pub prep_for: PrepFor,
     /// PWHT by material group.
     pub pwht: Vec<PwhtRule>,
+}
+
+/// A rules file's `plates`: the fields it gives over the built-in shop data.
+fn plates_over_builtin<'de, D: serde::Deserializer<'de>>(d: D) -> Result<Shop, D::Error> {
+    let value = serde_json::Value::deserialize(d)?;
+    Shop::from_json("plates", &value.to_string(), Some(Shop::default()))
+        .map_err(serde::de::Error::custom)
 }
 
 impl ShopRules {

@@ -19,22 +19,25 @@
 //! circle; a saddle's wear-plate outline (2 × arc + 2 × width); legs, the leg
 //! pipe's perimeter each; lugs, both sides of two gussets over their height each.
 //!
-//! Long seams, until the seam layout of `fab::seams` (issue 38 §1) lands: one
-//! per rolled part, on the first angle of a 15° grid — starting at 0° for the
-//! first course and 180° for the next, alternating — whose generator keeps
-//! max(50 mm, 2.5·t) plus the opening's (or pad's) radius away from every
-//! opening centre of that part.
+//! Seams are the plate layout's ([`FabPlan::seams`], `fab::seams`): every
+//! longitudinal seam of every course (`L-S1-C1-L2`, the generator of the
+//! outside surface at the seam's angle, over the course's height), and the
+//! circumferential seams between the courses of one part (`C-S1-C1-S1-C2`,
+//! the exact circle at the joint's mid radius), category A and B on pressure
+//! parts, none on a skirt.
 
 use std::f64::consts::{PI, TAU};
 
 use glam::DVec3;
 use serde::Serialize;
 
+use super::develop::RolledKind;
 use super::plan_error::PlanError;
 use super::shop_rules::{PrepChoice, ShopRules};
+use super::vessel_plan::FabPlan;
 use super::weld_curves::{boot_curve, closed_length, nozzle_curves};
 use super::weld_prep::cross_section;
-use crate::constraints::{PartGeometry, ResolvedVessel};
+use crate::constraints::PartGeometry;
 use crate::design::{FlangeDesign, HeadShape, PartDesign, VesselDesign};
 use crate::operating::profile::{StackPart, Surface, stack_profile};
 use crate::operating::thickness;
@@ -197,16 +200,13 @@ fn joint_radius(part: StackPart, z: f64) -> Option<(f64, glam::DVec2)> {
     best.map(|(_, r, c)| (r, c))
 }
 
-/// The weld map of vessel `design` resolved as `resolved`.
+/// The weld map of the vessel planned as `fab`.
 ///
 /// # Errors
 ///
 /// [`PlanError::Model`] naming a nozzle or boot whose opening cannot be cut.
-pub fn weld_map(
-    design: &VesselDesign,
-    resolved: &ResolvedVessel,
-    rules: &ShopRules,
-) -> Result<Vec<Weld>, PlanError> {
+pub fn weld_map(fab: &FabPlan, rules: &ShopRules) -> Result<Vec<Weld>, PlanError> {
+    let (design, resolved) = (&fab.vessel, &fab.resolved);
     let mut b = Builder {
         rules,
         welds: Vec::new(),
@@ -217,75 +217,58 @@ pub fn weld_map(
         entity: entity.to_string(),
         message,
     };
-    // Openings per part, in its local frame: (angle, z, clearance radius).
-    let mut openings: Vec<Vec<(f64, f64, f64)>> = vec![Vec::new(); resolved.parts.len()];
-    for n in &resolved.nozzles {
-        if let Some(host) = resolved.parts.get(n.host) {
-            let p = (host.frame.inverse() * n.frame).transform_point3(DVec3::ZERO);
-            let r = n.pad.map_or(n.geometry.outside_diameter(), |p| p.0) / 2.0;
-            openings[n.host].push((p.y.atan2(p.x), p.z, r));
+    // Long seams of every course, and the circumferential seams between the
+    // courses of one part, from the plate layout.
+    for (ci, course) in fab.seams.courses.iter().enumerate() {
+        let rolled = &fab.developments.rolled[course.rolled];
+        let pressure = rolled.kind != RolledKind::Skirt;
+        let (z0, z1) = course.z;
+        for k in 0..course.plates {
+            let angle = course.seam(k);
+            let at = |z: f64| {
+                let r = rolled.outside_at(z);
+                rolled
+                    .frame
+                    .transform_point3(DVec3::new(r * angle.cos(), r * angle.sin(), z))
+            };
+            let (p0, p1) = (at(z0), at(z1));
+            b.push(
+                format!("L-{}", course.seam_id(k)),
+                WeldKind::LongSeam,
+                pressure.then_some(Category::A),
+                [rolled.id.clone(), rolled.id.clone()],
+                rolled.id.clone(),
+                (p0.distance(p1), rolled.thickness),
+                &pf.long_seam,
+                (vec![p0, p1], false),
+            );
         }
-    }
-    // Long seams.
-    let mut rolled = 0usize;
-    for (i, part) in resolved.parts.iter().enumerate() {
-        let Some(d) = design.parts.iter().find(|d| d.id() == part.id) else {
-            continue;
-        };
-        let (t, radius, z0, z1, slope, pressure) = match (&part.geometry, d) {
-            (PartGeometry::Shell(s), _) => {
-                let t = thickness(d).unwrap_or(0.0);
-                (t, s.outside_diameter / 2.0, 0.0, s.length, 0.0, true)
-            }
-            (PartGeometry::Reducer(c), _) => {
-                let t = thickness(d).unwrap_or(0.0);
-                let slope = (c.small_diameter - c.large_diameter) / 2.0 / c.length;
-                (t, c.large_diameter / 2.0, 0.0, c.length, slope, true)
-            }
-            (PartGeometry::Skirt(s), _) => {
-                // Local z from the base (0) up to the top (height); the radius
-                // shrinks upwards by the flare.
-                let flare = s.flare_angle.to_radians().tan();
-                (
-                    s.thickness,
-                    s.top_diameter / 2.0 + s.height * flare,
-                    0.0,
-                    s.height,
-                    -flare,
-                    false,
-                )
-            }
-            _ => continue,
-        };
-        let clearance = 50f64.max(2.5 * t);
-        let start = if rolled.is_multiple_of(2) { 0.0 } else { 180.0 };
-        rolled += 1;
-        let angle = (0..24)
-            .map(|k| (start + 15.0 * f64::from(k)).to_radians())
-            .find(|a| {
-                openings[i].iter().all(|(oa, _, r)| {
-                    let gap = (oa - a).rem_euclid(TAU);
-                    let gap = gap.min(TAU - gap);
-                    gap * radius > r + clearance
+        // The joint with the next course of the same part.
+        let next = fab.seams.courses[ci + 1..]
+            .iter()
+            .find(|c| c.rolled == course.rolled && (c.z.0 - z1).abs() < 1e-9);
+        if let Some(next) = next {
+            let r = rolled.radius_at(z1);
+            let ring = (0..96)
+                .map(|i| {
+                    let a = TAU * f64::from(i) / 96.0;
+                    rolled
+                        .frame
+                        .transform_point3(DVec3::new(r * a.cos(), r * a.sin(), z1))
                 })
-            })
-            .unwrap_or(start.to_radians());
-        let at = |z: f64| {
-            let r = radius + slope * z;
-            part.frame
-                .transform_point3(DVec3::new(r * angle.cos(), r * angle.sin(), z))
-        };
-        let (p0, p1) = (at(z0), at(z1));
-        b.push(
-            format!("L-{}", part.id),
-            WeldKind::LongSeam,
-            pressure.then_some(Category::A),
-            [part.id.clone(), part.id.clone()],
-            part.id.clone(),
-            (p0.distance(p1), t),
-            &pf.long_seam,
-            (vec![p0, p1], false),
-        );
+                .collect();
+            let item = format!("{}+{}", course.id, next.id);
+            b.push(
+                format!("C-{}-{}", course.id, next.id),
+                WeldKind::CircSeam,
+                pressure.then_some(Category::B),
+                [rolled.id.clone(), rolled.id.clone()],
+                item,
+                (TAU * r, rolled.thickness),
+                &pf.circ_seam,
+                (ring, true),
+            );
+        }
     }
     // Circumferential seams between neighbours of the stack, design order.
     let stack: Vec<usize> = (0..resolved.parts.len())

@@ -377,8 +377,9 @@ impl Model {
         read::calculation(&self.world, entity)
     }
 
-    /// Keeps a process plan (BOM, weld map, operations in levels) on every
-    /// vessel from the next update on, following `rules`; `None` stops and
+    /// Keeps flat patterns with their seams and a process plan (BOM, weld
+    /// map, operations in levels) on every vessel from the next update on,
+    /// following `rules`; `None` stops and
     /// drops the plans at the next update's pass (see
     /// `systems::update_process_plans`).
     pub fn set_process_planning(&mut self, rules: Option<Arc<crate::fab::ShopRules>>) {
@@ -402,6 +403,18 @@ impl Model {
         let entity = *self.world.resource::<VesselIndex>().0.get(tag)?;
         self.world
             .get::<crate::components::VesselProcessPlan>(entity)
+            .map(|p| p.0.clone())
+    }
+
+    /// The flat patterns and seam layout of vessel `tag` as the last update
+    /// left them, or why they could not be made; `None` for an unknown tag or
+    /// while plans are not kept (see [`Model::set_process_planning`]).
+    pub fn fab_plan(&self, tag: &str) -> Option<Result<Arc<crate::fab::FabPlan>, String>> {
+        self.world
+            .get_resource::<crate::components::ProcessPlanning>()?;
+        let entity = *self.world.resource::<VesselIndex>().0.get(tag)?;
+        self.world
+            .get::<crate::components::VesselFabPlan>(entity)
             .map(|p| p.0.clone())
     }
 

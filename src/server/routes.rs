@@ -17,6 +17,7 @@
 //! GET  /drawing.svg?vessel=T  the vessel's drawing sheet
 //! GET  /drawing.dxf?vessel=T  the same sheet as DXF (a download)
 //! GET  /traveler.html?vessel=T the vessel's shop traveler (`traveler`), also .csv
+//! GET  /plates.json?vessel=T    its plates; /plates/<id>.dxf?vessel=T one plate's DXF
 //! GET  /ws                    the viewer stream (see `broadcast`)
 //! ```
 //!
@@ -67,6 +68,8 @@ pub fn router(state: AppState) -> Router {
         .route("/vessel.json", get(vessel_json))
         .route("/traveler.html", get(super::traveler::traveler_page))
         .route("/traveler.csv", get(super::traveler::traveler_table))
+        .route("/plates.json", get(super::traveler::plate_list))
+        .route("/plates/{file}", get(super::traveler::plate_dxf))
         .route("/ws", get(viewer_socket))
         .fallback(not_found)
         .layer(DefaultBodyLimit::max(MAX_BODY))

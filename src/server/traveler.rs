@@ -1,6 +1,10 @@
 //! `GET /traveler.html?vessel=TAG` and `GET /traveler.csv?vessel=TAG`: the shop
 //! traveler of one vessel of the live design (`fab::process_plan` with the
-//! built-in shop rules), made on request from the session's current design.
+//! built-in shop rules), made on request from the session's current design;
+//! `GET /plates.json?vessel=TAG` lists its plates (id, DXF file, course,
+//! thickness, outline size) and `GET /plates/<plate id>.dxf?vessel=TAG`
+//! serves one plate's 1:1 mm cutting DXF (`fab::plate_dxf`), the same file
+//! `vesselcad fab` writes.
 
 use axum::extract::{Query, State};
 use axum::http::{HeaderValue, header};
@@ -9,9 +13,8 @@ use serde::Deserialize;
 
 use super::error::ApiError;
 use super::state::AppState;
-use crate::design::resolve;
 use crate::fab::traveler::{traveler_csv, traveler_html};
-use crate::fab::{ShopRules, process_plan};
+use crate::fab::{ShopRules, plan_process};
 
 /// The query of the traveler routes.
 #[derive(Deserialize)]
@@ -48,13 +51,9 @@ async fn traveler(
                     known: design.vessels.iter().map(|v| v.tag.clone()).collect(),
                 });
             };
-            let resolved = resolve(&design).map_err(|e| ApiError::Plan(e.to_string()))?;
-            let plan = process_plan(
-                &design.vessels[index],
-                &resolved[index],
-                &ShopRules::builtin(),
-            )
-            .map_err(|e| ApiError::Plan(e.to_string()))?;
+            let tag = &design.vessels[index].tag;
+            let (_, plan) = plan_process(&design, tag, &ShopRules::builtin())
+                .map_err(|e| ApiError::Plan(e.to_string()))?;
             Ok(match format {
                 Format::Html => traveler_html(&plan, "live design"),
                 Format::Csv => traveler_csv(&plan),
@@ -68,6 +67,94 @@ async fn traveler(
     Ok((
         [(header::CONTENT_TYPE, HeaderValue::from_static(content_type))],
         body,
+    )
+        .into_response())
+}
+
+/// The plate layout of the vessel queried, from the session's design.
+async fn fab_plan_of(
+    state: &AppState,
+    route: &'static str,
+    query: Result<Query<TravelerQuery>, axum::extract::rejection::QueryRejection>,
+) -> Result<crate::fab::FabPlan, ApiError> {
+    let Ok(Query(TravelerQuery { vessel: Some(tag) })) = query else {
+        return Err(ApiError::BadQuery(format!("expected {route}?vessel=<tag>")));
+    };
+    state
+        .with_session(move |s, _| {
+            let design = s.model().design();
+            if !design.vessels.iter().any(|v| v.tag == tag) {
+                return Err(ApiError::UnknownVessel {
+                    tag,
+                    known: design.vessels.iter().map(|v| v.tag.clone()).collect(),
+                });
+            }
+            crate::fab::plan(&design, &tag, &ShopRules::builtin().plates)
+                .map_err(|e| ApiError::Plan(e.to_string()))
+        })
+        .await
+}
+
+/// `GET /plates.json?vessel=TAG`: the vessel's plates.
+pub async fn plate_list(
+    State(state): State<AppState>,
+    query: Result<Query<TravelerQuery>, axum::extract::rejection::QueryRejection>,
+) -> Result<Response, ApiError> {
+    let plan = fab_plan_of(&state, "/plates.json", query).await?;
+    let plates: Vec<_> = plan
+        .plates
+        .iter()
+        .map(|p| {
+            let (w, h) = p.outline.extent();
+            serde_json::json!({
+                "id": p.id,
+                "file": p.file_name(),
+                "part": p.part,
+                "course": p.course,
+                "thickness": p.thickness,
+                "size": [w, h],
+                "openings": p.openings.iter().map(|o| o.mark.clone()).collect::<Vec<_>>(),
+            })
+        })
+        .collect();
+    Ok(axum::Json(serde_json::json!({ "vessel": plan.tag, "plates": plates })).into_response())
+}
+
+/// `GET /plates/<plate id>.dxf?vessel=TAG`: one plate's cutting DXF.
+pub async fn plate_dxf(
+    State(state): State<AppState>,
+    axum::extract::Path(file): axum::extract::Path<String>,
+    query: Result<Query<TravelerQuery>, axum::extract::rejection::QueryRejection>,
+) -> Result<Response, ApiError> {
+    let plan = fab_plan_of(&state, "/plates/<plate id>.dxf", query).await?;
+    let Some(plate) = plan.plates.iter().find(|p| p.file_name() == file) else {
+        let known: Vec<String> = plan.plates.iter().map(|p| p.file_name()).collect();
+        return Err(ApiError::NotFound(format!(
+            "/plates/{file}: vessel {} has the plates {}",
+            plan.tag,
+            known.join(", ")
+        )));
+    };
+    let course = &plan.seams.courses[plate.course_index];
+    let rolled = &plan.developments.rolled[course.rolled];
+    let mut bytes = Vec::new();
+    crate::fab::plate_dxf::plate_drawing(plate, &plan.grade, rolled, course)
+        .save(&mut bytes)
+        .map_err(|e| ApiError::Plan(format!("{file}: {e}")))?;
+    let disposition = format!("attachment; filename=\"{}\"", file.replace('"', "_"));
+    Ok((
+        [
+            (
+                header::CONTENT_TYPE,
+                HeaderValue::from_static("image/vnd.dxf"),
+            ),
+            (
+                header::CONTENT_DISPOSITION,
+                HeaderValue::from_str(&disposition)
+                    .unwrap_or(HeaderValue::from_static("attachment")),
+            ),
+        ],
+        bytes,
     )
         .into_response())
 }

@@ -1,0 +1,263 @@
+//! The fabrication plan of one vessel ([`FabPlan`]): developments, openings,
+//! seams and plates, made from nothing ([`plan`]) or from a previous plan of
+//! the same vessel keeping what an edit left unchanged ([`plan_vessel`]),
+//! which is how the live model keeps flat patterns current: moving a nozzle
+//! develops its opening and its plate(s) again and lays out the seams of its
+//! part (and of the parts above, only if those seams moved).
+
+use glam::DVec2;
+
+use std::sync::Arc;
+
+use super::develop::{self, Developments};
+use super::error::FabError;
+use super::nest::{self, Nesting, Piece};
+use super::openings::{self, Openings};
+use super::plates::{self, Plate};
+use super::seams::{self, Prior, SeamLayout};
+use super::shop::Shop;
+use crate::constraints::{ResolvedVessel, resolve_vessel};
+use crate::format::{Design, VesselDesign};
+
+/// The fabrication plan of one vessel.
+#[derive(Clone, Debug, PartialEq)]
+pub struct FabPlan {
+    /// The vessel's tag.
+    pub tag: String,
+    /// The material grade of its plates (the design's material, or
+    /// `"unspecified"`).
+    pub grade: String,
+    /// The vessel as resolved.
+    pub resolved: ResolvedVessel,
+    /// The developments of its parts.
+    pub developments: Developments,
+    /// Its openings, pads and neck ends.
+    pub openings: Openings,
+    /// Its courses and seams, with the deficiencies found.
+    pub seams: SeamLayout,
+    /// Its plates.
+    pub plates: Vec<Arc<Plate>>,
+    /// The shop data it was planned with.
+    pub shop: Shop,
+    /// The vessel's design it was planned from, and its index in the design.
+    pub vessel: VesselDesign,
+    /// The vessel's index in its design.
+    pub index: usize,
+}
+
+/// What [`plan_vessel`] did again rather than keep from the previous plan.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+pub struct FabWork {
+    /// Rolled parts and heads developed.
+    pub parts: usize,
+    /// Nozzles whose opening, pad and neck end were developed.
+    pub openings: usize,
+    /// Courses whose seams were laid out and checked.
+    pub courses: usize,
+    /// Plates cut.
+    pub plates: usize,
+}
+
+impl FabPlan {
+    /// The pieces to nest: plates (net of openings), pads, head blanks.
+    pub fn pieces(&self) -> Vec<Piece> {
+        let mut out: Vec<Piece> = self
+            .plates
+            .iter()
+            .map(|p| {
+                let (w, h) = p.outline.extent();
+                let holes: f64 = p
+                    .openings
+                    .iter()
+                    .map(|o| openings::polygon_area(&o.contour).abs())
+                    .sum();
+                Piece {
+                    id: p.id.clone(),
+                    thickness: p.thickness,
+                    size: DVec2::new(w, h),
+                    area: p.outline.area() - holes,
+                }
+            })
+            .collect();
+        for cut in &self.openings.cuts {
+            if let Some(pad) = &cut.pad {
+                let (lo, hi) = pad.outline.iter().fold(
+                    (DVec2::splat(f64::INFINITY), DVec2::splat(f64::NEG_INFINITY)),
+                    |(lo, hi), p| (lo.min(*p), hi.max(*p)),
+                );
+                out.push(Piece {
+                    id: format!("{}-{}-PAD", self.tag, cut.mark),
+                    thickness: pad.thickness,
+                    size: hi - lo,
+                    area: pad.area(),
+                });
+            }
+        }
+        for h in &self.developments.heads {
+            out.push(Piece {
+                id: format!("{}-{}-BLANK", self.tag, h.id),
+                thickness: h.thickness,
+                size: DVec2::splat(h.diameter),
+                area: 0.25 * std::f64::consts::PI * h.diameter * h.diameter,
+            });
+        }
+        out
+    }
+
+    /// Nests [`pieces`](Self::pieces) on the shop's stock sheets.
+    pub fn nesting(&self, shop: &Shop) -> Nesting {
+        nest::nest(
+            &self.pieces(),
+            shop.sheet_length,
+            shop.sheet_width,
+            shop.nest_gap,
+        )
+    }
+}
+
+/// Plans the fabrication of vessel `tag` of `design` with `shop` data.
+///
+/// # Errors
+///
+/// [`FabError::UnknownVessel`], or [`FabError::Rules`] with every broken
+/// design or fabrication rule (a part without thickness, a neck that does
+/// not lie on its course, loop validity). Seams that cannot keep their
+/// clearance or stagger are not errors: they are the plan's
+/// [`SeamLayout::deficiencies`].
+pub fn plan(design: &Design, tag: &str, shop: &Shop) -> Result<FabPlan, FabError> {
+    let (index, vessel) = design
+        .vessels
+        .iter()
+        .enumerate()
+        .find(|(_, v)| v.tag == tag)
+        .ok_or_else(|| FabError::UnknownVessel { tag: tag.into() })?;
+    let resolved = resolve_vessel(vessel, index).map_err(FabError::Rules)?;
+    plan_vessel(vessel, index, &resolved, shop, None).map(|(p, _)| p)
+}
+
+/// Plans the fabrication of `vessel` (index `index` of its design) resolved as
+/// `resolved`, keeping from `previous` (a plan of the same vessel) whatever
+/// its inputs leave unchanged: a part's development when the part is the
+/// same, a nozzle's cuts when the nozzle and its course are, a part's seams
+/// when its development, openings and the course below are, a plate when
+/// its course, part and openings are. The result equals a plan made from
+/// nothing; [`FabWork`] counts what was done again.
+///
+/// # Errors
+///
+/// As [`plan`].
+pub fn plan_vessel(
+    vessel: &VesselDesign,
+    index: usize,
+    resolved: &ResolvedVessel,
+    shop: &Shop,
+    previous: Option<&FabPlan>,
+) -> Result<(FabPlan, FabWork), FabError> {
+    let previous = previous.filter(|p| p.shop == *shop && p.index == index);
+    let mut work = FabWork::default();
+    let mut developments = Developments::default();
+    let mut errors = Vec::new();
+    for (i, part) in resolved.parts.iter().enumerate() {
+        let same_design = |p: &FabPlan| {
+            let at = |v: &VesselDesign| v.parts.iter().position(|d| d.id() == part.id);
+            let (old, new) = (at(&p.vessel), at(vessel));
+            old == new && new.is_none_or(|k| p.vessel.parts[k] == vessel.parts[k])
+        };
+        let kept = previous
+            .filter(|p| p.resolved.parts.get(i) == Some(part) && same_design(p))
+            .map(|p| p.developments.of_part(i, &part.id));
+        let d = match kept {
+            Some(d) => d,
+            None => match develop::develop_one(vessel, index, resolved, i) {
+                Ok(d) => {
+                    work.parts += usize::from(d.is_some());
+                    d
+                }
+                Err(e) => {
+                    errors.push(e);
+                    continue;
+                }
+            },
+        };
+        if let Some(d) = d {
+            developments.push(d);
+        }
+    }
+    if !errors.is_empty() {
+        return Err(FabError::Rules(errors));
+    }
+    let mut openings = Openings::default();
+    for (i, nozzle) in resolved.nozzles.iter().enumerate() {
+        let course = openings::host_course(resolved, &developments, i);
+        let kept = previous.and_then(|p| {
+            let same = p.resolved.nozzles.get(i) == Some(nozzle)
+                && openings::host_course(&p.resolved, &p.developments, i) == course
+                && course
+                    .is_none_or(|c| p.developments.rolled.get(c) == developments.rolled.get(c));
+            if !same {
+                return None;
+            }
+            match course {
+                Some(_) => p
+                    .openings
+                    .cuts
+                    .iter()
+                    .find(|c| c.nozzle == i)
+                    .map(|c| openings::NozzleOutcome::Cut(Box::new(c.clone()))),
+                None => None,
+            }
+        });
+        let outcome = match kept {
+            Some(o) => o,
+            None => {
+                work.openings += usize::from(course.is_some());
+                match openings::cut_nozzle(index, resolved, &developments, shop, i) {
+                    Ok(o) => o,
+                    Err(e) => {
+                        errors.push(e);
+                        continue;
+                    }
+                }
+            }
+        };
+        openings.push(outcome);
+    }
+    if !errors.is_empty() {
+        return Err(FabError::Rules(errors));
+    }
+    let prior = previous.map(|p| Prior {
+        developments: &p.developments,
+        openings: &p.openings,
+        seams: &p.seams,
+    });
+    let tag = &resolved.tag;
+    let (seams, courses) = seams::lay_out_reusing(tag, &developments, &openings, shop, prior);
+    work.courses = courses;
+    if !seams.errors.is_empty() {
+        return Err(FabError::Rules(seams.errors));
+    }
+    let old_plates = previous.map(|p| p.plates.as_slice());
+    let (plates, cut) =
+        plates::cut_plates_reusing(tag, &developments, &openings, &seams, prior.zip(old_plates));
+    work.plates = cut;
+    let grade = vessel
+        .design
+        .material
+        .clone()
+        .unwrap_or_else(|| "unspecified".into());
+    Ok((
+        FabPlan {
+            tag: tag.clone(),
+            grade,
+            resolved: resolved.clone(),
+            developments,
+            openings,
+            seams,
+            plates,
+            shop: shop.clone(),
+            vessel: vessel.clone(),
+            index,
+        },
+        work,
+    ))
+}
