@@ -7,35 +7,51 @@ use std::collections::HashMap;
 
 use glam::{DAffine3, DVec2, DVec3};
 
-use crate::nurbs::{NurbsCurve, NurbsSurface};
+use crate::nurbs::{KnotVector, NurbsCurve, NurbsSurface};
 
 /// An edge's curve, in the vessel frame.
 #[derive(Clone, Debug, PartialEq)]
 pub enum EdgeCurve {
     /// An exact isocurve of a patch, over its own parameter range.
     Nurbs(NurbsCurve),
-    /// A sampled intersection loop: the points in order, the first repeated at
-    /// the end; parameter k at point k.
-    Polyline(Vec<DVec3>),
+    /// An opening's intersection loop, or an arc of it: a polynomial B-spline
+    /// over the neck's parameter, the exact curve's samples joined by straight
+    /// segments while the B-rep is built, fitted as a cubic within the exchange
+    /// tolerance once it is (see `fit`). Each use's pcurve holds the control
+    /// points of a B-spline in (u, v) on this curve's knots and degree.
+    Loop(NurbsCurve),
 }
 
 impl EdgeCurve {
     /// The parameter range.
     pub fn domain(&self) -> (f64, f64) {
         match self {
-            EdgeCurve::Nurbs(c) => c.domain(),
-            EdgeCurve::Polyline(p) => (0.0, (p.len() - 1) as f64),
+            EdgeCurve::Nurbs(c) | EdgeCurve::Loop(c) => c.domain(),
         }
     }
 
     /// The point at parameter `t`.
     pub fn point(&self, t: f64) -> DVec3 {
         match self {
-            EdgeCurve::Nurbs(c) => c.point(t),
-            EdgeCurve::Polyline(p) => {
-                let k = (t.floor() as usize).min(p.len() - 2);
-                p[k].lerp(p[k + 1], t - k as f64)
+            EdgeCurve::Nurbs(c) | EdgeCurve::Loop(c) => c.point(t),
+        }
+    }
+
+    /// A use's pcurve as a B-spline in (u, v) (z = 0) over this curve's
+    /// parameter: a straight line over the range of an exact side, the
+    /// control points `pcurve` on the loop's knots for a loop.
+    ///
+    /// # Errors
+    ///
+    /// The kernel's error where the points do not fit the knots.
+    pub fn pcurve(&self, pcurve: &[DVec2]) -> Result<NurbsCurve, crate::nurbs::NurbsError> {
+        let points: Vec<DVec3> = pcurve.iter().map(|p| p.extend(0.0)).collect();
+        match self {
+            EdgeCurve::Nurbs(c) => {
+                let (a, b) = c.domain();
+                NurbsCurve::try_polynomial(KnotVector::try_new(1, vec![a, a, b, b])?, &points)
             }
+            EdgeCurve::Loop(c) => NurbsCurve::try_polynomial(c.knots().clone(), &points),
         }
     }
 }
@@ -58,8 +74,10 @@ pub struct OrientedEdge {
     pub edge: usize,
     /// Whether the loop runs along the edge's curve direction.
     pub forward: bool,
-    /// The pcurve in the face's (u, v), degree 1 over the edge's parameter:
-    /// two points for an exact edge (its ends), one per sample for a loop.
+    /// The pcurve in the face's (u, v), in the edge's direction and over its
+    /// parameter ([`EdgeCurve::pcurve`]): two points for an exact edge (its
+    /// ends, a straight line), control points on the curve's knots for a loop
+    /// (the first and last are its ends).
     pub pcurve: Vec<DVec2>,
 }
 

@@ -281,6 +281,12 @@ impl VesselWriter<'_> {
         self.curve(1, &knots, points, None, planar)
     }
 
+    /// A polynomial B-spline in parameter space (z = 0).
+    fn spline2(&mut self, c: &NurbsCurve) -> usize {
+        let points = c.control_points();
+        self.curve(c.degree(), c.knots().as_slice(), &points, None, true)
+    }
+
     /// A NURBS curve in model space.
     fn nurbs(&mut self, c: &NurbsCurve) -> usize {
         let points = c.control_points();
@@ -330,27 +336,14 @@ impl VesselWriter<'_> {
             if e.forward { (a, b) } else { (b, a) }
         };
         for (k, e) in uses.iter().enumerate() {
-            let mut uv: Vec<DVec3> = e.pcurve.iter().map(|p| p.extend(0.0)).collect();
             let edge = &self.brep.edges[e.edge];
-            let model = match &edge.curve {
-                EdgeCurve::Nurbs(c) => {
-                    let c = c.transformed(&frame)?;
-                    let c = if e.forward { c } else { c.reversed() };
-                    self.nurbs(&c)
-                }
-                EdgeCurve::Polyline(points) => {
-                    let mut points: Vec<DVec3> =
-                        points.iter().map(|&p| frame.transform_point3(p)).collect();
-                    if !e.forward {
-                        points.reverse();
-                    }
-                    self.polyline(&points, false)
-                }
-            };
-            if !e.forward {
-                uv.reverse();
-            }
-            params.push(self.polyline(&uv, true));
+            let (EdgeCurve::Nurbs(c) | EdgeCurve::Loop(c)) = &edge.curve;
+            let c = c.transformed(&frame)?;
+            let c = if e.forward { c } else { c.reversed() };
+            let model = self.nurbs(&c);
+            let pcurve = edge.curve.pcurve(&e.pcurve)?;
+            let pcurve = if e.forward { pcurve } else { pcurve.reversed() };
+            params.push(self.spline2(&pcurve));
             models.push(model);
             // A pole side left out between this use and the next.
             let end = ends(e).1;

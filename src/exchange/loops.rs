@@ -1,7 +1,7 @@
 //! The loops bounding each face, gathered for one vessel: vertices matched
 //! within the vessel's match distance (per group: the envelope, each support),
 //! exact sides shared between neighbouring faces, opening loops as sampled
-//! edges, and the uses of those edges with their pcurves: a hole, an arc of a
+//! edges (fitted once every face is bounded, in `fit`), and the uses of those edges with their pcurves: a hole, an arc of a
 //! hole across a closed patch's seam, a loop round a pole, a pad's annulus
 //! (on its surface with the seam moved half a turn where its loops cross it).
 
@@ -13,7 +13,7 @@ use super::brep::{Edge, EdgeCurve, OrientedEdge};
 use super::seam::seam_moved;
 use crate::mesh::closed_in_u;
 use crate::nurbs::intersect::IntersectionLoop;
-use crate::nurbs::{NurbsCurve, NurbsSurface};
+use crate::nurbs::{KnotVector, NurbsCurve, NurbsSurface};
 
 /// The index of the sample of `uv` on `surface`'s u-seam.
 pub(super) fn seam_index(uv: &[DVec2], surface: &NurbsSurface) -> Option<usize> {
@@ -38,6 +38,8 @@ pub(super) struct Builder {
     pub(super) edges: Vec<Edge>,
     /// Exact edges by their (smaller, larger) vertex pair.
     pub(super) by_ends: HashMap<(usize, usize), Vec<usize>>,
+    /// Each loop edge with the parameters its fit must keep as nodes.
+    pub(super) loop_breaks: Vec<(usize, Vec<f64>)>,
 }
 
 /// The edges of one opening loop: `(edge, first sample, last sample)` in loop
@@ -96,14 +98,19 @@ impl Builder {
     }
 
     /// The edges through a loop's samples, mapped from the host part's frame
-    /// into the vessel's: one closed edge, or two split at sample `split` (the
-    /// sample on the seam of a host the loop goes round).
+    /// into the vessel's: one closed edge, or several split at the samples
+    /// `splits` (on the seam of a host the loop goes round or crosses). Each
+    /// is a degree-1 [`EdgeCurve::Loop`] over the neck's parameter (one period
+    /// on at the loop's closing sample), `neck_knots` being the distinct knots
+    /// of the neck's u (its domain's ends first and last), whose interior ones
+    /// are kept as breaks for the fit.
     pub(super) fn loop_edges(
         &mut self,
         curve: &IntersectionLoop,
         host_frame: &DAffine3,
         splits: &[usize],
-    ) -> LoopEdges {
+        neck_knots: &[f64],
+    ) -> Result<LoopEdges, String> {
         let mut points: Vec<DVec3> = curve
             .points
             .iter()
@@ -111,24 +118,38 @@ impl Builder {
             .collect();
         points.push(points[0]);
         let n = curve.points.len();
+        let (first, last) = (neck_knots[0], neck_knots[neck_knots.len() - 1]);
+        let period = last - first;
+        let mut params: Vec<f64> = curve.neck_uv.iter().map(|p| p.x).collect();
+        params.push(params[0] + period);
+        let breaks: Vec<f64> = (0..2)
+            .flat_map(|turn| neck_knots.iter().map(move |k| k + f64::from(turn) * period))
+            .collect();
         let mut bounds: Vec<usize> = vec![0];
         bounds.extend(splits.iter().copied().filter(|&k| k > 0 && k < n));
         bounds.push(n);
-        let parts = bounds
-            .windows(2)
-            .map(|w| {
-                let (from, to) = (w[0], w[1]);
-                let start = self.vertex(points[from]);
-                let end = self.vertex(points[to]);
-                self.edges.push(Edge {
-                    start,
-                    end,
-                    curve: EdgeCurve::Polyline(points[from..=to].to_vec()),
-                });
-                (self.edges.len() - 1, from, to)
-            })
-            .collect();
-        LoopEdges { parts }
+        let mut parts = Vec::with_capacity(bounds.len() - 1);
+        for w in bounds.windows(2) {
+            let (from, to) = (w[0], w[1]);
+            let start = self.vertex(points[from]);
+            let end = self.vertex(points[to]);
+            let mut knots = Vec::with_capacity(to - from + 3);
+            knots.push(params[from]);
+            knots.extend_from_slice(&params[from..=to]);
+            knots.push(params[to]);
+            let line = KnotVector::try_new(1, knots)
+                .and_then(|k| NurbsCurve::try_polynomial(k, &points[from..=to]))
+                .map_err(|e| format!("an opening loop's samples do not make a curve: {e}"))?;
+            self.edges.push(Edge {
+                start,
+                end,
+                curve: EdgeCurve::Loop(line),
+            });
+            let edge = self.edges.len() - 1;
+            self.loop_breaks.push((edge, breaks.clone()));
+            parts.push((edge, from, to));
+        }
+        Ok(LoopEdges { parts })
     }
 
     /// The uses of a loop's edges along the loop's order, each with its slice

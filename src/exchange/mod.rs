@@ -15,6 +15,7 @@
 mod blocks;
 mod brep;
 mod error;
+mod fit;
 mod iges;
 mod iges_model;
 mod loops;

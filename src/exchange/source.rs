@@ -71,6 +71,9 @@ pub struct VesselSource {
     pub nodes: Vec<NodeSource>,
     /// Openings: boots first, then nozzles, in design order.
     pub cuts: Vec<CutSource>,
+    /// The exchange tolerance the openings were cut to, mm: the loops' fit
+    /// keeps within it too.
+    pub tolerance: f64,
 }
 
 /// Builds the exact model of the vessels of `design` whose tags are in `tags`
@@ -197,5 +200,6 @@ pub(super) fn vessel_source(
         frame: vessel.frame,
         nodes,
         cuts,
+        tolerance,
     })
 }

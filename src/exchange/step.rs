@@ -240,17 +240,19 @@ impl Writer {
         id
     }
 
-    /// A degree-1 curve through `points` with parameter `knots[k]` at point k.
-    fn polyline(&mut self, points: &[usize], knots: &[f64]) -> usize {
+    /// A polynomial B-spline in (u, v) of `degree` through the 2D points
+    /// `points` over the whole knot vector `knots`.
+    fn spline2(&mut self, degree: usize, knots: &[f64], points: &[usize]) -> usize {
         let id = self.begin();
-        self.out.push_str("B_SPLINE_CURVE_WITH_KNOTS('',1,");
+        let form = if degree == 1 {
+            ".POLYLINE_FORM."
+        } else {
+            ".UNSPECIFIED."
+        };
+        let _ = write!(self.out, "B_SPLINE_CURVE_WITH_KNOTS('',{degree},");
         self.refs(points);
-        self.out.push_str(",.POLYLINE_FORM.,.U.,.F.,");
-        let mut all = Vec::with_capacity(knots.len() + 2);
-        all.push(knots[0]);
-        all.extend_from_slice(knots);
-        all.push(knots[knots.len() - 1]);
-        self.knots(&all);
+        let _ = write!(self.out, ",{form},.U.,.F.,");
+        self.knots(knots);
         self.out.push_str(",.UNSPECIFIED.)");
         self.end();
         id
@@ -394,23 +396,23 @@ pub fn vessel_block(brep: &VesselBrep, solids: bool) -> StepBlock {
         .iter()
         .zip(&uses)
         .map(|(edge, uses)| {
-            let (curve, knots) = match &edge.curve {
-                EdgeCurve::Nurbs(c) => {
-                    let (a, b) = c.domain();
-                    (w.curve3(c), vec![a, b])
-                }
-                EdgeCurve::Polyline(points) => {
-                    let ids: Vec<usize> = points.iter().map(|&p| w.point3(p)).collect();
-                    let knots: Vec<f64> = (0..points.len()).map(|k| k as f64).collect();
-                    (w.polyline(&ids, &knots), knots)
-                }
+            let curve = match &edge.curve {
+                EdgeCurve::Nurbs(c) | EdgeCurve::Loop(c) => w.curve3(c),
             };
             let geometry = if (1..=2).contains(&uses.len()) {
                 let pcurves: Vec<usize> = uses
                     .iter()
                     .map(|(f, e)| {
                         let points: Vec<usize> = e.pcurve.iter().map(|&p| w.point2(p)).collect();
-                        let line = w.polyline(&points, &knots);
+                        let line = match &edge.curve {
+                            EdgeCurve::Nurbs(c) => {
+                                let (a, b) = c.domain();
+                                w.spline2(1, &[a, a, b, b], &points)
+                            }
+                            EdgeCurve::Loop(c) => {
+                                w.spline2(c.degree(), c.knots().as_slice(), &points)
+                            }
+                        };
                         let representation = w.begin();
                         let _ = write!(
                             w.out,

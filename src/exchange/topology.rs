@@ -17,10 +17,10 @@
 //!   within the vessel's match distance, and three interior points at the same
 //!   fractions of their parameter ranges, taken either way round); each face's
 //!   use of an edge carries its pcurve, a straight line in (u, v) over the edge's
-//!   parameter range; an opening's edge is its intersection loop as sampled to
-//!   the exchange tolerance, a closed degree-1 curve through the samples, with
-//!   each face's (u, v) of the same samples for its pcurve (the marcher bounds the
-//!   chord's distance from both surfaces' images of the pcurve segment);
+//!   parameter range; an opening's edge is its intersection loop, marched to
+//!   the exchange tolerance and fitted (`fit`) as a cubic B-spline over the
+//!   neck's parameter, with each face's pcurve fitted on the same knots, all
+//!   within the tolerance of the exact curve;
 //! - shells: the faces joined through shared edges, closed when every edge of
 //!   the shell is used twice.
 
@@ -34,6 +34,7 @@ use glam::DVec3;
 
 use super::brep::{Face, Port, VesselBrep, shells};
 use super::error::ExchangeError;
+use super::fit::fit_loops;
 use super::loops::{Builder, Hole, LoopEdges, SeamHole, seam_index};
 use super::seam::{on_pad_cylinder, uv_with_inserted, with_seam_samples};
 use super::source::{NodeKind, VesselSource};
@@ -94,6 +95,7 @@ pub fn vessel_brep_with(
         group: 0,
         edges: Vec::new(),
         by_ends: HashMap::new(),
+        loop_breaks: Vec::new(),
     };
     let entity = |node: usize| format!("{}/{}", source.tag, source.nodes[node].id);
 
@@ -192,14 +194,27 @@ pub fn vessel_brep_with(
                 }
             }
         }
+        // The neck's u knots: the loops' parameter and its breaks (a pad's
+        // outside cylinder is revolved as the neck is).
+        let neck_knots = source.nodes[cut.neck]
+            .patches
+            .first()
+            .map(|p| p.surface.u_knots().distinct())
+            .unwrap_or_default();
+        let no_neck = || fail(0, "the opening's neck has no patch");
+        if neck_knots.len() < 2 {
+            return Err(no_neck());
+        }
         let neck_edges = {
             let neck_loop = seam_loops[c].as_ref().unwrap_or(&cut.cut.neck);
-            builder.loop_edges(neck_loop, &host_frame, &splits)
+            builder
+                .loop_edges(neck_loop, &host_frame, &splits, &neck_knots)
+                .map_err(|rule| fail(0, &rule))?
         };
         let hole_edges = match (&pad_seam_loops[c], &cut.cut.pad) {
-            (Some(pad_loop), _) | (None, Some(pad_loop)) => {
-                builder.loop_edges(pad_loop, &host_frame, &pad_splits)
-            }
+            (Some(pad_loop), _) | (None, Some(pad_loop)) => builder
+                .loop_edges(pad_loop, &host_frame, &pad_splits, &neck_knots)
+                .map_err(|rule| fail(0, &rule))?,
             (None, None) => neck_edges.clone(),
         };
         if let Some((k, seam, uv)) = seam_host {
@@ -371,6 +386,17 @@ pub fn vessel_brep_with(
         });
     }
 
+    fit_loops(
+        &mut builder.edges,
+        &mut faces,
+        &builder.loop_breaks,
+        source.tolerance,
+    )
+    .map_err(|(edge, rule)| ExchangeError::Topology {
+        entity: source.tag.clone(),
+        patch: format!("opening loop edge {edge}"),
+        rule,
+    })?;
     let shells = shells(&faces, builder.edges.len());
     let ports = source
         .nodes
