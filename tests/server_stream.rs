@@ -413,7 +413,9 @@ fn concurrent_editors_reach_every_viewer_once_in_revision_order() {
                 tokio::task::spawn_blocking(move || {
                     (0..EACH)
                         .map(|k| {
-                            let value = 1300 + 10 * (k % 3);
+                            // Each vessel's first nozzle, from its projection in the
+                            // example plant outwards.
+                            let value = [1500, 1500, 1400, 4300][e] + 20 * (k % 3);
                             let path = format!("/vessels/{e}/nozzles/0/projection");
                             let patch = json!([{ "op": "replace", "path": path, "value": value }]);
                             let r = server_support::request(
