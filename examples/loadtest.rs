@@ -7,8 +7,12 @@
 //!
 //! ```sh
 //! cargo run --release --example loadtest -- --viewers 50 --editors 5 --seconds 20
-//! #   [--design examples/designs/small-plant.json] [--tolerance 0.5] [--progressive]
+//! #   [--design examples/designs/small-plant.json | --plant 1000] [--tolerance 0.5]
+//! #   [--progressive]
 //! ```
+//!
+//! `--plant N` serves the generated plant of `vesselcad plant generate --vessels
+//! N --seed 1` instead of a design file.
 //!
 //! Each editor changes one nozzle's projection back and forth (editor e: vessel
 //! e mod V, nozzle e div V) with JSON Patches over HTTP, one request after the
@@ -38,6 +42,8 @@ struct Args {
     tolerance: f64,
     /// Viewers connect to `/ws?progressive=1` (hello without the whole GLB).
     progressive: bool,
+    /// Serve a generated plant of this many vessels instead of `design`.
+    plant: Option<usize>,
 }
 
 fn args() -> Args {
@@ -52,6 +58,7 @@ fn args() -> Args {
         .into(),
         tolerance: TessellationOptions::DEFAULT.tolerance,
         progressive: false,
+        plant: None,
     };
     let mut list: Vec<String> = std::env::args().skip(1).collect();
     if let Some(k) = list.iter().position(|a| a == "--progressive") {
@@ -70,6 +77,7 @@ fn args() -> Args {
             "--seconds" => a.seconds = value.parse().unwrap_or_else(|_| bad()),
             "--design" => a.design = value.into(),
             "--tolerance" => a.tolerance = value.parse().unwrap_or_else(|_| bad()),
+            "--plant" => a.plant = Some(value.parse().unwrap_or_else(|_| bad())),
             other => {
                 eprintln!("unknown argument {other}");
                 std::process::exit(2)
@@ -134,7 +142,16 @@ async fn main() {
     let dir = std::env::temp_dir().join(format!("vesselcad-loadtest-{}", std::process::id()));
     std::fs::create_dir_all(&dir).expect("temp folder");
     let design_path = dir.join("design.json");
-    std::fs::copy(&args.design, &design_path).expect("cannot copy the design");
+    match args.plant {
+        Some(n) => {
+            let plant = vesselcad::plant::generate_plant(n, 1).expect("a generated plant");
+            std::fs::write(&design_path, vesselcad::design::to_canonical_json(&plant))
+                .expect("cannot write the plant");
+        }
+        None => {
+            std::fs::copy(&args.design, &design_path).expect("cannot copy the design");
+        }
+    }
     let design: Value =
         serde_json::from_str(&std::fs::read_to_string(&design_path).unwrap()).expect("design JSON");
     let vessels = design["vessels"].as_array().map_or(0, Vec::len).max(1);
@@ -154,7 +171,8 @@ async fn main() {
         },
         args.editors,
         args.seconds,
-        args.design,
+        args.plant
+            .map_or(args.design.clone(), |n| format!("generated plant of {n}")),
         vessels,
         args.tolerance
     );
@@ -173,9 +191,13 @@ async fn main() {
         let stop_at = stop_at.clone();
         viewer_tasks.push(tokio::spawn(async move {
             // Whole-plant GLBs can pass tungstenite's default 16 MiB message limit.
+            // A smaller read buffer than the default 128 KiB: tungstenite zeroes
+            // it on every read, which took a sixth of the run's CPU (the
+            // viewers share the machine with the server they measure).
             let config = WebSocketConfig::default()
                 .max_message_size(None)
-                .max_frame_size(None);
+                .max_frame_size(None)
+                .read_buffer_size(16 * 1024);
             let (mut ws, _) = tokio_tungstenite::connect_async_with_config(url, Some(config), true)
                 .await
                 .expect("ws connect");

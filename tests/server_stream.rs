@@ -361,3 +361,100 @@ fn a_quiet_viewer_outlives_the_idle_timeout() {
         assert_eq!(delta["revision"], answer["revision"]);
     });
 }
+
+/// Applies a delta to a viewer's model as the viewer does.
+fn apply_delta(model: &mut ModelView, delta: &Value, glb: &[u8]) {
+    let changed: Vec<String> = serde_json::from_value(delta["changed"].clone()).unwrap();
+    let removed: Vec<String> = serde_json::from_value(delta["removed"].clone()).unwrap();
+    let part = view(glb);
+    for id in &removed {
+        model.nodes.remove(id);
+        model.vessels.remove(id);
+    }
+    for (tag, transform) in part.vessels {
+        if changed.contains(&tag) || !model.vessels.contains_key(&tag) {
+            model.vessels.insert(tag, transform);
+        }
+    }
+    model.nodes.extend(part.nodes);
+}
+
+/// Editors working at once: each delta is written after the session lock is
+/// let go, yet every viewer gets each revision once, in order, and the deltas
+/// applied give the server's final model.
+#[test]
+fn concurrent_editors_reach_every_viewer_once_in_revision_order() {
+    const EDITORS: usize = 4;
+    const EACH: usize = 8;
+    let total = (EDITORS * EACH) as u64;
+    let design = design_copy("small-plant.json", "stream-concurrent");
+    let server = ServerProcess::start(&design, &[]);
+    runtime().block_on(async {
+        let mut readers = Vec::new();
+        for _ in 0..3 {
+            let mut ws = connect(&server).await;
+            let (hello, glb) = next_pair(&mut ws).await;
+            assert_eq!(hello["revision"], 0);
+            readers.push(tokio::spawn(async move {
+                let mut model = view(&glb);
+                let mut revisions = Vec::new();
+                while revisions.len() < total as usize {
+                    let (delta, glb) = next_pair(&mut ws).await;
+                    assert_eq!(delta["type"], "delta");
+                    revisions.push(delta["revision"].as_u64().unwrap());
+                    apply_delta(&mut model, &delta, &glb);
+                }
+                (revisions, model)
+            }));
+        }
+        let editors: Vec<_> = (0..EDITORS)
+            .map(|e| {
+                let address = server.address;
+                tokio::task::spawn_blocking(move || {
+                    (0..EACH)
+                        .map(|k| {
+                            // Each vessel's first nozzle, from its projection in the
+                            // example plant outwards.
+                            let value = [1500, 1500, 1400, 4300][e] + 20 * (k % 3);
+                            let path = format!("/vessels/{e}/nozzles/0/projection");
+                            let patch = json!([{ "op": "replace", "path": path, "value": value }]);
+                            let r = server_support::request(
+                                address,
+                                "POST",
+                                "/edit",
+                                &[],
+                                patch.to_string().as_bytes(),
+                            );
+                            assert_eq!(r.status, 200, "{}", r.text());
+                            r.json()["revision"].as_u64().unwrap()
+                        })
+                        .collect::<Vec<_>>()
+                })
+            })
+            .collect();
+        let mut acknowledged = Vec::new();
+        for editor in editors {
+            acknowledged.extend(editor.await.unwrap());
+        }
+        acknowledged.sort_unstable();
+        assert_eq!(acknowledged, (1..=total).collect::<Vec<_>>());
+        let full = server.request("GET", "/model.glb", &[], b"");
+        assert_eq!(
+            full.header("x-vesselcad-revision"),
+            Some(&*total.to_string())
+        );
+        let full = view(&full.body);
+        for reader in readers {
+            let (revisions, model) = tokio::time::timeout(TIMEOUT, reader)
+                .await
+                .unwrap()
+                .unwrap();
+            assert_eq!(
+                revisions,
+                (1..=total).collect::<Vec<_>>(),
+                "lost, duplicated or reordered"
+            );
+            same(&model, &full, total as usize);
+        }
+    });
+}

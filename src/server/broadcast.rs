@@ -1,8 +1,12 @@
 //! Streaming to viewers: the hub that fans each accepted edit out to every
 //! connected WebSocket, and the per-viewer loop.
 //!
-//! Where it sits: the edit route sends an [`Update`] to the [`Hub`] while it holds
-//! the session lock, so updates enter the hub in revision order. Each viewer has
+//! Where it sits: the edit route takes a [`Ticket`] from the [`Hub`] while it
+//! holds the session lock, then writes the delta GLB after letting the lock go
+//! and publishes it with the ticket: the hub lets updates out in ticket order,
+//! so viewers get them in revision order while the next edit is already being
+//! staged (the GLB is written once per update, whatever the number of
+//! viewers). Each viewer has
 //! its own task reading the hub through a bounded queue ([`VIEWER_QUEUE`] updates,
 //! a `tokio::sync::broadcast` ring): sending never waits for a viewer, so a slow
 //! viewer never blocks the editor or the other viewers. A viewer whose queue
@@ -28,7 +32,8 @@
 //! close frames (text they send is ignored; messages above
 //! [`MAX_VIEWER_MESSAGE`] bytes close the socket).
 
-use std::sync::Arc;
+use std::collections::BTreeMap;
+use std::sync::{Arc, Mutex};
 use std::time::Duration;
 
 use axum::body::Bytes;
@@ -62,35 +67,107 @@ pub struct Update {
 }
 
 impl Update {
-    /// The update of an accepted edit.
+    /// The update of an accepted edit: writes its delta GLB (call it without
+    /// the session lock).
     pub fn of(accepted: &Accepted) -> Update {
         Update {
             revision: accepted.revision,
             header: accepted.to_json("delta").to_string(),
-            glb: accepted.delta_glb.clone(),
+            glb: accepted.delta_glb(),
         }
     }
 }
 
-/// Fans updates out to every viewer.
+/// Fans updates out to every viewer, in the order their tickets were taken.
 #[derive(Clone, Debug)]
 pub struct Hub {
     sender: broadcast::Sender<Arc<Update>>,
+    order: Arc<Mutex<Order>>,
+}
+
+/// Tickets taken and updates waiting for an earlier ticket.
+#[derive(Debug, Default)]
+struct Order {
+    /// The next ticket to take.
+    issued: u64,
+    /// The next ticket to let out.
+    next: u64,
+    /// Settled tickets after `next`: their update, or `None` for a ticket
+    /// dropped without one.
+    waiting: BTreeMap<u64, Option<Update>>,
+}
+
+/// A place in the viewers' order, taken under the session lock: publishing
+/// with it later (after the GLB is written without the lock) keeps revision
+/// order. A ticket dropped unused lets the later ones out.
+#[derive(Debug)]
+#[must_use = "a ticket holds back every later update until it is published or dropped"]
+pub struct Ticket {
+    hub: Hub,
+    number: u64,
+    settled: bool,
+}
+
+impl Ticket {
+    /// Sends `update` to every viewer once every earlier ticket is settled;
+    /// never waits.
+    pub fn publish(mut self, update: Update) {
+        self.settled = true;
+        self.hub.settle(self.number, Some(update));
+    }
+}
+
+impl Drop for Ticket {
+    fn drop(&mut self) {
+        if !self.settled {
+            self.hub.settle(self.number, None);
+        }
+    }
 }
 
 impl Default for Hub {
     fn default() -> Self {
         Hub {
             sender: broadcast::channel(VIEWER_QUEUE).0,
+            order: Arc::default(),
         }
     }
 }
 
 impl Hub {
-    /// Sends an update to every viewer; never waits.
+    /// Sends an update to every viewer after those of the tickets already
+    /// taken; never waits.
     pub fn publish(&self, update: Update) {
-        // An error only means that no viewer is connected.
-        let _ = self.sender.send(Arc::new(update));
+        self.ticket().publish(update);
+    }
+
+    /// The next place in the viewers' order (take it under the session lock).
+    pub fn ticket(&self) -> Ticket {
+        let mut order = self.order.lock().unwrap_or_else(|p| p.into_inner());
+        let number = order.issued;
+        order.issued += 1;
+        Ticket {
+            hub: self.clone(),
+            number,
+            settled: false,
+        }
+    }
+
+    /// Settles ticket `number` and sends every update whose turn has come.
+    fn settle(&self, number: u64, update: Option<Update>) {
+        let mut order = self.order.lock().unwrap_or_else(|p| p.into_inner());
+        order.waiting.insert(number, update);
+        loop {
+            let next = order.next;
+            let Some(ready) = order.waiting.remove(&next) else {
+                break;
+            };
+            order.next += 1;
+            if let Some(update) = ready {
+                // An error only means that no viewer is connected.
+                let _ = self.sender.send(Arc::new(update));
+            }
+        }
     }
 
     /// A new viewer's queue. Subscribe before taking the snapshot: updates already
@@ -224,4 +301,65 @@ where
         }
     }
     Ok(())
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn update(revision: u64) -> Update {
+        Update {
+            revision,
+            header: String::new(),
+            glb: Bytes::new(),
+        }
+    }
+
+    fn received(queue: &mut broadcast::Receiver<Arc<Update>>) -> Vec<u64> {
+        std::iter::from_fn(|| queue.try_recv().ok().map(|u| u.revision)).collect()
+    }
+
+    #[test]
+    fn updates_go_out_in_ticket_order_whatever_order_they_are_written_in() {
+        let hub = Hub::default();
+        let mut queue = hub.subscribe();
+        let (first, second, third) = (hub.ticket(), hub.ticket(), hub.ticket());
+        third.publish(update(3));
+        second.publish(update(2));
+        assert_eq!(
+            received(&mut queue),
+            Vec::<u64>::new(),
+            "held for the first"
+        );
+        first.publish(update(1));
+        assert_eq!(received(&mut queue), [1, 2, 3]);
+        hub.publish(update(4));
+        assert_eq!(received(&mut queue), [4]);
+    }
+
+    #[test]
+    fn a_ticket_dropped_unused_lets_the_later_ones_out() {
+        let hub = Hub::default();
+        let mut queue = hub.subscribe();
+        let (lost, kept) = (hub.ticket(), hub.ticket());
+        kept.publish(update(2));
+        drop(lost);
+        assert_eq!(received(&mut queue), [2]);
+    }
+
+    #[test]
+    fn concurrent_writers_publish_each_update_once_in_order() {
+        let hub = Hub::default();
+        let mut queue = hub.subscribe();
+        let tickets: Vec<_> = (1..=48).map(|r| (r, hub.ticket())).collect();
+        let threads: Vec<_> = tickets
+            .into_iter()
+            .rev()
+            .map(|(r, t)| std::thread::spawn(move || t.publish(update(r))))
+            .collect();
+        for t in threads {
+            t.join().unwrap();
+        }
+        assert_eq!(received(&mut queue), (1..=48).collect::<Vec<_>>());
+    }
 }

@@ -69,11 +69,15 @@ pub fn follow(
     })
 }
 
-/// Has the session adopt the newest revision and tells the viewers.
+/// Has the session adopt the newest revision and tells the viewers (the delta
+/// GLB written after the session lock is let go).
 fn adopt(session: &Mutex<Session>, hub: &Hub) {
-    let mut s = session.lock().unwrap_or_else(|p| p.into_inner());
-    match s.catch_up() {
-        Ok(Some(accepted)) => hub.publish(Update::of(&accepted)),
+    let caught = {
+        let mut s = session.lock().unwrap_or_else(|p| p.into_inner());
+        s.catch_up().map(|c| c.map(|c| (c, hub.ticket())))
+    };
+    match caught {
+        Ok(Some((accepted, ticket))) => ticket.publish(Update::of(&accepted)),
         Ok(None) => {}
         Err(e) => eprintln!("vesselcad serve: cannot adopt another server's revision: {e}"),
     }

@@ -2,8 +2,10 @@
 //! flushed to disk before the edit is acknowledged, so nothing acknowledged is lost
 //! if the server dies.
 //!
-//! Where it sits: [`super::session`] applies an edit to the model, appends it here
-//! (`fsync`), and only then answers the editor and streams the delta. On start the
+//! Where it sits: [`super::session`] applies an edit to the model and appends it
+//! here under the session lock; the edit route then flushes it (`fdatasync`,
+//! one flush for every edit written meanwhile: [`super::flush`]) without the
+//! lock, and only then answers the editor and streams the delta. On start the
 //! session replays the journal over the design file; `POST /save` and a clean
 //! shutdown write the design and start a fresh journal.
 //!
@@ -29,11 +31,13 @@
 use std::fs::{File, OpenOptions};
 use std::io::Write;
 use std::path::{Path, PathBuf};
+use std::sync::Arc;
 
 use serde::{Deserialize, Serialize};
 use serde_json::Value;
 
 use super::error::ServeError;
+use super::flush::{GroupFlush, Pending};
 
 /// The journal format tag, in the header line.
 pub const JOURNAL_FORMAT: &str = "vesselcad-journal/1";
@@ -82,6 +86,8 @@ enum Line {
 pub struct Journal {
     path: PathBuf,
     file: File,
+    /// Flushes edit lines after the session lock is let go ([`super::flush`]).
+    flush: Arc<GroupFlush>,
 }
 
 /// The journal path of a design file: `<design>.journal`.
@@ -152,7 +158,7 @@ impl Journal {
             .append(true)
             .open(&path)
             .map_err(|e| journal_error(&path, e.to_string()))?;
-        Ok((Journal { path, file }, recovered.replay))
+        Ok((Journal::appending(path, file)?, recovered.replay))
     }
 
     /// Writes a fresh journal (header only) at `path`, atomically.
@@ -169,19 +175,37 @@ impl Journal {
             .append(true)
             .open(path)
             .map_err(|e| journal_error(path, e.to_string()))?;
+        Journal::appending(path.to_path_buf(), file)
+    }
+
+    /// The journal at `path` appending to `file`.
+    fn appending(path: PathBuf, file: File) -> Result<Journal, ServeError> {
+        let handle = file
+            .try_clone()
+            .map_err(|e| journal_error(&path, e.to_string()))?;
         Ok(Journal {
-            path: path.to_path_buf(),
+            path,
             file,
+            flush: GroupFlush::new(handle),
         })
     }
 
-    /// Appends an accepted edit and flushes it to disk. Returns only once the
-    /// edit is durable.
-    pub fn append(&mut self, revision: u64, patch: &Value) -> std::io::Result<()> {
-        self.write_line(&Line::Edit {
+    /// Appends an accepted edit; it is durable once the returned [`Pending`]
+    /// is waited for (after the session lock is let go: group commit).
+    ///
+    /// # Errors
+    ///
+    /// The write's error, or the error of an earlier flush that failed (the
+    /// journal is then stopped).
+    pub fn append(&mut self, revision: u64, patch: &Value) -> std::io::Result<Pending> {
+        if let Some(failed) = self.flush.failed() {
+            return Err(std::io::Error::other(failed));
+        }
+        self.write(&Line::Edit {
             revision,
             patch: patch.clone(),
-        })
+        })?;
+        Ok(self.flush.written())
     }
 
     /// Records that a save of a design with fingerprint `print` at `revision` is
@@ -205,16 +229,21 @@ impl Journal {
         &self.path
     }
 
-    /// Appends one line and flushes it. On failure the file is cut back to where
-    /// it was, so a half-written line never sits in front of the next one.
+    /// Appends one line and flushes it (and every edit line before it).
     fn write_line(&mut self, line: &Line) -> std::io::Result<()> {
+        self.write(line)?;
+        self.file.sync_data()?;
+        self.flush.all_durable();
+        Ok(())
+    }
+
+    /// Appends one line, not flushed. On failure the file is cut back to where
+    /// it was, so a half-written line never sits in front of the next one.
+    fn write(&mut self, line: &Line) -> std::io::Result<()> {
         let mut bytes = serde_json::to_vec(line)?;
         bytes.push(b'\n');
         let before = self.file.metadata()?.len();
-        let written = self
-            .file
-            .write_all(&bytes)
-            .and_then(|()| self.file.sync_data());
+        let written = self.file.write_all(&bytes);
         if written.is_err() {
             // Best effort: if even this fails, replay drops a torn last line.
             let _ = self.file.set_len(before);
@@ -466,8 +495,10 @@ mod tests {
         let (mut j, replay) = Journal::open(&design, b"{}").unwrap();
         assert!(replay.edits.is_empty());
         j.append(1, &json!([{"op": "add", "path": "/a", "value": 1}]))
+            .unwrap()
+            .wait()
             .unwrap();
-        j.append(2, &json!([])).unwrap();
+        j.append(2, &json!([])).unwrap().wait().unwrap();
         drop(j);
         let mut f = OpenOptions::new()
             .append(true)
@@ -480,7 +511,7 @@ mod tests {
             replay.edits.iter().map(|e| e.revision).collect::<Vec<_>>(),
             [1, 2]
         );
-        j.append(3, &json!([])).unwrap();
+        j.append(3, &json!([])).unwrap().wait().unwrap();
         drop(j);
         let (_, replay) = Journal::open(&design, b"{}").unwrap();
         assert_eq!(replay.edits.len(), 3);
@@ -490,9 +521,9 @@ mod tests {
     fn a_save_marker_matching_the_file_skips_what_it_saved() {
         let (_dir, design) = temp_design("saved", "{}");
         let (mut j, _) = Journal::open(&design, b"{}").unwrap();
-        j.append(1, &json!([])).unwrap();
+        j.append(1, &json!([])).unwrap().wait().unwrap();
         j.mark_saved(&fingerprint(b"{\"a\":1}"), 1).unwrap();
-        j.append(2, &json!([])).unwrap();
+        j.append(2, &json!([])).unwrap().wait().unwrap();
         drop(j);
         // Crash after the marker, before the design was renamed: replay all.
         let (_, replay) = Journal::open(&design, b"{}").unwrap();
@@ -512,7 +543,7 @@ mod tests {
     fn journal_with(name: &str, lines: &[u8]) -> (tempfile::TempDir, PathBuf) {
         let (dir, design) = temp_design(name, "{}");
         let (mut j, _) = Journal::open(&design, b"{}").unwrap();
-        j.append(1, &json!([])).unwrap();
+        j.append(1, &json!([])).unwrap().wait().unwrap();
         drop(j);
         let mut f = OpenOptions::new()
             .append(true)
@@ -544,7 +575,7 @@ mod tests {
             replay.dropped
         );
         // The next edit starts a line of its own and is replayed.
-        j.append(3, &json!([])).unwrap();
+        j.append(3, &json!([])).unwrap().wait().unwrap();
         drop(j);
         let (_, replay) = Journal::open(&design, b"{}").unwrap();
         assert_eq!(revisions(&replay), [1, 2, 3]);

@@ -18,6 +18,7 @@
 pub mod assets;
 pub mod broadcast;
 pub mod error;
+pub mod flush;
 pub mod follow;
 pub mod guard;
 pub mod journal;

@@ -7,6 +7,7 @@
 
 use serde_json::Value;
 
+use super::flush::Pending;
 use super::journal::Journal;
 use crate::design::Design;
 use crate::store::Revision;
@@ -42,8 +43,9 @@ pub struct Record<'a> {
 
 /// Where a session's edits go.
 pub trait Persistence: Send {
-    /// Makes `record` durable; returns only once it is.
-    fn record(&mut self, record: &Record<'_>) -> Result<(), PersistError>;
+    /// Makes `record` durable: returns once it is, or with the flush still to
+    /// wait for (after the session lock is let go: [`Pending::wait`]).
+    fn record(&mut self, record: &Record<'_>) -> Result<Option<Pending>, PersistError>;
 
     /// A save of a design with fingerprint `print` at `revision` is about to
     /// write the design file.
@@ -73,13 +75,15 @@ pub trait Persistence: Send {
 }
 
 impl Persistence for Journal {
-    fn record(&mut self, record: &Record<'_>) -> Result<(), PersistError> {
-        self.append(record.revision, record.patch).map_err(|e| {
-            PersistError::Failed(format!(
-                "cannot write the journal {}: {e}",
-                self.path().display()
-            ))
-        })
+    fn record(&mut self, record: &Record<'_>) -> Result<Option<Pending>, PersistError> {
+        self.append(record.revision, record.patch)
+            .map(Some)
+            .map_err(|e| {
+                PersistError::Failed(format!(
+                    "cannot write the journal {}: {e}",
+                    self.path().display()
+                ))
+            })
     }
 
     fn saving(&mut self, print: &str, revision: u64) -> std::io::Result<()> {

@@ -25,9 +25,11 @@
 //! `Origin`, JSON content types, and with `--token` the token on every route but
 //! the page shell; security headers on every answer). Request bodies are limited to [`MAX_BODY`] bytes. Every refusal
 //! is an [`ApiError`] with a 4xx status and a JSON body; the session is unchanged.
-//! Session work (model updates, GLB writing) runs on blocking threads, one edit at
-//! a time under the session lock; updates are published inside that lock so
-//! viewers get them in revision order.
+//! Session work runs on blocking threads: model updates one edit at a time
+//! under the session lock, which reads what a GLB needs (meshes are shared);
+//! GLBs are written after the lock is let go. An update takes its place in the
+//! viewers' order (a [`Ticket`]) under the lock, so viewers get updates in
+//! revision order.
 
 use axum::Router;
 use axum::body::Bytes;
@@ -41,10 +43,10 @@ use serde::Deserialize;
 use serde_json::json;
 
 use super::assets::{self, Asset};
-use super::broadcast::{MAX_VIEWER_MESSAGE, Update, run_viewer};
+use super::broadcast::{MAX_VIEWER_MESSAGE, Ticket, Update, run_viewer};
 use super::error::ApiError;
 use super::guard::guard;
-use super::session::SheetFormat;
+use super::session::{Accepted, SheetFormat};
 use super::state::AppState;
 
 /// Largest request body (an edit), bytes: 1 MiB.
@@ -104,7 +106,8 @@ fn revision_header(revision: u64) -> (header::HeaderName, HeaderValue) {
 }
 
 async fn model_glb(State(state): State<AppState>) -> Response {
-    let snapshot = state.with_session(|s, _| s.snapshot()).await;
+    let full = state.with_session(|s, _| s.full_model()).await;
+    let snapshot = AppState::unlocked(move || full.snapshot()).await;
     (
         [
             (
@@ -168,47 +171,70 @@ async fn edit(
     body: Result<Bytes, BytesRejection>,
 ) -> Result<Response, ApiError> {
     let body = body_or_error(body)?;
-    let answer = state
-        .with_session(move |session, hub| {
-            let accepted = match session.apply_patch(&body) {
-                Ok(a) => a,
-                Err(e @ ApiError::Conflict { .. }) => {
-                    // Another server was first: take its revision, then refuse.
-                    if let Ok(Some(caught)) = session.catch_up() {
-                        hub.publish(Update::of(&caught));
-                    }
-                    return Err(e);
-                }
-                Err(e) => return Err(e),
-            };
-            hub.publish(Update::of(&accepted));
-            Ok::<_, ApiError>(accepted.to_json("accepted"))
+    let staged = state
+        .with_session(move |session, hub| match session.apply_unflushed(&body) {
+            Ok(accepted) => Ok((accepted, hub.ticket())),
+            Err(e @ ApiError::Conflict { .. }) => {
+                // Another server was first: take its revision, then refuse.
+                let caught = session.catch_up().ok().flatten();
+                Err((e, caught.map(|c| Box::new((c, hub.ticket())))))
+            }
+            Err(e) => Err((e, None)),
         })
-        .await?;
-    Ok(axum::Json(answer).into_response())
+        .await;
+    match staged {
+        Ok((accepted, ticket)) => {
+            let answer = stream(accepted, ticket, "accepted").await?;
+            Ok(axum::Json(answer).into_response())
+        }
+        Err((e, caught)) => {
+            if let Some(caught) = caught {
+                // Committed by the other server: nothing to wait for.
+                let (caught, ticket) = *caught;
+                let _ = stream(caught, ticket, "delta").await;
+            }
+            Err(e)
+        }
+    }
+}
+
+/// After the session lock is let go: waits until an accepted change is
+/// durable (the journal's group commit), writes its delta GLB and publishes
+/// it with the ticket taken under the lock; returns the answer to the editor
+/// (kind `kind`), once viewers have been handed the delta.
+///
+/// # Errors
+///
+/// [`ApiError::Storage`] when the journal could not be flushed: the change
+/// is neither acknowledged nor streamed.
+async fn stream(
+    accepted: Accepted,
+    ticket: Ticket,
+    kind: &str,
+) -> Result<serde_json::Value, ApiError> {
+    let answer = accepted.to_json(kind);
+    // A panic writing the GLB drops the ticket, which lets later updates out.
+    AppState::unlocked(move || {
+        accepted.wait_durable()?;
+        ticket.publish(Update::of(&accepted));
+        Ok(answer)
+    })
+    .await
 }
 
 /// `POST /undo` and `POST /redo`: a new revision, streamed like an edit.
 async fn undo(State(state): State<AppState>) -> Result<Response, ApiError> {
-    let answer = state
-        .with_session(|session, hub| {
-            let accepted = session.undo()?;
-            hub.publish(Update::of(&accepted));
-            Ok::<_, ApiError>(accepted.to_json("undone"))
-        })
+    let (accepted, ticket) = state
+        .with_session(|session, hub| Ok::<_, ApiError>((session.undo()?, hub.ticket())))
         .await?;
-    Ok(axum::Json(answer).into_response())
+    Ok(axum::Json(stream(accepted, ticket, "undone").await?).into_response())
 }
 
 async fn redo(State(state): State<AppState>) -> Result<Response, ApiError> {
-    let answer = state
-        .with_session(|session, hub| {
-            let accepted = session.redo()?;
-            hub.publish(Update::of(&accepted));
-            Ok::<_, ApiError>(accepted.to_json("redone"))
-        })
+    let (accepted, ticket) = state
+        .with_session(|session, hub| Ok::<_, ApiError>((session.redo()?, hub.ticket())))
         .await?;
-    Ok(axum::Json(answer).into_response())
+    Ok(axum::Json(stream(accepted, ticket, "redone").await?).into_response())
 }
 
 /// `GET /revisions`: the store's revisions, oldest first (404 without a store).
@@ -252,12 +278,12 @@ async fn vessel_glb(
     let found = state
         .with_session({
             let tag = tag.clone();
-            move |s, _| s.vessel_glb(&tag).ok_or_else(|| (s.vessel_tags(), ()))
+            move |s, _| s.vessel_scene(&tag).ok_or_else(|| s.vessel_tags())
         })
         .await;
     let glb = match found {
-        Ok(glb) => glb,
-        Err((known, ())) => return Err(ApiError::UnknownVessel { tag, known }),
+        Ok(scene) => AppState::unlocked(move || scene.glb()).await,
+        Err(known) => return Err(ApiError::UnknownVessel { tag, known }),
     };
     let etag = format!(
         "\"{}-{}\"",
@@ -412,17 +438,11 @@ async fn viewer_socket(
             let snapshot = || {
                 let state = state.clone();
                 async move {
-                    Some(
-                        state
-                            .with_session(move |s, _| {
-                                if progressive {
-                                    s.outline()
-                                } else {
-                                    s.snapshot()
-                                }
-                            })
-                            .await,
-                    )
+                    if progressive {
+                        return Some(state.with_session(|s, _| s.outline()).await);
+                    }
+                    let full = state.with_session(|s, _| s.full_model()).await;
+                    Some(AppState::unlocked(move || full.snapshot()).await)
                 }
             };
             let timeout = state.viewer_timeout;

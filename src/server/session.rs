@@ -2,37 +2,43 @@
 //! current design as JSON — the state every request reads and every edit changes.
 //!
 //! Where it sits: the routes lock the session (one edit at a time), call
-//! [`Session::apply_patch`], and hand the returned [`Accepted`] to the broadcast
-//! hub while still holding the lock, so viewers get deltas in revision order.
+//! [`Session::apply_unflushed`] and take a place in the broadcast hub's order;
+//! after letting the lock go they wait for the journal's flush and write the
+//! returned [`Accepted`]'s delta GLB, so the next edit is staged meanwhile
+//! and viewers still get deltas in revision order.
 //!
 //! An edit is a JSON Patch (RFC 6902) against the design's canonical JSON (mm, as
 //! `GET /design.json` serves it). It is applied to a copy; the result is parsed and
 //! checked as a design file would be, then given to the model as one
 //! [`Edit::ReplaceDesign`], which touches only the vessels that differ and, inside
 //! them, rebuilds only the parts whose parameters changed (the model's change
-//! detection). The edit is then appended to the journal and flushed; only then is
-//! it given a revision and acknowledged. Any failure before that leaves the model,
-//! the design and the journal as they were.
+//! detection). The edit is then appended to the journal and given a revision;
+//! it is acknowledged once the journal is flushed. Any failure before the
+//! append leaves the model, the design and the journal as they were.
 
 use axum::body::Bytes;
 use std::collections::{BTreeMap, BTreeSet};
 use std::path::{Path, PathBuf};
-use std::time::Instant;
+use std::sync::{Arc, OnceLock};
 
 use serde_json::{Value, json};
 
-use super::error::{ApiError, ServeError};
-use super::journal::{Journal, fingerprint, journal_path, write_atomically};
+mod replay;
+mod stage;
+
+use self::stage::{Next, canonical_numbers, parse_patch};
+use super::error::ApiError;
+use super::flush::Pending;
+use super::journal::{fingerprint, write_atomically};
 use super::persist::{PersistError, Persistence, Record};
 use super::progressive::{Bounds, bounds_json, vessel_bounds};
 use super::scoped;
-use super::store_link::StoreLink;
 use crate::design::units::to_inches;
-use crate::design::{self, Design, DesignError, Units, VesselDesign, to_canonical_json};
+use crate::design::{self, Design, Units, to_canonical_json};
 use crate::drawing::{SheetOptions, sheet_dxf, sheet_model, sheet_svg};
-use crate::export::{Scene, node_id, scene_ids, write_delta_glb, write_glb};
+use crate::export::{Scene, delta_scene, node_id, scene_ids, write_glb};
 use crate::mesh::TessellationOptions;
-use crate::model::{Edit, Model, ModelError, Views};
+use crate::model::Model;
 use crate::systems::WorkCounters;
 
 /// An accepted edit: its revision, what changed and the delta for viewers.
@@ -46,8 +52,14 @@ pub struct Accepted {
     pub removed: Vec<String>,
     /// Work the model did for this edit.
     pub work: WorkCounters,
-    /// GLB of the changed parts only (see [`crate::export::write_delta_glb`]).
-    pub delta_glb: Bytes,
+    /// The changed parts under their vessels (see
+    /// [`crate::export::delta_scene`]): taken under the session lock (the
+    /// meshes are shared, not copied), written as GLB by
+    /// [`Accepted::delta_glb`] after the lock is let go.
+    pub delta: Scene,
+    /// The journal flush the edit waits for before it is acknowledged (group
+    /// commit: waited for after the session lock is let go).
+    pub durable: Option<Pending>,
 }
 
 impl Accepted {
@@ -60,6 +72,28 @@ impl Accepted {
             "removed": self.removed,
             "work": work_json(&self.work),
         })
+    }
+
+    /// Returns once the edit is durable (at once if it already was).
+    ///
+    /// # Errors
+    ///
+    /// [`ApiError::Storage`] when the journal could not be flushed: the edit
+    /// must not be acknowledged nor shown (the journal is stopped).
+    pub fn wait_durable(&self) -> Result<(), ApiError> {
+        match &self.durable {
+            Some(pending) => pending.wait().map_err(ApiError::Storage),
+            None => Ok(()),
+        }
+    }
+
+    /// The GLB of the changed parts, or an empty scene's GLB if it cannot be
+    /// written (viewers then see no geometry change; the error is printed).
+    pub fn delta_glb(&self) -> Bytes {
+        Bytes::from(write_glb(&self.delta).unwrap_or_else(|e| {
+            eprintln!("vesselcad serve: cannot write a delta GLB: {e}");
+            write_glb(&Scene::default()).unwrap_or_default()
+        }))
     }
 }
 
@@ -89,6 +123,59 @@ pub struct VesselGlb {
     pub glb: Bytes,
 }
 
+/// The whole model at one revision: its scene (meshes shared with the
+/// model), and its GLB once written.
+#[derive(Debug)]
+pub struct FullModel {
+    revision: u64,
+    ids: Vec<String>,
+    scene: Scene,
+    glb: OnceLock<Bytes>,
+}
+
+impl FullModel {
+    /// The snapshot; the first call writes the GLB (others wait for it, so
+    /// viewers connecting together share one writing).
+    pub fn snapshot(&self) -> Snapshot {
+        let glb = self.glb.get_or_init(|| {
+            Bytes::from(write_glb(&self.scene).unwrap_or_else(|e| {
+                eprintln!("vesselcad serve: cannot write the model's GLB: {e}");
+                Vec::new()
+            }))
+        });
+        Snapshot {
+            revision: self.revision,
+            ids: self.ids.clone(),
+            glb: glb.clone(),
+            outline: None,
+        }
+    }
+}
+
+/// One vessel's node tree at one revision, read under the session lock.
+#[derive(Debug)]
+pub struct VesselScene {
+    revision: u64,
+    vessel_revision: u64,
+    scene: Scene,
+}
+
+impl VesselScene {
+    /// Its GLB (write it without the session lock).
+    pub fn glb(&self) -> VesselGlb {
+        let glb = write_glb(&self.scene).unwrap_or_else(|e| {
+            let tag = self.scene.vessels.first().map_or("", |v| v.tag.as_str());
+            eprintln!("vesselcad serve: cannot write the GLB of {tag}: {e}");
+            Vec::new()
+        });
+        VesselGlb {
+            revision: self.revision,
+            vessel_revision: self.vessel_revision,
+            glb: Bytes::from(glb),
+        }
+    }
+}
+
 /// One design file being edited live.
 pub struct Session {
     path: PathBuf,
@@ -106,8 +193,9 @@ pub struct Session {
     pub(super) undo: Vec<Design>,
     /// Designs a redo goes forward to, newest last.
     pub(super) redo: Vec<Design>,
-    /// The full GLB of the current revision, built on first request.
-    full: Option<Snapshot>,
+    /// The whole model at the current revision, its GLB written on first
+    /// request (without the session lock).
+    full: Option<Arc<FullModel>>,
     /// Each node's `extras` (kind, parameters, resolved figures) as last sent, by
     /// vessel tag and stable id: a node whose metadata changed without its frame or geometry
     /// (a nozzle's service, a vessel's overall length) is sent again too.
@@ -136,189 +224,10 @@ pub enum SheetFormat {
     Dxf,
 }
 
-/// Vessels staged by a scoped edit (their index and new JSON) and the work done.
-type Staged = (Vec<(usize, Value)>, WorkCounters);
-
 /// How many edits back `POST /undo` reaches.
 pub const UNDO_DEPTH: usize = 32;
 
 impl Session {
-    /// Opens the design file at `path`, builds its model and replays its journal.
-    ///
-    /// # Errors
-    ///
-    /// [`ServeError::Design`] for a design that cannot be loaded or built,
-    /// [`ServeError::Journal`] for a journal that cannot be read or replayed.
-    pub fn open(path: &Path, options: TessellationOptions) -> Result<Session, ServeError> {
-        Session::open_with(path, options, None)
-    }
-
-    /// Opens the design file at `path` with its edits in the store at `store`
-    /// (see [`StoreLink`]), or in its journal without one.
-    ///
-    /// # Errors
-    ///
-    /// As [`Session::open`]; [`ServeError::Journal`] naming the store when it
-    /// cannot be opened or reached.
-    pub fn open_with(
-        path: &Path,
-        options: TessellationOptions,
-        store: Option<&str>,
-    ) -> Result<Session, ServeError> {
-        let design_error = |source: ModelError| ServeError::Design {
-            path: path.display().to_string(),
-            source,
-        };
-        let started = Instant::now();
-        let progress = |what: &str| {
-            eprintln!(
-                "vesselcad serve: {} {what} ({:.1} s)",
-                path.display(),
-                started.elapsed().as_secs_f64()
-            );
-        };
-        let bytes = design::read_design_bytes(path).map_err(|e| design_error(e.into()))?;
-        let text = design::decode_design(path, &bytes).map_err(|e| design_error(e.into()))?;
-        let units = design::parse_unchecked(text)
-            .map_err(|e| design_error(e.into()))?
-            .units;
-        let parsed = design::parse(text).map_err(|e| design_error(e.into()))?;
-        progress(&format!(
-            "read and checked: {} vessels; building and meshing",
-            parsed.vessels.len()
-        ));
-        // A session whose edits go to the store: no drawing views (a sheet is
-        // drawn from a model of its vessel alone).
-        let on_store = |link: StoreLink, revision: u64, design: Design| {
-            let model =
-                Model::from_design_with(&design, options, Views::Off).map_err(design_error)?;
-            let session = Session::assemble(
-                path,
-                options,
-                Box::new(link),
-                model,
-                revision,
-                revision,
-                units,
-            );
-            progress("ready");
-            Ok(session)
-        };
-        let old_journal = journal_path(path);
-        let migrating = store.is_some() && old_journal.exists();
-        if store.is_some() && !migrating {
-            let file = parsed;
-            let (link, revision, design) =
-                StoreLink::open(store.unwrap_or_default(), path, &file, units, &[])?;
-            return on_store(link, revision, design);
-        }
-        let file = parsed.clone();
-        let (journal, replay) = Journal::open(path, &bytes)?;
-        let journal_path = journal.path().display().to_string();
-        for dropped in &replay.dropped {
-            eprintln!("vesselcad serve: journal {journal_path}: dropped {dropped}");
-        }
-        // The journaled edits are replayed on the design alone, then the model is
-        // built once: each edit was checked when it was accepted.
-        let mut design = parsed;
-        let mut revision = replay.base_revision;
-        // Migrating into a store: the design after each edit, one revision each.
-        let mut steps = Vec::new();
-        if !replay.edits.is_empty() {
-            let mut value = design_value(&design);
-            for entry in &replay.edits {
-                let replay_error = |e: String| ServeError::Journal {
-                    path: journal_path.clone(),
-                    message: format!("revision {} cannot be replayed: {e}", entry.revision),
-                };
-                let mut patch = entry.patch.clone();
-                canonical_numbers(&mut patch);
-                let patch = parse_patch(patch).map_err(|e| replay_error(e.to_string()))?;
-                canonical_numbers(&mut value);
-                json_patch::patch(&mut value, &patch).map_err(|e| replay_error(e.to_string()))?;
-                // As the model would give it back: defaults in their canonical form.
-                let next: Design = serde_json::from_value(value)
-                    .map_err(|e| replay_error(format!("not a design: {e}")))?;
-                value = design_value(&next);
-                revision = entry.revision;
-                if migrating {
-                    steps.push((revision, next));
-                }
-            }
-            design = serde_json::from_value(value).map_err(|e| ServeError::Journal {
-                path: journal_path.clone(),
-                message: format!("the replayed design is not a design: {e}"),
-            })?;
-        }
-        if let (Some(location), true) = (store, migrating) {
-            let (link, revision, design) = StoreLink::open(location, path, &file, units, &steps)?;
-            let mut migrated = old_journal.clone().into_os_string();
-            migrated.push(".migrated");
-            std::fs::rename(&old_journal, &migrated).map_err(|e| ServeError::Journal {
-                path: journal_path.clone(),
-                message: format!("migrated into the store, but cannot be renamed: {e}"),
-            })?;
-            return on_store(link, revision, design);
-        }
-        // No drawing views: a sheet is drawn from a model of its vessel alone
-        // (`drawing`), so the plant is not projected at start nor on each edit.
-        let model = Model::from_design_with(&design, options, Views::Off).map_err(|e| match e {
-            e if replay.edits.is_empty() => design_error(e),
-            e => ServeError::Journal {
-                path: journal_path.clone(),
-                message: format!("the design after replaying the journal is refused: {e}"),
-            },
-        })?;
-        let memory = model.memory();
-        progress(&format!(
-            "built: {:.1} MB of meshes; indexing for viewers",
-            memory.meshes as f64 / 1e6
-        ));
-        let session = Session::assemble(
-            path,
-            options,
-            Box::new(journal),
-            model,
-            revision,
-            replay.base_revision,
-            units,
-        );
-        progress("ready");
-        Ok(session)
-    }
-
-    /// A session on `model` at `revision` whose edits go to `persistence`.
-    fn assemble(
-        path: &Path,
-        options: TessellationOptions,
-        persistence: Box<dyn Persistence>,
-        model: Model,
-        revision: u64,
-        saved_revision: u64,
-        units: Units,
-    ) -> Session {
-        let scene = model.scene();
-        let mut session = Session {
-            path: path.to_path_buf(),
-            design: design_value(&model.design()),
-            extras: node_extras(&scene),
-            bounds: vessel_bounds(&scene).into_iter().collect(),
-            changed_at: BTreeMap::new(),
-            options,
-            sheets: BTreeMap::new(),
-            model,
-            revision,
-            saved_revision,
-            units,
-            persistence,
-            undo: Vec::new(),
-            redo: Vec::new(),
-            full: None,
-        };
-        session.model.take_changes();
-        session
-    }
-
     /// Applies a JSON Patch document (the request body) as one edit: all of it or
     /// nothing. On success the edit is durable in the journal.
     ///
@@ -330,6 +239,19 @@ impl Session {
     /// is not a valid design, [`ApiError::Storage`] if the journal cannot be
     /// written. In every case the session is unchanged.
     pub fn apply_patch(&mut self, body: &[u8]) -> Result<Accepted, ApiError> {
+        let accepted = self.apply_unflushed(body)?;
+        accepted.wait_durable()?;
+        Ok(accepted)
+    }
+
+    /// [`Session::apply_patch`] that returns before the edit is flushed: the
+    /// caller lets the session lock go, then calls [`Accepted::wait_durable`]
+    /// before it acknowledges the edit or streams it (group commit).
+    ///
+    /// # Errors
+    ///
+    /// As [`Session::apply_patch`], but for the flush.
+    pub fn apply_unflushed(&mut self, body: &[u8]) -> Result<Accepted, ApiError> {
         self.apply_as(body, "edit")
     }
 
@@ -361,22 +283,25 @@ impl Session {
             after: &after,
             message,
         };
-        if let Err(e) = self.persistence.record(&record) {
-            // Not durable: put the model back as it was before answering.
-            self.restore(&next);
-            return Err(match e {
-                PersistError::Conflict { current } => ApiError::Conflict {
-                    current,
-                    message: format!(
-                        "{} was changed by another server first (it is at revision \
+        let durable = match self.persistence.record(&record) {
+            Ok(pending) => pending,
+            Err(e) => {
+                // Not durable: put the model back as it was before answering.
+                self.restore(&next);
+                return Err(match e {
+                    PersistError::Conflict { current } => ApiError::Conflict {
+                        current,
+                        message: format!(
+                            "{} was changed by another server first (it is at revision \
                          {current}); reload and edit again",
-                        self.persistence.describe()
-                    ),
-                },
-                PersistError::Failed(message) => ApiError::Storage(message),
-                PersistError::Unavailable(message) => ApiError::StoreUnavailable(message),
-            });
-        }
+                            self.persistence.describe()
+                        ),
+                    },
+                    PersistError::Failed(message) => ApiError::Storage(message),
+                    PersistError::Unavailable(message) => ApiError::StoreUnavailable(message),
+                });
+            }
+        };
         if message == "edit" {
             self.redo.clear();
         }
@@ -404,7 +329,9 @@ impl Session {
             }
         };
         self.revision += 1;
-        Ok(self.accepted(work, touched))
+        let mut accepted = self.accepted(work, touched);
+        accepted.durable = durable;
+        Ok(accepted)
     }
 
     /// The answer for the model's change since the last one, at the current
@@ -447,94 +374,13 @@ impl Session {
                 self.extras.insert(tag.clone(), now);
             }
         }
-        let delta_glb = delta_or_empty(&scene, &log.changed);
         Accepted {
             revision: self.revision,
+            durable: None,
+            delta: delta_scene(&scene, &log.changed),
             changed: log.changed.into_iter().collect(),
             removed: log.removed.into_iter().collect(),
             work,
-            delta_glb: Bytes::from(delta_glb),
-        }
-    }
-
-    /// Applies a patch confined to the vessels at `indices` to them alone and to
-    /// the model (not yet journaled): their new JSON by index, and the work done.
-    /// `Ok(None)` when the patch must go through the whole document (a vessel
-    /// renamed or unparsable); on error the model is unchanged.
-    fn stage_vessels(
-        &mut self,
-        patch: &json_patch::Patch,
-        indices: &[usize],
-    ) -> Result<Option<Staged>, ApiError> {
-        let Some(patched) = scoped::patch_vessels(&self.design, patch, indices, canonical_numbers)?
-        else {
-            return Ok(None);
-        };
-        let tags: Vec<String> = patched.iter().map(|(_, _, v)| v.tag.clone()).collect();
-        let edit = scoped::vessels_edit(patched.into_iter().map(|(_, _, v)| v).collect());
-        let work = self.model.edit(edit).map_err(|e| match e {
-            ModelError::Design(e) => ApiError::Invalid(e),
-            other => ApiError::Refused(other),
-        })?;
-        // As the model gives them back: defaults in their canonical form.
-        let vessels = indices
-            .iter()
-            .zip(&tags)
-            .map(|(&i, tag)| {
-                let value = self.model.vessel_design(tag).map_or(Value::Null, |v| {
-                    serde_json::to_value(v).unwrap_or(Value::Null)
-                });
-                (i, value)
-            })
-            .collect();
-        Ok(Some((vessels, work)))
-    }
-
-    /// Applies a parsed patch to the model (not yet journaled): returns the new
-    /// design JSON and the work done. On error the model is unchanged.
-    fn stage(&mut self, patch: &json_patch::Patch) -> Result<(Value, WorkCounters), ApiError> {
-        let mut doc = self.design.clone();
-        canonical_numbers(&mut doc);
-        json_patch::patch(&mut doc, patch).map_err(|e| match e.kind {
-            json_patch::PatchErrorKind::TestFailed => ApiError::TestFailed(e.to_string()),
-            _ => ApiError::Unappliable(e.to_string()),
-        })?;
-        // Parsed from text like a design file, for its exact error paths. The
-        // rules are checked by the model's staging, on the vessels that differ
-        // only (the others were valid already): the same checks as a design file,
-        // without resolving the whole plant on every edit.
-        let text =
-            serde_json::to_string_pretty(&doc).map_err(|e| ApiError::Malformed(e.to_string()))?;
-        let parsed =
-            design::parse_unchecked(&text).map_err(|e| ApiError::Invalid(without_position(e)))?;
-        let work = self
-            .model
-            .edit(Edit::ReplaceDesign(parsed))
-            .map_err(|e| match e {
-                ModelError::Design(e) => ApiError::Invalid(e),
-                other => ApiError::Refused(other),
-            })?;
-        Ok((design_value(&self.model.design()), work))
-    }
-
-    /// Puts the model back to the design the session holds (the staged `next`
-    /// not being kept): the vessels it changed, or the whole design.
-    fn restore(&mut self, next: &Next) {
-        let edit = match next {
-            Next::Whole(_) => serde_json::from_value::<Design>(self.design.clone())
-                .ok()
-                .map(Edit::ReplaceDesign),
-            Next::Vessels(vessels) => vessels
-                .iter()
-                .map(|(i, _)| serde_json::from_value(self.design["vessels"][*i].clone()).ok())
-                .collect::<Option<Vec<VesselDesign>>>()
-                .map(scoped::vessels_edit),
-        };
-        // It was valid a moment ago, so this cannot be refused.
-        if let Some(edit) = edit
-            && self.model.edit(edit).is_ok()
-        {
-            self.model.take_changes();
         }
     }
 
@@ -618,24 +464,28 @@ impl Session {
         self.revision != self.saved_revision
     }
 
-    /// The full model at the current revision (built once per revision).
-    pub fn snapshot(&mut self) -> Snapshot {
-        if let Some(s) = &self.full {
-            return s.clone();
+    /// The whole model at the current revision, to be written as GLB without
+    /// the session lock ([`FullModel::snapshot`]; written once per revision).
+    pub fn full_model(&mut self) -> Arc<FullModel> {
+        if let Some(full) = &self.full {
+            return full.clone();
         }
         let scene = self.model.scene();
-        let glb = write_glb(&scene).unwrap_or_else(|e| {
-            eprintln!("vesselcad serve: cannot write the model's GLB: {e}");
-            Vec::new()
-        });
-        let snapshot = Snapshot {
+        let full = Arc::new(FullModel {
             revision: self.revision,
             ids: scene_ids(&scene),
-            glb: Bytes::from(glb),
-            outline: None,
-        };
-        self.full = Some(snapshot.clone());
-        snapshot
+            scene,
+            glb: OnceLock::new(),
+        });
+        self.full = Some(full.clone());
+        full
+    }
+
+    /// The full model at the current revision as GLB (written once per
+    /// revision; under the lock: callers that hold it should prefer
+    /// [`Session::full_model`]).
+    pub fn snapshot(&mut self) -> Snapshot {
+        self.full_model().snapshot()
     }
 
     /// A progressive viewer's snapshot: every stable id and each vessel's box,
@@ -660,21 +510,24 @@ impl Session {
         }
     }
 
-    /// Vessel `tag`'s GLB at the current revision; `None` for an unknown tag.
-    pub fn vessel_glb(&self, tag: &str) -> Option<VesselGlb> {
+    /// Vessel `tag`'s node tree at the current revision, to be written as GLB
+    /// without the session lock ([`VesselScene::glb`]); `None` for an unknown
+    /// tag.
+    pub fn vessel_scene(&self, tag: &str) -> Option<VesselScene> {
         let scene = self.model.vessels_scene(&[tag]);
         if scene.vessels.is_empty() {
             return None;
         }
-        let glb = write_glb(&scene).unwrap_or_else(|e| {
-            eprintln!("vesselcad serve: cannot write the GLB of {tag}: {e}");
-            Vec::new()
-        });
-        Some(VesselGlb {
+        Some(VesselScene {
             revision: self.revision,
             vessel_revision: self.changed_at.get(tag).copied().unwrap_or(0),
-            glb: Bytes::from(glb),
+            scene,
         })
+    }
+
+    /// Vessel `tag`'s GLB at the current revision; `None` for an unknown tag.
+    pub fn vessel_glb(&self, tag: &str) -> Option<VesselGlb> {
+        self.vessel_scene(tag).map(|v| v.glb())
     }
 
     /// Vessel `tag`'s drawing sheet (ANSI D) as SVG or DXF, from a model of the
@@ -790,64 +643,6 @@ fn link_target(path: &Path) -> PathBuf {
     }
 }
 
-/// A JSON value as a JSON Patch document.
-fn parse_patch(value: Value) -> Result<json_patch::Patch, ApiError> {
-    if !value.is_array() {
-        return Err(ApiError::Malformed(
-            "a JSON Patch document (RFC 6902) is an array of operations such as \
-             [{\"op\": \"replace\", \"path\": \"/vessels/0/parts/1/shell/length\", \"value\": 8000}]"
-                .into(),
-        ));
-    }
-    serde_json::from_value(value)
-        .map_err(|e| ApiError::Malformed(format!("not a JSON Patch document (RFC 6902): {e}")))
-}
-
-/// A syntax error without its line and column: those are of the patched text,
-/// which the editor never saw; the JSON path says where the problem is.
-fn without_position(error: DesignError) -> DesignError {
-    match error {
-        DesignError::Syntax { path, message } => {
-            let message = match message.rfind(" at line ") {
-                Some(k) => message[..k].to_string(),
-                None => message,
-            };
-            DesignError::Syntax { path, message }
-        }
-        other => other,
-    }
-}
-
-/// Writes every whole number as an integer, so that a `test` of `7200` matches a
-/// design value `7200.0`: RFC 6902 compares numbers by value, serde_json by
-/// representation. Fractional and very large numbers are left as they are.
-fn canonical_numbers(value: &mut Value) {
-    /// Integers up to 2^53 are exact in f64.
-    const EXACT: f64 = 9_007_199_254_740_992.0;
-    match value {
-        Value::Number(n) => {
-            if let Some(f) = n.as_f64()
-                && !n.is_i64()
-                && !n.is_u64()
-                && f.fract() == 0.0
-                && f.abs() <= EXACT
-            {
-                *value = Value::from(f as i64);
-            }
-        }
-        Value::Array(items) => items.iter_mut().for_each(canonical_numbers),
-        Value::Object(map) => map.values_mut().for_each(canonical_numbers),
-        _ => {}
-    }
-}
-
-/// A staged edit's new design: the whole document, or the JSON of the vessels
-/// it changed, by index.
-enum Next {
-    Whole(Value),
-    Vessels(Vec<(usize, Value)>),
-}
-
 /// The vessel tag of a stable id (`tag` or `tag/id`).
 fn vessel_of(id: &str) -> &str {
     id.split_once('/').map_or(id, |(tag, _)| tag)
@@ -870,15 +665,6 @@ fn node_extras(scene: &Scene) -> BTreeMap<String, BTreeMap<String, Value>> {
 /// A design as the JSON value patches apply to (its canonical form).
 pub(super) fn design_value(design: &Design) -> Value {
     serde_json::to_value(design).unwrap_or(Value::Null)
-}
-
-/// The delta GLB, or an empty scene's GLB if the delta cannot be written (viewers
-/// then see no geometry change; the error is printed).
-fn delta_or_empty(scene: &Scene, changed: &BTreeSet<String>) -> Vec<u8> {
-    write_delta_glb(scene, changed).unwrap_or_else(|e| {
-        eprintln!("vesselcad serve: cannot write a delta GLB: {e}");
-        write_glb(&Scene::default()).unwrap_or_default()
-    })
 }
 
 /// Work counters as JSON.

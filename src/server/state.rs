@@ -49,6 +49,19 @@ impl AppState {
         }
     }
 
+    /// Runs `work` on a blocking thread without the session lock (writing a
+    /// GLB from what was read under it).
+    pub(super) async fn unlocked<T, F>(work: F) -> T
+    where
+        T: Send + 'static,
+        F: FnOnce() -> T + Send + 'static,
+    {
+        match tokio::task::spawn_blocking(work).await {
+            Ok(value) => value,
+            Err(e) => std::panic::resume_unwind(e.into_panic()),
+        }
+    }
+
     /// Refuses a request without the right token (in the `Authorization`
     /// header, or `from_query`).
     pub(super) fn authorize(

@@ -18,6 +18,7 @@
 use std::path::Path;
 
 use super::error::ServeError;
+use super::flush::Pending;
 use super::persist::{PersistError, Persistence, Record};
 use crate::design::{Design, Units};
 use crate::store::pg::redact;
@@ -135,7 +136,7 @@ impl StoreLink {
 }
 
 impl Persistence for StoreLink {
-    fn record(&mut self, record: &Record<'_>) -> Result<(), PersistError> {
+    fn record(&mut self, record: &Record<'_>) -> Result<Option<Pending>, PersistError> {
         let change = Change {
             author: self.author.clone(),
             message: record.message.to_string(),
@@ -144,8 +145,9 @@ impl Persistence for StoreLink {
         let commit = |store: &mut Store, name: &str| {
             store.commit(name, parent, record.before, record.after, &change)
         };
+        // Committed (synchronously) before this returns.
         match self.with_store(commit) {
-            Ok(_) => Ok(()),
+            Ok(_) => Ok(None),
             Err((_, StoreError::Conflict { current, .. })) => Err(PersistError::Conflict {
                 current: current as u64,
             }),

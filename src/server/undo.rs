@@ -14,7 +14,8 @@ use crate::store::Revision;
 
 impl Session {
     /// Goes back to the design before this server's last edit not yet undone,
-    /// as a new revision.
+    /// as a new revision, durable once [`Accepted::wait_durable`] returns (as
+    /// [`Session::apply_unflushed`]).
     ///
     /// # Errors
     ///
@@ -34,7 +35,8 @@ impl Session {
         Ok(accepted)
     }
 
-    /// Redoes the last undo, as a new revision.
+    /// Redoes the last undo, as a new revision (durable once
+    /// [`Accepted::wait_durable`] returns).
     ///
     /// # Errors
     ///
