@@ -82,8 +82,8 @@ pub(super) fn fit_loop(
     // Pieces between breaks: the first and last samples and those at a break.
     let span = (t[n - 1] - t[0]).abs().max(1e-300);
     let mut cuts = vec![0];
-    for k in 1..n - 1 {
-        if breaks.iter().any(|&b| (t[k] - b).abs() <= 1e-12 * span) {
+    for (k, &tk) in t.iter().enumerate().take(n - 1).skip(1) {
+        if breaks.iter().any(|&b| (tk - b).abs() <= 1e-12 * span) {
             cuts.push(k);
         }
     }
