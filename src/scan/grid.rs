@@ -80,7 +80,7 @@ pub fn interpolate_grid(
         });
     }
     let at = |i: usize, j: usize| points[i * nv + j];
-    let u_params = parameters(nu, nv, |k, line| at(k, line), parametrization);
+    let u_params = parameters(nu, nv, at, parametrization);
     let v_params = parameters(nv, nu, |k, line| at(line, k), parametrization);
     let u_knots = averaged_knots(&u_params, p)?;
     let v_knots = averaged_knots(&v_params, q)?;
