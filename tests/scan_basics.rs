@@ -5,7 +5,7 @@
 
 mod common;
 
-use common::scan::{DRUM, envelope};
+use common::scan::{DRUM, TANK, envelope};
 use glam::DVec3;
 use vesselcad::scan::defects::parse_defects;
 use vesselcad::scan::fit::{FitOptions, Sample, deviation_at, fit_patch};
@@ -85,6 +85,22 @@ fn malformed_points_are_refused_with_their_line() {
     assert!(e.contains("1 of 3 vertices"), "{e}");
     let missing = dir.path().join("missing.ply");
     assert!(matches!(load_points(&missing), Err(ScanError::Io { .. })));
+}
+
+#[test]
+fn each_part_reads_its_outside_diameter_and_span() {
+    // From the surface, not its control net (whose corners lie √2 farther out).
+    let env = envelope(DRUM);
+    for part in env.parts.iter().filter(|p| p.role.is_envelope()) {
+        assert!((part.diameter - 2000.0).abs() < 1e-9, "{part:?}");
+    }
+    let s1 = &env.parts[env.part_index("S1").unwrap()];
+    let s2 = &env.parts[env.part_index("S2").unwrap()];
+    assert!((s1.span.1 - s1.span.0 - 3000.0).abs() < 1e-9, "{s1:?}");
+    assert!((s2.span.0 - s1.span.1).abs() < 1e-9, "{s1:?} {s2:?}");
+    let tank = envelope(TANK);
+    let bottom = &tank.parts[tank.part_index("S1").unwrap()];
+    assert!((bottom.diameter - 6000.0).abs() < 1e-9, "{bottom:?}");
 }
 
 #[test]
@@ -217,7 +233,6 @@ fn noise_free_scan_fits_the_design_to_a_millionth_of_its_size() {
 }
 
 #[test]
-#[ignore = "reads -8.0 mm where -5 mm is injected at u = 0 (not yet understood; the end-to-end ovality check in scan_inspect reads 0.82 % of 0.8 %)"]
 fn a_known_ovality_is_recovered_by_the_fit() {
     let env = envelope(DRUM);
     let mut o = options(400.0, 0.0);
@@ -229,10 +244,16 @@ fn a_known_ovality_is_recovered_by_the_fit() {
         .position(|s| env.parts[s.part].id == "S1")
         .unwrap();
     let s = &env.surfaces[index];
+    // The scan has no noise: the net grows until the residual is 0.01 mm
+    // (told the default 1 mm, the fit stopped at a 1 m net that reads the
+    // crests 13 % high, within that residual).
     let fit = fit_patch(
         &s.patch.surface,
         &samples_of(&env, &scan.points, index),
-        &FitOptions::DEFAULT,
+        &FitOptions {
+            noise: 0.01,
+            ..FitOptions::DEFAULT
+        },
         "S1",
     )
     .unwrap();

@@ -107,9 +107,9 @@ fn each_injected_defect_is_found_in_size_and_place() {
     assert!((dent.elevation - 4500.0).abs() <= 100.0, "{dent:?}");
     assert!(arc(1000.0, dent.orientation, 90.0) <= 100.0, "{dent:?}");
     let peaking = find(f, "peaking", "S2");
-    // The issue asks for 10 %; the smoothed fit rounds the ridge's crest and
-    // reads 6.7 mm of 8 today, so this holds 20 % until that is fixed.
-    assert!((peaking.size - 8.0).abs() <= 1.6, "{peaking:?}");
+    // Within 10 %: the board reads the points, not the fit (which rounds the
+    // crest within the noise and read 6.7 mm).
+    assert!((peaking.size - 8.0).abs() <= 0.8, "{peaking:?}");
     assert!(
         arc(1000.0, peaking.orientation, 200.0) <= 100.0,
         "{peaking:?}"
@@ -130,7 +130,7 @@ fn each_injected_defect_is_found_in_size_and_place() {
 }
 
 #[test]
-#[ignore = "the bottom-edge station estimate finds no stations yet (see the s5-c37 report)"]
+#[ignore = "fits now (amplitude 39.2 of 40 mm, R² 0.996) but reads the lowest point at 117.6° for 120° (124 mm of arc, 100 allowed); station uncertainty 4.9 mm at 200 points/m²"]
 fn tank_settlement_is_fitted_by_a_cosine() {
     let env = envelope(TANK);
     let (points, _) = scan(&env, "settlement=cosine:40mm@120°", 200.0, 14);
@@ -142,6 +142,51 @@ fn tank_settlement_is_fitted_by_a_cosine() {
         .expect("a tank has a settlement fit");
     assert!((s.amplitude - 40.0).abs() <= 4.0, "{s:?}");
     assert!(arc(3000.0, s.lowest, 120.0) <= 100.0, "{s:?}");
-    assert!(s.r_squared > 0.9, "{s:?}");
+    assert!(s.r_squared > 0.9 && s.cosine_valid, "{s:?}");
     find(&i.checks.findings, "settlement", "TK-1");
+    // API 653 12.5.1.2: stations at most 32 ft (9754 mm) apart, at least 8.
+    assert_eq!(s.stations.len(), 8, "{s:?}");
+    // B.3.2.1 for SA-283-C (Y 205 MPa, E 200 000 MPa), L = π·6000/8, H = 6000:
+    // S_max = 11·L²·Y / (2·E·H) = 5.22 mm.
+    let l = std::f64::consts::PI * 6000.0 / 8.0;
+    let expected = 11.0 * l * l * 205.0 / (2.0 * 200_000.0 * 6000.0);
+    let allowable = s.allowable.expect("the tank's material is in the table");
+    assert!(
+        (allowable - expected).abs() < 1e-9,
+        "{allowable} vs {expected}"
+    );
+    assert!((expected - 5.22).abs() < 0.01, "{expected}");
+    // A planar tilt leaves no out-of-plane settlement past the stations'
+    // uncertainty (at 200 points/m² a station's edge is good to about 3 mm).
+    assert!(s.uncertainty < 4.0, "{s:?}");
+    assert!(s.out_of_plane < 3.0 * s.uncertainty, "{s:?}");
+    assert!(
+        !i.checks
+            .findings
+            .iter()
+            .any(|f| f.kind == "out_of_plane_settlement"),
+        "{:#?}",
+        i.checks.findings
+    );
+}
+
+#[test]
+#[ignore = "the sag's S_i (about 15 mm) is not past 3 × the stations' uncertainty (4.9 mm at 200 points/m²), so no finding is reported"]
+fn out_of_plane_settlement_past_the_api_653_allowable_is_flagged() {
+    // A local sag of the shell's bottom edge at a station (45°: the stations
+    // are every 45° from 0) pulls it down out of the cosine's plane.
+    let env = envelope(TANK);
+    let station = 45.0;
+    let (points, _) = scan(
+        &env,
+        &format!("settlement=cosine:30mm@200°,sag=25mm@{station}°/3000mm"),
+        200.0,
+        15,
+    );
+    let i = inspected(&env, points);
+    let s = i.checks.settlement.as_ref().expect("a settlement fit");
+    let f = find(&i.checks.findings, "out_of_plane_settlement", "TK-1");
+    assert!(f.exceeds, "{f:?}");
+    assert_eq!(f.limit, s.allowable);
+    assert!(arc(3000.0, f.orientation, station) <= 100.0, "{f:?}");
 }

@@ -83,9 +83,9 @@ pub struct FitArgs {
     /// The HTML report.
     #[arg(short, long)]
     output: PathBuf,
-    /// Also write the report as JSON (`<output>.json`).
-    #[arg(long)]
-    json: bool,
+    /// Also write the report as JSON to this file.
+    #[arg(long, value_name = "PATH")]
+    json: Option<PathBuf>,
     /// Write the deviation map as binary glTF with vertex colours.
     #[arg(long)]
     glb: Option<PathBuf>,
@@ -114,7 +114,7 @@ pub fn run(args: ScanArgs) -> ExitCode {
         Err(e) => {
             eprintln!("error: {e}");
             match e {
-                ScanError::Io { .. } => ExitCode::from(2),
+                ScanError::Io { .. } | ScanError::SameFile { .. } => ExitCode::from(2),
                 _ => ExitCode::from(1),
             }
         }
@@ -176,6 +176,45 @@ fn run_simulate(a: &SimulateArgs) -> Result<(), ScanError> {
     Ok(())
 }
 
+/// Whether two paths name the same file: the same path once made absolute, or
+/// (for files that exist) the same canonical path.
+fn same_file(a: &Path, b: &Path) -> bool {
+    match (a.canonicalize(), b.canonicalize()) {
+        (Ok(x), Ok(y)) => x == y,
+        _ => std::path::absolute(a).ok() == std::path::absolute(b).ok(),
+    }
+}
+
+/// Refuses an output (`-o`, `--json`, `--glb`) that names an input or another
+/// output, before anything is read or written.
+fn refuse_overwrites(a: &FitArgs) -> Result<(), ScanError> {
+    let mut outputs: Vec<(&'static str, &Path, &'static str)> =
+        vec![("-o", a.output.as_path(), "HTML report")];
+    if let Some(p) = &a.json {
+        outputs.push(("--json", p, "JSON report"));
+    }
+    if let Some(p) = &a.glb {
+        outputs.push(("--glb", p, "GLB map"));
+    }
+    for (k, &(option, path, _)) in outputs.iter().enumerate() {
+        let inputs = [
+            (a.design.as_path(), "design file"),
+            (a.points.as_path(), "scan"),
+        ];
+        let earlier = outputs[..k].iter().map(|&(_, p, what)| (p, what));
+        for (other, what) in inputs.into_iter().chain(earlier) {
+            if same_file(path, other) {
+                return Err(ScanError::SameFile {
+                    option,
+                    path: path.to_path_buf(),
+                    other: what,
+                });
+            }
+        }
+    }
+    Ok(())
+}
+
 fn run_fit(a: &FitArgs) -> Result<(), ScanError> {
     let start = Instant::now();
     let env = envelope(&a.design, &a.vessel)?;
@@ -186,6 +225,7 @@ fn run_fit(a: &FitArgs) -> Result<(), ScanError> {
             rule: "must be > 0 mm",
         });
     }
+    refuse_overwrites(a)?;
     let points = load_points(&a.points)?;
     let read = start.elapsed().as_secs_f64();
     let options = InspectOptions {
@@ -204,9 +244,8 @@ fn run_fit(a: &FitArgs) -> Result<(), ScanError> {
     };
     let inspection = inspect(&env, points, &options)?;
     std::fs::write(&a.output, to_html(&inspection)).map_err(|e| ScanError::io(&a.output, e))?;
-    if a.json {
-        let path = a.output.with_extension("json");
-        std::fs::write(&path, to_json(&inspection)).map_err(|e| ScanError::io(&path, e))?;
+    if let Some(path) = &a.json {
+        std::fs::write(path, to_json(&inspection)).map_err(|e| ScanError::io(path, e))?;
     }
     if let Some(path) = &a.glb {
         let bytes = deviation_glb(&env, &inspection, (3.0 * a.noise).max(5.0));

@@ -73,8 +73,37 @@ pub struct Settlement {
     pub lowest: f64,
     /// Coefficient of determination of the cosine fit.
     pub r_squared: f64,
-    /// Largest out-of-plane deviation from the cosine, mm.
+    /// Out-of-plane settlement S_i of each station: its elevation less the
+    /// cosine's, mm.
+    pub deviations: Vec<f64>,
+    /// Largest |S_i|, mm.
     pub out_of_plane: f64,
+    /// Standard uncertainty of a station's edge elevation, the worst station's,
+    /// mm: the mean gap between points up the shell there (1/λ, λ points per mm
+    /// of height) and the noise over their count. Out-of-plane settlement is
+    /// reported past three of these.
+    pub uncertainty: f64,
+    /// Arc length L between stations, mm.
+    pub spacing: f64,
+    /// Tank shell height H, mm.
+    pub height: f64,
+    /// API 653 B.3.2.1's largest permissible out-of-plane deflection,
+    /// S_max = 11·L²·Y / (2·E·H), mm; `None` without the shell's Y and E.
+    pub allowable: Option<f64>,
+    /// Whether the cosine represents the settlement (R² ≥ 0.9, B.2.2.4); when
+    /// not, B.2.2.5's evaluation applies instead.
+    pub cosine_valid: bool,
+}
+
+/// API 653 Annex B's least R² for the optimum cosine curve to stand for the
+/// tank's rigid tilt.
+pub const COSINE_R_SQUARED: f64 = 0.9;
+
+/// API 653 B.3.2.1: the largest permissible out-of-plane deflection of the shell,
+/// S_max = 11·L²·Y / (2·E·H) (L the arc length between stations and H the tank
+/// height, mm; Y the shell's yield strength and E its modulus, MPa), mm.
+pub fn allowable_out_of_plane(spacing: f64, height: f64, yield_strength: f64, modulus: f64) -> f64 {
+    11.0 * spacing * spacing * yield_strength / (2.0 * modulus * height)
 }
 
 /// What the checks found.
@@ -306,7 +335,42 @@ pub fn check(
             }
         }
     }
-    if tank && let Some(s) = settlement(envelope, points, feet) {
+    // The scanner's noise as the bottom course's fit reads it.
+    let bottom_noise = envelope
+        .surfaces
+        .iter()
+        .zip(fits)
+        .filter(|(s, f)| envelope.parts[s.part].role == Role::Course && f.is_some())
+        .min_by(|a, b| {
+            envelope.parts[a.0.part]
+                .span
+                .0
+                .total_cmp(&envelope.parts[b.0.part].span.0)
+        })
+        .and_then(|(_, f)| f.as_ref().map(|f| f.rms))
+        .unwrap_or(1.0);
+    if tank && let Some(s) = settlement(envelope, points, bottom_noise) {
+        let worst = s
+            .deviations
+            .iter()
+            .enumerate()
+            .max_by(|a, b| a.1.abs().total_cmp(&b.1.abs()));
+        if let Some((k, &value)) = worst
+            && value.abs() > (3.0 * s.uncertainty).max(options.dent_threshold)
+        {
+            checks.findings.push(Finding {
+                kind: "out_of_plane_settlement",
+                part: envelope.tag.clone(),
+                size: value,
+                unit: "mm",
+                elevation: s.elevations[k],
+                orientation: s.stations[k],
+                extent: Some(s.spacing),
+                limit: s.allowable,
+                exceeds: s.allowable.is_some_and(|a| value.abs() > a),
+                rule: "API 653 B.3.2.1: out-of-plane settlement S_i ≤ 11·L²·Y / (2·E·H)",
+            });
+        }
         if s.amplitude > options.settlement_floor {
             checks.findings.push(Finding {
                 kind: "settlement",
@@ -318,7 +382,12 @@ pub fn check(
                 extent: None,
                 limit: None,
                 exceeds: false,
-                rule: "API 653 Annex B: cosine (planar tilt) fit of the shell's bottom edge",
+                rule: if s.cosine_valid {
+                    "API 653 Annex B: cosine (planar tilt) fit of the shell's bottom edge"
+                } else {
+                    "API 653 Annex B: cosine fit of the shell's bottom edge with R² < 0.9: \
+                     not a planar tilt, evaluate by B.2.2.5"
+                },
             });
         }
         checks.settlement = Some(s);
@@ -362,6 +431,13 @@ fn course_checks(
         .flatten()
         .filter(|f| f.surface == index)
         .map(|f| (super::profile::angle_of_u(f.u), (f.v - v0) / (v1 - v0)))
+        .collect();
+    // The points themselves: (angle, v, normal deviation).
+    let raw: Vec<(f64, f64, f64)> = feet
+        .iter()
+        .flatten()
+        .filter(|f| f.surface == index)
+        .map(|f| (super::profile::angle_of_u(f.u), f.v, f.deviation))
         .collect();
     let area = TAU * r * length;
     let reach = (1.5 * (area / own.len().max(1) as f64).sqrt()).max(GRID);
@@ -497,8 +573,15 @@ fn course_checks(
                         at.push(b as f64);
                     }
                 }
-                let value = median(readings);
                 let column = median(at) as usize;
+                // The board on the points themselves where there are enough:
+                // the fit rounds a ridge's crest within the noise.
+                let band = (
+                    v0 + (v1 - v0) * zmin as f64 / nz as f64,
+                    v0 + (v1 - v0) * zmax as f64 / nz as f64,
+                );
+                let value = board_on_points(&raw, r, angles[column], band)
+                    .unwrap_or_else(|| median(readings));
                 let mid = place((zmin + zmax) / 2, column);
                 // A ridge split in pieces along its seam is one seam: keep the
                 // longest piece's reading.
@@ -557,9 +640,105 @@ fn course_checks(
     }
 }
 
+/// Points within this arc of a ridge's line read its crest, mm.
+const BOARD_REACH: f64 = 0.5 * BOARD + 150.0;
+
+/// The sweep board's reading of a ridge on a course of radius `r` near the angle
+/// `theta` (radians), from the points `raw` (angle, v, normal deviation) whose v
+/// lies in `band`: a tent `h·max(0, 1 − |a − a₀|/w)` plus a line in the arc `a`
+/// from the seam, fitted by least squares over a₀ (±60 mm, 2 mm steps) and w
+/// (100 to 900 mm, 10 mm steps); the reading is the gap between the model at
+/// a₀ and a straight 900 mm board resting on it at a₀ ± 450 mm. `None` under
+/// 200 points.
+fn board_on_points(raw: &[(f64, f64, f64)], r: f64, theta: f64, band: (f64, f64)) -> Option<f64> {
+    let data: Vec<(f64, f64)> = raw
+        .iter()
+        .filter(|p| p.1 >= band.0 && p.1 <= band.1)
+        .map(|p| (r * super::defects::wrap(p.0 - theta), p.2))
+        .filter(|p| p.0.abs() <= BOARD_REACH)
+        .collect();
+    if data.len() < 200 {
+        return None;
+    }
+    let half = 0.5 * BOARD;
+    let tent = |a: f64, a0: f64, w: f64| (1.0 - (a - a0).abs() / w).max(0.0);
+    let mut best: Option<(f64, f64)> = None;
+    for i in -30..=30 {
+        let a0 = 2.0 * i as f64;
+        for k in 0..=80 {
+            let w = 100.0 + 10.0 * k as f64;
+            let rows: Vec<[f64; 5]> = data
+                .iter()
+                .map(|&(a, _)| [1.0, a / half, tent(a, a0, w), 0.0, 0.0])
+                .collect();
+            let values: Vec<f64> = data.iter().map(|p| p.1).collect();
+            let Some(c) = least_squares(&rows, &values, &vec![1.0; data.len()], 3) else {
+                continue;
+            };
+            let sse: f64 = rows
+                .iter()
+                .zip(&values)
+                .map(|(row, y)| (y - c[0] - c[1] * row[1] - c[2] * row[2]).powi(2))
+                .sum();
+            if best.is_none_or(|b| sse < b.0) {
+                let ends = 0.5 * (tent(a0 - half, a0, w) + tent(a0 + half, a0, w));
+                best = Some((sse, c[2] * (1.0 - ends)));
+            }
+        }
+    }
+    best.map(|b| b.1)
+}
+
 /// The bottom edge of a tank's lowest course, by API 653 Annex B stations.
-fn settlement(envelope: &Envelope, points: &[DVec3], feet: &[Option<Foot>]) -> Option<Settlement> {
-    let (bottom, part) = envelope
+/// The standard normal distribution function (Abramowitz & Stegun 7.1.26,
+/// error under 1.5e-7).
+fn normal_cdf(x: f64) -> f64 {
+    let z = x.abs() / std::f64::consts::SQRT_2;
+    let t = 1.0 / (1.0 + 0.327_591_1 * z);
+    let poly = t
+        * (0.254_829_592
+            + t * (-0.284_496_736
+                + t * (1.421_413_741 + t * (-1.453_152_027 + t * 1.061_405_429))));
+    let erf = 1.0 - poly * (-z * z).exp();
+    if x >= 0.0 {
+        0.5 * (1.0 + erf)
+    } else {
+        0.5 * (1.0 - erf)
+    }
+}
+
+/// Height above an edge over which [`edge_by_likelihood`] reads points, mm.
+const EDGE_WINDOW: f64 = 200.0;
+
+/// The elevation of the edge below which a shell has no points, from heights
+/// `z` (relative to the current model) near a first guess `guess`: points lie
+/// uniformly above the edge, blurred by Gaussian noise `sigma`, so each has the
+/// likelihood Φ((z − e)/σ) / (top − e) within a window of top `guess + 200`;
+/// the edge is the maximum, searched at 0.05 mm over ±(10σ + 10) mm.
+fn edge_by_likelihood(z: &[f64], guess: f64, sigma: f64) -> f64 {
+    let top = guess + EDGE_WINDOW;
+    let near: Vec<f64> = z.iter().copied().filter(|&v| v < top).collect();
+    let reach = 10.0 * sigma + 10.0;
+    let steps = (2.0 * reach / 0.05).ceil() as usize;
+    let mut best = (f64::NEG_INFINITY, guess);
+    for k in 0..=steps {
+        let e = guess - reach + 0.05 * k as f64;
+        let a = (top - e) / sigma;
+        let mass = (top - e) * normal_cdf(a) + sigma * (-0.5 * a * a).exp() / (2.0 * PI).sqrt();
+        let l: f64 = near
+            .iter()
+            .map(|&v| normal_cdf((v - e) / sigma).max(1e-300).ln())
+            .sum::<f64>()
+            - near.len() as f64 * mass.max(1e-300).ln();
+        if l > best.0 {
+            best = (l, e);
+        }
+    }
+    best.1
+}
+
+fn settlement(envelope: &Envelope, points: &[DVec3], noise: f64) -> Option<Settlement> {
+    let (_, part) = envelope
         .parts
         .iter()
         .enumerate()
@@ -570,7 +749,6 @@ fn settlement(envelope: &Envelope, points: &[DVec3], feet: &[Option<Foot>]) -> O
     const EDGE_POINTS: usize = 8;
     // Points of the shell near its bottom, by distance from the axis: those
     // below the design's bottom (the low side) project off the course.
-    let _ = (bottom, feet);
     let edge: Vec<(f64, f64)> = points
         .iter()
         .filter(|p| {
@@ -585,7 +763,9 @@ fn settlement(envelope: &Envelope, points: &[DVec3], feet: &[Option<Foot>]) -> O
     let mut model = [part.span.0, 0.0, 0.0];
     let at = |m: &[f64; 3], t: f64| m[0] + m[1] * t.cos() + m[2] * t.sin();
     let mut values = vec![f64::NAN; stations];
+    let mut uncertainty: f64 = 0.0;
     for _ in 0..6 {
+        uncertainty = 0.0;
         let width = TAU / stations as f64;
         for (k, value) in values.iter_mut().enumerate() {
             let centre = k as f64 * width;
@@ -602,7 +782,16 @@ fn settlement(envelope: &Envelope, points: &[DVec3], feet: &[Option<Foot>]) -> O
             *value = if k < 3 {
                 f64::NAN
             } else {
-                at(&model, centre) + lowest[0] - (lowest[k - 1] - lowest[0]) / (k - 1) as f64
+                let guess = lowest[0] - (lowest[k - 1] - lowest[0]) / (k - 1) as f64;
+                let sigma = noise.max(0.05);
+                let edge = edge_by_likelihood(&lowest, guess, sigma);
+                let n = lowest
+                    .iter()
+                    .filter(|&&z| z >= edge && z < edge + EDGE_WINDOW)
+                    .count()
+                    .max(1) as f64;
+                uncertainty = uncertainty.max((EDGE_WINDOW / n).hypot(sigma / n.sqrt()));
+                at(&model, centre) + edge
             };
         }
         let rows: Vec<[f64; 5]> = (0..stations)
@@ -640,6 +829,19 @@ fn settlement(envelope: &Envelope, points: &[DVec3], feet: &[Option<Foot>]) -> O
         .map(|k| (k.1 - at(&model, k.0)).abs())
         .fold(0.0, f64::max);
     let low = model[2].atan2(model[1]) + PI;
+    let spacing = PI * d / stations as f64;
+    let height = envelope
+        .parts
+        .iter()
+        .filter(|p| p.role == Role::Course)
+        .map(|p| p.span.1)
+        .fold(part.span.0, f64::max)
+        - part.span.0;
+    let r_squared = if total > 0.0 {
+        1.0 - residual / total
+    } else {
+        0.0
+    };
     Some(Settlement {
         stations: known
             .iter()
@@ -648,11 +850,16 @@ fn settlement(envelope: &Envelope, points: &[DVec3], feet: &[Option<Foot>]) -> O
         elevations: known.iter().map(|k| k.1).collect(),
         amplitude: model[1].hypot(model[2]),
         lowest: envelope.orientation_of(DVec3::new(low.cos(), low.sin(), 0.0)),
-        r_squared: if total > 0.0 {
-            1.0 - residual / total
-        } else {
-            0.0
-        },
+        r_squared,
+        deviations: known.iter().map(|k| k.1 - at(&model, k.0)).collect(),
         out_of_plane,
+        uncertainty,
+        spacing,
+        height,
+        allowable: envelope
+            .material
+            .as_ref()
+            .map(|m| allowable_out_of_plane(spacing, height, m.yield_strength, m.modulus)),
+        cosine_valid: r_squared >= COSINE_R_SQUARED,
     })
 }

@@ -8,6 +8,8 @@
 //! peaking=8mm@seam[:S1][/45°]       a ridge 8 mm high along the long seam at 45° (every course, or S1)
 //! tilt=0.3°[/90°]                   the vessel out of plumb by 0.3°, leaning towards 90°
 //! settlement=cosine:40mm[@180°]     planar (cosine) settlement of a tank, 40 mm down at 180°
+//! sag=20mm@60°[/3000mm]             out-of-plane settlement: the shell's bottom edge 20 mm down
+//!                                   at 60°, over 3000 mm of arc, fading up the shell as much
 //! ```
 //!
 //! Local defects move a point along the design normal; tilt and settlement are
@@ -68,6 +70,17 @@ pub enum Defect {
         angle: f64,
         /// Degrees.
         orientation: f64,
+    },
+    /// Out-of-plane settlement: the shell's bottom edge moved down by `depth`
+    /// at `orientation`, (1 − s²)² over `width` mm of arc (s the distance over
+    /// half of it), fading with height above the bottom edge over `width / 2`.
+    Sag {
+        /// mm, downward.
+        depth: f64,
+        /// Orientation of the deepest point, degrees.
+        orientation: f64,
+        /// Arc length affected, mm.
+        width: f64,
     },
     /// Planar (cosine) settlement of a tank's bottom edge: `amplitude` mm down at
     /// `orientation`, as much up opposite.
@@ -191,6 +204,33 @@ pub fn parse_defects(text: &str, envelope: &Envelope) -> Result<Vec<Defect>, Sca
                     course,
                 }
             }
+            "sag" => {
+                if envelope.kind == VesselKind::Horizontal {
+                    return Err(error(
+                        item,
+                        name,
+                        value,
+                        "applies to vertical vessels and tanks only",
+                    ));
+                }
+                let depth = number(item, name, value, MM)?;
+                if depth <= 0.0 {
+                    return Err(error(item, name, value, "must be a depth > 0 mm"));
+                }
+                let (angle, width) = place.split_once('/').unwrap_or((place, "3000"));
+                if angle.is_empty() {
+                    return Err(error(item, "@", place, "must be orientation[/width]"));
+                }
+                let width = number(item, "width", width, MM)?;
+                if width <= 0.0 {
+                    return Err(error(item, "width", &width.to_string(), "must be > 0 mm"));
+                }
+                Defect::Sag {
+                    depth,
+                    orientation: number(item, "orientation", angle, DEG)?,
+                    width,
+                }
+            }
             "tilt" | "settlement" => {
                 if envelope.kind == VesselKind::Horizontal {
                     return Err(error(
@@ -229,7 +269,7 @@ pub fn parse_defects(text: &str, envelope: &Envelope) -> Result<Vec<Defect>, Sca
                     item,
                     "name",
                     name,
-                    "must be ovality, dent, bulge, peaking, tilt or settlement",
+                    "must be ovality, dent, bulge, peaking, tilt, settlement or sag",
                 ));
             }
         };
@@ -290,6 +330,45 @@ pub fn normal_displacement(envelope: &Envelope, defects: &[Defect], part: usize,
                 d += height * (1.0 - arc / PEAKING_HALF_WIDTH).max(0.0);
             }
             _ => {}
+        }
+    }
+    d
+}
+
+/// The downward displacement (mm) the sag defects give a point `p` (vessel
+/// frame) of part `part`: only the shell courses settle with their bottom edge.
+pub fn vertical_displacement(
+    envelope: &Envelope,
+    defects: &[Defect],
+    part: usize,
+    p: DVec3,
+) -> f64 {
+    if envelope.parts[part].role != Role::Course {
+        return 0.0;
+    }
+    let Some(bottom) = envelope
+        .parts
+        .iter()
+        .filter(|p| p.role == Role::Course)
+        .min_by(|a, b| a.span.0.total_cmp(&b.span.0))
+    else {
+        return 0.0;
+    };
+    let mut d = 0.0;
+    for defect in defects {
+        if let Defect::Sag {
+            depth,
+            orientation,
+            width,
+        } = *defect
+        {
+            let t0 = envelope.angle_of_orientation(orientation);
+            let r = DVec3::new(p.x, p.y, 0.0).length();
+            let s = (r * wrap(p.y.atan2(p.x) - t0)).abs() / (width / 2.0);
+            let h = (p.z - bottom.span.0).max(0.0) / (width / 2.0);
+            if s < 1.0 && h < 1.0 {
+                d += depth * (1.0 - s * s).powi(2) * (1.0 - h * h).powi(2);
+            }
         }
     }
     d

@@ -14,6 +14,7 @@ use glam::{DAffine3, DVec3};
 
 use super::ScanError;
 use super::profile::Profile;
+use crate::calc::MaterialTable;
 use crate::constraints::{PartGeometry, ResolvedVessel};
 use crate::design::{Design, VesselKind, resolve};
 use crate::nurbs::Aabb;
@@ -74,6 +75,18 @@ pub struct ScanSurface {
     pub profile: Option<Profile>,
 }
 
+/// The shell material's strength, for API 653 Annex B's allowable out-of-plane
+/// settlement.
+#[derive(Clone, Debug, PartialEq, serde::Serialize)]
+pub struct ShellMaterial {
+    /// Specification, as the materials table names it.
+    pub name: String,
+    /// Specified minimum yield strength, MPa.
+    pub yield_strength: f64,
+    /// Modulus of elasticity, MPa.
+    pub modulus: f64,
+}
+
 /// One vessel's parts and patches, vessel frame.
 #[derive(Clone, Debug)]
 pub struct Envelope {
@@ -91,6 +104,39 @@ pub struct Envelope {
     pub parts: Vec<ScanPart>,
     /// Every patch of every part and nozzle.
     pub surfaces: Vec<ScanSurface>,
+    /// The vessel's material (`design.material`) from the built-in table, if it
+    /// names one there.
+    pub material: Option<ShellMaterial>,
+}
+
+/// Samples per direction of [`extent`]'s grid (the domain's ends included).
+const EXTENT_SAMPLES: usize = 33;
+
+/// The largest diameter of `patch` about its local axis and its axial span in the
+/// vessel frame (`frame`: local → vessel), from points of the surface itself.
+///
+/// Not from the control net: a full-turn revolution's corner control points lie
+/// √2 farther out than its circle, which would make a course of OD 2000 read
+/// 2828. Every patch of revolution takes its largest radius and its extreme
+/// heights on a domain edge or on a whole isocurve, which the grid (ends
+/// included) holds.
+fn extent(patch: &Patch, frame: &DAffine3) -> (f64, (f64, f64)) {
+    let s = &patch.surface;
+    let ((u0, u1), (v0, v1)) = s.domain();
+    let mut diameter: f64 = 0.0;
+    let mut span = (f64::INFINITY, f64::NEG_INFINITY);
+    let n = EXTENT_SAMPLES - 1;
+    for i in 0..=n {
+        for j in 0..=n {
+            let u = u0 + (u1 - u0) * i as f64 / n as f64;
+            let v = v0 + (v1 - v0) * j as f64 / n as f64;
+            let p = s.point(u, v);
+            diameter = diameter.max(2.0 * p.truncate().length());
+            let z = frame.transform_point3(p).z;
+            span = (span.0.min(z), span.1.max(z));
+        }
+    }
+    (diameter, span)
 }
 
 impl Envelope {
@@ -110,12 +156,18 @@ impl Envelope {
                 .ok_or_else(|| ScanError::UnknownVessel {
                     tag: tag.to_string(),
                 })?;
-        let rotation = design
-            .vessels
-            .iter()
-            .find(|v| v.tag == tag)
-            .map_or(0.0, |v| v.placement.rotation);
-        Self::of_vessel(vessel, rotation)
+        let given = design.vessels.iter().find(|v| v.tag == tag);
+        let rotation = given.map_or(0.0, |v| v.placement.rotation);
+        let mut envelope = Self::of_vessel(vessel, rotation)?;
+        envelope.material = given
+            .and_then(|v| v.design.material.as_deref())
+            .and_then(|name| MaterialTable::builtin().get(name).ok().cloned())
+            .map(|m| ShellMaterial {
+                name: m.name,
+                yield_strength: m.yield_strength.value,
+                modulus: m.modulus.value,
+            });
+        Ok(envelope)
     }
 
     /// The envelope of one resolved vessel placed with plan `rotation` degrees.
@@ -132,12 +184,10 @@ impl Envelope {
             let mut diameter: f64 = 0.0;
             let mut span = (f64::INFINITY, f64::NEG_INFINITY);
             for patch in patches {
+                let (d, (z0, z1)) = extent(&patch, &frame);
+                diameter = diameter.max(d);
+                span = (span.0.min(z0), span.1.max(z1));
                 let points = patch.surface.control_points();
-                for p in &points {
-                    diameter = diameter.max(2.0 * p.truncate().length());
-                    let z = frame.transform_point3(*p).z;
-                    span = (span.0.min(z), span.1.max(z));
-                }
                 let bbox = Aabb::from_points(points.iter().map(|&p| frame.transform_point3(p)));
                 let profile = Profile::of_patch(&patch);
                 surfaces.push(ScanSurface {
@@ -195,6 +245,7 @@ impl Envelope {
             up: up.normalize(),
             parts,
             surfaces,
+            material: None,
         })
     }
 

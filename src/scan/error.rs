@@ -69,6 +69,17 @@ pub enum ScanError {
         /// The rule it breaks.
         rule: &'static str,
     },
+    /// An output path names one of the inputs (or another output): writing it
+    /// would overwrite that file.
+    #[error("{option} {path}: is the {other} as well; refusing to overwrite it")]
+    SameFile {
+        /// The output option (`-o`, `--json`, `--glb`).
+        option: &'static str,
+        /// The path given.
+        path: PathBuf,
+        /// What else that path is (`design file`, `scan`, `HTML report`...).
+        other: &'static str,
+    },
     /// Too few points to do what was asked (register, fit a part).
     #[error("{what}: {found} points, at least {needed} needed")]
     TooFewPoints {

@@ -4,7 +4,8 @@
 //! ```text
 //! points (XYZ/CSV, PLY; streamed) ──▶ register (ICP on the exact NURBS, trimmed)
 //!   ──▶ project (point inversion: part, patch, u, v, signed normal deviation)
-//!   ──▶ fit (least-squares NURBS per patch with smoothing, net grown to the noise)
+//!   ──▶ fit (least-squares NURBS per patch with smoothing, net grown to the noise;
+//!       or, for an ordered CMM grid, exact interpolation: `grid`)
 //!   ──▶ checks (UG-80 roundness, UG-81 heads, dents, peaking, plumbness,
 //!       API 653 settlement, volume) ──▶ report (HTML, JSON) and a coloured GLB
 //! ```
@@ -23,13 +24,14 @@ pub mod checks;
 pub mod defects;
 pub mod fit;
 pub mod glb;
+pub mod grid;
 pub mod inspect;
 pub mod points;
 pub mod register;
 pub mod report;
 pub mod simulate;
 
-pub use envelope::{Envelope, Role, ScanPart, ScanSurface};
+pub use envelope::{Envelope, Role, ScanPart, ScanSurface, ShellMaterial};
 pub use error::ScanError;
 pub use profile::{angle_of_u, u_of_angle};
 pub use project::{Foot, Targets};

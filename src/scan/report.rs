@@ -134,14 +134,38 @@ pub fn to_html(inspection: &Inspection) -> String {
     }
     h.push_str("</table>");
     if let Some(s) = &i.checks.settlement {
+        let allowable = s.allowable.map_or_else(
+            || "not known (the shell material is not in the table)".to_string(),
+            |a| format!("{a:.1} mm"),
+        );
         let _ = write!(
             h,
-            "<h2>Settlement (API 653 Annex B)</h2><p>Cosine fit: amplitude {:.1} mm, lowest at {:.1}°, \
-             R² = {:.4}; largest out-of-plane deviation {:.1} mm.</p><table><tr><th>Station</th><th>Bottom edge, mm</th></tr>",
-            s.amplitude, s.lowest, s.r_squared, s.out_of_plane
+            "<h2>Settlement (API 653 Annex B)</h2><p>Cosine fit of the bottom edge at {} stations \
+             {:.0} mm apart: amplitude {:.1} mm, lowest at {:.1}°, R² = {:.4} ({}). \
+             Largest out-of-plane settlement {:.1} mm; permissible S = 11·L²·Y / (2·E·H) with \
+             H = {:.0} mm: {}.</p><table><tr><th>Station</th><th>Bottom edge, mm</th>\
+             <th>Out of plane S<sub>i</sub>, mm</th></tr>",
+            s.stations.len(),
+            s.spacing,
+            s.amplitude,
+            s.lowest,
+            s.r_squared,
+            if s.cosine_valid {
+                "≥ 0.9: a planar tilt"
+            } else {
+                "< 0.9: not a planar tilt, B.2.2.5 applies"
+            },
+            s.out_of_plane,
+            s.height,
+            allowable
         );
-        for (o, z) in s.stations.iter().zip(&s.elevations) {
-            let _ = write!(h, "<tr><td>{o:.1}°</td><td>{z:.1}</td></tr>");
+        for ((o, z), d) in s.stations.iter().zip(&s.elevations).zip(&s.deviations) {
+            let bad = s.allowable.is_some_and(|a| d.abs() > a);
+            let _ = write!(
+                h,
+                "<tr{}><td>{o:.1}°</td><td>{z:.1}</td><td>{d:+.1}</td></tr>",
+                if bad { " class=\"bad\"" } else { "" }
+            );
         }
         h.push_str("</table>");
     }

@@ -14,7 +14,7 @@ use glam::{DAffine3, DMat3, DVec3};
 use serde::Serialize;
 
 use super::ScanError;
-use super::defects::{Defect, normal_displacement, rigid_motion};
+use super::defects::{Defect, normal_displacement, rigid_motion, vertical_displacement};
 use super::envelope::{Envelope, Role};
 use super::project::Targets;
 use super::random::{Random, cell_hash};
@@ -207,7 +207,8 @@ pub fn simulate(
                 (theta * radius / OCCLUSION_CELL).floor() as i64,
                 (p.z / OCCLUSION_CELL).floor() as i64,
             );
-            let moved = p + normal * normal_displacement(envelope, &options.defects, s.part, p);
+            let moved = p + normal * normal_displacement(envelope, &options.defects, s.part, p)
+                - envelope.up * vertical_displacement(envelope, &options.defects, s.part, p);
             let noisy = moved
                 + DVec3::new(random.normal(), random.normal(), random.normal()) * options.noise;
             if options.occlusion > 0.0
