@@ -81,3 +81,71 @@ fn nodes_lie_on_the_mid_surface() {
         }
     }
 }
+
+/// Distance from (x0, y0), x0 ≥ 0, y0 > 0, to the ellipse of semi-axes a > b
+/// (Eberly's root of F(s) = (a·x0/(s + a²))² + (b·y0/(s + b²))² − 1 by bisection).
+fn to_ellipse(x0: f64, y0: f64, a: f64, b: f64) -> f64 {
+    if x0 <= 1e-12 {
+        // On the minor axis the pole is nearest (a > b).
+        return (b - y0).abs();
+    }
+    let f = |s: f64| (a * x0 / (s + a * a)).powi(2) + (b * y0 / (s + b * b)).powi(2) - 1.0;
+    let (mut lo, mut hi) = (-b * b + 1e-12 * b * b, a * a.max(x0.hypot(y0)) * 4.0);
+    for _ in 0..300 {
+        let s = 0.5 * (lo + hi);
+        if f(s) > 0.0 { lo = s } else { hi = s }
+    }
+    let s = 0.5 * (lo + hi);
+    let (x, y) = (a * a * x0 / (s + a * a), b * b * y0 / (s + b * b));
+    (x0 - x).hypot(y0 - y)
+}
+
+/// The ellipsoidal heads' mid-surface (the ellipsoid of semi-axes a − t/2,
+/// b − t/2) is within the stated bound of the true mid-surface (the outside
+/// offset inwards by t/2): every node's distance from the outside ellipsoid is
+/// t/2 within `ellipsoid_mid_surface_error`, and the nodes come within 80 % of
+/// the bound (it is sharp, not a loose estimate).
+#[test]
+fn ellipsoid_mid_surface_within_the_stated_bound() {
+    use vesselcad::fem::meridian::ellipsoid_mid_surface_error;
+    for (ratio, t) in [(2.0, 10.0), (2.0, 24.0), (3.0, 8.0)] {
+        let head = format!(r#""shape": "ellipsoidal", "ratio": {ratio}, "straight_flange": 0"#);
+        let design = vessel(&head, 1000.0, 1500.0, t, 500.0);
+        let options = FemOptions {
+            size: Some(30.0),
+            order: 2,
+        };
+        let (a, b, h) = (500.0, 500.0 / ratio, 0.5 * t);
+        let bound = ellipsoid_mid_surface_error(a, b, h).expect("a bound");
+        let mut worst = 0.0f64;
+        for (_, mesh) in meshes(&design, &options) {
+            for (k, part) in mesh.parts.iter().enumerate() {
+                if part.id == "S1" {
+                    continue;
+                }
+                for n in mesh.part_nodes(k) {
+                    let p = mesh.nodes[n];
+                    let y = if p.z > 750.0 { p.z - 1500.0 } else { -p.z };
+                    if y <= 0.0 {
+                        continue;
+                    }
+                    let e = (to_ellipse(p.x.hypot(p.y), y, a, b) - h).abs();
+                    assert!(
+                        e <= bound + 1e-9,
+                        "ratio {ratio}, t {t}: node {p} is {e} mm off, bound {bound}"
+                    );
+                    worst = worst.max(e);
+                }
+            }
+        }
+        eprintln!("ratio {ratio}, t {t}: bound {bound:.4} mm, worst node {worst:.4} mm");
+        assert!(
+            worst >= 0.8 * bound,
+            "ratio {ratio}, t {t}: {worst} vs {bound}"
+        );
+    }
+    // A sphere is exact; the 2:1 figure the docs state.
+    assert_eq!(ellipsoid_mid_surface_error(500.0, 500.0, 5.0), Some(0.0));
+    let e = ellipsoid_mid_surface_error(500.0, 250.0, 5.0).expect("bound");
+    assert!((e - 0.29).abs() < 0.01, "{e}");
+}

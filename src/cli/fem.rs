@@ -2,7 +2,8 @@
 //! [--case design|operating|test] [--run]`: the shell finite-element model of
 //! one vessel (see `vesselcad::fem`) as a CalculiX deck, with the same mesh as
 //! Gmsh `.msh` and ParaView `.vtu` and a units side file beside it; `--run`
-//! solves it with `ccx` and reports the stresses per part.
+//! solves it with `ccx`, reports the stresses per part against the allowable
+//! and writes the deformed shape with von Mises colours as `.glb`.
 
 use std::path::{Path, PathBuf};
 use std::process::ExitCode;
@@ -12,7 +13,7 @@ use vesselcad::calc::MaterialTable;
 use vesselcad::design::load;
 use vesselcad::fem::quality::quality;
 use vesselcad::fem::results::{nodal, part_stresses, run_ccx};
-use vesselcad::fem::{FemError, FemOptions, LoadCase, frd, inp, msh, vessel_model, vtu};
+use vesselcad::fem::{FemError, FemOptions, LoadCase, frd, glb, inp, msh, vessel_model, vtu};
 
 use super::output::outln;
 
@@ -48,7 +49,8 @@ pub struct FemArgs {
     /// Load case.
     #[arg(long, value_enum, default_value_t = Case::Design)]
     case: Case,
-    /// Run `ccx` on the deck and report the stresses per part.
+    /// Run `ccx` on the deck, report the stresses per part and write the
+    /// deformed shape with von Mises colours (`.glb`).
     #[arg(long)]
     run: bool,
 }
@@ -145,11 +147,20 @@ fn write_and_run(args: &FemArgs, model: &vesselcad::fem::FeModel) -> Result<(), 
         &beside("vtu"),
         vtu::to_vtu(&model.mesh, Some(&results)).as_bytes(),
     )?;
+    write(
+        &beside("glb"),
+        &glb::von_mises_glb(&model.mesh, &results, &model.tag),
+    )?;
     let umax = results
         .iter()
         .map(|r| r.displacement.length())
         .fold(0.0, f64::max);
-    outln!("{}: largest displacement {umax:.4} mm", frd_path.display());
+    outln!(
+        "{}: largest displacement {umax:.4} mm; {} (deformed x{:.1}, von Mises colours)",
+        frd_path.display(),
+        beside("glb").display(),
+        glb::magnification(&model.mesh, &results)
+    );
     outln!("part                 Pm max MPa   Pm+Pb max MPa   S MPa   check");
     for p in part_stresses(model, &results) {
         let s = p.allowable.map_or("-".to_string(), |s| format!("{s:.1}"));

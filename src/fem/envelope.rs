@@ -107,7 +107,10 @@ pub fn build_envelope(
             rule: "element order is 1 (S4R) or 2 (S8R)".into(),
         });
     }
-    let (parts, chain) = parts_and_chain(design, resolved)?;
+    let (mut parts, mut chain) = parts_and_chain(design, resolved)?;
+    let mut notes = Vec::new();
+    let centre_necks =
+        super::head_nozzle::join(resolved, &mut chain, &mut parts, &design.tag, &mut notes);
     let r_max = chain
         .iter()
         .map(|s| s.rz(s.s0).x.max(s.rz(s.s1).x))
@@ -138,6 +141,7 @@ pub fn build_envelope(
     let theta = |k: f64| TAU * k / n as f64;
     let mut b = Builder::new(options.order == 2);
     b.mesh.parts = parts;
+    b.mesh.notes = notes;
     // Rings of corner nodes; the rims of caps carry plane coordinates.
     let mut rings = Vec::with_capacity(mer.stations.len());
     for (i, &(seg, s)) in mer.stations.iter().enumerate() {
@@ -154,7 +158,8 @@ pub fn build_envelope(
             .collect();
         rings.push(ring);
     }
-    let holes = super::window::plan(resolved, &mer, n, &b.mesh.parts, &mut b.mesh.notes);
+    let meshed: Vec<String> = centre_necks.iter().map(|c| c.mark.clone()).collect();
+    let holes = super::window::plan(resolved, &mer, n, &b.mesh.parts, &meshed, &mut b.mesh.notes);
     for (i, iv) in mer.intervals.iter().enumerate() {
         let seg = mer.segments[iv.seg];
         let (lower, upper) = (mer.stations[i], mer.stations[i + 1]);
@@ -208,7 +213,30 @@ pub fn build_envelope(
         let end = super::nozzle::mesh(&mut b, hole, &mer, &rings, size, &design.tag);
         b.mesh.necks.push(end);
     }
-    super::nozzle::pads(&mut b, &holes, &design.tag);
+    for neck in &centre_necks {
+        let ring = if neck.at_start {
+            rings[0].clone()
+        } else {
+            rings[last].clone()
+        };
+        let mids = if b.quadratic {
+            (0..ring.len())
+                .map(|j| {
+                    let (x, y) = (ring[j], ring[(j + 1) % ring.len()]);
+                    b.mid(x, y, || DVec3::ZERO)
+                })
+                .collect()
+        } else {
+            Vec::new()
+        };
+        b.mesh.necks.push(neck.end(ring, mids));
+    }
+    let sites: Vec<_> = holes
+        .iter()
+        .filter_map(|h| h.pad_site())
+        .chain(centre_necks.iter().filter_map(|c| c.pad_site()))
+        .collect();
+    super::nozzle::pads(&mut b, &sites, &design.tag);
     // Vessel frame → plant frame.
     let frame = resolved.frame;
     for p in &mut b.mesh.nodes {

@@ -11,7 +11,9 @@
 //! 8-node quadrilaterals (S8R) and closes each pole with a quadrilateral O-grid
 //! ([`cap`]); [`conditions`] attaches a load case; [`inp`], [`msh`] and [`vtu`]
 //! write it; [`frd`] and [`results`] read a CalculiX run back and classify the
-//! stresses per part; [`quality`] measures the mesh.
+//! stresses per part, and [`glb`] draws the deformed shape with von Mises
+//! colours; [`quality`] measures the mesh. Nozzles: [`window`] and [`nozzle`]
+//! on cylindrical courses (radial or not), [`head_nozzle`] on a head's centre.
 
 pub mod builder;
 pub mod cap;
@@ -19,6 +21,8 @@ pub mod conditions;
 pub mod envelope;
 pub mod error;
 pub mod frd;
+pub mod glb;
+pub mod head_nozzle;
 pub mod inp;
 pub mod meridian;
 pub mod msh;

@@ -1,13 +1,15 @@
-//! A radial nozzle on a cylindrical course, meshed conforming with the course:
-//! the window of [`super::window`] is filled by a ring of quadrilaterals from the
-//! window's boundary (the course's own nodes) to the exact intersection curve of
-//! the neck's and the course's mid-surfaces, and the neck is swept from that
-//! curve to its end (the flange's back) in rings sharing the curve's nodes.
+//! A nozzle on a cylindrical course (radial, hillside, tangential or inclined),
+//! meshed conforming with the course: the window of [`super::window`] is filled
+//! by a ring of quadrilaterals from the window's boundary (the course's own
+//! nodes) to the exact intersection curve of the neck's and the course's
+//! mid-surfaces, and the neck is swept from that curve to its end (the flange's
+//! back, a plane across the nozzle axis) in rings sharing the curve's nodes.
 //!
 //! The ring is laid out on the course unrolled, `(u, z) = (R·Δθ, Δz)` about the
-//! nozzle axis, which maps exactly onto the cylinder; the curve's nodes are at
-//! neck angles φ spread evenly over each side of the window, between the polar
-//! angles of its corners. The ring's layers blend the curve into the window
+//! point where the nozzle axis meets the course, which maps exactly onto the
+//! cylinder; the curve's nodes are at neck angles φ whose unrolled polar
+//! angles spread evenly over each side of the window, between the polar angles
+//! of its corners. The ring's layers blend the curve into the window
 //! boundary, graded geometrically (ratio ≤ [`GRADE`]) from the curve's edge
 //! length. Every corner and mid-side node is an exact point of its surface:
 //! ring nodes of the cylinder, curve nodes (and the mid-side nodes between
@@ -77,21 +79,16 @@ pub fn mesh(
 ) -> NeckEnd {
     let n = rings[0].len();
     let seg = mer.segments[hole.seg];
-    let big_r = hole.big_r;
-    let r = hole.r;
-    let axis = hole.axis();
-    let ec = DVec3::new(-hole.theta.sin(), hole.theta.cos(), 0.0);
-    let origin = hole.origin();
-    // (u, z) about the nozzle → the cylinder.
+    let (big_r, r) = (hole.big_r, hole.r);
+    // (u, z) about the opening's centre → the cylinder.
     let on_course = |p: DVec2| {
         let s = seg.piece.at_z(hole.z + p.y);
         seg.point(s, hole.theta + p.x / big_r)
     };
-    // The neck at angle φ, distance h from the course axis.
-    let on_neck =
-        |phi: f64, h: f64| origin + axis * h + (ec * phi.cos() + DVec3::Z * phi.sin()) * r;
-    let h0 = |phi: f64| (big_r * big_r - (r * phi.cos()).powi(2)).sqrt();
-    let curve_uv = |phi: f64| DVec2::new(big_r * (r * phi.cos() / big_r).asin(), r * phi.sin());
+    // The neck at angle φ, t along its axis; where it meets the course.
+    let on_neck = |phi: f64, t: f64| hole.on_neck(phi, t);
+    let h0 = |phi: f64| hole.meet(phi).unwrap_or(0.0);
+    let curve_uv = |phi: f64| hole.curve_uv(phi);
     // The window boundary, counter-clockwise in (u, z) from its lower-left corner.
     let station_z = |i: usize| {
         let (sg, s) = mer.stations[i];
@@ -128,13 +125,15 @@ pub fn mesh(
     }
     psi.push(psi[0] + TAU);
     corners.push(count);
-    let phis: Vec<f64> = (0..count)
+    let targets: Vec<f64> = (0..count)
         .map(|j| {
             let s = (0..4).rfind(|&s| corners[s] <= j).unwrap_or(0);
             let f = (j - corners[s]) as f64 / (corners[s + 1] - corners[s]) as f64;
             psi[s] + f * (psi[s + 1] - psi[s])
         })
         .collect();
+    // Checked by the window's plan: the opening is star-shaped about its centre.
+    let phis = super::window::phis_at(hole, &targets).unwrap_or(targets);
     let mut angle: HashMap<usize, f64> = HashMap::new();
     let curve: Vec<usize> = phis
         .iter()
@@ -205,7 +204,7 @@ pub fn mesh(
         id: hole.mark.clone(),
         thickness: hole.wall,
     });
-    let length = hole.end - big_r;
+    let length = hole.end - h0(0.0).max(h0(std::f64::consts::FRAC_PI_2));
     let vs = graded(length, first, size);
     let mut at: HashMap<usize, (f64, f64)> = HashMap::new();
     for (j, &id) in curve.iter().enumerate() {
@@ -241,7 +240,7 @@ pub fn mesh(
         (0..count)
             .map(|j| {
                 let (x, y) = (end[j], end[(j + 1) % count]);
-                b.mid(x, y, || origin)
+                b.mid(x, y, || hole.origin)
             })
             .collect()
     } else {
@@ -253,28 +252,57 @@ pub fn mesh(
         part: neck_part,
         nodes: end,
         mids,
-        centre: origin + axis * hole.end,
-        axis,
-        radius: r,
+        centre: hole.origin + hole.axis * hole.end,
+        axis: hole.axis,
+        radius: hole.r,
     }
 }
 
-/// Moves the course elements under each pad of `holes` into a pad part.
-pub fn pads(b: &mut Builder, holes: &[Hole], tag: &str) {
-    for hole in holes {
-        let Some((od, t)) = hole.pad else {
-            continue;
-        };
-        let host = b.mesh.parts[hole.part].thickness;
+/// Where a pad sits: the nozzle, its host part, and its axis.
+#[derive(Clone, Debug, PartialEq)]
+pub struct PadSite {
+    /// Nozzle mark.
+    pub mark: String,
+    /// FE part index of the host.
+    pub part: usize,
+    /// A point of the nozzle axis inside the vessel.
+    pub origin: DVec3,
+    /// Unit nozzle axis, outwards.
+    pub axis: DVec3,
+    /// Pad (outside diameter, thickness), mm.
+    pub pad: (f64, f64),
+}
+
+impl Hole {
+    /// The pad's site, if the nozzle has a pad.
+    pub fn pad_site(&self) -> Option<PadSite> {
+        self.pad.map(|pad| PadSite {
+            mark: self.mark.clone(),
+            part: self.part,
+            origin: self.origin,
+            axis: self.axis,
+            pad,
+        })
+    }
+}
+
+/// Moves the host elements under each pad of `sites` (those in front of the
+/// axis's origin whose corners' centroid is within the pad's radius of the
+/// axis) into a pad part `TAG/MARK/pad`, with the host's plus the pad's
+/// thickness.
+pub fn pads(b: &mut Builder, sites: &[PadSite], tag: &str) {
+    for site in sites {
+        let (od, t) = site.pad;
+        let host = b.mesh.parts[site.part].thickness;
         let pad = b.mesh.parts.len();
         b.mesh.parts.push(FePart {
-            name: format!("{tag}/{}/pad", hole.mark),
-            id: format!("{}/pad", hole.mark),
+            name: format!("{tag}/{}/pad", site.mark),
+            id: format!("{}/pad", site.mark),
             thickness: host + t,
         });
-        let (o, d) = (hole.origin(), hole.axis());
+        let (o, d) = (site.origin, site.axis);
         let nodes = &b.mesh.nodes;
-        for e in b.mesh.elements.iter_mut().filter(|e| e.part == hole.part) {
+        for e in b.mesh.elements.iter_mut().filter(|e| e.part == site.part) {
             let nc = e.kind.corners();
             let c = e.nodes[..nc].iter().map(|&i| nodes[i]).sum::<DVec3>() / nc as f64;
             let rel = c - o;

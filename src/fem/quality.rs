@@ -37,6 +37,8 @@ pub struct Quality {
     pub inverted: usize,
     /// Largest size ratio of two elements sharing an edge.
     pub max_size_ratio: f64,
+    /// The two elements (indices) of that ratio, the larger first.
+    pub max_size_ratio_elements: (usize, usize),
     /// Histogram of cos(min angle) in ten bins of 0.1.
     pub histogram: [usize; 10],
 }
@@ -128,7 +130,15 @@ pub fn quality(mesh: &FeMesh) -> Quality {
             }
             2 => {
                 let (s, t) = (sizes[users[0]], sizes[users[1]]);
-                q.max_size_ratio = q.max_size_ratio.max(s.max(t) / s.min(t).max(1e-300));
+                let ratio = s.max(t) / s.min(t).max(1e-300);
+                if ratio > q.max_size_ratio {
+                    q.max_size_ratio = ratio;
+                    q.max_size_ratio_elements = if s >= t {
+                        (users[0], users[1])
+                    } else {
+                        (users[1], users[0])
+                    };
+                }
             }
             _ => q.nonmanifold_edges += 1,
         }

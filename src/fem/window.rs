@@ -1,15 +1,19 @@
-//! Where a nozzle opens into the structured course mesh: each radial nozzle on a
-//! cylindrical course takes a window of whole cells (station intervals ×
-//! circumferential divisions) around its opening, which [`super::nozzle`]
-//! re-meshes as a ring of quadrilaterals from the window's edges to the exact
-//! intersection curve, and then the neck. The window reaches at least
-//! [`MARGIN`] times the opening's half-extents (and past the pad), holds at
+//! Where a nozzle opens into the structured course mesh: each nozzle on a
+//! cylindrical course (radial, hillside, tangential or inclined) takes a window
+//! of whole cells (station intervals × circumferential divisions) around its
+//! opening, which [`super::nozzle`] re-meshes as a ring of quadrilaterals from
+//! the window's edges to the exact intersection curve, and then the neck. The
+//! window reaches at least [`MARGIN`] times the opening's extent on each side of
+//! the point where the nozzle axis meets the course (and past the pad), holds at
 //! least [`MIN_LOOP`] cell edges round its boundary (so the opening gets as many
-//! nodes), and stays on its course. Nozzles the mesh cannot take yet (on heads,
-//! hillside, tangential or inclined, or a window that would overlap another)
-//! are left out with a note saying so.
+//! nodes), and stays on its course. The intersection of the neck's and the
+//! course's mid-surfaces is solved in closed form along each generator of the
+//! neck (a quadratic), so its nodes are exact points of both. Nozzles the mesh
+//! cannot take (off-centre head nozzles, or a window that would overlap another)
+//! are left out with a note saying so; centre head nozzles are meshed by
+//! [`super::head_nozzle`].
 
-use std::f64::consts::TAU;
+use std::f64::consts::{PI, TAU};
 
 use glam::{DVec2, DVec3};
 
@@ -19,13 +23,15 @@ use crate::constraints::ResolvedVessel;
 use crate::operating::profile::Piece;
 use crate::parts::tables::pipe;
 
-/// Window half-extent over the opening's half-extent, at least.
+/// Window extent over the opening's extent, at least.
 pub const MARGIN: f64 = 1.6;
 /// Cell edges round a window (the opening's node count), at least.
 pub const MIN_LOOP: usize = 16;
+/// Generators sampled to find the opening's extent and its polar angles.
+const SAMPLES: usize = 720;
 
-/// A radial nozzle on a cylindrical course and the window it re-meshes, in the
-/// vessel frame.
+/// A nozzle on a cylindrical course and the window it re-meshes, in the vessel
+/// frame.
 #[derive(Clone, Debug, PartialEq)]
 pub struct Hole {
     /// Nozzle mark.
@@ -42,11 +48,12 @@ pub struct Hole {
     pub k0: i64,
     /// Divisions across the window.
     pub a: usize,
-    /// Angle of the nozzle axis about the vessel axis, radians from +x.
+    /// Angle about the vessel axis (radians from +x) of the point where the
+    /// nozzle axis meets the course's mid-surface: the window's centre.
     pub theta: f64,
-    /// Axial position of the nozzle axis, mm.
+    /// Axial position of that point, mm.
     pub z: f64,
-    /// Centre of the course's cross-section at `z` (vessel frame x, y).
+    /// Centre of the course's cross-section (vessel frame x, y).
     pub centre: DVec2,
     /// Course mid-surface radius, mm.
     pub big_r: f64,
@@ -54,28 +61,106 @@ pub struct Hole {
     pub r: f64,
     /// Neck wall, mm.
     pub wall: f64,
-    /// Distance of the neck's end (the flange's back) from the course axis, mm.
+    /// Origin of the nozzle frame (where its projection is measured from).
+    pub origin: DVec3,
+    /// Unit nozzle axis, outwards.
+    pub axis: DVec3,
+    /// Unit neck direction at neck angle φ = 0 (across the axis, along the
+    /// course's circumference at a radial nozzle).
+    pub e1: DVec3,
+    /// Unit neck direction at φ = 90° (the vessel axis made normal to the nozzle's).
+    pub e2: DVec3,
+    /// Distance of the neck's end (the flange's back) from `origin`, mm.
     pub end: f64,
     /// Pad (outside diameter, thickness), mm.
     pub pad: Option<(f64, f64)>,
 }
 
 impl Hole {
-    /// The nozzle axis direction (radial, vessel frame).
-    pub fn axis(&self) -> DVec3 {
-        DVec3::new(self.theta.cos(), self.theta.sin(), 0.0)
-    }
-
-    /// The point where the axis meets the course axis.
-    pub fn origin(&self) -> DVec3 {
-        DVec3::new(self.centre.x, self.centre.y, self.z)
-    }
-
     /// Whether cell (interval `i`, division `k` in 0..n) lies in the window.
     pub fn covers(&self, i: usize, k: usize, n: usize) -> bool {
         let dk = (k as i64 - self.k0).rem_euclid(n as i64) as usize;
         (self.i0..self.i1).contains(&i) && dk < self.a
     }
+
+    /// The point of the neck's mid-surface at neck angle `phi`, `t` mm along
+    /// the axis from the origin.
+    pub fn on_neck(&self, phi: f64, t: f64) -> DVec3 {
+        self.origin + self.axis * t + (self.e1 * phi.cos() + self.e2 * phi.sin()) * self.r
+    }
+
+    /// Where the neck's generator at angle `phi` meets the course's
+    /// mid-surface: the distance along the axis from the origin (the outer
+    /// root of |q + t·d − c|² = R² across the vessel axis), `None` if it misses.
+    pub fn meet(&self, phi: f64) -> Option<f64> {
+        meet(self.on_neck(phi, 0.0), self.axis, self.centre, self.big_r)
+    }
+
+    /// The intersection point at neck angle `phi` unrolled about the window's
+    /// centre: (R·Δθ, Δz).
+    pub fn curve_uv(&self, phi: f64) -> DVec2 {
+        let p = self.on_neck(phi, self.meet(phi).unwrap_or(0.0));
+        self.unroll(p)
+    }
+
+    /// A point of the course unrolled about the window's centre: (R·Δθ, Δz).
+    pub fn unroll(&self, p: DVec3) -> DVec2 {
+        let rel = p.truncate() - self.centre;
+        let dth = (rel.y.atan2(rel.x) - self.theta + PI).rem_euclid(TAU) - PI;
+        DVec2::new(self.big_r * dth, p.z - self.z)
+    }
+}
+
+/// The outer root t of |(q + t·d)ₕ − c|² = R² (ₕ: across the z axis).
+fn meet(q: DVec3, d: DVec3, c: DVec2, radius: f64) -> Option<f64> {
+    let qh = q.truncate() - c;
+    let dh = d.truncate();
+    let a = dh.length_squared();
+    let half_b = qh.dot(dh);
+    let cc = qh.length_squared() - radius * radius;
+    let disc = half_b * half_b - a * cc;
+    (a > 1e-12 && disc >= 0.0).then(|| (-half_b + disc.sqrt()) / a)
+}
+
+/// Neck angles φ of `count` curve nodes whose polar angles about the window's
+/// centre, in the unrolled plane, are `targets` (increasing, within one turn of
+/// each other): the inverse of the sampled polar angle of the curve, which is
+/// increasing in φ when the opening is star-shaped about its centre (`None`
+/// when it is not).
+pub fn phis_at(hole: &Hole, targets: &[f64]) -> Option<Vec<f64>> {
+    let mut alpha = Vec::with_capacity(SAMPLES + 1);
+    for k in 0..=SAMPLES {
+        let phi = TAU * k as f64 / SAMPLES as f64;
+        let p = hole.curve_uv(phi);
+        let mut a = p.y.atan2(p.x);
+        if let Some(&prev) = alpha.last() {
+            while a < prev - PI {
+                a += TAU;
+            }
+            while a > prev + PI {
+                a -= TAU;
+            }
+            if a <= prev {
+                return None;
+            }
+        }
+        alpha.push(a);
+    }
+    if (alpha[SAMPLES] - alpha[0] - TAU).abs() > 1e-6 {
+        return None;
+    }
+    Some(
+        targets
+            .iter()
+            .map(|&t| {
+                let turns = ((t - alpha[0]) / TAU).floor();
+                let t = t - turns * TAU;
+                let j = alpha.partition_point(|&a| a < t).clamp(1, SAMPLES);
+                let f = (t - alpha[j - 1]) / (alpha[j] - alpha[j - 1]);
+                TAU * ((j - 1) as f64 + f) / SAMPLES as f64 + turns * TAU
+            })
+            .collect(),
+    )
 }
 
 /// Axial position of station `i`.
@@ -84,17 +169,22 @@ fn station_z(mer: &Meridian, i: usize) -> f64 {
     mer.segments[seg].rz(s).y
 }
 
-/// The windows of the radial shell nozzles of `resolved`, on the mesh of `n`
-/// divisions whose parts are `parts`; what is left out goes to `notes`.
+/// The windows of the nozzles of `resolved` on cylindrical courses, on the
+/// mesh of `n` divisions whose parts are `parts`; nozzles whose marks are in
+/// `meshed` (centre head nozzles) are skipped, what is left out goes to `notes`.
 pub fn plan(
     resolved: &ResolvedVessel,
     mer: &Meridian,
     n: usize,
     parts: &[FePart],
+    meshed: &[String],
     notes: &mut Vec<String>,
 ) -> Vec<Hole> {
     let mut holes: Vec<Hole> = Vec::new();
     for nz in &resolved.nozzles {
+        if meshed.contains(&nz.mark) {
+            continue;
+        }
         let mut skip = |why: &str| notes.push(format!("nozzle {} left out: {why}", nz.mark));
         let host = &resolved.parts[nz.host];
         let Some(part) = parts.iter().position(|p| p.id == host.id) else {
@@ -110,15 +200,14 @@ pub fn plan(
                         && o.z > z0.min(z1) && o.z < z0.max(z1))
         });
         let Some(seg) = seg else {
-            skip("only nozzles on cylindrical courses are meshed yet (head nozzles are not)");
+            skip(
+                "off-centre head nozzles are not meshed yet (only nozzles on cylindrical \
+                 courses and on a head's centre are)",
+            );
             continue;
         };
         let segment = mer.segments[seg];
         let centre = segment.centre.at(o.z);
-        if d.z.abs() > 1e-9 || (o.truncate() - centre).length() > 1e-6 {
-            skip("hillside, tangential and inclined nozzles are not meshed yet");
-            continue;
-        }
         let big_r = segment.rz(segment.s0).x;
         let g = nz.geometry;
         let (Ok(wall), Ok(flange)) = (pipe(g.nps).wall(g.schedule), g.flange_length()) else {
@@ -130,32 +219,87 @@ pub fn plan(
             skip("a neck wider than 0.8 of its course is not meshed yet");
             continue;
         }
-        let theta = d.y.atan2(d.x).rem_euclid(TAU);
-        let half_u = big_r * (r / big_r).asin();
-        let pad_r = nz.pad.map_or(0.0, |(od, _)| 0.5 * od * 1.15);
-        let ext_u = (MARGIN * half_u).max(pad_r);
-        let ext_z = (MARGIN * r).max(pad_r);
+        let e2 = (DVec3::Z - d * d.z).normalize();
+        let mut hole = Hole {
+            mark: nz.mark.clone(),
+            part,
+            seg,
+            i0: 0,
+            i1: 0,
+            k0: 0,
+            a: 0,
+            theta: 0.0,
+            z: 0.0,
+            centre,
+            big_r,
+            r,
+            wall,
+            origin: o,
+            axis: d,
+            e1: e2.cross(d),
+            e2,
+            end: g.projection - flange,
+            pad: nz.pad,
+        };
+        let Some(tc) = meet(o, d, centre, big_r) else {
+            skip("its axis misses its course's mid-surface");
+            continue;
+        };
+        let pc = o + d * tc;
+        hole.theta = (pc.y - centre.y).atan2(pc.x - centre.x).rem_euclid(TAU);
+        hole.z = pc.z;
+        // The opening's extent about its centre, unrolled, and the pad's.
+        let mut lo = DVec2::splat(f64::INFINITY);
+        let mut hi = DVec2::splat(f64::NEG_INFINITY);
+        let mut deepest = f64::NEG_INFINITY;
+        let mut missed = false;
+        for k in 0..SAMPLES {
+            let phi = TAU * k as f64 / SAMPLES as f64;
+            let Some(t) = hole.meet(phi) else {
+                missed = true;
+                break;
+            };
+            deepest = deepest.max(t);
+            let p = hole.unroll(hole.on_neck(phi, t));
+            lo = lo.min(p);
+            hi = hi.max(p);
+        }
+        if missed || hole.end <= deepest || phis_at(&hole, &[0.0]).is_none() {
+            skip(
+                "its neck does not cross its course's mid-surface wholly before its end, \
+                 or its opening is not star-shaped about its centre",
+            );
+            continue;
+        }
+        let (raw_lo, raw_hi) = (lo, hi);
+        if let Some((od, _)) = nz.pad {
+            let grow = (0.5 * od * 1.15 / r).max(1.0);
+            lo *= grow;
+            hi *= grow;
+        }
+        let (lo, hi) = (lo * MARGIN, hi * MARGIN);
         let cell = TAU / n as f64;
-        let kc = theta / cell;
-        let mut k0 = (kc - ext_u / (big_r * cell)).floor() as i64;
-        let mut k1 = (kc + ext_u / (big_r * cell)).ceil() as i64;
+        let kc = hole.theta / cell;
+        let mut k0 = (kc + lo.x / (big_r * cell)).floor() as i64;
+        let mut k1 = (kc + hi.x / (big_r * cell)).ceil() as i64;
         // Stations of this segment, and the window's.
         let on_seg: Vec<usize> = (0..mer.intervals.len())
             .filter(|&i| mer.intervals[i].seg == seg)
             .collect();
-        let (Some(&lo), Some(&hi)) = (on_seg.first(), on_seg.last()) else {
+        let (Some(&first), Some(&last)) = (on_seg.first(), on_seg.last()) else {
             skip("its course has no elements");
             continue;
         };
-        let hi = hi + 1;
-        let mut i0 = (lo..=hi)
+        let top = last + 1;
+        let zc = hole.z;
+        let mut i0 = (first..=top)
             .rev()
-            .find(|&i| station_z(mer, i) <= o.z - ext_z)
-            .unwrap_or(lo);
-        let mut i1 = (lo..=hi)
-            .find(|&i| station_z(mer, i) >= o.z + ext_z)
-            .unwrap_or(hi);
-        if station_z(mer, i0) > o.z - 1.1 * r || station_z(mer, i1) < o.z + 1.1 * r {
+            .find(|&i| station_z(mer, i) <= zc + lo.y)
+            .unwrap_or(first);
+        let mut i1 = (first..=top)
+            .find(|&i| station_z(mer, i) >= zc + hi.y)
+            .unwrap_or(top);
+        if station_z(mer, i0) > zc + 1.1 * raw_lo.y || station_z(mer, i1) < zc + 1.1 * raw_hi.y {
             skip("its opening is too near its course's end for a window");
             continue;
         }
@@ -164,11 +308,11 @@ pub fn plan(
         while (k1 - k0) as usize + (i1 - i0) < MIN_LOOP / 2 {
             let width = (k1 - k0) as f64 * big_r * cell;
             let height = station_z(mer, i1) - station_z(mer, i0);
-            let below = o.z - station_z(mer, i0);
-            let above = station_z(mer, i1) - o.z;
-            let grow_z = height < width && (i0 > lo || i1 < hi);
+            let below = zc - station_z(mer, i0);
+            let above = station_z(mer, i1) - zc;
+            let grow_z = height < width && (i0 > first || i1 < top);
             if grow_z {
-                if (below <= above && i0 > lo) || i1 == hi {
+                if (below <= above && i0 > first) || i1 == top {
                     i0 -= 1;
                 } else {
                     i1 += 1;
@@ -184,23 +328,7 @@ pub fn plan(
             skip("its window would span half the circumference");
             continue;
         }
-        let hole = Hole {
-            mark: nz.mark.clone(),
-            part,
-            seg,
-            i0,
-            i1,
-            k0,
-            a,
-            theta,
-            z: o.z,
-            centre,
-            big_r,
-            r,
-            wall,
-            end: g.projection - flange,
-            pad: nz.pad,
-        };
+        (hole.i0, hole.i1, hole.k0, hole.a) = (i0, i1, k0, a);
         let clash = holes.iter().find(|h| {
             h.part == part
                 && h.i0 < i1

@@ -83,6 +83,22 @@ pub fn along(s: [f64; 6], a: DVec3, b: DVec3) -> f64 {
 pub fn assert_good(what: &str, mesh: &FeMesh) {
     let q = quality(mesh);
     eprintln!("{what}: {q:?}");
+    let (big, small) = q.max_size_ratio_elements;
+    let describe = |e: usize| {
+        let el = &mesh.elements[e];
+        let c = el.nodes[..el.kind.corners()]
+            .iter()
+            .map(|&n| mesh.nodes[n])
+            .sum::<glam::DVec3>()
+            / el.kind.corners() as f64;
+        format!("{} at {c:.0}", mesh.parts[el.part].name)
+    };
+    eprintln!(
+        "{what}: largest neighbour size ratio {:.2} between {} and {}",
+        q.max_size_ratio,
+        describe(big),
+        describe(small)
+    );
     assert_eq!(q.free_edges, 0, "{what}: free edges");
     assert_eq!(q.nonmanifold_edges, 0, "{what}: non-manifold edges");
     assert_eq!(q.coincident_nodes, 0, "{what}: coincident nodes");
