@@ -115,7 +115,7 @@ pub const MAX_WIND_SPEED: f64 = 150.0;
 pub const MAX_SPECTRAL_ACCELERATION: f64 = 5.0;
 
 /// Checks the wind and earthquake inputs: every value finite and in range.
-fn check_lateral(c: &crate::design::DesignConditions, report: &mut Report) {
+fn check_lateral(c: &crate::format::DesignConditions, report: &mut Report) {
     let mut check = |path: &str, field: &str, value: Option<f64>, ok: bool, rule: &str| {
         if let Some(v) = value
             && !(v.is_finite() && ok)
