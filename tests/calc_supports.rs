@@ -203,8 +203,8 @@ fn aisc_column_allowable_stress() {
 fn column(wind: Option<WindDesign>, seismic: Option<SeismicDesign>, bolts: Option<u32>) -> Design {
     let mut d = example("vertical-column");
     let v = &mut d.vessels[0];
-    v.design.wind = wind;
-    v.design.seismic = seismic;
+    v.design.wind = wind.map(Box::new);
+    v.design.seismic = seismic.map(Box::new);
     for p in &mut v.parts {
         if let PartDesign::Skirt(s) = p {
             s.anchor_bolts = bolts;
@@ -400,10 +400,10 @@ fn a_wind_edit_recalculates_the_supports_only() {
     let before = m.calculation(&tag).unwrap();
     assert_eq!(before, fresh(&m));
     let mut v = m.design().vessels[0].clone();
-    v.design.wind = Some(WindDesign {
+    v.design.wind = Some(Box::new(WindDesign {
         speed: 60.0,
         ..wind45()
-    });
+    }));
     let counters = m.edit(Edit::SetVessel(v)).unwrap();
     assert_eq!(counters.parts_calculated, 0, "{counters:?}");
     assert_eq!(counters.nozzles_calculated, 0, "{counters:?}");

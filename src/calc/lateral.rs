@@ -70,6 +70,7 @@ impl Lateral {
         let elevation = design
             .design
             .wind
+            .as_ref()
             .and_then(|w| w.base_elevation)
             .unwrap_or(0.0);
         let datum = elevation - base;
@@ -142,8 +143,8 @@ impl Lateral {
             empty: w.empty * GRAVITY,
             operating: w.operating * GRAVITY,
             test: w.test * GRAVITY,
-            wind: c.wind.as_ref().map(WindFactors::of),
-            seismic: c.seismic.map(|s| (s, seismic::coefficient(&s))),
+            wind: c.wind.as_deref().map(WindFactors::of),
+            seismic: c.seismic.as_deref().map(|s| (*s, seismic::coefficient(s))),
         }
     }
 

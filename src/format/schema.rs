@@ -146,12 +146,12 @@ pub struct DesignConditions {
     /// Wind on the vessel (ASCE 7-16 Chapters 26 and 29), checked on a vertical
     /// vessel's skirt, legs or lugs. Default: none.
     #[serde(default, skip_serializing_if = "Option::is_none")]
-    pub wind: Option<WindDesign>,
+    pub wind: Option<Box<WindDesign>>,
     /// Earthquake on the vessel (ASCE 7-16 §12.8 equivalent lateral force, as
     /// §15.4 allows for nonbuilding structures), checked on a vertical vessel's
     /// skirt, legs or lugs. Default: none.
     #[serde(default, skip_serializing_if = "Option::is_none")]
-    pub seismic: Option<SeismicDesign>,
+    pub seismic: Option<Box<SeismicDesign>>,
 }
 
 /// Wind inputs of a vessel (ASCE 7-16): velocity pressure
