@@ -17,7 +17,7 @@ use serde_json::{Value, json};
 
 use crate::constraints::{
     ABSOLUTE_ZERO, ELLIPSOIDAL_RATIO, FULL_VACUUM, MAX_INCLINATION, MAX_NAME_CHARS, MAX_PRESSURE,
-    MAX_REVISION, MAX_TEMPERATURE, MAX_TITLE_TEXT,
+    MAX_REVISION, MAX_SPECTRAL_ACCELERATION, MAX_TEMPERATURE, MAX_TITLE_TEXT, MAX_WIND_SPEED,
 };
 use crate::design::{Design, FORMAT};
 use crate::operating::MAX_DENSITY;
@@ -247,6 +247,39 @@ fn bounds() -> Vec<Bound> {
         ("PadDesign", "thickness"),
     ] {
         b.push(bound(def, field, "exclusiveMinimum", positive()));
+    }
+    // Wind and earthquake (constraints::conditions::check_lateral), anchor bolts
+    // (constraints::supports).
+    for (def, field, keyword, value) in [
+        ("WindDesign", "speed", "exclusiveMinimum", 0.0),
+        ("WindDesign", "speed", "maximum", MAX_WIND_SPEED),
+        ("WindDesign", "area_factor", "minimum", 1.0),
+        ("WindDesign", "area_factor", "maximum", 5.0),
+        ("WindDesign", "base_elevation", "minimum", 0.0),
+        ("SeismicDesign", "sds", "minimum", 0.0),
+        ("SeismicDesign", "sds", "maximum", MAX_SPECTRAL_ACCELERATION),
+        ("SeismicDesign", "sd1", "minimum", 0.0),
+        ("SeismicDesign", "sd1", "maximum", MAX_SPECTRAL_ACCELERATION),
+        ("SeismicDesign", "response_modification", "minimum", 1.0),
+        ("SeismicDesign", "response_modification", "maximum", 8.0),
+        ("SeismicDesign", "importance", "minimum", 1.0),
+        ("SeismicDesign", "importance", "maximum", 1.5),
+        ("SeismicDesign", "period", "exclusiveMinimum", 0.0),
+        ("SeismicDesign", "period", "maximum", 20.0),
+        ("SkirtDesign", "anchor_bolts", "minimum", 2.0),
+        ("SkirtDesign", "anchor_bolts", "maximum", 1000.0),
+    ] {
+        b.push(bound(def, field, keyword, json!(value)));
+    }
+    for field in [
+        "importance",
+        "topographic_factor",
+        "directionality_factor",
+        "gust_factor",
+        "force_coefficient",
+    ] {
+        b.push(bound("WindDesign", field, "exclusiveMinimum", positive()));
+        b.push(bound("WindDesign", field, "maximum", json!(5.0)));
     }
     b
 }

@@ -3,7 +3,9 @@
 //! changed, when a nozzle mounted on it changed (or was added or removed), or
 //! when its vessel's design conditions, operating data or liquid surface did; a
 //! nozzle when it changed or its host's result did; a vessel's figures when any
-//! of its parts or nozzles got a new result. Results are written only where they
+//! of its parts or nozzles got a new result, or its own design changed (an edit
+//! of its wind or earthquake alone recalculates its figures and supports, no
+//! part). Results are written only where they
 //! differ. The figures are those of `calc::calculate`, part by part.
 
 use std::sync::{Arc, OnceLock};
@@ -16,15 +18,15 @@ use rustc_hash::{FxHashMap, FxHashSet};
 
 use super::WorkCounters;
 use crate::calc::{
-    Conditions, Liquid, MaterialTable, NozzleCalc, PartCalc, VesselCalc, conditions, nozzle_calc,
-    part_calc, support_calcs,
+    Conditions, Liquid, MaterialTable, NozzleCalc, PartCalc, VesselCalc, conditions,
+    has_calculated_supports, nozzle_calc, part_calc, support_calcs,
 };
 use crate::components::{
     DesignOrder, Materials, MountedOn, Mounts, NozzleCalculation, NozzleSpec, OperatingSpec,
     PartCalculation, PartSpan, PartSpec, Shape, VesselCalculation, VesselSpec,
 };
 use crate::constraints::resolve_vessel;
-use crate::design::{PartDesign, VesselDesign, VesselKind};
+use crate::design::{PartDesign, VesselDesign};
 use crate::operating::thickness;
 
 fn builtin() -> &'static Arc<MaterialTable> {
@@ -127,7 +129,13 @@ pub fn update_calculations(
         });
         let liquid = Liquid::of(spec.kind, op.0, stack);
         let conds = conditions(&spec.design, spec.kind, table);
-        let whole = spec.is_changed() || op.is_changed() || calc.is_none_or(|c| c.liquid != liquid);
+        // The parts read only the conditions and the liquid: an edit of the
+        // vessel that leaves both as they were (its wind, earthquake, placement)
+        // recalculates its supports only.
+        let whole = op.is_changed()
+            || calc.is_none_or(|c| {
+                c.liquid != liquid || c.calc.conditions.as_ref() != conds.as_ref().ok()
+            });
         if whole {
             for &c in children.into_iter().flatten() {
                 if parts.contains(c) {
@@ -271,7 +279,7 @@ pub fn update_calculations(
         if let Some(design) = supported_design(&spec, &op, children, &parts, &nozzles) {
             counters.supports_calculated += 1;
             match resolve_vessel(&design, 0) {
-                Ok(resolved) => support_calcs(&design, &resolved, &mut calc),
+                Ok(resolved) => support_calcs(&design, &resolved, table, &mut calc),
                 Err(v) => calc.problems.push(format!(
                     "supports: the vessel does not resolve ({} rule(s) broken)",
                     v.len()
@@ -285,9 +293,10 @@ pub fn update_calculations(
     }
 }
 
-/// The design of a horizontal vessel on saddles as its entities hold it (parts
-/// and nozzles in design order; notes left out: the supports' calculation does
-/// not read them), for the weights Zick's method needs; `None` for any other
+/// The design of a vessel with calculated supports (a horizontal one on saddles,
+/// a vertical one on a skirt, legs or lugs) as its entities hold it (parts and
+/// nozzles in design order; notes left out: the supports' calculation does not
+/// read them), for the weights the supports carry; `None` for any other
 /// vessel, whose supports are not calculated.
 fn supported_design(
     spec: &VesselSpec,
@@ -296,9 +305,6 @@ fn supported_design(
     parts: &Query<PartRow>,
     nozzles: &Query<NozzleRow>,
 ) -> Option<VesselDesign> {
-    if spec.kind != VesselKind::Horizontal {
-        return None;
-    }
     let mut part_list: Vec<(DesignOrder, PartDesign)> = Vec::new();
     let mut nozzle_list = Vec::new();
     for &c in children.into_iter().flatten() {
@@ -308,10 +314,10 @@ fn supported_design(
             nozzle_list.push((*row.5, row.1.0.clone()));
         }
     }
-    if !part_list
-        .iter()
-        .any(|(_, p)| matches!(p, PartDesign::Saddle(_)))
-    {
+    if !has_calculated_supports(
+        spec.kind,
+        &part_list.iter().map(|(_, p)| p).collect::<Vec<_>>(),
+    ) {
         return None;
     }
     part_list.sort_by_key(|(o, _)| *o);

@@ -282,6 +282,7 @@ fn vessel(o: &mut String, v: &ReportVessel) {
     }
     external(o, &v.calculation.parts);
     saddles(o, &calc.saddles);
+    super::report_supports::supports(o, calc);
     o.push_str("<h3>MAWP / MDMT summary and hydrotest</h3><table>\n");
     row(
         o,

@@ -23,17 +23,23 @@ pub mod external;
 pub mod flange;
 pub mod heads;
 pub mod html;
+pub mod lateral;
+pub mod legs;
 pub mod materials;
 pub mod mdmt;
 mod nozzle;
 mod part;
 pub mod reinforcement;
+mod report_supports;
 mod report_tables;
 pub mod saddles;
+pub mod seismic;
 mod shape;
 pub mod shells;
+pub mod skirt;
 mod summary;
 pub mod vessel;
+pub mod wind;
 pub mod zick;
 
 pub use conditions::{Conditions, DEFAULT_JOINT_EFFICIENCY, TEST_TEMPERATURE, code_of, conditions};
@@ -45,5 +51,8 @@ pub use nozzle::{NozzleCalc, PIPE_UNDERTOLERANCE, nozzle_calc};
 pub use part::{Input, PartCalc, part_calc, pressure_shape};
 pub use reinforcement::{Opening, Reinforcement, reinforcement};
 pub use shape::{Formula, Shape, Strength, mawp, required_thickness};
-pub use summary::{Calculation, Liquid, VesselCalc, calculate, support_calcs};
+pub use summary::{
+    Calculation, LateralFigures, Liquid, VesselCalc, calculate, has_calculated_supports,
+    support_calcs,
+};
 pub use vessel::GRAVITY;

@@ -7,7 +7,10 @@
 
 use serde::Serialize;
 
+use super::lateral::Lateral;
+use super::legs::{LegsCalc, LugsCalc, legs_calc, lugs_calc};
 use super::saddles::{SaddleCase, saddle_cases};
+use super::skirt::{SkirtCalc, skirt_calc};
 use super::vessel::{PartPressure, hydrotest_pressure, static_head, vessel_mawp};
 use super::{
     Conditions, Formula, MaterialTable, NozzleCalc, PartCalc, code_of, conditions, nozzle_calc,
@@ -118,6 +121,26 @@ pub struct VesselCalc {
     /// The saddles checked by Zick's method, per saddle and load case (empty
     /// for a vessel without saddles); filled by [`support_calcs`].
     pub saddles: Vec<SaddleCase>,
+    /// A vertical vessel's wind and earthquake at its base, when the design
+    /// gives them; filled by [`support_calcs`].
+    pub lateral: Option<LateralFigures>,
+    /// Skirts under weight, wind and earthquake.
+    pub skirts: Vec<SkirtCalc>,
+    /// Legs under weight, wind and earthquake.
+    pub legs: Vec<LegsCalc>,
+    /// Lugs under weight, wind and earthquake.
+    pub lugs: Vec<LugsCalc>,
+}
+
+/// A vertical vessel's wind and earthquake figures at its base (unfactored).
+#[derive(Clone, Debug, PartialEq, Serialize)]
+pub struct LateralFigures {
+    /// Height of the base above grade, mm.
+    pub base_elevation: f64,
+    /// Wind shear (N) and moment (N·mm) at the base, with qz at the top (Pa).
+    pub wind: Option<(f64, f64, f64)>,
+    /// Cs, its equation, the exponent k, base shear (N) and moment (N·mm).
+    pub seismic: Option<(f64, &'static str, f64, f64, f64)>,
 }
 
 impl VesselCalc {
@@ -188,6 +211,10 @@ impl VesselCalc {
             deficiencies,
             problems,
             saddles: Vec::new(),
+            lateral: None,
+            skirts: Vec::new(),
+            legs: Vec::new(),
+            lugs: Vec::new(),
         }
     }
 }
@@ -197,10 +224,19 @@ impl VesselCalc {
 /// horizontal vessel on two saddles Zick's stresses in the operating and
 /// hydrotest cases; failures become deficiencies, what cannot be computed a
 /// problem. Nothing for a vessel without conditions or supports.
-pub fn support_calcs(design: &VesselDesign, resolved: &ResolvedVessel, vessel: &mut VesselCalc) {
+pub fn support_calcs(
+    design: &VesselDesign,
+    resolved: &ResolvedVessel,
+    table: &MaterialTable,
+    vessel: &mut VesselCalc,
+) {
     let Some(c) = &vessel.conditions else {
         return;
     };
+    if design.kind == VesselKind::Vertical {
+        vertical_supports(design, resolved, table, vessel);
+        return;
+    }
     let has_saddles = resolved
         .parts
         .iter()
@@ -226,6 +262,123 @@ pub fn support_calcs(design: &VesselDesign, resolved: &ResolvedVessel, vessel: &
             vessel.saddles = cases;
         }
         Err(e) => vessel.problems.push(format!("saddles: {e}")),
+    }
+}
+
+/// Whether a vessel of `kind` with `parts` has supports [`support_calcs`] checks.
+pub fn has_calculated_supports(kind: VesselKind, parts: &[&crate::design::PartDesign]) -> bool {
+    use crate::design::PartDesign as P;
+    parts.iter().any(|p| match p {
+        P::Saddle(_) => kind == VesselKind::Horizontal,
+        P::Skirt(_) | P::Legs(_) | P::Lugs(_) => kind == VesselKind::Vertical,
+        _ => false,
+    })
+}
+
+/// The skirts, legs and lugs of a vertical vessel under its weight, wind and
+/// earthquake ([`Lateral`]).
+fn vertical_supports(
+    design: &VesselDesign,
+    resolved: &ResolvedVessel,
+    table: &MaterialTable,
+    vessel: &mut VesselCalc,
+) {
+    let Some(c) = vessel.conditions.clone() else {
+        return;
+    };
+    let supported = resolved.parts.iter().any(|p| {
+        matches!(
+            p.geometry,
+            PartGeometry::Skirt(_) | PartGeometry::Legs(_) | PartGeometry::Lugs(_)
+        )
+    });
+    if !supported {
+        return;
+    }
+    let w = match weights(design, resolved) {
+        Ok(w) => w,
+        Err(e) => {
+            vessel
+                .problems
+                .push(format!("supports: no weights for the support loads: {e}"));
+            return;
+        }
+    };
+    let lateral = Lateral::of(design, resolved, &w);
+    vessel.lateral = Some(LateralFigures {
+        base_elevation: lateral.datum + lateral.base,
+        wind: lateral.wind_at(lateral.base).map(|(v, m)| {
+            let top = lateral.bands.iter().map(|b| b.top).fold(0.0, f64::max);
+            (v, m, lateral.wind.as_ref().map_or(0.0, |f| f.qz(top)))
+        }),
+        seismic: lateral.seismic.as_ref().and_then(|(_, k)| {
+            let (v, _, m) = lateral.seismic_at(lateral.base)?;
+            Some((k.cs, k.equation, k.k, v, m))
+        }),
+    });
+    let thickness_of = |id: &str| {
+        design
+            .parts
+            .iter()
+            .find(|p| p.id() == id)
+            .and_then(thickness)
+    };
+    for p in &resolved.parts {
+        let Some(d) = design.parts.iter().find(|d| d.id() == p.id) else {
+            continue;
+        };
+        match (&p.geometry, d) {
+            (PartGeometry::Skirt(s), crate::design::PartDesign::Skirt(sd)) => {
+                let mass = w
+                    .items
+                    .iter()
+                    .find(|i| i.id == p.id)
+                    .map_or(0.0, |i| i.mass);
+                let calc = skirt_calc(&p.id, s, p.span, mass, sd.anchor_bolts, &lateral, &c);
+                vessel.deficiencies.extend(calc.deficiencies());
+                vessel.skirts.push(calc);
+            }
+            (PartGeometry::Legs(l), crate::design::PartDesign::Legs(ld)) => {
+                match legs_calc(&p.id, l, ld.size, p.span.0.min(p.span.1), &lateral, table) {
+                    Ok(calc) => {
+                        vessel.deficiencies.extend(calc.deficiencies());
+                        vessel.legs.push(calc);
+                    }
+                    Err(e) => vessel.problems.push(format!("legs: {e}")),
+                }
+            }
+            (PartGeometry::Lugs(l), crate::design::PartDesign::Lugs(ld)) => {
+                let plane = ld.elevation;
+                let course = resolved.parts.iter().find(|q| {
+                    matches!(q.geometry, PartGeometry::Shell(_))
+                        && q.span.0 <= plane
+                        && plane <= q.span.1
+                });
+                let Some(ts) = course.and_then(|q| thickness_of(&q.id)) else {
+                    vessel.problems.push(format!(
+                        "lugs: {}: no shell course with a thickness at the lugs",
+                        p.id
+                    ));
+                    continue;
+                };
+                match lugs_calc(
+                    &p.id,
+                    l,
+                    plane,
+                    ts - c.corrosion_allowance,
+                    &lateral,
+                    &c,
+                    table,
+                ) {
+                    Ok(calc) => {
+                        vessel.deficiencies.extend(calc.deficiencies());
+                        vessel.lugs.push(calc);
+                    }
+                    Err(e) => vessel.problems.push(format!("lugs: {e}")),
+                }
+            }
+            _ => {}
+        }
     }
 }
 
@@ -312,7 +465,7 @@ pub fn calculate(
         &nozzles.iter().collect::<Vec<_>>(),
         problems,
     );
-    support_calcs(design, resolved, &mut vessel);
+    support_calcs(design, resolved, table, &mut vessel);
     Calculation {
         vessel,
         parts,

@@ -307,8 +307,120 @@ fn print_text(c: &Calculated) {
             );
         }
     }
+    supports(v);
     for d in &v.deficiencies {
         println!("  DEFICIENCY:       {d}");
+    }
+}
+
+/// Prints a vertical vessel's wind, earthquake and skirt, legs and lugs figures.
+fn supports(v: &vesselcad::calc::VesselCalc) {
+    if let Some(l) = &v.lateral {
+        if let Some((s, m, _)) = l.wind {
+            println!(
+                "  wind (base):      shear {:.1} kN, moment {:.1} kN·m (ASCE 7-16)",
+                s * 1e-3,
+                m * 1e-6
+            );
+        }
+        if let Some((cs, eq, _, s, m)) = l.seismic {
+            println!(
+                "  seismic (base):   Cs {cs:.4} (Eq. {eq}), shear {:.1} kN, moment {:.1} kN·m",
+                s * 1e-3,
+                m * 1e-6
+            );
+        }
+    }
+    let status = |ok: bool| if ok { "ok" } else { "DEFICIENT" };
+    for s in &v.skirts {
+        let worst = s
+            .cases
+            .iter()
+            .flat_map(|c| c.checks.iter().map(move |k| (c, k)))
+            .max_by(|a, b| (a.1.stress / a.1.allowable).total_cmp(&(b.1.stress / b.1.allowable)));
+        if let Some((c, k)) = worst {
+            println!(
+                "  {:<8} skirt {} {}: {} {:.1} of {:.1} MPa ({}) {}",
+                s.id,
+                c.plane,
+                c.load.name,
+                k.name,
+                k.stress,
+                k.allowable,
+                k.rule,
+                status(k.ok())
+            );
+        }
+        if let (Some(r), Some(b)) = (s.ring_required, s.bearing) {
+            println!(
+                "  {:<8} base ring {:.1} mm required (bearing {:.2} MPa), {:.1} mm modelled {}",
+                s.id,
+                r,
+                b,
+                s.thickness,
+                status(r <= s.thickness)
+            );
+        }
+        match s.bolts {
+            Some(n) => println!(
+                "  {:<8} anchor bolts {n} on Ø{:.0} mm: {:.1} kN per bolt ({}){}",
+                s.id,
+                s.bolt_circle,
+                s.bolt_load * 1e-3,
+                s.bolt_case,
+                if s.bolt_load <= 0.0 {
+                    ", no uplift"
+                } else {
+                    ""
+                }
+            ),
+            None => println!(
+                "  {:<8} anchor bolts on Ø{:.0} mm: {:.1} N per mm of circle ({}){}",
+                s.id,
+                s.bolt_circle,
+                s.bolt_load,
+                s.bolt_case,
+                if s.bolt_load <= 0.0 {
+                    ", no uplift"
+                } else {
+                    ""
+                }
+            ),
+        }
+    }
+    for l in &v.legs {
+        if let Some(c) = l
+            .cases
+            .iter()
+            .max_by(|a, b| a.check.stress.total_cmp(&b.check.stress))
+        {
+            println!(
+                "  {:<8} legs {}: P {:.1} kN, uplift {:.1} kN, KL/r {:.0}, {} = {:.2} {}",
+                l.id,
+                c.load.name,
+                c.reaction * 1e-3,
+                (-c.uplift).max(0.0) * 1e-3,
+                l.slenderness,
+                c.check.rule,
+                c.check.stress,
+                status(c.check.ok())
+            );
+        }
+    }
+    for l in &v.lugs {
+        for k in &l.checks {
+            println!(
+                "  {:<8} lugs {}: Q {:.1} kN, {} {:.1} of {:.1} MPa ({}) {}",
+                l.id,
+                l.case,
+                l.reaction * 1e-3,
+                k.name,
+                k.stress,
+                k.allowable,
+                k.rule,
+                status(k.ok())
+            );
+        }
     }
 }
 

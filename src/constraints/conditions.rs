@@ -108,6 +108,103 @@ fn check_drawing_info(vessel: &VesselDesign, report: &mut Report) {
     }
 }
 
+/// Largest basic wind speed a design may give, m/s (ASCE 7-16's maps reach
+/// about 90 m/s in hurricane-prone regions; twice that is certainly a typo).
+pub const MAX_WIND_SPEED: f64 = 150.0;
+/// Largest design spectral acceleration a design may give, g.
+pub const MAX_SPECTRAL_ACCELERATION: f64 = 5.0;
+
+/// Checks the wind and earthquake inputs: every value finite and in range.
+fn check_lateral(c: &crate::format::DesignConditions, report: &mut Report) {
+    let mut check = |path: &str, field: &str, value: Option<f64>, ok: bool, rule: &str| {
+        if let Some(v) = value
+            && !(v.is_finite() && ok)
+        {
+            report.push(format!("design.{path}.{field}"), None, field, v, rule);
+        }
+    };
+    if let Some(w) = &c.wind {
+        let s = w.speed;
+        check(
+            "wind",
+            "speed",
+            Some(s),
+            s > 0.0 && s <= MAX_WIND_SPEED,
+            &format!("must be a basic wind speed in m/s, above 0 and at most {MAX_WIND_SPEED}"),
+        );
+        for (field, v) in [
+            ("importance", w.importance),
+            ("topographic_factor", w.topographic_factor),
+            ("directionality_factor", w.directionality_factor),
+            ("gust_factor", w.gust_factor),
+            ("force_coefficient", w.force_coefficient),
+        ] {
+            let ok = v.is_some_and(|v| v > 0.0 && v <= 5.0);
+            check(
+                "wind",
+                field,
+                v,
+                ok,
+                "must be a factor above 0 and at most 5",
+            );
+        }
+        let e = w.base_elevation;
+        check(
+            "wind",
+            "base_elevation",
+            e,
+            e.is_some_and(|e| (0.0..=1e6).contains(&e)),
+            "must be a height above grade from 0 to 1e6 mm",
+        );
+        let a = w.area_factor;
+        check(
+            "wind",
+            "area_factor",
+            a,
+            a.is_some_and(|a| (1.0..=5.0).contains(&a)),
+            "must be a factor from 1 (the bare outside diameter) to 5",
+        );
+    }
+    if let Some(e) = &c.seismic {
+        for (field, v) in [("sds", e.sds), ("sd1", e.sd1)] {
+            check(
+                "seismic",
+                field,
+                Some(v),
+                (0.0..=MAX_SPECTRAL_ACCELERATION).contains(&v),
+                &format!(
+                    "must be a design spectral acceleration in g from 0 to \
+                     {MAX_SPECTRAL_ACCELERATION}"
+                ),
+            );
+        }
+        let r = e.response_modification;
+        check(
+            "seismic",
+            "response_modification",
+            Some(r),
+            (1.0..=8.0).contains(&r),
+            "must be a response modification coefficient R from 1 to 8 (ASCE 7-16 Table 15.4-2)",
+        );
+        let ie = e.importance;
+        check(
+            "seismic",
+            "importance",
+            ie,
+            ie.is_some_and(|i| (1.0..=1.5).contains(&i)),
+            "must be an importance factor Ie from 1 to 1.5 (ASCE 7-16 Table 1.5-2)",
+        );
+        let t = e.period;
+        check(
+            "seismic",
+            "period",
+            t,
+            t.is_some_and(|t| t > 0.0 && t <= 20.0),
+            "must be a period in s, above 0 and at most 20",
+        );
+    }
+}
+
 /// Checks the design conditions and the wall thicknesses of the resolved stack
 /// parts (parts that failed to resolve were reported already).
 pub(crate) fn check(vessel: &VesselDesign, parts: &[Option<ResolvedPart>], report: &mut Report) {
@@ -141,6 +238,7 @@ pub(crate) fn check(vessel: &VesselDesign, parts: &[Option<ResolvedPart>], repor
             ),
         );
     }
+    check_lateral(c, report);
     if let Some(t) = c.temperature
         && !(t.is_finite() && t > ABSOLUTE_ZERO && t <= MAX_TEMPERATURE)
     {

@@ -39,7 +39,8 @@ mod supports;
 
 pub use crate::parts::PartGeometry;
 pub use conditions::{
-    ABSOLUTE_ZERO, FULL_VACUUM, MAX_PRESSURE, MAX_REVISION, MAX_TEMPERATURE, MAX_TITLE_TEXT,
+    ABSOLUTE_ZERO, FULL_VACUUM, MAX_PRESSURE, MAX_REVISION, MAX_SPECTRAL_ACCELERATION,
+    MAX_TEMPERATURE, MAX_TITLE_TEXT, MAX_WIND_SPEED,
 };
 pub use frames::{orientation_direction, vessel_frame};
 pub use head_seams::unturned_frame;

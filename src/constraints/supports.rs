@@ -101,6 +101,17 @@ pub(crate) fn place(
                     wrong_kind(report, "vertical");
                     continue;
                 }
+                if let Some(n) = s.anchor_bolts
+                    && !(2..=1000).contains(&n)
+                {
+                    report.push(
+                        format!("{path}.anchor_bolts"),
+                        Some(id),
+                        "anchor_bolts",
+                        f64::from(n),
+                        "must be a number of anchor bolts from 2 to 1000",
+                    );
+                }
                 let skirt = Skirt {
                     top_diameter: bottom.d_start,
                     height: s.height,

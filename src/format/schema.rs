@@ -143,6 +143,92 @@ pub struct DesignConditions {
     /// UG-28 (cylinders) and UG-33 (heads) in the elastic range. Default: none.
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub external_pressure: Option<f64>,
+    /// Wind on the vessel (ASCE 7-16 Chapters 26 and 29), checked on a vertical
+    /// vessel's skirt, legs or lugs. Default: none.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub wind: Option<Box<WindDesign>>,
+    /// Earthquake on the vessel (ASCE 7-16 §12.8 equivalent lateral force, as
+    /// §15.4 allows for nonbuilding structures), checked on a vertical vessel's
+    /// skirt, legs or lugs. Default: none.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub seismic: Option<Box<SeismicDesign>>,
+}
+
+/// Wind inputs of a vessel (ASCE 7-16): velocity pressure
+/// qz = 0.613·Kz·Kzt·Kd·I·V² (Pa, V in m/s, z above grade) on the projected width, force
+/// qz·G·Cf per unit area (§29.4), combined as 0.6·W (allowable stress design,
+/// §2.4.1).
+#[derive(Clone, Copy, Debug, PartialEq, Serialize, Deserialize, JsonSchema)]
+#[serde(deny_unknown_fields)]
+pub struct WindDesign {
+    /// Basic wind speed V, m/s: the 3-second gust at 10 m in Exposure C of the
+    /// structure's risk category (ASCE 7-16 Figures 26.5-1).
+    pub speed: f64,
+    /// Exposure category (ASCE 7-16 §26.7): `B`, `C` or `D`.
+    pub exposure: Exposure,
+    /// Importance factor on the velocity pressure; default 1.0 (ASCE 7-10 and
+    /// later carry the risk category in the wind speed map; ASCE 7-05 used
+    /// 0.87–1.15).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub importance: Option<f64>,
+    /// Topographic factor Kzt (§26.8); default 1.0 (flat terrain).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub topographic_factor: Option<f64>,
+    /// Directionality factor Kd (Table 26.6-1); default 0.95 (round chimneys
+    /// and tanks).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub directionality_factor: Option<f64>,
+    /// Gust-effect factor G (§26.11); default 0.85 (rigid structure).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub gust_factor: Option<f64>,
+    /// Force coefficient Cf on the projected area (Figure 29.4-1); default 0.7
+    /// (round, moderately smooth, h/D = 25).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub force_coefficient: Option<f64>,
+    /// Factor ≥ 1 on the projected width for platforms, ladders, piping and
+    /// insulation; default 1.0.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub area_factor: Option<f64>,
+    /// Height of the vessel's lowest point (its skirt's or legs' base) above
+    /// grade, mm; default 0 (standing at grade). The wind's heights are measured
+    /// from grade.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub base_elevation: Option<f64>,
+}
+
+/// Wind exposure category (ASCE 7-16 §26.7.3).
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash, Serialize, Deserialize, JsonSchema)]
+pub enum Exposure {
+    /// Urban and suburban areas, wooded areas.
+    B,
+    /// Open terrain with scattered obstructions.
+    C,
+    /// Flat, unobstructed areas and water surfaces.
+    D,
+}
+
+/// Earthquake inputs of a vessel (ASCE 7-16 §12.8, §15.4): base shear
+/// V = Cs·W with Cs = SDS/(R/Ie), at most SD1/(T·R/Ie) when the period is
+/// given, at least max(0.044·SDS·Ie, 0.03) (Eq. 15.4-1), combined as 0.7·E with
+/// the vertical effect 0.2·SDS·D (§2.4.1, §12.4.2.2).
+#[derive(Clone, Copy, Debug, PartialEq, Serialize, Deserialize, JsonSchema)]
+#[serde(deny_unknown_fields)]
+pub struct SeismicDesign {
+    /// Design spectral response acceleration at short periods SDS, g.
+    pub sds: f64,
+    /// Design spectral response acceleration at 1 s SD1, g.
+    pub sd1: f64,
+    /// Response modification coefficient R (Table 15.4-2; e.g. 2 for skirt-
+    /// supported vertical vessels not of the building type, 3 on legs).
+    pub response_modification: f64,
+    /// Importance factor Ie (Table 1.5-2); default 1.0.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub importance: Option<f64>,
+    /// Fundamental period T, s. Default: none, and Cs is taken on the plateau
+    /// SDS/(R/Ie) (12.8-3 can only lower it) with the vertical distribution's
+    /// exponent k = 2 (its largest base moment).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub period: Option<f64>,
 }
 
 /// Title-block data of a vessel's drawing sheet; every field optional.
@@ -291,6 +377,11 @@ pub struct SkirtDesign {
     /// Thickness, mm.
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub thickness: Option<f64>,
+    /// Number of anchor bolts, on the circle through the middle of the base
+    /// ring: the calculation gives the load per bolt. Default: none (the load is
+    /// given per mm of the bolt circle).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub anchor_bolts: Option<u32>,
 }
 
 /// A saddle; it fits the OD of the course it stands under.

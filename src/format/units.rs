@@ -56,6 +56,9 @@ fn for_each_length(design: &mut Design, mut f: impl FnMut(&mut f64)) {
     for vessel in &mut design.vessels {
         vessel.placement.position.iter_mut().for_each(&mut scale);
         scale_opt(&mut vessel.design.corrosion_allowance, &mut scale);
+        if let Some(w) = &mut vessel.design.wind {
+            scale_opt(&mut w.base_elevation, &mut scale);
+        }
         if let Some(op) = &mut vessel.operating {
             scale(&mut op.liquid_level);
         }

@@ -135,6 +135,8 @@ fn vessel(rng: &mut SplitMix64, index: usize, cell: (f64, f64)) -> VesselDesign 
         metal_density: None,
         external_pressure: None,
         joint_efficiency: None,
+        wind: None,
+        seismic: None,
     };
     notes(rng, &mut v);
     v
@@ -281,6 +283,7 @@ fn column(rng: &mut SplitMix64, index: usize) -> VesselDesign {
             flare_angle: 0.0,
             base_ring_width: 150.0,
             thickness: Some(t),
+            anchor_bolts: None,
         }),
         head(rng, "H1", bottom, od, t),
     ];
