@@ -203,9 +203,9 @@ fn categories_follow_uw_3() {
                     // A joint between two courses of a skirt is not a
                     // pressure weld.
                     WeldKind::CircSeam
-                        if v.parts.iter().any(|p| {
-                            matches!(p, PartDesign::Skirt(k) if w.joins.contains(&k.id))
-                        }) =>
+                        if v.parts.iter().any(
+                            |p| matches!(p, PartDesign::Skirt(k) if w.joins.contains(&k.id)),
+                        ) =>
                     {
                         None
                     }

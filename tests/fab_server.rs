@@ -28,7 +28,10 @@ fn plate_dxfs_are_served_beside_the_traveler_and_follow_an_edit() {
             .to_string()
     };
     let file = holding(&list);
-    assert!(file.starts_with("C-201-S1-P") && file.ends_with(".dxf"), "{file}");
+    assert!(
+        file.starts_with("C-201-S1-P") && file.ends_with(".dxf"),
+        "{file}"
+    );
     let dxf = server.request("GET", &format!("/plates/{file}?vessel=C-201"), &[], b"");
     assert_eq!(dxf.status, 200, "{}", dxf.text());
     assert!(dxf.header("content-disposition").unwrap().contains(&file));
@@ -46,7 +49,11 @@ fn plate_dxfs_are_served_beside_the_traveler_and_follow_an_edit() {
     // Unknown plate, unknown vessel, no vessel.
     let r = server.request("GET", "/plates/C-201-S9-P1.dxf?vessel=C-201", &[], b"");
     assert_eq!(r.status, 404, "{}", r.text());
-    assert!(r.text().contains(&file), "the error lists the plates: {}", r.text());
+    assert!(
+        r.text().contains(&file),
+        "the error lists the plates: {}",
+        r.text()
+    );
     let r = server.request("GET", &format!("/plates/{file}?vessel=NOPE"), &[], b"");
     assert_eq!(r.status, 404, "{}", r.text());
     let r = server.request("GET", "/plates.json", &[], b"");

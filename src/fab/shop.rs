@@ -22,8 +22,8 @@ pub const BUILTIN_NAME: &str = "data/shop_rules.json plates";
 
 /// The built-in shop data: the `plates` object of the built-in rules.
 fn builtin_json() -> String {
-    let rules: serde_json::Value = serde_json::from_str(BUILTIN_RULES)
-        .expect("the built-in shop rules are JSON (tested)");
+    let rules: serde_json::Value =
+        serde_json::from_str(BUILTIN_RULES).expect("the built-in shop rules are JSON (tested)");
     rules["plates"].to_string()
 }
 

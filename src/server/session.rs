@@ -10,7 +10,7 @@
 //! An edit is a JSON Patch (RFC 6902) against the design's canonical JSON (mm, as
 //! `GET /design.json` serves it). It is applied to a copy; the result is parsed and
 //! checked as a design file would be, then given to the model as one
-//! [`Edit::ReplaceDesign`], which touches only the vessels that differ and, inside
+//! [`Edit::ReplaceDesign`](crate::model::Edit::ReplaceDesign), which touches only the vessels that differ and, inside
 //! them, rebuilds only the parts whose parameters changed (the model's change
 //! detection). The edit is then appended to the journal and given a revision;
 //! it is acknowledged once the journal is flushed. Any failure before the
