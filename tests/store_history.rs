@@ -205,3 +205,78 @@ fn an_unreachable_database_is_a_clear_error_without_the_password() {
     assert!(e.contains("someone:***@127.0.0.1:1"), "{e}");
     assert!(!e.contains("secret"), "{e}");
 }
+
+/// `store export` of a tagged revision puts the tag and the revision's date in
+/// every vessel's drawing revision block, so the sheet drawn from the exported
+/// file shows the revision it is; an untagged revision is written as stored.
+#[test]
+fn an_exported_named_revision_carries_its_tag_into_the_drawings() {
+    let dir = tempfile::tempdir().unwrap();
+    let db = dir.path().join("store.db");
+    let run = |args: &[&str]| {
+        let out = std::process::Command::new(env!("CARGO_BIN_EXE_vesselcad"))
+            .arg("store")
+            .arg("--store")
+            .arg(&db)
+            .args(args)
+            .output()
+            .unwrap();
+        assert!(
+            out.status.success(),
+            "{args:?}: {}",
+            String::from_utf8_lossy(&out.stderr)
+        );
+        String::from_utf8_lossy(&out.stdout).into_owned()
+    };
+    let source = common::examples::example_path("horizontal-drum");
+    run(&["import", source.to_str().unwrap(), "--name", "drum"]);
+    run(&["tag", "drum", "B"]);
+    // Revision 1, untagged: the same design again.
+    run(&["checkout", "drum", "0"]);
+    let tagged = dir.path().join("drum-B.json");
+    run(&["export", "drum", "B", "-o", tagged.to_str().unwrap()]);
+    let design = vesselcad::design::load(&tagged).unwrap();
+    let today = run(&["log", "drum"]);
+    for v in &design.vessels {
+        assert_eq!(v.drawing.revision.as_deref(), Some("B"), "{}", v.tag);
+        let date = v.drawing.date.as_deref().unwrap();
+        assert_eq!(date.len(), 10);
+        assert!(today.contains(date), "{date} not in the log:\n{today}");
+    }
+    // The sheet of the exported design shows revision B.
+    let svg = dir.path().join("drum-B.svg");
+    let out = std::process::Command::new(env!("CARGO_BIN_EXE_vesselcad"))
+        .arg("drawing")
+        .arg(&tagged)
+        .args(["--vessel", "V-101", "-o"])
+        .arg(&svg)
+        .output()
+        .unwrap();
+    assert!(out.status.success());
+    let svg = std::fs::read_to_string(&svg).unwrap();
+    let texts: Vec<&str> = svg
+        .split("</text>")
+        .filter_map(|t| t.rsplit('>').next())
+        .map(str::trim)
+        .collect();
+    assert!(texts.contains(&"B"), "no revision B on the sheet");
+    let date = design.vessels[0].drawing.date.as_deref().unwrap();
+    assert!(texts.contains(&date), "no date {date} on the sheet");
+    // Untagged: the revision block as stored (the example has none).
+    let plain = dir.path().join("drum-1.json");
+    run(&["export", "drum", "1", "-o", plain.to_str().unwrap()]);
+    let stored = vesselcad::design::load(&plain).unwrap();
+    assert_eq!(
+        stored.vessels[0].drawing,
+        example("horizontal-drum").vessels[0].drawing
+    );
+    // A tag too long for the block leaves it as stored, and says so.
+    run(&["tag", "drum", "issued-for-construction", "1"]);
+    let said = run(&["export", "drum", "1", "-o", plain.to_str().unwrap()]);
+    assert!(said.contains("longer than a drawing's revision"), "{said}");
+    let stored = vesselcad::design::load(&plain).unwrap();
+    assert_eq!(
+        stored.vessels[0].drawing,
+        example("horizontal-drum").vessels[0].drawing
+    );
+}

@@ -107,7 +107,9 @@ enum StoreCommand {
         #[arg(short, long)]
         message: Option<String>,
     },
-    /// Write a revision's design to a file, in the unit it was imported in.
+    /// Write a revision's design to a file, in the unit it was imported in; a
+    /// tagged revision carries its tag and date in every vessel's drawing
+    /// revision block.
     Export {
         /// The design's name.
         name: String,
@@ -357,6 +359,23 @@ fn checkout(
 fn export(store: &mut Store, name: &str, rev: &str, output: &Path) -> Result<ExitCode, StoreError> {
     let rev = store.resolve(name, rev)?;
     let mut d = store.design_at(name, rev)?;
+    // A named revision is an issue of the drawings: its newest tag and its date
+    // fill every vessel's revision block (a tag longer than the block's 8
+    // characters is left out, and said so).
+    if let Some(issued) = store.log(name)?.into_iter().find(|r| r.rev == rev)
+        && let Some(tag) = issued.tags.last()
+    {
+        if tag.chars().count() <= MAX_DRAWING_REVISION {
+            for v in &mut d.vessels {
+                v.drawing.revision = Some(tag.clone());
+                v.drawing.date = issued.at.get(..10).map(str::to_string);
+            }
+        } else {
+            outln!(
+                "{name}: tag {tag} is longer than a drawing's revision ({MAX_DRAWING_REVISION} characters): the revision blocks are left as stored"
+            );
+        }
+    }
     if store.units(name)? == Units::In {
         to_inches(&mut d);
     }
@@ -366,6 +385,9 @@ fn export(store: &mut Store, name: &str, rev: &str, output: &Path) -> Result<Exi
     outln!("{name}: revision {rev} written to {}", output.display());
     Ok(ExitCode::SUCCESS)
 }
+
+/// The longest revision a drawing's title block takes (`drawing.revision`).
+const MAX_DRAWING_REVISION: usize = 8;
 
 fn search(
     store: &mut Store,
