@@ -15,6 +15,7 @@
 //! - [`write_delta_glb`] writes only the changed parts of a scene, keyed by their
 //!   stable ids, for live viewers.
 
+mod coloured;
 mod delta;
 mod direct;
 mod error;
@@ -30,6 +31,7 @@ mod granularity;
 mod scene;
 mod tiles;
 
+pub use coloured::{ColouredMesh, coloured_glb};
 pub use delta::{delta_scene, node_id, scene_ids, write_delta_glb};
 pub use direct::{build_scene, patch_name};
 pub use error::ExportError;
