@@ -120,6 +120,30 @@ pub fn solve_dense(mut a: Vec<Vec<f64>>, mut b: Vec<f64>) -> Option<Vec<f64>> {
     Some((0..n).map(|i| b[i] / a[i][i]).collect())
 }
 
+/// Weighted least squares of `values` on the first `n` entries of each of
+/// `rows`, with weights: the small dense fits of the checks.
+pub fn least_squares(
+    rows: &[[f64; 5]],
+    values: &[f64],
+    weights: &[f64],
+    n: usize,
+) -> Option<Vec<f64>> {
+    let mut a = vec![vec![0.0; n]; n];
+    let mut b = vec![0.0; n];
+    for ((row, &y), &w) in rows.iter().zip(values).zip(weights) {
+        if w == 0.0 {
+            continue;
+        }
+        for i in 0..n {
+            for j in 0..n {
+                a[i][j] += w * row[i] * row[j];
+            }
+            b[i] += w * row[i] * y;
+        }
+    }
+    solve_dense(a, b)
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;

@@ -29,6 +29,7 @@ pub mod inspect;
 pub mod points;
 pub mod register;
 pub mod report;
+pub mod settlement;
 pub mod simulate;
 
 pub use envelope::{Envelope, Role, ScanPart, ScanSurface, ShellMaterial};
