@@ -232,6 +232,7 @@ fn bounds() -> Vec<Bound> {
         ("ReducerDesign", "thickness"),
         ("SkirtDesign", "height"),
         ("SkirtDesign", "thickness"),
+        ("SkirtDesign", "base_ring_thickness"),
         ("SaddleDesign", "width"),
         ("SaddleDesign", "height"),
         ("SaddleDesign", "web_thickness"),

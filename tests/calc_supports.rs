@@ -422,3 +422,69 @@ fn a_wind_edit_recalculates_the_supports_only() {
     assert!(counters.parts_calculated > 0, "{counters:?}");
     assert_eq!(m.calculation(&tag).unwrap(), fresh(&m));
 }
+
+/// The base ring has its own thickness (`base_ring_thickness`, default the
+/// skirt's): the column's 12 mm skirt with a 12 mm ring 150 mm wide is short of
+/// the t = l·√(3·fc/S) its bearing needs (17.0 mm), a 25 mm ring holds, and the
+/// ring's extra 13 mm is in the weight: π·(1150² − 1000²)·13 mm³ of steel.
+#[test]
+fn the_base_ring_has_its_own_thickness() {
+    let mut thin = column(None, None, None);
+    let mut thick = thin.clone();
+    for (d, t) in [(&mut thin, None), (&mut thick, Some(25.0))] {
+        for p in &mut d.vessels[0].parts {
+            if let PartDesign::Skirt(s) = p {
+                s.base_ring_thickness = t;
+            }
+        }
+    }
+    let table = MaterialTable::builtin();
+    let calc = |d: &Design| {
+        let r = design::resolve(d).unwrap();
+        let c = calculate(&d.vessels[0], &r[0], &table);
+        let w = vesselcad::weights::weights(&d.vessels[0], &r[0]).unwrap();
+        (c, w)
+    };
+    let (c12, w12) = calc(&thin);
+    let (c25, w25) = calc(&thick);
+    let (s12, s25) = (&c12.vessel.skirts[0], &c25.vessel.skirts[0]);
+    assert_eq!((s12.ring_thickness, s25.ring_thickness), (12.0, 25.0));
+    let need = s12.ring_required.unwrap();
+    assert!(need > 12.0 && need < 25.0, "required ring {need} mm");
+    // The thicker ring weighs on its own bearing: a little more is needed.
+    let need25 = s25.ring_required.unwrap();
+    assert!(need25 > need && need25 < 25.0, "{need} -> {need25} mm");
+    let ring = |c: &vesselcad::calc::Calculation| {
+        c.vessel
+            .deficiencies
+            .iter()
+            .filter(|d| d.contains("SK: base ring needs"))
+            .count()
+    };
+    assert_eq!(ring(&c12), 1, "{:?}", c12.vessel.deficiencies);
+    assert_eq!(ring(&c25), 0, "{:?}", c25.vessel.deficiencies);
+    let pi = std::f64::consts::PI;
+    let extra = pi * (1150.0f64.powi(2) - 1000.0f64.powi(2)) * 13.0 * 1e-9 * w12.metal_density;
+    close(w25.empty - w12.empty, extra, 1e-6 * extra, "ring mass");
+}
+
+/// A ring thickness without a ring, or not a positive length, is refused with
+/// its path.
+#[test]
+fn a_base_ring_thickness_needs_a_ring() {
+    for (width, t) in [(0.0, 20.0), (150.0, 0.0), (150.0, f64::NAN)] {
+        let mut d = column(None, None, None);
+        for p in &mut d.vessels[0].parts {
+            if let PartDesign::Skirt(s) = p {
+                s.base_ring_width = width;
+                s.base_ring_thickness = Some(t);
+            }
+        }
+        let e = design::resolve(&d).unwrap_err().to_string();
+        assert!(
+            e.contains("vessels[0].parts[0].skirt.base_ring_thickness")
+                && e.contains("base_ring_width > 0"),
+            "{width} {t}: {e}"
+        );
+    }
+}

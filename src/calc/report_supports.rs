@@ -77,8 +77,8 @@ pub(super) fn supports(o: &mut String, v: &VesselCalc) {
         }
         let ring = match (s.ring_required, s.bearing) {
             (Some(r), Some(b)) => format!(
-                "bearing {b:.2} MPa; ring t = l·√(3·fc/S) = {r:.1} mm required, {:.1} mm modelled",
-                s.thickness
+                "bearing {b:.2} MPa; ring t = l·√(3·fc/S) = {r:.1} mm required, {:.1} mm given",
+                s.ring_thickness
             ),
             _ => "no base ring".into(),
         };

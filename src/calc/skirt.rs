@@ -11,8 +11,9 @@
 //! - Base ring: the bearing annulus from the skirt's inside to the ring's edge
 //!   (outer diameter Db + 2·l, l the ring's width beyond the skirt) carries
 //!   fc = W/A + M/Z; the ring, a cantilever of span l under fc, needs
-//!   t = l·√(3·fc/S) (strip bending, 6·(fc·l²/2)/t² = S). The model's ring is as
-//!   thick as the skirt; a thicker requirement is a deficiency.
+//!   t = l·√(3·fc/S) (strip bending, 6·(fc·l²/2)/t² = S). The ring is the
+//!   design's `base_ring_thickness` (default the skirt's); a thicker requirement
+//!   is a deficiency.
 //! - Anchor bolts, N on the circle through the ring's middle (diameter
 //!   Db + l): P = 4M/(N·Dbc) − W/N per bolt (W the case's factored weight, so
 //!   0.6·D in the uplift cases); without N, per mm of the circle:
@@ -45,6 +46,8 @@ pub struct SkirtCalc {
     pub base_diameter: f64,
     /// Thickness, mm.
     pub thickness: f64,
+    /// Base ring thickness, mm.
+    pub ring_thickness: f64,
     /// The cases at base and top.
     pub cases: Vec<SkirtCase>,
     /// Largest bearing pressure under the ring, MPa (None without a ring).
@@ -87,14 +90,14 @@ impl SkirtCalc {
             })
             .collect();
         if let Some(r) = self.ring_required
-            && r > self.thickness
+            && r > self.ring_thickness
         {
             out.push(format!(
                 "{}: base ring needs {:.1} mm (bearing {:.2} MPa), the ring is {:.1} mm",
                 self.id,
                 r,
                 self.bearing.unwrap_or(0.0),
-                self.thickness
+                self.ring_thickness
             ));
         }
         out
@@ -127,17 +130,33 @@ fn checks(d: f64, t: f64, load: &LoadCase, c: &Conditions) -> Vec<Check> {
     ]
 }
 
-/// Skirt `id` of geometry `s` spanning `span` (vessel frame), of mass `mass` kg,
-/// under the loads of `lateral`.
+/// What a skirt's calculation needs beyond its geometry.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct SkirtSetup {
+    /// Axial span, vessel frame, mm (base, top).
+    pub span: (f64, f64),
+    /// Mass of the skirt itself, kg.
+    pub mass: f64,
+    /// Base ring thickness, mm.
+    pub ring_thickness: f64,
+    /// Number of anchor bolts, when the design gives it.
+    pub bolts: Option<u32>,
+}
+
+/// Skirt `id` of geometry `s` set up by `setup`, under the loads of `lateral`.
 pub fn skirt_calc(
     id: &str,
     s: &Skirt,
-    span: (f64, f64),
-    mass: f64,
-    bolts: Option<u32>,
+    setup: SkirtSetup,
     lateral: &Lateral,
     c: &Conditions,
 ) -> SkirtCalc {
+    let SkirtSetup {
+        span,
+        mass,
+        ring_thickness,
+        bolts,
+    } = setup;
     let t = s.thickness;
     let outside_base = s.top_diameter + 2.0 * s.height * s.flare_angle.to_radians().tan();
     let (d_base, d_top) = (outside_base - t, s.top_diameter - t);
@@ -186,6 +205,7 @@ pub fn skirt_calc(
         id: id.to_string(),
         base_diameter: d_base,
         thickness: t,
+        ring_thickness,
         cases,
         bearing,
         ring_required,

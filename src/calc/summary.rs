@@ -10,7 +10,7 @@ use serde::Serialize;
 use super::lateral::Lateral;
 use super::legs::{LegsCalc, LugsCalc, legs_calc, lugs_calc};
 use super::saddles::{SaddleCase, saddle_cases};
-use super::skirt::{SkirtCalc, skirt_calc};
+use super::skirt::{SkirtCalc, SkirtSetup, skirt_calc};
 use super::vessel::{PartPressure, hydrotest_pressure, static_head, vessel_mawp};
 use super::{
     Conditions, Formula, MaterialTable, NozzleCalc, PartCalc, code_of, conditions, nozzle_calc,
@@ -334,7 +334,19 @@ fn vertical_supports(
                     .iter()
                     .find(|i| i.id == p.id)
                     .map_or(0.0, |i| i.mass);
-                let calc = skirt_calc(&p.id, s, p.span, mass, sd.anchor_bolts, &lateral, &c);
+                let ring = sd.base_ring_thickness.unwrap_or(s.thickness);
+                let calc = skirt_calc(
+                    &p.id,
+                    s,
+                    SkirtSetup {
+                        span: p.span,
+                        mass,
+                        ring_thickness: ring,
+                        bolts: sd.anchor_bolts,
+                    },
+                    &lateral,
+                    &c,
+                );
                 vessel.deficiencies.extend(calc.deficiencies());
                 vessel.skirts.push(calc);
             }

@@ -112,6 +112,17 @@ pub(crate) fn place(
                         "must be a number of anchor bolts from 2 to 1000",
                     );
                 }
+                if let Some(t) = s.base_ring_thickness
+                    && !(t.is_finite() && t > 0.0 && s.base_ring_width > 0.0)
+                {
+                    report.push(
+                        format!("{path}.base_ring_thickness"),
+                        Some(id),
+                        "base_ring_thickness",
+                        t,
+                        "must be a finite thickness > 0 mm of a base ring with base_ring_width > 0",
+                    );
+                }
                 let skirt = Skirt {
                     top_diameter: bottom.d_start,
                     height: s.height,

@@ -374,6 +374,10 @@ pub struct SkirtDesign {
     /// Base ring radial width, mm; default 0 (none).
     #[serde(default, skip_serializing_if = "is_zero")]
     pub base_ring_width: f64,
+    /// Base ring thickness, mm; default the skirt's thickness. The skirt
+    /// calculation checks it against the bearing pressure under the ring.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub base_ring_thickness: Option<f64>,
     /// Thickness, mm.
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub thickness: Option<f64>,

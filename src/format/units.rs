@@ -83,6 +83,7 @@ fn for_each_length(design: &mut Design, mut f: impl FnMut(&mut f64)) {
                 PartDesign::Skirt(p) => {
                     scale(&mut p.height);
                     scale(&mut p.base_ring_width);
+                    scale_opt(&mut p.base_ring_thickness, &mut scale);
                     scale_opt(&mut p.thickness, &mut scale);
                 }
                 PartDesign::Saddle(p) => {

@@ -282,6 +282,7 @@ fn column(rng: &mut SplitMix64, index: usize) -> VesselDesign {
             height: skirt,
             flare_angle: 0.0,
             base_ring_width: 150.0,
+            base_ring_thickness: None,
             thickness: Some(t),
             anchor_bolts: None,
         }),

@@ -57,8 +57,12 @@ fn box_centre(patches: &[Patch], to: DAffine3) -> DVec3 {
 fn support_volume(design: &PartDesign, part: &ResolvedPart, shell_thickness: f64) -> Option<f64> {
     Some(match (&part.geometry, design) {
         // Frustum of the mid-surface × t, and the base ring as a flat annulus of
-        // the skirt's thickness.
-        (PartGeometry::Skirt(s), _) => {
+        // its own thickness (default the skirt's).
+        (PartGeometry::Skirt(s), design) => {
+            let ring_t = match design {
+                PartDesign::Skirt(d) => d.base_ring_thickness.unwrap_or(s.thickness),
+                _ => s.thickness,
+            };
             let t = s.thickness;
             let flare = s.flare_angle.to_radians();
             let top = s.top_diameter / 2.0 - t / 2.0;
@@ -66,7 +70,8 @@ fn support_volume(design: &PartDesign, part: &ResolvedPart, shell_thickness: f64
             let slant = s.height / flare.cos();
             let ring_in = bottom + t / 2.0;
             let ring_out = ring_in + s.base_ring_width;
-            PI * (top + bottom) * slant * t + PI * (ring_out * ring_out - ring_in * ring_in) * t
+            PI * (top + bottom) * slant * t
+                + PI * (ring_out * ring_out - ring_in * ring_in) * ring_t
         }
         // Web (from the bearing plane up to the contact arc, and to the chord's
         // level beyond it), wear plate along the arc, and base plate; wear plate
