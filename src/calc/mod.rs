@@ -18,6 +18,7 @@
 
 pub mod api650;
 mod conditions;
+mod deficiency;
 mod error;
 pub mod external;
 pub mod flange;
@@ -43,6 +44,7 @@ pub mod wind;
 pub mod zick;
 
 pub use conditions::{Conditions, DEFAULT_JOINT_EFFICIENCY, TEST_TEMPERATURE, code_of, conditions};
+pub use deficiency::{Deficiency, deficiencies_by_item};
 pub use error::CalcError;
 pub use flange::FlangeRating;
 pub use materials::{Material, MaterialTable};

@@ -17,6 +17,7 @@
 
 pub mod assets;
 pub mod broadcast;
+pub mod deficiencies;
 pub mod error;
 pub mod flush;
 pub mod follow;

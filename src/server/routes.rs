@@ -16,6 +16,7 @@
 //! GET  /vessel.json?vessel=T  one vessel's design and index {"revision","index","vessel"}
 //! GET  /drawing.svg?vessel=T  the vessel's drawing sheet
 //! GET  /drawing.dxf?vessel=T  the same sheet as DXF (a download)
+//! GET  /calc.json            the calculation's deficiencies by part (`deficiencies`)
 //! GET  /traveler.html?vessel=T the vessel's shop traveler (`traveler`), also .csv
 //! GET  /plates.json?vessel=T    its plates; /plates/<id>.dxf?vessel=T one plate's DXF
 //! GET  /ws                    the viewer stream (see `broadcast`)
@@ -68,6 +69,7 @@ pub fn router(state: AppState) -> Router {
         .route("/drawing.svg", get(drawing_svg))
         .route("/drawing.dxf", get(drawing_dxf))
         .route("/vessel.json", get(vessel_json))
+        .route("/calc.json", get(super::deficiencies::calc_json))
         .route("/traveler.html", get(super::traveler::traveler_page))
         .route("/traveler.csv", get(super::traveler::traveler_table))
         .route("/plates.json", get(super::traveler::plate_list))

@@ -20,7 +20,9 @@
 // /revisions; newest first, each with its design as JSON) while it is open.
 // Errors show in red, success does not. The view is drawn on demand (after a
 // camera move, an update, a highlight or a resize), not every frame. The drawing panel shows /drawing.svg of the picked
-// vessel; a click opens it full size with SVG and DXF downloads.
+// vessel; a click opens it full size with SVG and DXF downloads. After each
+// revision the Calculation panel fetches /calc.json: a part or nozzle the code
+// calculation finds deficient is drawn red and its figures are listed.
 // `window.vesselcad` exposes the state for tests.
 
 import {
@@ -51,6 +53,8 @@ const state = {
   updates: 0,
   lastApplied: 0,      // performance.now() when the last delta was on screen
   generation: 0,       // bumped by each hello/resync: stale fetches are dropped
+  deficient: new Map(), // stable id → the sentences of its deficiencies
+  calcRevision: -1,    // the revision /calc.json last answered for
 };
 
 // ---- 3D view ---------------------------------------------------------------
@@ -139,7 +143,7 @@ function dispose(object) {
   object.traverse((o) => {
     if (o.isMesh) {
       if (!o.userData.placeholder) o.geometry.dispose();
-      if (o.userData.highlight) o.material.dispose();
+      if (o.userData.highlight || o.userData.deficient) o.material.dispose();
     }
   });
 }
@@ -155,6 +159,7 @@ function indexPart(tag, part) {
   const id = `${tag}/${part.userData.name}`;
   part.userData.stableId = id;
   state.nodes.set(id, part);
+  paintNode(id, part);
 }
 
 function clearModel() {
@@ -358,6 +363,60 @@ async function handle(header, buffer) {
   renderParams();
   if (!touched || touched.has(drawingTag())) refreshDrawing();
   refreshHistory();
+  refreshCalc();
+}
+
+// ---- calculation -----------------------------------------------------------
+// GET /calc.json after each revision: the live calculation's deficiencies by
+// stable id. A deficient part or nozzle is drawn red (its meshes get their own
+// copies of their materials) and its figures are listed; a line picks its part.
+
+const DEFICIENT = new Color(0xd01010);
+
+function paintNode(id, node) {
+  const bad = state.deficient.has(id);
+  node.traverse((o) => {
+    if (!o.isMesh || o.userData.placeholder || Boolean(o.userData.deficient) === bad) return;
+    if (o.userData.highlight) {
+      o.material.dispose();
+      o.material = o.userData.base;
+      o.userData.highlight = false;
+    }
+    if (bad) {
+      o.userData.sound = o.material;
+      o.material = o.material.clone();
+      o.material.color = DEFICIENT.clone();
+    } else {
+      o.material.dispose();
+      o.material = o.userData.sound;
+    }
+    o.userData.deficient = bad;
+  });
+}
+
+async function refreshCalc() {
+  const response = await fetch('/calc.json', { cache: 'no-store', headers: authHeaders() }).catch(() => null);
+  if (!response || !response.ok) return;
+  const calc = await response.json();
+  if (calc.revision < state.calcRevision) return;
+  state.calcRevision = calc.revision;
+  state.deficient = new Map();
+  for (const d of calc.deficiencies) {
+    if (!state.deficient.has(d.id)) state.deficient.set(d.id, []);
+    state.deficient.get(d.id).push(d.text);
+  }
+  for (const [id, node] of state.nodes) paintNode(id, node);
+  $('deficiencies').replaceChildren(...calc.deficiencies.map((d) => {
+    const li = document.createElement('li');
+    li.dataset.id = d.id;
+    li.textContent = d.id.includes('/') ? `${d.id.split('/')[0]}/${d.text}` : `${d.id}: ${d.text}`;
+    li.addEventListener('click', () => select(d.id, true));
+    return li;
+  }));
+  $('calc-note').textContent = calc.deficiencies.length
+    ? `${calc.deficiencies.length} deficiencies (red in the view):`
+    : 'No deficiency: every wall, nozzle and support holds.';
+  highlight();
 }
 
 // ---- history -------------------------------------------------------------------
@@ -882,6 +941,21 @@ window.vesselcad = {
   get lastApplied() { return state.lastApplied; },
   get frames() { return state.frames; },
   ids: () => [...state.nodes.keys()],
+  get calcRevision() { return state.calcRevision; },
+  // The Calculation panel's deficiencies: [stable id, text].
+  deficiencies: () => [...$('deficiencies').children].map((li) => [li.dataset.id, li.textContent]),
+  // The colour of the first mesh of a part or nozzle, as hex, without the
+  // selection highlight (null if not shown).
+  colour(id) {
+    let found = null;
+    const node = state.nodes.get(id);
+    if (node) node.traverse((o) => {
+      if (found || !o.isMesh || o.userData.placeholder) return;
+      const m = o.userData.highlight ? o.userData.base : o.material;
+      found = m.color.getHexString();
+    });
+    return found;
+  },
   // The History panel's rows, newest first: [revision, text].
   history: () => [...$('history').children].map((li) => [Number(li.dataset.rev), li.textContent]),
   // World-space bounding box [minX, minY, minZ, maxX, maxY, maxZ] (glTF metres).
