@@ -8,7 +8,8 @@
 //! fastest run counts. Meshes are made to the tolerance less the quantization
 //! budget, as `vesselcad build --quantize` makes them. The last rows are the
 //! compact file (reuse + quantization + meshopt) of the scene merged per part,
-//! vessel and plant (`--granularity`; merging is not timed).
+//! vessel and plant (`--granularity`; merging is not timed), and the part merge
+//! with instancing. An instanced node is one draw call.
 
 use std::time::Instant;
 
@@ -63,24 +64,29 @@ fn main() {
         "{} vessel(s), {patches} patches, meshed at {meshing} mm for {tolerance} mm",
         scene.vessels.len()
     );
-    println!("| variant | bytes | glTF meshes | draw calls | write MB/s |");
-    println!("|---|---|---|---|---|");
+    println!("| variant | bytes | JSON bytes | glTF meshes | draw calls | write MB/s |");
+    println!("|---|---|---|---|---|---|");
+    let q = Some(quantization_budget(tolerance));
     let variants = [
-        ("f32, one mesh per patch", false, None, Compression::None),
-        ("f32, reuse (default)", true, None, Compression::None),
         (
-            "reuse + quantization",
-            true,
-            Some(quantization_budget(tolerance)),
+            "f32, one mesh per patch",
+            false,
+            None,
             Compression::None,
+            false,
         ),
-        ("reuse + meshopt", true, None, Compression::Meshopt),
+        ("f32, reuse (default)", true, None, Compression::None, false),
+        ("reuse + instancing", true, None, Compression::None, true),
+        ("reuse + quantization", true, q, Compression::None, false),
+        ("reuse + meshopt", true, None, Compression::Meshopt, false),
         (
             "reuse + quantization + meshopt",
             true,
-            Some(quantization_budget(tolerance)),
+            q,
             Compression::Meshopt,
+            false,
         ),
+        ("compact + instancing", true, q, Compression::Meshopt, true),
     ];
     let merged = [
         ("compact, --granularity part", Granularity::Part),
@@ -90,11 +96,12 @@ fn main() {
     .map(|(name, g)| (name, merge_scene(&scene, g)));
     let rows = variants
         .iter()
-        .map(|&(name, reuse, quantize, compress)| {
+        .map(|&(name, reuse, quantize, compress, instancing)| {
             let options = GlbOptions {
                 reuse,
                 quantize,
                 compress,
+                instancing,
             };
             (name, &scene, options)
         })
@@ -102,7 +109,12 @@ fn main() {
             merged
                 .iter()
                 .map(|(name, s)| (*name, s, GlbOptions::compact(tolerance))),
-        );
+        )
+        .chain(std::iter::once((
+            "compact + instancing, --granularity part",
+            &merged[0].1,
+            GlbOptions::compact(tolerance).instanced(),
+        )));
     for (name, scene, options) in rows {
         let mut best = f64::INFINITY;
         let mut bytes = Vec::new();
@@ -118,7 +130,7 @@ fn main() {
             .as_array()
             .map_or(0, |n| n.iter().filter(|n| n["mesh"].is_u64()).count());
         println!(
-            "| {name} | {} | {meshes} | {draws} | {:.0} |",
+            "| {name} | {} | {json_len} | {meshes} | {draws} | {:.0} |",
             bytes.len(),
             bytes.len() as f64 / best / 1e6
         );

@@ -58,6 +58,12 @@ pub struct BuildArgs {
     /// Write every patch's mesh on its own, even where patches share one.
     #[arg(long)]
     no_reuse: bool,
+    /// Draw the patches that share a mesh with one instanced node each
+    /// (`EXT_mesh_gpu_instancing`, one draw call per shared mesh; their ids in
+    /// the node's extras). Without it, a plain node per patch, which every
+    /// viewer reads.
+    #[arg(long, conflicts_with = "no_reuse")]
+    instancing: bool,
     /// What one mesh (one draw call per material) holds: `patch` (default),
     /// `part`, `vessel` or `plant`; merged meshes keep the tolerance.
     #[arg(long, value_enum, default_value = "patch")]
@@ -106,6 +112,7 @@ pub fn run(args: BuildArgs) -> ExitCode {
         quantize,
         compress,
         no_reuse,
+        instancing,
         granularity,
         tiles,
     } = args;
@@ -117,6 +124,7 @@ pub fn run(args: BuildArgs) -> ExitCode {
             Some(CompressArg::Meshopt) => Compression::Meshopt,
             None => Compression::None,
         },
+        instancing,
     };
     let start = Instant::now();
     let to_stdout = output.as_os_str() == "-";

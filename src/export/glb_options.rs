@@ -1,5 +1,5 @@
-//! How compact a GLB is: mesh reuse, `KHR_mesh_quantization` and
-//! `EXT_meshopt_compression`, chosen by the caller of the glTF writer.
+//! How compact a GLB is: mesh reuse, `KHR_mesh_quantization`,
+//! `EXT_meshopt_compression` and `EXT_mesh_gpu_instancing`, chosen by the caller of the glTF writer.
 //!
 //! The writer ([`super::write_glb_with`], [`super::stream_glb_with`]) takes these
 //! options; [`GlbOptions::default`] is what [`super::write_glb`] writes: patches
@@ -40,6 +40,12 @@ pub struct GlbOptions {
     pub quantize: Option<f64>,
     /// Compression of the buffer.
     pub compress: Compression,
+    /// `EXT_mesh_gpu_instancing`: the patches that draw one glTF mesh (with
+    /// `reuse`) are drawn by one instanced node, a draw call for them all,
+    /// instead of a node each. Off by default: plain nodes (a node per patch,
+    /// under its part) are what every viewer reads and what the live viewer
+    /// picks and replaces by id.
+    pub instancing: bool,
 }
 
 impl Default for GlbOptions {
@@ -48,6 +54,7 @@ impl Default for GlbOptions {
             reuse: true,
             quantize: None,
             compress: Compression::None,
+            instancing: false,
         }
     }
 }
@@ -60,6 +67,15 @@ impl GlbOptions {
             reuse: true,
             quantize: Some(quantization_budget(tolerance)),
             compress: Compression::Meshopt,
+            instancing: false,
+        }
+    }
+
+    /// These options with `EXT_mesh_gpu_instancing` on.
+    pub fn instanced(self) -> Self {
+        Self {
+            instancing: true,
+            ..self
         }
     }
 

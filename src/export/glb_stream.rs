@@ -93,6 +93,13 @@ pub fn stream_glb_with(
         let mut written = 0;
         // Stream by stream, as the views lie in the buffer, each padded to 4.
         for stream in Stream::ALL {
+            if stream == Stream::Instances {
+                let instances = &document.buffers.instances;
+                write(instances)?;
+                write(&vec![0; padded(instances.len()) - instances.len()])?;
+                written += padded(instances.len());
+                continue;
+            }
             let mut length = 0;
             for (mesh, encoding) in &document.meshes {
                 chunk.clear();

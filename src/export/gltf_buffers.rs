@@ -39,11 +39,13 @@ pub(super) struct PrimitiveAccessors {
 /// The buffer's streams as they grow, and the meshes in them.
 pub(super) struct MeshBuffers<'a> {
     /// The bytes of each stream ([`Stream::ALL`] order), unless laying out only.
-    streams: [Vec<u8>; 6],
+    /// The instancing stream's bytes are kept even then: they are few, and
+    /// the streaming writer takes them from [`FinishedBuffers::instances`].
+    streams: [Vec<u8>; Stream::COUNT],
     /// Bytes of each stream so far (kept whether or not the bytes are).
-    lengths: [usize; 6],
+    lengths: [usize; Stream::COUNT],
     /// The accessors into each stream, to point at its view in `finish`.
-    accessors: [Vec<usize>; 6],
+    accessors: [Vec<usize>; Stream::COUNT],
     /// Every mesh written, in order, with its encoding: what the streaming
     /// writer writes.
     meshes: Vec<(&'a PackedMesh, Encoding)>,
@@ -64,6 +66,9 @@ pub(super) struct FinishedBuffers {
     pub view_extensions: Vec<(usize, Value)>,
     /// The uncompressed fallback buffer's index, when compressed.
     pub fallback_buffer: Option<usize>,
+    /// The instancing stream's bytes when laid out only (the streaming writer
+    /// writes them after the meshes' streams).
+    pub instances: Vec<u8>,
 }
 
 impl<'a> MeshBuffers<'a> {
@@ -71,7 +76,7 @@ impl<'a> MeshBuffers<'a> {
     pub fn new(options: GlbOptions) -> Self {
         Self {
             streams: Default::default(),
-            lengths: [0; 6],
+            lengths: [0; Stream::COUNT],
             accessors: Default::default(),
             meshes: Vec::new(),
             options,
@@ -197,6 +202,37 @@ impl<'a> MeshBuffers<'a> {
         ))
     }
 
+    /// Appends `EXT_mesh_gpu_instancing` attribute data — `f32` elements of
+    /// `type_` (`VEC3` translations or scales, `VEC4` rotations), tightly
+    /// packed — and pushes its accessor onto `root`.
+    pub fn push_instances(
+        &mut self,
+        root: &mut json::Root,
+        type_: Type,
+        elements: &[f32],
+    ) -> json::Index<json::Accessor> {
+        let stream = Stream::Instances;
+        let width = match type_ {
+            Type::Vec4 => 4,
+            _ => 3,
+        };
+        let offset = self.lengths[stream.slot()];
+        let bytes = &mut self.streams[stream.slot()];
+        for x in elements {
+            bytes.extend_from_slice(&x.to_le_bytes());
+        }
+        self.lengths[stream.slot()] = bytes.len();
+        let index = root.push(accessor(
+            offset,
+            elements.len() / width,
+            type_,
+            ComponentType::F32,
+            false,
+        ));
+        self.accessors[stream.slot()].push(index.value());
+        index
+    }
+
     /// Pushes the buffer(s) and a view per non-empty stream onto `root` (which
     /// must hold no views yet), points the accessors at their views, and returns
     /// the binary chunk's bytes with the extensions the JSON needs. Pushes
@@ -264,13 +300,15 @@ impl<'a> MeshBuffers<'a> {
                 buffer: view_buffer,
                 byte_length: USize64::from(length),
                 byte_offset: Some(USize64::from(offset)),
-                byte_stride: (!stream.is_index()).then_some(Stride(stream.stride())),
+                byte_stride: stream.is_vertex().then_some(Stride(stream.stride())),
                 name: None,
-                target: Some(Checked::Valid(if stream.is_index() {
-                    Target::ElementArrayBuffer
+                target: if stream.is_index() {
+                    Some(Checked::Valid(Target::ElementArrayBuffer))
                 } else {
-                    Target::ArrayBuffer
-                })),
+                    stream
+                        .is_vertex()
+                        .then_some(Checked::Valid(Target::ArrayBuffer))
+                },
                 extensions: None,
                 extras: None,
             });
@@ -294,6 +332,8 @@ impl<'a> MeshBuffers<'a> {
             } else if !self.layout_only {
                 out.bin.extend_from_slice(&self.streams[k]);
                 out.bin.resize(padded4(out.bin.len()), 0);
+            } else if stream == Stream::Instances {
+                out.instances = self.streams[k].clone();
             }
             offset += padded4(length);
         }
@@ -316,7 +356,7 @@ fn encode_view(stream: Stream, bytes: &[u8]) -> Vec<u8> {
     match stream {
         Stream::PositionsF32 | Stream::NormalsF32 => vertices::<12>(bytes),
         Stream::PositionsU16 => vertices::<8>(bytes),
-        Stream::NormalsI8 => vertices::<4>(bytes),
+        Stream::NormalsI8 | Stream::Instances => vertices::<4>(bytes),
         Stream::Indices32 | Stream::Indices16 => {
             let indices: Vec<u32> = if stream == Stream::Indices16 {
                 bytes

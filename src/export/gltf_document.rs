@@ -38,6 +38,7 @@ use super::glb_options::GlbOptions;
 use super::gltf_buffers::{FinishedBuffers, MeshBuffers, PrimitiveAccessors};
 use super::gltf_encoding::MM_TO_M;
 use super::gltf_encoding::{Dequantization, Encoding, Stream};
+use super::gltf_instancing::{INSTANCING, InstanceGroups};
 use super::gltf_materials::MaterialKind;
 use super::scene::{Scene, SceneNode, ScenePatch, SceneVessel};
 use crate::mesh::PackedMesh;
@@ -63,6 +64,8 @@ pub(super) struct Document<'a> {
     pub buffers: FinishedBuffers,
     /// Every distinct mesh written, in buffer order, with its encoding.
     pub meshes: Vec<(&'a PackedMesh, Encoding)>,
+    /// `EXT_mesh_gpu_instancing` objects of instanced nodes, by node index.
+    pub node_extensions: Vec<(usize, Value)>,
 }
 
 impl Document<'_> {
@@ -73,12 +76,18 @@ impl Document<'_> {
     ///
     /// [`ExportError::Json`] when it cannot be serialized.
     pub fn json_bytes(&self) -> Result<Vec<u8>, ExportError> {
-        let Some(fallback) = self.buffers.fallback_buffer else {
+        let fallback = self.buffers.fallback_buffer;
+        if fallback.is_none() && self.node_extensions.is_empty() {
             return Ok(serde_json::to_vec(&self.root)?);
-        };
+        }
         let mut value = serde_json::to_value(&self.root)?;
+        for (node, ext) in &self.node_extensions {
+            if let Some(n) = value.pointer_mut(&format!("/nodes/{node}")) {
+                n["extensions"] = serde_json::json!({ INSTANCING: ext });
+            }
+        }
         let extension = |v: Value| serde_json::json!({ MESHOPT: v });
-        if let Some(buffer) = value.pointer_mut(&format!("/buffers/{fallback}")) {
+        if let Some(buffer) = fallback.and_then(|f| value.pointer_mut(&format!("/buffers/{f}"))) {
             buffer["extensions"] = extension(serde_json::json!({ "fallback": true }));
         }
         for (view, ext) in &self.buffers.view_extensions {
@@ -135,9 +144,28 @@ pub(super) fn document_with<'a>(
         by_content: HashMap::new(),
         written: Vec::new(),
     };
+    let mut placer = if writer.buffers.options().instancing && writer.buffers.options().reuse {
+        Placer::Instancing {
+            uses: count_uses(&mut root, &mut writer, &materials, scene)?,
+            groups: InstanceGroups::default(),
+        }
+    } else {
+        Placer::Nodes
+    };
     let mut vessel_nodes = Vec::with_capacity(scene.vessels.len());
     for vessel in &scene.vessels {
-        vessel_nodes.push(push_vessel(&mut root, &mut writer, &materials, vessel)?);
+        vessel_nodes.push(push_vessel(
+            &mut root,
+            (&mut writer, &mut placer),
+            &materials,
+            vessel,
+        )?);
+    }
+    let mut node_extensions = Vec::new();
+    if let Placer::Instancing { groups, .. } = placer {
+        let (nodes, extensions) = groups.push_nodes(&mut root, &mut writer.buffers);
+        vessel_nodes.extend(nodes);
+        node_extensions = extensions;
     }
     set_children(&mut root, plant, vessel_nodes);
     root.push(json::Scene {
@@ -155,6 +183,9 @@ pub(super) fn document_with<'a>(
     });
     let buffers = writer.buffers.finish(&mut root)?;
     let mut extensions = Vec::new();
+    if !node_extensions.is_empty() {
+        extensions.push(INSTANCING.to_string());
+    }
     if quantized {
         extensions.push(QUANTIZATION.to_string());
     }
@@ -167,7 +198,44 @@ pub(super) fn document_with<'a>(
         root,
         buffers,
         meshes,
+        node_extensions,
     })
+}
+
+/// Where patch nodes go: each under its part, or, with instancing, those
+/// whose mesh is drawn more than once into instanced nodes.
+enum Placer {
+    /// A node per patch.
+    Nodes,
+    /// Patches of meshes used more than once become instances.
+    Instancing {
+        /// Patches drawing each glTF mesh, by mesh index.
+        uses: HashMap<usize, usize>,
+        /// The instances so far.
+        groups: InstanceGroups,
+    },
+}
+
+/// How many patches draw each glTF mesh, by mesh index: every mesh written
+/// (in the order the node pass finds them again).
+fn count_uses<'a>(
+    root: &mut json::Root,
+    writer: &mut MeshWriter<'a>,
+    materials: &[Option<json::Index<json::Material>>; 3],
+    scene: &'a Scene,
+) -> Result<HashMap<usize, usize>, ExportError> {
+    let mut uses = HashMap::new();
+    for vessel in &scene.vessels {
+        for node in &vessel.nodes {
+            let slot = MaterialKind::of(node).slot();
+            let entity = format!("{}/{}", vessel.tag, node.id);
+            for patch in node.patches.iter().filter(|p| !is_empty(&p.mesh)) {
+                let (mesh, _) = writer.mesh(root, patch, (materials[slot], slot), &entity)?;
+                *uses.entry(mesh.value()).or_insert(0) += 1;
+            }
+        }
+    }
+    Ok(uses)
 }
 
 /// The meshes written so far: each distinct mesh once, whichever patches use
@@ -309,7 +377,7 @@ fn push_materials(
 /// Pushes a vessel node and everything under it; returns its index.
 fn push_vessel<'a>(
     root: &mut json::Root,
-    writer: &mut MeshWriter<'a>,
+    (writer, placer): (&mut MeshWriter<'a>, &mut Placer),
     materials: &[Option<json::Index<json::Material>>; 3],
     vessel: &'a SceneVessel,
 ) -> Result<json::Index<json::Node>, ExportError> {
@@ -323,9 +391,9 @@ fn push_vessel<'a>(
         let slot = MaterialKind::of(node).slot();
         children.push(push_node(
             root,
-            writer,
+            (writer, placer),
             (materials[slot], slot),
-            &vessel.tag,
+            vessel,
             node,
         )?);
     }
@@ -336,11 +404,12 @@ fn push_vessel<'a>(
 /// Pushes a part or nozzle node and its patch nodes; returns its index.
 fn push_node<'a>(
     root: &mut json::Root,
-    writer: &mut MeshWriter<'a>,
+    (writer, placer): (&mut MeshWriter<'a>, &mut Placer),
     (material, slot): (Option<json::Index<json::Material>>, usize),
-    tag: &str,
+    vessel: &SceneVessel,
     node: &'a SceneNode,
 ) -> Result<json::Index<json::Node>, ExportError> {
+    let tag = &vessel.tag;
     let index = root.push(json::Node {
         name: Some(node.id.clone()),
         extras: raw(&node.extras)?,
@@ -350,6 +419,18 @@ fn push_node<'a>(
     let mut children = Vec::with_capacity(node.patches.len());
     for patch in node.patches.iter().filter(|p| !is_empty(&p.mesh)) {
         let (mesh, dequantization) = writer.mesh(root, patch, (material, slot), &entity)?;
+        if let Placer::Instancing { uses, groups } = placer
+            && uses.get(&mesh.value()).is_some_and(|&n| n > 1)
+        {
+            let world = vessel.frame * node.frame;
+            groups.add(
+                mesh,
+                format!("{entity}/{}", patch.name),
+                &world,
+                dequantization,
+            );
+            continue;
+        }
         children.push(root.push(json::Node {
             name: Some(patch.name.clone()),
             mesh: Some(mesh),

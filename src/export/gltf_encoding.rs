@@ -59,18 +59,25 @@ pub(super) enum Stream {
     NormalsI8,
     /// `u16` triangle indices.
     Indices16,
+    /// `f32` words of `EXT_mesh_gpu_instancing` attributes (translations,
+    /// rotations, scales), tightly packed: no mesh writes it.
+    Instances,
 }
 
 impl Stream {
     /// Every stream, in view order.
-    pub const ALL: [Stream; 6] = [
+    pub const ALL: [Stream; Stream::COUNT] = [
         Stream::PositionsF32,
         Stream::NormalsF32,
         Stream::Indices32,
         Stream::PositionsU16,
         Stream::NormalsI8,
         Stream::Indices16,
+        Stream::Instances,
     ];
+
+    /// How many streams there are.
+    pub const COUNT: usize = 7;
 
     /// Position in [`Stream::ALL`].
     pub fn slot(self) -> usize {
@@ -82,7 +89,7 @@ impl Stream {
         match self {
             Stream::PositionsF32 | Stream::NormalsF32 => 12,
             Stream::PositionsU16 => 8,
-            Stream::NormalsI8 | Stream::Indices32 => 4,
+            Stream::NormalsI8 | Stream::Indices32 | Stream::Instances => 4,
             Stream::Indices16 => 2,
         }
     }
@@ -90,6 +97,12 @@ impl Stream {
     /// True for an index stream.
     pub fn is_index(self) -> bool {
         matches!(self, Stream::Indices32 | Stream::Indices16)
+    }
+
+    /// True for a stream of vertex attributes (a view with a stride and the
+    /// `ARRAY_BUFFER` target).
+    pub fn is_vertex(self) -> bool {
+        !self.is_index() && self != Stream::Instances
     }
 }
 

@@ -26,6 +26,7 @@ mod glb_stream;
 mod gltf_buffers;
 mod gltf_document;
 mod gltf_encoding;
+mod gltf_instancing;
 mod gltf_materials;
 mod granularity;
 mod scene;

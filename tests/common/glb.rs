@@ -93,6 +93,7 @@ impl Glb {
         let components = match a["type"].as_str().unwrap() {
             "SCALAR" => 1,
             "VEC3" => 3,
+            "VEC4" => 4,
             other => panic!("type {other}"),
         };
         let component_type = a["componentType"].as_u64().unwrap();

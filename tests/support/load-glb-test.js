@@ -5,8 +5,9 @@
 // and its files are answered from disk by request interception.
 //
 // Usage: node load-glb-test.js <three-bundle.js> <file.glb>...
-// Prints one JSON object: per file, the meshes three.js made, their triangles
-// and vertices, the named nodes, the world bounding box (metres, Y-up) and the
+// Prints one JSON object: per file, the meshes three.js made (draw calls), the
+// meshes they draw (an InstancedMesh counts its instances), their triangles and
+// vertices (of every instance), the named nodes, the world bounding box (metres, Y-up) and the
 // extras of the first vessel node; or the error. Exits 2 if any file fails.
 'use strict';
 
@@ -28,22 +29,24 @@ window.load = async (name) => {
   loader.setMeshoptDecoder(THREE.MeshoptDecoder);
   const bytes = await (await fetch('/files/' + name)).arrayBuffer();
   const gltf = await loader.parseAsync(bytes, '');
-  let meshes = 0, triangles = 0, vertices = 0;
+  let meshes = 0, drawn = 0, triangles = 0, vertices = 0;
   const names = [];
   gltf.scene.updateMatrixWorld(true);
   gltf.scene.traverse((o) => {
     if (o.name) names.push(o.name);
     if (o.isMesh) {
       meshes += 1;
+      const copies = o.isInstancedMesh ? o.count : 1;
+      drawn += copies;
       const g = o.geometry;
-      triangles += (g.index ? g.index.count : g.attributes.position.count) / 3;
-      vertices += g.attributes.position.count;
+      triangles += copies * (g.index ? g.index.count : g.attributes.position.count) / 3;
+      vertices += copies * g.attributes.position.count;
     }
   });
   const box = new THREE.Box3().setFromObject(gltf.scene);
   const vessel = gltf.scene.children[0]?.children[0];
   return {
-    meshes, triangles, vertices, names: names.length,
+    meshes, drawn, triangles, vertices, names: names.length,
     box: [...box.min.toArray(), ...box.max.toArray()],
     vessel: vessel ? vessel.userData : null,
   };
