@@ -108,7 +108,7 @@ fn cone_sector_is_the_exact_development() {
         inner,
         outer,
         angle,
-    } = cone.outline(TAU, cone.z.0, cone.z.1)
+    } = cone.outline(0.0, TAU, cone.z.0, cone.z.1)
     else {
         panic!("a cone develops to a sector");
     };

@@ -1,7 +1,8 @@
 //! `vesselcad fab <design> --vessel TAG -o out/ [--rules shop_rules.json]
 //! [--shop plates.json]`: the fabrication files of one vessel (see
 //! `vesselcad::fab`): flat patterns, head blanks, seams with their
-//! deficiencies, one DXF per plate and the nesting; the process plan on that
+//! deficiencies, one DXF per plate, per pad and per neck template (the
+//! saddle cut wrapped round the neck) and the nesting; the process plan on that
 //! plate layout — traveler (HTML, CSV), BOM, weld map (CSV, JSON, GLB, SVG) —
 //! written into the output directory with a summary printed (and saved as
 //! `summary.txt`). One shop file holds it all (`data/shop_rules.json`: its
@@ -15,6 +16,7 @@ use clap::Args;
 use vesselcad::design::load;
 use vesselcad::fab::plate_dxf::write_plate;
 use vesselcad::fab::process_files::write_process_files;
+use vesselcad::fab::template_dxf::write_templates;
 use vesselcad::fab::{
     BLANK_RULE, FabError, FabPlan, Nesting, Outline, PlanError, ProcessPlan, Shop, ShopRules, plan,
     process_plan,
@@ -95,8 +97,16 @@ pub fn run(args: FabArgs) -> ExitCode {
             return fail(&e);
         }
     }
+    let mut templates = 0;
+    for cut in &plan.openings.cuts {
+        let shell = plan.developments.rolled[cut.rolled].outside.0;
+        match write_templates(&args.output, &plan.tag, cut, &plan.grade, shell) {
+            Ok(w) => templates += w.len(),
+            Err(e) => return fail(&e),
+        }
+    }
     lines.push(format!(
-        "{} plate DXF files in {}",
+        "{} plate DXF files, {templates} pad and neck template DXF files in {}",
         plan.plates.len(),
         args.output.display()
     ));
@@ -202,7 +212,8 @@ fn developments(plan: &FabPlan) -> Vec<String> {
     let mut out = Vec::new();
     out.push(format!("{} ({})", plan.tag, plan.grade));
     for r in &plan.developments.rolled {
-        let outline = r.outline(std::f64::consts::TAU, r.z.0, r.z.1);
+        let from = r.flat_side.unwrap_or(0.0);
+        let outline = r.outline(from, std::f64::consts::TAU, r.z.0, r.z.1);
         let shape = match outline {
             Outline::Rectangle { width, height } => {
                 format!("rectangle {width:.1} x {height:.1} mm")
@@ -215,6 +226,13 @@ fn developments(plan: &FabPlan) -> Vec<String> {
                 "sector R {inner:.1}..{outer:.1} mm, {:.3} deg",
                 angle.to_degrees()
             ),
+            Outline::Oblique(plate) => {
+                let (w, h) = outline.extent();
+                format!(
+                    "oblique cone {w:.1} x {h:.1} mm, {:.3} deg, cut open on its flat side",
+                    plate.developed_angle().to_degrees()
+                )
+            }
         };
         out.push(format!(
             "  {:<6} t {:>5.1} mm  developed {shape}, {:.3} m²",

@@ -137,6 +137,15 @@ fn plate_developed(fab: &FabPlan, plate: &super::plates::Plate) -> Developed {
             angle: angle.to_degrees(),
             rolling_radius,
         },
+        Outline::Oblique(o) => {
+            let (width, height) = plate.outline.extent();
+            Developed::Oblique {
+                width,
+                height,
+                angle: o.developed_angle().to_degrees(),
+                rolling_radius,
+            }
+        }
     }
 }
 

@@ -12,10 +12,11 @@
 //! equivalence of the mid-surface** ([`HeadBlank`]): the blank's area equals
 //! the exact area of the head of the same kind built on the mid-surface
 //! (diameter `D − t`, knuckle and crown radii less `t/2`, an ellipsoid's
-//! depth less `t/2`), straight flange included. Eccentric reducers (oblique
-//! cones) are not developed yet and are listed as such.
+//! depth less `t/2`), straight flange included. An eccentric reducer is an
+//! oblique cone: a [`Rolled`] with a flat side, developed exactly by
+//! [`super::oblique`].
 
-use glam::DAffine3;
+use glam::{DAffine3, DVec2, DVec3};
 
 use crate::constraints::{ResolvedPart, ResolvedVessel};
 use crate::format::{PartDesign, RuleViolation, VesselDesign};
@@ -24,19 +25,23 @@ use crate::parts::heads::{Head, HeadKind};
 use crate::parts::surface_area;
 use crate::parts::{PartGeometry, ReducerAlignment};
 
+use super::oblique::{ObliqueCone, ObliquePlate};
+
 /// What a rolled part is.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub enum RolledKind {
     /// A cylindrical shell course.
     Course,
-    /// A concentric conical reducer.
+    /// A conical reducer, concentric or (with a flat side) eccentric.
     Cone,
     /// A skirt (straight or flared).
     Skirt,
 }
 
-/// A rolled part's mid-surface: a surface of revolution about the part's
-/// local +Z whose radius is linear in `z`.
+/// A rolled part's mid-surface: circles about the part's local +Z whose
+/// radius is linear in `z` — a surface of revolution, or, with a
+/// [`flat_side`](Self::flat_side), an oblique cone whose circles' centres
+/// move towards the flat side as the radius shrinks.
 #[derive(Clone, Debug, PartialEq)]
 pub struct Rolled {
     /// Index of the part in the resolved vessel.
@@ -57,9 +62,38 @@ pub struct Rolled {
     pub outside: (f64, f64),
     /// Wall thickness, mm.
     pub thickness: f64,
+    /// An eccentric reducer's flat side, part-local angle from +x, radians
+    /// (`None` for a surface of revolution).
+    pub flat_side: Option<f64>,
 }
 
 impl Rolled {
+    /// The oblique cone of an eccentric reducer's mid-surface.
+    pub fn oblique(&self) -> Option<ObliqueCone> {
+        self.flat_side.map(|flat_side| ObliqueCone {
+            large: self.radius_at(0.0),
+            small: self.radius_at(self.z.1),
+            length: self.z.1,
+            flat_side,
+        })
+    }
+
+    /// The centre of the mid-surface's circle at local height `z` (the axis,
+    /// or for an eccentric reducer moved towards its flat side), part-local.
+    pub fn centre_at(&self, z: f64) -> DVec2 {
+        match self.flat_side {
+            Some(f) => DVec2::from_angle(f) * (self.radius_at(0.0) - self.radius_at(z)),
+            None => DVec2::ZERO,
+        }
+    }
+
+    /// The part-local point at angle `theta` about the circle at height `z`,
+    /// `radius` from its centre.
+    pub fn point(&self, theta: f64, z: f64, radius: f64) -> DVec3 {
+        let c = self.centre_at(z) + DVec2::from_angle(theta) * radius;
+        DVec3::new(c.x, c.y, z)
+    }
+
     /// Mid radius at local height `z`.
     pub fn radius_at(&self, z: f64) -> f64 {
         let t = (z - self.z.0) / (self.z.1 - self.z.0);
@@ -82,19 +116,45 @@ impl Rolled {
         (self.radius.1 - self.radius.0) / (self.z.1 - self.z.0)
     }
 
-    /// Slant length of the band `z0..z1` along the mid-surface, mm.
+    /// Slant length of the band `z0..z1` along the mid-surface (the longest
+    /// generator of an eccentric reducer's), mm.
     pub fn slant(&self, z0: f64, z1: f64) -> f64 {
-        (z1 - z0).abs() * self.taper().hypot(1.0)
+        let slope = match self.oblique() {
+            Some(cone) => cone.slope(),
+            None => self.taper().hypot(1.0),
+        };
+        (z1 - z0).abs() * slope
     }
 
-    /// Exact mid-surface area of the band `z0..z1` over `angle` radians,
-    /// mm² (Pappus: angle × mean radius × slant length).
-    pub fn area(&self, angle: f64, z0: f64, z1: f64) -> f64 {
-        angle * 0.5 * (self.radius_at(z0) + self.radius_at(z1)) * self.slant(z0, z1)
+    /// Length of the generator at angle `theta` of the band `z0..z1`, mm.
+    pub fn generator(&self, theta: f64, z0: f64, z1: f64) -> f64 {
+        match self.oblique() {
+            Some(cone) => cone.generator(theta, z0, z1),
+            None => self.slant(z0, z1),
+        }
     }
 
-    /// The developed outline of the band `z0..z1` over `angle` radians.
-    pub fn outline(&self, angle: f64, z0: f64, z1: f64) -> Outline {
+    /// Exact mid-surface area of the band `z0..z1` over `angle` radians
+    /// from angle `from`, mm² (Pappus for a surface of revolution: angle ×
+    /// mean radius × slant length; an oblique cone's by [`ObliqueCone::band_area`]).
+    pub fn area(&self, from: f64, angle: f64, z0: f64, z1: f64) -> f64 {
+        match self.oblique() {
+            Some(cone) => cone.band_area(from, from + angle, z0, z1),
+            None => angle * 0.5 * (self.radius_at(z0) + self.radius_at(z1)) * self.slant(z0, z1),
+        }
+    }
+
+    /// The developed outline of the band `z0..z1` over `angle` radians from
+    /// angle `from`.
+    pub fn outline(&self, from: f64, angle: f64, z0: f64, z1: f64) -> Outline {
+        if let Some(cone) = self.oblique() {
+            return Outline::Oblique(ObliquePlate {
+                cone,
+                from,
+                angle,
+                z: (z0, z1),
+            });
+        }
         if self.is_cylinder() {
             return Outline::Rectangle {
                 width: self.radius.0 * angle,
@@ -131,6 +191,9 @@ pub enum Outline {
         /// Sector angle, radians.
         angle: f64,
     },
+    /// An eccentric reducer's plate, laid like a sector (apex at the
+    /// origin, bisector along +y).
+    Oblique(ObliquePlate),
 }
 
 impl Outline {
@@ -143,6 +206,7 @@ impl Outline {
                 outer,
                 angle,
             } => 0.5 * angle * (outer * outer - inner * inner),
+            Outline::Oblique(plate) => plate.area(),
         }
     }
 
@@ -170,6 +234,10 @@ impl Outline {
                     inner * half.cos()
                 };
                 (width, outer - low)
+            }
+            Outline::Oblique(plate) => {
+                let (lo, hi) = plate.bounds();
+                (hi.x - lo.x, hi.y - lo.y)
             }
         }
     }
@@ -211,7 +279,7 @@ pub struct Developments {
     pub rolled: Vec<Rolled>,
     /// Head blanks in design order.
     pub heads: Vec<HeadBlank>,
-    /// Parts left out (supports other than skirts, eccentric reducers).
+    /// Parts left out (supports other than skirts, boots).
     pub skipped: Vec<Skipped>,
 }
 
@@ -360,6 +428,7 @@ fn develop_part(
             radius: (outside.0 - inset, outside.1 - inset),
             outside,
             thickness: t,
+            flat_side: None,
         })
     };
     Some(match &part.geometry {
@@ -373,8 +442,22 @@ fn develop_part(
                 (0.0, r.length),
                 (0.5 * r.large_diameter, 0.5 * r.small_diameter),
             ),
-            ReducerAlignment::Eccentric { .. } => {
-                skipped("eccentric reducer (an oblique cone): not developed yet".into())
+            ReducerAlignment::Eccentric { flat_side } => {
+                // The wall measured in the end planes (see `oblique`).
+                let h = 0.5 * t;
+                let (large, small) = (0.5 * r.large_diameter, 0.5 * r.small_diameter);
+                PartDevelopment::Rolled(Rolled {
+                    part: index,
+                    id: part.id.clone(),
+                    path: path.clone(),
+                    kind: RolledKind::Cone,
+                    frame: part.frame,
+                    z: (0.0, r.length),
+                    radius: (large - h, small - h),
+                    outside: (large, small),
+                    thickness: t,
+                    flat_side: Some(flat_side.to_radians()),
+                })
             }
         },
         PartGeometry::Skirt(s) => {

@@ -10,7 +10,8 @@
 //! from the exact intersection curves; [`seams`] splits parts into courses
 //! and courses into plates, staggering and clearing the seams, and checks
 //! loop validity; [`plates`] cuts the plates with their openings;
-//! [`plate_dxf`] writes one DXF per plate; [`nest`] nests plates, pads and
+//! [`plate_dxf`] writes one DXF per plate and [`template_dxf`] one per pad
+//! and neck template; [`oblique`] develops eccentric reducers; [`nest`] nests plates, pads and
 //! blanks onto stock sheets. [`plan`] runs it and returns a [`FabPlan`];
 //! [`plan_vessel`] does the same keeping what a previous plan of the vessel
 //! still holds (the live model's flat patterns, `vessel_plan`).
@@ -28,6 +29,7 @@ pub mod develop;
 pub mod error;
 pub mod levels;
 pub mod nest;
+pub mod oblique;
 pub mod openings;
 pub mod operations;
 pub mod plan_error;
@@ -39,6 +41,7 @@ pub mod process_files;
 pub mod seams;
 pub mod shop;
 pub mod shop_rules;
+pub mod template_dxf;
 pub mod traveler;
 pub mod vessel_plan;
 pub mod weld_curves;

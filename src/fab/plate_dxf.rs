@@ -1,6 +1,7 @@
 //! One DXF per plate, at 1:1 in millimetres (`$INSUNITS` = 4), for a cutting
 //! table: layer `CUT` holds the outline and the openings (closed polylines;
-//! a cone plate's arcs as exact bulges), `MARK` the marking lines (nozzle
+//! a cone plate's arcs as exact bulges, an eccentric reducer's developed
+//! curves as chords within [`super::oblique::OUTLINE_SAG`]), `MARK` the marking lines (nozzle
 //! centrelines, the vessel's 0°/90°/180°/270° orientation lines that cross
 //! the plate), `TEXT` the plate id, grade, thickness and course.
 
@@ -18,13 +19,13 @@ use super::error::FabError;
 use super::plates::Plate;
 use super::seams::Course;
 
-fn entity(layer: &str, specific: EntityType) -> Entity {
+pub(super) fn entity(layer: &str, specific: EntityType) -> Entity {
     let mut e = Entity::new(specific);
     e.common.layer = layer.to_string();
     e
 }
 
-fn vertex(p: DVec2, bulge: f64) -> LwPolylineVertex {
+pub(super) fn vertex(p: DVec2, bulge: f64) -> LwPolylineVertex {
     LwPolylineVertex {
         x: p.x,
         y: p.y,
@@ -33,7 +34,7 @@ fn vertex(p: DVec2, bulge: f64) -> LwPolylineVertex {
     }
 }
 
-fn closed(points: Vec<LwPolylineVertex>) -> EntityType {
+pub(super) fn closed(points: Vec<LwPolylineVertex>) -> EntityType {
     let mut p = LwPolyline {
         vertices: points,
         ..Default::default()
@@ -42,7 +43,7 @@ fn closed(points: Vec<LwPolylineVertex>) -> EntityType {
     EntityType::LwPolyline(p)
 }
 
-fn line(a: DVec2, b: DVec2) -> EntityType {
+pub(super) fn line(a: DVec2, b: DVec2) -> EntityType {
     EntityType::Line(Line::new(
         Point::new(a.x, a.y, 0.0),
         Point::new(b.x, b.y, 0.0),
@@ -52,16 +53,7 @@ fn line(a: DVec2, b: DVec2) -> EntityType {
 /// The plate's drawing. `grade` is the material; `rolled` and `course` the
 /// part and course it is cut from.
 pub fn plate_drawing(plate: &Plate, grade: &str, rolled: &Rolled, course: &Course) -> Drawing {
-    let mut d = Drawing::new();
-    d.header.version = AcadVersion::R2000;
-    d.header.default_drawing_units = Units::Millimeters;
-    for (name, colour) in [("CUT", 7), ("MARK", 1), ("TEXT", 3)] {
-        d.add_layer(Layer {
-            name: name.into(),
-            color: Color::from_index(colour),
-            ..Default::default()
-        });
-    }
+    let mut d = new_drawing();
     let (width, height) = plate.outline.extent();
     match plate.outline {
         Outline::Rectangle { width, height } => {
@@ -96,6 +88,11 @@ pub fn plate_drawing(plate: &Plate, grade: &str, rolled: &Rolled, course: &Cours
                 vertex(at(inner, 0.0), -bulge),
                 vertex(at(inner, -half), 0.0),
             ];
+            d.add_entity(entity("CUT", closed(points)));
+        }
+        Outline::Oblique(o) => {
+            // The developed curves as chords within `OUTLINE_SAG`.
+            let points = o.outline().into_iter().map(|p| vertex(p, 0.0)).collect();
             d.add_entity(entity("CUT", closed(points)));
         }
     }
@@ -139,6 +136,9 @@ pub fn plate_drawing(plate: &Plate, grade: &str, rolled: &Rolled, course: &Cours
         Outline::Sector { inner, outer, .. } => {
             DVec2::new(-0.2 * (outer - inner), 0.5 * (inner + outer))
         }
+        Outline::Oblique(o) => {
+            o.develop(o.from + 0.5 * o.angle, 0.5 * (o.z.0 + o.z.1)) - DVec2::X * 0.2 * width
+        }
     };
     text(&mut d, base, size, &plate.id);
     text(
@@ -153,7 +153,22 @@ pub fn plate_drawing(plate: &Plate, grade: &str, rolled: &Rolled, course: &Cours
     d
 }
 
-fn text(d: &mut Drawing, at: DVec2, height: f64, value: &str) {
+/// An empty drawing in millimetres with the layers `CUT`, `MARK` and `TEXT`.
+pub(super) fn new_drawing() -> Drawing {
+    let mut d = Drawing::new();
+    d.header.version = AcadVersion::R2000;
+    d.header.default_drawing_units = Units::Millimeters;
+    for (name, colour) in [("CUT", 7), ("MARK", 1), ("TEXT", 3)] {
+        d.add_layer(Layer {
+            name: name.into(),
+            color: Color::from_index(colour),
+            ..Default::default()
+        });
+    }
+    d
+}
+
+pub(super) fn text(d: &mut Drawing, at: DVec2, height: f64, value: &str) {
     let t = Text {
         location: Point::new(at.x, at.y, 0.0),
         text_height: height,

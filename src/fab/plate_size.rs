@@ -3,7 +3,7 @@
 //!
 //! The BOM takes plates and head blanks from the plate layout (`fab::develop`,
 //! `fab::plates`); these closed forms of the mid-surface are its fallback for
-//! a part the development leaves out (an eccentric reducer) and for supports:
+//! a part the development leaves out and for supports:
 //! a course develops to a rectangle π·D_mid × length; a cone (reducer or
 //! skirt) to an annular sector of slant length s between mid radii r₁, r₂
 //! (area π·(r₁ + r₂)·s); a head's blank is the disc of the mid-surface's area
@@ -49,6 +49,18 @@ pub enum Developed {
         /// Mean rolling radius (mid-thickness), mm.
         rolling_radius: f64,
     },
+    /// A rolled eccentric reducer's plate (an oblique cone's development):
+    /// its bounding box laid like a sector, and its developed angle.
+    Oblique {
+        /// Bounding width, mm.
+        width: f64,
+        /// Bounding height, mm.
+        height: f64,
+        /// Developed angle, degrees.
+        angle: f64,
+        /// Mean rolling radius (mid-thickness), mm.
+        rolling_radius: f64,
+    },
     /// A formed head's blank disc.
     Blank {
         /// Blank diameter, mm.
@@ -67,6 +79,12 @@ impl Developed {
                 angle,
                 ..
             } => format!("sector R{outer:.0}/R{inner:.0} × {angle:.1}°"),
+            Developed::Oblique {
+                width,
+                height,
+                angle,
+                ..
+            } => format!("oblique cone {width:.0} × {height:.0}, {angle:.1}°"),
             Developed::Blank { diameter } => format!("blank Ø{diameter:.0}"),
         }
     }
@@ -75,7 +93,8 @@ impl Developed {
     pub fn rolling_radius(&self) -> Option<f64> {
         match self {
             Developed::Rectangle { rolling_radius, .. }
-            | Developed::Sector { rolling_radius, .. } => Some(*rolling_radius),
+            | Developed::Sector { rolling_radius, .. }
+            | Developed::Oblique { rolling_radius, .. } => Some(*rolling_radius),
             Developed::Blank { .. } => None,
         }
     }

@@ -5,8 +5,9 @@
 //! A cylinder's plate has `x = r·(θ − θ₀)` from its first seam and `y = z −
 //! z₀` from its lower joint (seen from outside, x runs counter-clockwise
 //! about the part's axis). A cone's plate is an annular sector laid with its
-//! bisector along +y about the apex; it carries no openings (they are cut
-//! after forming).
+//! bisector along +y about the apex (an eccentric reducer's, the region
+//! between its developed curves, laid alike); it carries no openings (they
+//! are cut after forming).
 
 use std::collections::BTreeMap;
 use std::f64::consts::{PI, TAU};
@@ -159,9 +160,9 @@ pub fn cut_plates_reusing(
                 course_index: ci,
                 seam: k,
                 thickness: rolled.thickness,
-                outline: rolled.outline(pitch, course.z.0, course.z.1),
+                outline: rolled.outline(theta0, pitch, course.z.0, course.z.1),
                 openings: holes,
-                mid_area: rolled.area(pitch, course.z.0, course.z.1),
+                mid_area: rolled.area(theta0, pitch, course.z.0, course.z.1),
             }));
         }
     }

@@ -322,7 +322,7 @@ type JointFault = (usize, f64, bool);
 /// joints and the faults left.
 fn course_joints(rolled: &Rolled, keep: &[Keep], shop: &Shop) -> (Vec<f64>, Vec<JointFault>) {
     let (z0, z1) = rolled.z;
-    let slope = rolled.taper().hypot(1.0);
+    let slope = rolled.slant(0.0, 1.0);
     let width = shop.max_plate_width / slope;
     let fewest = (((z1 - z0) / width) - 1e-9).ceil().max(1.0) as usize;
     let clearance = shop.clearance_for(rolled.thickness);

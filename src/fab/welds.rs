@@ -227,9 +227,7 @@ pub fn weld_map(fab: &FabPlan, rules: &ShopRules) -> Result<Vec<Weld>, PlanError
             let angle = course.seam(k);
             let at = |z: f64| {
                 let r = rolled.outside_at(z);
-                rolled
-                    .frame
-                    .transform_point3(DVec3::new(r * angle.cos(), r * angle.sin(), z))
+                rolled.frame.transform_point3(rolled.point(angle, z, r))
             };
             let (p0, p1) = (at(z0), at(z1));
             b.push(
@@ -252,9 +250,7 @@ pub fn weld_map(fab: &FabPlan, rules: &ShopRules) -> Result<Vec<Weld>, PlanError
             let ring = (0..96)
                 .map(|i| {
                     let a = TAU * f64::from(i) / 96.0;
-                    rolled
-                        .frame
-                        .transform_point3(DVec3::new(r * a.cos(), r * a.sin(), z1))
+                    rolled.frame.transform_point3(rolled.point(a, z1, r))
                 })
                 .collect();
             let item = format!("{}+{}", course.id, next.id);
