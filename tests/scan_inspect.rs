@@ -129,11 +129,19 @@ fn each_injected_defect_is_found_in_size_and_place() {
     assert!(others.is_empty(), "{others:#?}");
 }
 
+/// Scan density of the settlement tests, points/m². A cosine's lowest point is
+/// where it is flattest: with 8 stations read to u, its orientation is good to
+/// u / (A·√4) radians. At 200 points/m² (1.5 mm noise, 20 % of 1 m cells
+/// hidden) the stations are read to about 3 mm and the lowest point of a 40 mm
+/// settlement to 95–140 mm of arc RMS on this 6 m tank (27–41 % of seeds past
+/// 100 mm, by a simulation of the bottom edge alone); at 1000 points/m²,
+/// still sparse for a laser scanner, to about 40 mm.
+const SETTLEMENT_DENSITY: f64 = 1000.0;
+
 #[test]
-#[ignore = "fits now (amplitude 39.2 of 40 mm, R² 0.996) but reads the lowest point at 117.6° for 120° (124 mm of arc, 100 allowed); station uncertainty 4.9 mm at 200 points/m²"]
 fn tank_settlement_is_fitted_by_a_cosine() {
     let env = envelope(TANK);
-    let (points, _) = scan(&env, "settlement=cosine:40mm@120°", 200.0, 14);
+    let (points, _) = scan(&env, "settlement=cosine:40mm@120°", SETTLEMENT_DENSITY, 14);
     let i = inspected(&env, points);
     let s = i
         .checks
@@ -157,7 +165,7 @@ fn tank_settlement_is_fitted_by_a_cosine() {
     );
     assert!((expected - 5.22).abs() < 0.01, "{expected}");
     // A planar tilt leaves no out-of-plane settlement past the stations'
-    // uncertainty (at 200 points/m² a station's edge is good to about 3 mm).
+    // uncertainty (at 1000 points/m² a station's edge is good to about 1 mm).
     assert!(s.uncertainty < 4.0, "{s:?}");
     assert!(s.out_of_plane < 3.0 * s.uncertainty, "{s:?}");
     assert!(
@@ -171,22 +179,88 @@ fn tank_settlement_is_fitted_by_a_cosine() {
 }
 
 #[test]
-#[ignore = "the sag's S_i (about 15 mm) is not past 3 × the stations' uncertainty (4.9 mm at 200 points/m²), so no finding is reported"]
 fn out_of_plane_settlement_past_the_api_653_allowable_is_flagged() {
     // A local sag of the shell's bottom edge at a station (45°: the stations
     // are every 45° from 0) pulls it down out of the cosine's plane.
+    // In plant coordinates: registered from a site frame, this scan (seed 15,
+    // at 200 and 1000 points/m²) is turned 132–137° wrong about the axis by the
+    // levelled ICP (RMS 8.5 mm), which then reads the sag and the cosine there.
     let env = envelope(TANK);
     let station = 45.0;
-    let (points, _) = scan(
+    let points = simulate(
         &env,
-        &format!("settlement=cosine:30mm@200°,sag=25mm@{station}°/3000mm"),
-        200.0,
-        15,
-    );
-    let i = inspected(&env, points);
+        &SimulateOptions {
+            density: SETTLEMENT_DENSITY,
+            noise: 1.5,
+            occlusion: 0.2,
+            seed: 15,
+            site: None,
+            defects: parse_defects(
+                &format!("settlement=cosine:30mm@200°,sag=25mm@{station}°/3000mm"),
+                &env,
+            )
+            .unwrap(),
+        },
+    )
+    .unwrap()
+    .points;
+    let options = InspectOptions {
+        register: None,
+        fit: FitOptions {
+            noise: 1.5,
+            ..FitOptions::DEFAULT
+        },
+        ..InspectOptions::DEFAULT
+    };
+    let i = inspect(&env, points, &options).unwrap();
     let s = i.checks.settlement.as_ref().expect("a settlement fit");
     let f = find(&i.checks.findings, "out_of_plane_settlement", "TK-1");
     assert!(f.exceeds, "{f:?}");
     assert_eq!(f.limit, s.allowable);
-    assert!(arc(3000.0, f.orientation, station) <= 100.0, "{f:?}");
+    assert!(arc(3000.0, f.orientation, station) <= 100.0, "{f:?}\n{s:?}");
+}
+
+/// Root mean square of the errors of edges read by `edge_by_likelihood` from
+/// `count` points (uniform above an edge at 0, 1.5 mm noise) and of the
+/// uncertainty `station_uncertainty` gives them, over `trials` draws.
+fn edge_errors(count: usize, trials: usize) -> (f64, f64) {
+    use vesselcad::scan::Random;
+    use vesselcad::scan::settlement::{EDGE_WINDOW, edge_by_likelihood, station_uncertainty};
+    let sigma = 1.5;
+    let mut random = Random::new(count as u64);
+    let (mut errors, mut uncertainties) = (0.0, 0.0);
+    for _ in 0..trials {
+        // Points up to 1.5 windows above the edge, `count` of them in one.
+        let mut z: Vec<f64> = (0..count * 3 / 2)
+            .map(|_| 1.5 * EDGE_WINDOW * random.uniform() + sigma * random.normal())
+            .collect();
+        z.sort_by(f64::total_cmp);
+        let guess = z[0] - (z[7] - z[0]) / 7.0;
+        let edge = edge_by_likelihood(&z, guess, sigma);
+        let n = z
+            .iter()
+            .filter(|&&v| v >= edge && v < edge + EDGE_WINDOW)
+            .count();
+        errors += edge * edge;
+        uncertainties += station_uncertainty(n, sigma).powi(2);
+    }
+    (
+        (errors / trials as f64).sqrt(),
+        (uncertainties / trials as f64).sqrt(),
+    )
+}
+
+#[test]
+fn a_stations_uncertainty_is_the_spread_of_its_edge() {
+    // Sparse (the gap between points rules) and dense (the noise rules): the
+    // error was twice the stated uncertainty at 400 points when it left the
+    // noise over √n.
+    for (count, trials) in [(40, 300), (400, 150)] {
+        let (error, uncertainty) = edge_errors(count, trials);
+        let ratio = error / uncertainty;
+        assert!(
+            (0.75..1.33).contains(&ratio),
+            "{count} points: RMS error {error:.3} mm, uncertainty {uncertainty:.3} mm"
+        );
+    }
 }
