@@ -34,3 +34,13 @@ pub fn across_seam() -> Design {
     json["vessels"][1]["nozzles"][0]["orientation"] = 60.into();
     serde_json::from_value(json).expect("design")
 }
+
+/// A repro design of `tests/repros` by name.
+pub fn repro(name: &str) -> Design {
+    vesselcad::design::load(
+        Path::new(env!("CARGO_MANIFEST_DIR"))
+            .join("tests/repros")
+            .join(format!("{name}.json")),
+    )
+    .expect("the repro loads")
+}
