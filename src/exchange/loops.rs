@@ -10,7 +10,6 @@ use std::collections::HashMap;
 use glam::{DAffine3, DVec2, DVec3};
 
 use super::brep::{Edge, EdgeCurve, OrientedEdge};
-use super::notch::NotchUse;
 use super::seam::seam_moved;
 use crate::mesh::closed_in_u;
 use crate::nurbs::intersect::IntersectionLoop;
@@ -56,6 +55,20 @@ pub(super) type Hole = (LoopEdges, Vec<DVec2>);
 /// A hole across the seam: its loop's edges, (u, v) on the face and the
 /// indices of its samples on the seam.
 pub(super) type SeamHole = (LoopEdges, Vec<DVec2>, Vec<usize>);
+
+/// A notch (`notch`: a piece of an opening loop across the seam between two
+/// host patches) in its face's outer loop.
+#[derive(Clone, Debug)]
+pub(super) struct NotchUse {
+    /// The side it bites into: [`Side::VMin`] or [`Side::VMax`].
+    pub(super) side: Side,
+    /// The u where it leaves the side and where it comes back, smaller first.
+    pub(super) u: (f64, f64),
+    /// The loop's edges along the notch, in the direction the face's outer
+    /// loop runs there (increasing u on the v-min side, decreasing on the
+    /// v-max side).
+    pub(super) uses: Vec<OrientedEdge>,
+}
 
 /// A face's outer loop and holes.
 pub(super) type Loops = (Vec<OrientedEdge>, Vec<Vec<OrientedEdge>>);

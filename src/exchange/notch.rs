@@ -15,23 +15,13 @@
 use glam::{DAffine3, DVec2};
 
 use super::brep::OrientedEdge;
-use super::loops::{Builder, LoopEdges};
+use super::loops::{Builder, LoopEdges, NotchUse};
 use crate::mesh::{Cut, HostTrim, Notch};
 use crate::nurbs::Side;
 use crate::parts::Patch;
 
-/// A notch's place in its face's outer loop.
-#[derive(Clone, Debug)]
-pub(super) struct NotchUse {
-    /// The side it bites into: [`Side::VMin`] or [`Side::VMax`].
-    pub(super) side: Side,
-    /// The u where it leaves the side and where it comes back, smaller first.
-    pub(super) u: (f64, f64),
-    /// The loop's edges along the notch, in the direction the face's outer
-    /// loop runs there (increasing u on the v-min side, decreasing on the
-    /// v-max side).
-    pub(super) uses: Vec<OrientedEdge>,
-}
+/// A loop's edges and each host patch's notch uses, by patch index.
+pub(super) type Notched = (LoopEdges, Vec<(usize, NotchUse)>);
 
 /// A notch with the indices of the loop samples its ends are.
 struct Placed<'a> {
@@ -56,7 +46,7 @@ pub(super) fn notched_loop(
     hosts: &[Patch],
     host_frame: &DAffine3,
     neck_knots: &[f64],
-) -> Result<(LoopEdges, Vec<(usize, NotchUse)>), (usize, String)> {
+) -> Result<Notched, (usize, String)> {
     let curve = &cut.neck;
     let n = curve.points.len();
     let mut placed = Vec::new();
