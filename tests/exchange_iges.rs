@@ -11,7 +11,7 @@ mod common;
 use std::collections::BTreeMap;
 use std::path::Path;
 
-use common::exchange::{across_seam, two_tanks};
+use common::exchange::{across_seam, repro, support_edges_on_envelope, two_tanks};
 use common::occt::{occt_python, occt_report};
 use serde_json::Value;
 use vesselcad::design::{Design, load};
@@ -115,7 +115,8 @@ fn iges_records_units_entities_levels() {
 /// OCCT reads the IGES file of each design with no failure and every face
 /// valid, names each face `tag/id/patch` and each vessel's group by its tag on
 /// its level; sewing the faces leaves the free edges sewing the STEP file's
-/// shells leaves (the bores); each face's area is vesselcad's exact trimmed
+/// shells leaves (the bores), and at most two more at each support edge lying
+/// on an envelope edge (counted from our own B-rep); each face's area is vesselcad's exact trimmed
 /// area to 1e-6 relative, and the total area the STEP file's.
 #[test]
 fn occt_reads_iges_as_it_reads_step() {
@@ -125,6 +126,7 @@ fn occt_reads_iges_as_it_reads_step() {
     for (label, design) in [
         ("small-plant", example("small-plant.json")),
         ("across-seam", across_seam()),
+        ("D4", repro("D4-seam-crossing-plus-centre-nozzle")),
     ] {
         let options = ExchangeOptions::DEFAULT;
         let iges = export_iges(&design, &[], &options, "x.igs").expect("iges");
@@ -136,15 +138,22 @@ fn occt_reads_iges_as_it_reads_step() {
         assert_eq!(theirs["read_failures"], 0, "{label}");
         assert_eq!(theirs["valid"], true, "{label}");
         assert_eq!(theirs["faces"], reference["faces"], "{label}");
-        // Known gap: on the small plant sewing the IGES faces leaves 75 free
-        // edges against the STEP file's 73 (not found yet); elsewhere equal.
-        let extra = if label == "small-plant" { 2 } else { 0 };
+        // Where a support's free edge lies on an envelope edge (on the small
+        // plant, C-201's skirt top on the joint of its head H1 and course
+        // S1), IGES, which has no shared edges, gives the sewing three
+        // coincident boundaries, which manifold sewing may leave all free
+        // (75 against 73 there; a generated plant's skirt sews): up to two
+        // more than the STEP file, whose envelope edge is one edge of two
+        // faces. IGES 186 B-reps, which share edges, would remove the gap.
+        let sources = vessel_sources(&design, &[], options.tolerance).expect("sources");
+        let extra = 2 * support_edges_on_envelope(&sources) as u64;
         let free = |r: &Value| r["sewing_free"].as_u64().expect("count");
         assert!(
-            free(&theirs) <= free(&reference) + extra && free(&theirs) >= free(&reference),
-            "{label}: free edges after sewing: IGES {} vs STEP {}",
+            free(&theirs) >= free(&reference) && free(&theirs) <= free(&reference) + extra,
+            "{label}: free edges after sewing: IGES {} vs STEP {} + at most {extra} \
+             (support edges on the envelope)",
             free(&theirs),
-            free(&reference)
+            free(&reference),
         );
         assert_eq!(theirs["sewing_multiple"], reference["sewing_multiple"]);
 

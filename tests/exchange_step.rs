@@ -11,7 +11,7 @@ mod common;
 
 use std::path::Path;
 
-use common::exchange::{across_seam, two_tanks};
+use common::exchange::{across_seam, repro, two_tanks};
 use common::occt::{occt_python, occt_report};
 use glam::{DAffine3, DVec2};
 use serde_json::Value;
@@ -112,7 +112,8 @@ fn pcurves_lie_on_their_edges_and_loops_close() {
 }
 
 /// The same design gives the same bytes; a second export after editing one
-/// vessel builds only that vessel and gives the bytes of a fresh export.
+/// vessel builds only that vessel, one after moving a vessel builds none, and
+/// each gives the bytes of a fresh export.
 #[test]
 fn export_is_deterministic_and_reuses_unchanged_vessels() {
     let design = two_tanks();
@@ -134,6 +135,20 @@ fn export_is_deterministic_and_reuses_unchanged_vessels() {
         export_step(&edited, &[], &options, "t.step", &mut StepBlocks::default()).expect("export");
     assert_eq!(incremental, fresh);
     assert_ne!(incremental, first);
+
+    // Moving a vessel (and retitling its drawing) changes only the plant
+    // assembly: its block is reused, and the bytes are a fresh export's. (A
+    // turn is an edit of its block: nozzle bearings are from plant north.)
+    let mut json: Value = serde_json::to_value(&edited).expect("json");
+    json["vessels"][0]["placement"]["position"] = serde_json::json!([-30000, 5000, 0]);
+    json["vessels"][0]["drawing"]["title"] = "moved".into();
+    let moved: Design = serde_json::from_value(json).expect("design");
+    let incremental = export_step(&moved, &[], &options, "t.step", &mut cache).expect("export");
+    assert_eq!((cache.built, cache.reused), (0, 2));
+    let fresh =
+        export_step(&moved, &[], &options, "t.step", &mut StepBlocks::default()).expect("export");
+    assert_eq!(incremental, fresh);
+    assert!(fresh.contains("AXIS2_PLACEMENT_3D('TK-301',"));
 
     let one =
         export_step(&design, &["TK-302".into()], &options, "t.step", &mut cache).expect("export");
@@ -158,6 +173,8 @@ fn occt_reads_valid_sewn_named_faces() {
         // The four vessels of the other examples.
         ("small-plant", example("small-plant.json")),
         ("across-seam", across_seam()),
+        // An opening across the knuckle–crown seam beside one round the pole.
+        ("D4", repro("D4-seam-crossing-plus-centre-nozzle")),
     ] {
         let text = export_step(
             &design,
@@ -324,13 +341,15 @@ fn occt_displacement_solid_volume() {
 
 /// The head-seam repros that used to be refused (issue 30 §1: an off-centre
 /// nozzle at an ellipsoidal head's seam angle, a ring of four round a centre
-/// nozzle, a ring of eight on every seam step) go through the same seam choice in the exchange model: with blind
+/// nozzle, a ring of eight on every seam step; D4, an opening across a
+/// torispherical head's knuckle–crown seam, whose loop notches both patches) go through the same seam choice in the exchange model: with blind
 /// flanges closing every bore, each vessel is one closed shell, each edge used
 /// twice.
 #[test]
 fn head_seam_repros_export_closed_shells() {
     for name in [
         "D2-ellipsoidal-head-seam-nozzle",
+        "D4-seam-crossing-plus-centre-nozzle",
         "D5-ring-of-4-plus-centre",
         "D8-ring-of-8-on-every-seam-angle",
     ] {

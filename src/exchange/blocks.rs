@@ -1,10 +1,13 @@
 //! The export entry point and its cache of vessel blocks.
 //!
 //! A vessel's STEP block depends only on its own design (a vessel is resolved
-//! on its own) and the exchange tolerance, so [`StepBlocks`] keeps each block
-//! under the XXH3-128 of the vessel's canonical JSON and the tolerance's bits:
-//! an export after an edit builds and writes only the vessels whose design
-//! changed, and copies the others' text (rebased to their new ids).
+//! on its own) and the exchange options, and is written in the vessel's own
+//! frame, so [`StepBlocks`] keeps each block under the XXH3-128 of the
+//! options and of the vessel's canonical JSON less what does not shape it (its
+//! position, which the plant assembly writes; its drawing title block, notes
+//! and operating state): an export after an edit builds and writes only the
+//! vessels whose geometry changed, and copies the others' text (rebased to
+//! their new ids), a moved vessel's included.
 
 use std::collections::HashMap;
 use std::sync::Arc;
@@ -16,7 +19,7 @@ use super::error::ExchangeError;
 use super::source::vessel_source;
 use super::step::{PlacedBlock, StepBlock, vessel_block, write_step};
 use super::topology::vessel_brep_with;
-use crate::design::{Design, resolve};
+use crate::design::{Design, DrawingInfo, Placement, VesselDesign, resolve};
 
 /// What an exchange export is built to.
 #[derive(Clone, Copy, Debug, PartialEq)]
@@ -72,6 +75,32 @@ pub struct StepBlocks {
     pub reused: usize,
 }
 
+/// The key of a vessel's block: the options and the vessel's JSON without the
+/// fields that do not shape its block.
+fn block_key(vessel: &VesselDesign, options: &ExchangeOptions) -> u128 {
+    let shaping = VesselDesign {
+        // Nozzle orientations are bearings from plant north, so a turn of the
+        // vessel moves its nozzles in its own frame; a move does not.
+        placement: Placement {
+            position: [0.0; 3],
+            ..vessel.placement
+        },
+        drawing: DrawingInfo::default(),
+        notes: Vec::new(),
+        operating: None,
+        ..vessel.clone()
+    };
+    let mut hasher = Xxh3::new();
+    hasher.update(&options.tolerance.to_bits().to_le_bytes());
+    hasher.update(&[u8::from(options.solids)]);
+    hasher.update(
+        serde_json::to_string(&shaping)
+            .unwrap_or_default()
+            .as_bytes(),
+    );
+    hasher.digest128()
+}
+
 /// Writes the vessels of `design` tagged in `tags` (all when empty) as one STEP
 /// file named `name`, taking unchanged vessels' blocks from `cache` and keeping
 /// the new ones there (only the blocks of this export are kept).
@@ -99,13 +128,7 @@ pub fn export_step(
         .iter()
         .enumerate()
         .filter(|(_, v)| tags.is_empty() || tags.contains(&v.tag))
-        .map(|(i, v)| {
-            let mut hasher = Xxh3::new();
-            hasher.update(&options.tolerance.to_bits().to_le_bytes());
-            hasher.update(&[u8::from(options.solids)]);
-            hasher.update(serde_json::to_string(v).unwrap_or_default().as_bytes());
-            (i, hasher.digest128())
-        })
+        .map(|(i, v)| (i, block_key(v, options)))
         .collect();
     let blocks: Vec<Result<(Arc<StepBlock>, bool), ExchangeError>> = chosen
         .par_iter()

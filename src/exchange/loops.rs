@@ -13,7 +13,7 @@ use super::brep::{Edge, EdgeCurve, OrientedEdge};
 use super::seam::seam_moved;
 use crate::mesh::closed_in_u;
 use crate::nurbs::intersect::IntersectionLoop;
-use crate::nurbs::{KnotVector, NurbsCurve, NurbsSurface};
+use crate::nurbs::{KnotVector, NurbsCurve, NurbsSurface, Side};
 
 /// The index of the sample of `uv` on `surface`'s u-seam.
 pub(super) fn seam_index(uv: &[DVec2], surface: &NurbsSurface) -> Option<usize> {
@@ -55,6 +55,20 @@ pub(super) type Hole = (LoopEdges, Vec<DVec2>);
 /// A hole across the seam: its loop's edges, (u, v) on the face and the
 /// indices of its samples on the seam.
 pub(super) type SeamHole = (LoopEdges, Vec<DVec2>, Vec<usize>);
+
+/// A notch (`notch`: a piece of an opening loop across the seam between two
+/// host patches) in its face's outer loop.
+#[derive(Clone, Debug)]
+pub(super) struct NotchUse {
+    /// The side it bites into: [`Side::VMin`] or [`Side::VMax`].
+    pub(super) side: Side,
+    /// The u where it leaves the side and where it comes back, smaller first.
+    pub(super) u: (f64, f64),
+    /// The loop's edges along the notch, in the direction the face's outer
+    /// loop runs there (increasing u on the v-min side, decreasing on the
+    /// v-max side).
+    pub(super) uses: Vec<OrientedEdge>,
+}
 
 /// A face's outer loop and holes.
 pub(super) type Loops = (Vec<OrientedEdge>, Vec<Vec<OrientedEdge>>);
@@ -488,8 +502,12 @@ impl Builder {
         round: Option<&(LoopEdges, &IntersectionLoop, usize)>,
         holes: &[Hole],
         across: &[SeamHole],
+        notches: &[NotchUse],
     ) -> Result<Loops, String> {
         let ((u0, u1), (v0, v1)) = surface.domain();
+        let on =
+            |side: Side| -> Vec<&NotchUse> { notches.iter().filter(|n| n.side == side).collect() };
+        let (mut bottom_notches, mut top_notches) = (on(Side::VMin), on(Side::VMax));
         let mut outer = Vec::with_capacity(4);
         // The v-range of the two u-sides: cut by a trimmed bottom or a loop
         // round a pole.
@@ -529,9 +547,22 @@ impl Builder {
             None => {
                 let c = surface.isocurve_v(v0);
                 if !self.degenerate(&c) {
-                    outer.push(self.side_use(c, DVec2::new(u0, v0), DVec2::new(u1, v0), true));
+                    self.notched_side(
+                        &mut outer,
+                        &c,
+                        v0,
+                        std::mem::take(&mut bottom_notches),
+                        true,
+                    )?;
                 }
             }
+        }
+        if !bottom_notches.is_empty() {
+            return Err(
+                "an opening across the patch's v-min seam, which is trimmed or a pole: \
+                        not written yet"
+                    .into(),
+            );
         }
         // Arcs of holes across the seam, each with its v-range on the seam:
         // those just inside u1 interrupt the right side, those just inside u0
@@ -585,9 +616,22 @@ impl Builder {
             None => {
                 let top = surface.isocurve_v(v1);
                 if !self.degenerate(&top) {
-                    outer.push(self.side_use(top, DVec2::new(u0, v1), DVec2::new(u1, v1), false));
+                    self.notched_side(
+                        &mut outer,
+                        &top,
+                        v1,
+                        std::mem::take(&mut top_notches),
+                        false,
+                    )?;
                 }
             }
+        }
+        if !top_notches.is_empty() {
+            return Err(
+                "an opening across the patch's v-max seam, which is trimmed or a pole: \
+                        not written yet"
+                    .into(),
+            );
         }
         // Down the left side, round its arcs.
         let left_curve = surface.isocurve_u(u0);
@@ -609,6 +653,72 @@ impl Builder {
             inner.push(self.hole_use(surface, edges, uv, false)?);
         }
         Ok((outer, inner))
+    }
+
+    /// The uses of a v-side `curve` (an isocurve at `v`, over the surface's
+    /// u-range) cut at its notches, with the notches' uses between its
+    /// pieces, in the direction of the face's outer loop: increasing u along
+    /// the v-min side (`bottom`), decreasing along the v-max side.
+    fn notched_side(
+        &mut self,
+        outer: &mut Vec<OrientedEdge>,
+        curve: &NurbsCurve,
+        v: f64,
+        mut notches: Vec<&NotchUse>,
+        bottom: bool,
+    ) -> Result<(), String> {
+        let (u0, u1) = curve.domain();
+        let piece = |low: f64, high: f64| -> Result<NurbsCurve, String> {
+            let mut c = curve.clone();
+            if low > u0 {
+                c = c
+                    .split_at(low)
+                    .map(|(_, upper)| upper)
+                    .map_err(|e| e.to_string())?;
+            }
+            if high < u1 {
+                c = c
+                    .split_at(high)
+                    .map(|(lower, _)| lower)
+                    .map_err(|e| e.to_string())?;
+            }
+            Ok(c)
+        };
+        // The pieces between notches, increasing u.
+        notches.sort_by(|a, b| a.u.0.total_cmp(&b.u.0));
+        let mut pieces = Vec::with_capacity(notches.len() + 1);
+        let mut u = u0;
+        for notch in &notches {
+            if notch.u.0 < u {
+                return Err("two openings' notches overlap on a patch's side".into());
+            }
+            pieces.push((u, notch.u.0));
+            u = notch.u.1;
+        }
+        pieces.push((u, u1));
+        let side = |builder: &mut Self,
+                    outer: &mut Vec<OrientedEdge>,
+                    (low, high): (f64, f64)|
+         -> Result<(), String> {
+            if high > low {
+                let c = piece(low, high)?;
+                outer.push(builder.side_use(c, DVec2::new(low, v), DVec2::new(high, v), bottom));
+            }
+            Ok(())
+        };
+        if bottom {
+            for (k, notch) in notches.iter().enumerate() {
+                side(self, outer, pieces[k])?;
+                outer.extend(notch.uses.iter().cloned());
+            }
+            side(self, outer, pieces[notches.len()])
+        } else {
+            for (k, notch) in notches.iter().enumerate().rev() {
+                side(self, outer, pieces[k + 1])?;
+                outer.extend(notch.uses.iter().cloned());
+            }
+            side(self, outer, pieces[0])
+        }
     }
 
     /// Whether a side collapses to a point (a pole).

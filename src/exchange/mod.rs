@@ -20,6 +20,7 @@ mod iges;
 mod iges_model;
 mod loops;
 mod measure;
+mod notch;
 mod seam;
 mod source;
 mod step;

@@ -35,7 +35,8 @@ use glam::DVec3;
 use super::brep::{Face, Port, VesselBrep, shells};
 use super::error::ExchangeError;
 use super::fit::fit_loops;
-use super::loops::{Builder, Hole, LoopEdges, SeamHole, seam_index};
+use super::loops::{Builder, Hole, LoopEdges, NotchUse, SeamHole, seam_index};
+use super::notch::notched_loop;
 use super::seam::{on_pad_cylinder, uv_with_inserted, with_seam_samples};
 use super::source::{NodeKind, VesselSource};
 use crate::mesh::{HostTrim, closed_in_u};
@@ -60,9 +61,9 @@ const MATCH_MIN: f64 = 1e-7;
 ///
 /// # Errors
 ///
-/// [`ExchangeError::Topology`] for a trim this builder does not handle yet (an
-/// opening across a seam between two host patches, a hole that goes round a
-/// pole or crosses a closed patch's seam), [`ExchangeError::Geometry`] where a
+/// [`ExchangeError::Topology`] for a trim this builder does not handle yet (a
+/// padded opening across a seam between two host patches, a notch across a
+/// closed patch's seam in u), [`ExchangeError::Geometry`] where a
 /// surface or curve cannot be mapped or split.
 pub fn vessel_brep(source: &VesselSource) -> Result<VesselBrep, ExchangeError> {
     vessel_brep_with(source, false)
@@ -109,6 +110,7 @@ pub fn vessel_brep_with(
     // Pad loops with samples added on their host's seam, by cut.
     let mut pad_seam_loops: Vec<Option<IntersectionLoop>> = vec![None; source.cuts.len()];
     let mut seam_holes: HashMap<(usize, usize), Vec<SeamHole>> = HashMap::new();
+    let mut notches: HashMap<(usize, usize), Vec<NotchUse>> = HashMap::new();
     let mut pairs = Vec::new();
     for (c, cut) in source.cuts.iter().enumerate() {
         let host_frame = source.nodes[cut.host].frame;
@@ -117,6 +119,44 @@ pub fn vessel_brep_with(
             patch: source.nodes[cut.host].patches[k].name.to_string(),
             rule: rule.to_string(),
         };
+        // The neck's u knots: the loops' parameter and its breaks (a pad's
+        // outside cylinder is revolved as the neck is).
+        let neck_knots = source.nodes[cut.neck]
+            .patches
+            .first()
+            .map(|p| p.surface.u_knots().distinct())
+            .unwrap_or_default();
+        let no_neck = || fail(0, "the opening's neck has no patch");
+        if neck_knots.len() < 2 {
+            return Err(no_neck());
+        }
+        // Across the seam between two host patches: notches in their sides.
+        if let Some((k, _)) = cut
+            .cut
+            .hosts
+            .iter()
+            .find(|(_, t)| matches!(t, HostTrim::Notches(_)))
+        {
+            if cut.cut.pad.is_some() {
+                return Err(fail(
+                    *k,
+                    "a padded opening across the seam between two host patches is not written yet",
+                ));
+            }
+            let (edges, uses) = notched_loop(
+                &mut builder,
+                &cut.cut,
+                &source.nodes[cut.host].patches,
+                &host_frame,
+                &neck_knots,
+            )
+            .map_err(|(k, rule)| fail(k, &rule))?;
+            for (k, notch) in uses {
+                notches.entry((cut.host, k)).or_default().push(notch);
+            }
+            pairs.push((c, edges));
+            continue;
+        }
         // The host patch a hole lies in, and the seam sample of a loop round its pole.
         let mut round: Option<(usize, usize)> = None;
         // For a padded opening round the pole: the pad loop's and the neck
@@ -141,13 +181,8 @@ pub fn vessel_brep_with(
                     }
                     round = Some((*k, split));
                 }
-                HostTrim::Hole => {}
-                HostTrim::Notches(_) => {
-                    return Err(fail(
-                        *k,
-                        "an opening across the seam between two host patches is not written yet",
-                    ));
-                }
+                // Notches were written above.
+                HostTrim::Hole | HostTrim::Notches(_) => {}
             }
         }
         // A hole across its closed host's seam (the neck's loop, or the pad's
@@ -193,17 +228,6 @@ pub fn vessel_brep_with(
                     splits = seam;
                 }
             }
-        }
-        // The neck's u knots: the loops' parameter and its breaks (a pad's
-        // outside cylinder is revolved as the neck is).
-        let neck_knots = source.nodes[cut.neck]
-            .patches
-            .first()
-            .map(|p| p.surface.u_knots().distinct())
-            .unwrap_or_default();
-        let no_neck = || fail(0, "the opening's neck has no patch");
-        if neck_knots.len() < 2 {
-            return Err(no_neck());
         }
         let neck_edges = {
             let neck_loop = seam_loops[c].as_ref().unwrap_or(&cut.cut.neck);
@@ -277,8 +301,16 @@ pub fn vessel_brep_with(
             let bottom = if k == 0 { bottoms.get(&n) } else { None };
             let face_holes = holes.remove(&(n, k)).unwrap_or_default();
             let across = seam_holes.remove(&(n, k)).unwrap_or_default();
+            let face_notches = notches.remove(&(n, k)).unwrap_or_default();
             let face = builder
-                .patch_face(&surface, bottom, rounds.get(&(n, k)), &face_holes, &across)
+                .patch_face(
+                    &surface,
+                    bottom,
+                    rounds.get(&(n, k)),
+                    &face_holes,
+                    &across,
+                    &face_notches,
+                )
                 .map_err(|rule| ExchangeError::Topology {
                     entity: entity(n),
                     patch: crate::export::patch_name(patch),
@@ -317,14 +349,13 @@ pub fn vessel_brep_with(
                 .and_then(|s| s.transformed(&node.frame))
                 .map_err(geometry)?;
             let _ = (u1, v0);
-            let (outer, holes) =
-                builder
-                    .patch_face(&cap, None, None, &[], &[])
-                    .map_err(|rule| ExchangeError::Topology {
-                        entity: entity(n),
-                        patch: BORE_CAP.to_string(),
-                        rule,
-                    })?;
+            let (outer, holes) = builder
+                .patch_face(&cap, None, None, &[], &[], &[])
+                .map_err(|rule| ExchangeError::Topology {
+                    entity: entity(n),
+                    patch: BORE_CAP.to_string(),
+                    rule,
+                })?;
             faces.push(Face {
                 node: n,
                 patch: BORE_CAP.to_string(),
