@@ -208,9 +208,8 @@ fn axis_distance(x: f64, a: f64, b: f64) -> f64 {
 const FOOT_ANGLE: f64 = 1e-10;
 
 impl Analytic {
-    /// Distance from `p` to the surface (for the oblique cone, the offset within the
-    /// section plane scaled back to `p`'s distance from the apex, which is zero exactly
-    /// on the surface and within a constant factor of the distance near it).
+    /// Distance from `p` to the surface (for the oblique cone, to its nearest
+    /// generatrix line: exact near the surface, see `oblique_cone_distance`).
     pub fn distance(&self, p: DVec3) -> f64 {
         match *self {
             Analytic::Plane { point, normal } => (p - point).dot(normal).abs(),
@@ -238,16 +237,7 @@ impl Analytic {
                 base_center,
                 base_normal,
                 radius,
-            } => {
-                let d = p - apex;
-                let denom = d.dot(base_normal);
-                if denom.abs() < f64::MIN_POSITIVE {
-                    return d.length();
-                }
-                let t = (base_center - apex).dot(base_normal) / denom;
-                let q = apex + d * t;
-                ((q - base_center).length() - radius).abs() / t.abs()
-            }
+            } => oblique_cone_distance(p, apex, base_center, base_normal, radius),
             Analytic::Sphere { center, radius } => ((p - center).length() - radius).abs(),
             Analytic::Torus {
                 center,
@@ -269,6 +259,58 @@ impl Analytic {
             }
         }
     }
+}
+
+/// Newton steps of [`oblique_cone_distance`] (three are usual to rounding).
+const OBLIQUE_STEPS: usize = 8;
+
+/// The distance from `p` to the oblique cone through `apex` and the circle of
+/// `radius` about `center` in the plane of unit normal `normal`: the distance to
+/// its nearest generatrix, the line from the apex through the circle's point at
+/// the angle θ where (w·d)²/|d|² peaks (w = p − apex, d(θ) the generatrix's
+/// direction), found by Newton steps from the angle where the line from the
+/// apex through `p` meets the circle's plane. Every θ tried gives the distance to
+/// a line on the cone, so the least is never below the true distance, and at the
+/// peak it is the true distance.
+fn oblique_cone_distance(p: DVec3, apex: DVec3, center: DVec3, normal: DVec3, radius: f64) -> f64 {
+    let w = p - apex;
+    let (e1, e2) = normal.any_orthonormal_pair();
+    let m = center - apex;
+    let to_line = |theta: f64| {
+        let (s, c) = theta.sin_cos();
+        let d = m + (e1 * c + e2 * s) * radius;
+        w.cross(d).length() / d.length()
+    };
+    let denom = w.dot(normal);
+    let q = if denom.abs() < f64::MIN_POSITIVE {
+        w
+    } else {
+        w * (m.dot(normal) / denom) - m
+    };
+    let mut theta = q.dot(e2).atan2(q.dot(e1));
+    let mut best = to_line(theta);
+    for _ in 0..OBLIQUE_STEPS {
+        let (s, c) = theta.sin_cos();
+        let u = e1 * c + e2 * s;
+        let d = m + u * radius;
+        let d1 = (e2 * c - e1 * s) * radius;
+        let d2 = -u * radius;
+        let (a, a1, a2) = (w.dot(d), w.dot(d1), w.dot(d2));
+        let (b, b1, b2) = (d.dot(d), 2.0 * d.dot(d1), 2.0 * (d1.dot(d1) + d.dot(d2)));
+        // (A²/B)' = A (2A'B − AB') / B²: the root of the second factor.
+        let f = 2.0 * a1 * b - a * b1;
+        let f1 = 2.0 * a2 * b + a1 * b1 - a * b2;
+        if !(f1.is_finite() && f1 != 0.0) {
+            break;
+        }
+        let step = f / f1;
+        theta -= step;
+        best = best.min(to_line(theta));
+        if step.abs() <= 1e-15 {
+            break;
+        }
+    }
+    best
 }
 
 impl Analytic {
