@@ -221,8 +221,9 @@ fn every_sheet_of_every_example_is_laid_out_and_legible() {
     );
 }
 
-/// `vesselcad drawing` writes `name-1.svg`, `name-2.svg`, … and a DXF per sheet
-/// (each audited by ezdxf with nothing to fix), and one PDF of as many pages.
+/// `vesselcad drawing` writes sheet 1 under the name given and sheet n beside
+/// it as `name-n.svg`, a DXF per sheet likewise (each audited by ezdxf with
+/// nothing to fix), and one PDF of as many pages.
 #[test]
 fn the_drawing_command_writes_every_sheet() {
     let dir = std::env::temp_dir().join(format!("vesselcad-sheets-{}", std::process::id()));
@@ -246,11 +247,19 @@ fn the_drawing_command_writes_every_sheet() {
         .len();
     let summary = run("col.svg", Some("col.dxf"));
     assert!(summary.contains(&format!("{n} sheets")), "{summary}");
-    assert!(!dir.join("col.svg").exists());
+    assert!(!dir.join("col-1.svg").exists());
+    let named = |k: usize, ext: &str| {
+        if k == 1 {
+            dir.join(format!("col.{ext}"))
+        } else {
+            dir.join(format!("col-{k}.{ext}"))
+        }
+    };
     for k in 1..=n {
-        let svg = std::fs::read_to_string(dir.join(format!("col-{k}.svg"))).unwrap();
-        assert!(svg.contains(&format!("{k} OF {n}")), "col-{k}.svg");
-        let dxf = dir.join(format!("col-{k}.dxf"));
+        let svg = std::fs::read_to_string(named(k, "svg")).unwrap();
+        assert!(svg.contains(&format!("{k} OF {n}")), "sheet {k}");
+        assert_eq!(svg.contains("NOZZLE SCHEDULE"), k == 1, "sheet {k}");
+        let dxf = named(k, "dxf");
         assert!(dxf.exists(), "{}", dxf.display());
         audit(&dxf);
     }

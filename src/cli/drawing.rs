@@ -4,10 +4,11 @@
 //! optionally as DXF.
 //!
 //! A drawing of several sheets (see `drawing::compose_sheets`) is one PDF of
-//! as many pages, but one SVG and one DXF file per sheet, numbered
-//! `name-1.svg`, `name-2.svg`, …: SVG has no pages, and a DXF per sheet keeps
-//! each sheet's model space at 1:1 with its own paper-space layout, as a CAD
-//! user opens and plots it. A one-sheet drawing is written under the name given.
+//! as many pages, but one SVG and one DXF file per sheet: SVG has no pages, and
+//! a DXF per sheet keeps each sheet's model space at 1:1 with its own
+//! paper-space layout, as a CAD user opens and plots it. Sheet 1 (the
+//! elevation, schedule and design data) keeps the name given, so a script that
+//! reads `name.svg` reads the same sheet as before; sheet `n` is `name-n.svg`.
 
 use std::path::{Path, PathBuf};
 use std::process::ExitCode;
@@ -61,12 +62,13 @@ pub struct DrawingArgs {
     #[arg(long)]
     vessel: String,
     /// Output SVG file, a `.pdf` file (printed with headless Chromium), or `-`
-    /// for SVG on standard output. A drawing of several sheets is written as
-    /// `name-1.svg`, `name-2.svg`, … (one PDF of several pages).
+    /// for SVG on standard output. Of a drawing of several sheets, sheet 1 is
+    /// written here and sheet n beside it as `name-n.svg` (one PDF of several
+    /// pages).
     #[arg(short, long)]
     output: PathBuf,
-    /// Also write the drawing as DXF (R2000) to this file (`name-1.dxf`, … for
-    /// several sheets).
+    /// Also write the drawing as DXF (R2000) to this file (sheet n of several
+    /// beside it as `name-n.dxf`).
     #[arg(long)]
     dxf: Option<PathBuf>,
     /// Sheet size.
@@ -131,7 +133,7 @@ pub fn run(args: DrawingArgs) -> ExitCode {
     if to_stdout && sheets.len() > 1 {
         eprintln!(
             "error: the drawing of {} has {} sheets and standard output takes one SVG \
-             document: give a file name (sheets are written name-1.svg, name-2.svg, …)",
+             document: give a file name (sheets 2, 3, … are written beside it as name-2.svg, …)",
             args.vessel,
             sheets.len()
         );
@@ -230,10 +232,10 @@ pub fn run(args: DrawingArgs) -> ExitCode {
     ExitCode::SUCCESS
 }
 
-/// Where sheet `s` of a drawing written to `path` goes: `path` itself for a
-/// one-sheet drawing, else `stem-n.ext` beside it.
+/// Where sheet `s` of a drawing written to `path` goes: `path` itself for
+/// sheet 1, `stem-n.ext` beside it for sheet n.
 fn sheet_path(path: &Path, s: &Sheet) -> PathBuf {
-    if s.of <= 1 {
+    if s.number <= 1 {
         return path.to_path_buf();
     }
     let stem = path
