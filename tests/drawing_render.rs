@@ -2,18 +2,17 @@
 //! drawing: not blank, with drawn content in each view's region; renders the
 //! same sheet's DXF (ezdxf's drawing add-on, paper space through its viewports)
 //! and PDF (PyMuPDF) and checks that they draw what the SVG draws, where it
-//! draws it. The PNGs are kept in `target/drawings/` for a person to look at.
+//! draws it — on every sheet of a drawing of several, each a page of the PDF. The PNGs are kept in `target/drawings/` for a person to look at.
 
 mod common;
 
 use std::path::{Path, PathBuf};
 use std::process::Command;
 
-use vesselcad::drawing::{Sheet, SheetOptions, SheetSize, sheet, to_svg};
+use vesselcad::drawing::chromium::{CHROMIUM, headless};
+use vesselcad::drawing::{Sheet, SheetOptions, SheetSize, sheet, sheets, to_svg};
 use vesselcad::mesh::TessellationOptions;
 use vesselcad::model::Model;
-
-const CHROMIUM: &str = "/usr/bin/chromium";
 
 /// Screenshot width, px; the height follows the sheet's aspect.
 const WIDTH: u32 = 1800;
@@ -45,19 +44,8 @@ fn render(sheet: &Sheet, name: &str) -> PathBuf {
     std::fs::remove_file(&png).ok();
     let profile =
         std::env::temp_dir().join(format!("vesselcad-chromium-{name}-{}", std::process::id()));
-    let status = Command::new(CHROMIUM)
-        .args([
-            "--headless",
-            "--no-sandbox",
-            "--disable-gpu",
-            "--disable-quic",
-            "--no-first-run",
-            "--disable-background-networking",
-            "--disable-component-update",
-            "--disable-sync",
-            "--hide-scrollbars",
-        ])
-        .arg(format!("--user-data-dir={}", profile.display()))
+    let status = headless(&profile)
+        .arg("--hide-scrollbars")
         .arg(format!("--window-size={WIDTH},{height}"))
         .arg(format!("--screenshot={}", png.display()))
         .arg(format!("file://{}", html.display()))
@@ -232,24 +220,9 @@ fn dxf_and_pdf_draw_what_the_svg_draws_where_it_draws_it() {
     for (name, tag, size, flag) in cases {
         let design = common::examples::example(name);
         let model = Model::from_design(&design, TessellationOptions::chord(0.5)).unwrap();
-        let s = sheet(&model, tag, &SheetOptions::sized(size)).unwrap();
         let paper = size.dimensions();
-        let base = format!("{name}-{tag}-{flag}");
-        let svg = decode(&render(&s, &base));
-        // The DXF's paper-space layout, through its viewports.
-        let dxf = dir.join(format!("{base}.dxf"));
-        std::fs::write(&dxf, vesselcad::drawing::to_dxf_bytes(&s).unwrap()).unwrap();
-        let dxf_png = dir.join(format!("{base}-dxf.png"));
-        render_with_python(&[
-            "dxf",
-            dxf.to_str().unwrap(),
-            dxf_png.to_str().unwrap(),
-            &WIDTH.to_string(),
-            &paper.x.to_string(),
-            &paper.y.to_string(),
-        ]);
-        // The PDF the drawing command prints.
-        let pdf = dir.join(format!("{base}.pdf"));
+        // The PDF the drawing command prints: a page per sheet.
+        let pdf = dir.join(format!("{name}-{tag}-{flag}.pdf"));
         let out = Command::new(env!("CARGO_BIN_EXE_vesselcad"))
             .arg("drawing")
             .arg(common::examples::example_path(name))
@@ -262,29 +235,58 @@ fn dxf_and_pdf_draw_what_the_svg_draws_where_it_draws_it() {
             "{}",
             String::from_utf8_lossy(&out.stderr)
         );
-        let pdf_png = dir.join(format!("{base}-pdf.png"));
-        render_with_python(&[
-            "pdf",
-            pdf.to_str().unwrap(),
-            pdf_png.to_str().unwrap(),
-            &WIDTH.to_string(),
-        ]);
-        let reference = drawn_cells(&svg, paper);
-        for (what, png) in [("DXF", &dxf_png), ("PDF", &pdf_png)] {
-            let image = decode(png);
-            for (k, b) in s.view_boxes.iter().enumerate() {
-                let share = ink(&image, &s, b.min, b.max);
-                assert!(share > 0.002, "{name} {what}: view {k} is blank ({share})");
-            }
-            let cells = drawn_cells(&image, paper);
-            let recall = covered(&reference, &cells);
-            let precision = covered(&cells, &reference);
-            assert!(
-                recall > 0.97 && precision > 0.97,
-                "{name} {what}: {recall:.4} of the SVG's drawn cells are drawn, \
+        for s in sheets(&model, tag, &SheetOptions::sized(size)).unwrap() {
+            let base = format!("{name}-{tag}-{flag}-{}", s.number);
+            let svg = decode(&render(&s, &base));
+            // The DXF's paper-space layout, through its viewports.
+            let dxf = dir.join(format!("{base}.dxf"));
+            std::fs::write(&dxf, vesselcad::drawing::to_dxf_bytes(&s).unwrap()).unwrap();
+            let dxf_png = dir.join(format!("{base}-dxf.png"));
+            render_with_python(&[
+                "dxf",
+                dxf.to_str().unwrap(),
+                dxf_png.to_str().unwrap(),
+                &WIDTH.to_string(),
+                &paper.x.to_string(),
+                &paper.y.to_string(),
+            ]);
+            let pdf_png = dir.join(format!("{base}-pdf.png"));
+            render_with_python(&[
+                "pdf",
+                pdf.to_str().unwrap(),
+                pdf_png.to_str().unwrap(),
+                &WIDTH.to_string(),
+                &(s.number - 1).to_string(),
+            ]);
+            let reference = drawn_cells(&svg, paper);
+            for (what, png) in [("DXF", &dxf_png), ("PDF", &pdf_png)] {
+                let image = decode(png);
+                let regions = s
+                    .view_boxes
+                    .iter()
+                    .zip(s.shown)
+                    .filter(|&(_, shown)| shown)
+                    .map(|(b, _)| *b)
+                    .chain(s.details.iter().map(|d| d.region));
+                for (k, b) in regions.enumerate() {
+                    let share = ink(&image, &s, b.min, b.max);
+                    assert!(
+                        share > 0.002,
+                        "{name} {what} sheet {}: region {k} is blank ({share})",
+                        s.number
+                    );
+                }
+                let cells = drawn_cells(&image, paper);
+                let recall = covered(&reference, &cells);
+                let precision = covered(&cells, &reference);
+                assert!(
+                    recall > 0.97 && precision > 0.97,
+                    "{name} {what} sheet {}: {recall:.4} of the SVG's drawn cells are drawn, \
                  {precision:.4} of its own are the SVG's ({})",
-                png.display()
-            );
+                    s.number,
+                    png.display()
+                );
+            }
         }
     }
 }

@@ -537,3 +537,24 @@ fn schedule_headers_are_whole_on_every_sheet_size() {
         }
     }
 }
+
+/// The drum's boot B1 (OD 610, 900 below the shell, at position 4000): its OD,
+/// length and position are dimensioned, each drawn at its model length.
+#[test]
+fn the_boot_is_dimensioned() {
+    let m = model("horizontal-drum");
+    let s = sheet(&m, "V-101", &SheetOptions::default()).unwrap();
+    for (text, value) in [("BOOT OD 610 (B1)", 610.0), ("BOOT 900 (B1)", 900.0)] {
+        let d = s
+            .dimensions
+            .iter()
+            .find(|d| d.text == text)
+            .unwrap_or_else(|| panic!("no {text:?} dimension"));
+        let drawn = drawn_length(&s, d);
+        assert!((drawn - value).abs() < 1e-6, "{text}: drawn {drawn}");
+    }
+    assert!(
+        s.dimensions.iter().any(|d| d.text == "B1 POS 4000"),
+        "no boot position"
+    );
+}

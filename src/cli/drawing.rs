@@ -1,7 +1,14 @@
-//! `vesselcad drawing`: build a design and write one vessel's drawing sheet as SVG,
+//! `vesselcad drawing`: build a design and write one vessel's drawing as SVG,
 //! or as PDF when the output ends in `.pdf` (the SVG printed by headless
 //! Chromium on a page of the sheet's size, line weights as drawn), and
 //! optionally as DXF.
+//!
+//! A drawing of several sheets (see `drawing::compose_sheets`) is one PDF of
+//! as many pages, but one SVG and one DXF file per sheet: SVG has no pages, and
+//! a DXF per sheet keeps each sheet's model space at 1:1 with its own
+//! paper-space layout, as a CAD user opens and plots it. Sheet 1 (the
+//! elevation, schedule and design data) keeps the name given, so a script that
+//! reads `name.svg` reads the same sheet as before; sheet `n` is `name-n.svg`.
 
 use std::path::{Path, PathBuf};
 use std::process::ExitCode;
@@ -10,7 +17,8 @@ use std::time::Instant;
 use clap::{Args, ValueEnum};
 use vesselcad::design::load;
 use vesselcad::drawing::{
-    HiddenLines, SheetModelError, SheetOptions, SheetSize, sheet, sheet_model, to_dxf_bytes, to_svg,
+    HiddenLines, Sheet, SheetModelError, SheetOptions, SheetSize, sheet_model, sheets,
+    to_dxf_bytes, to_svg,
 };
 use vesselcad::mesh::TessellationOptions;
 use vesselcad::model::ModelError;
@@ -54,10 +62,13 @@ pub struct DrawingArgs {
     #[arg(long)]
     vessel: String,
     /// Output SVG file, a `.pdf` file (printed with headless Chromium), or `-`
-    /// for SVG on standard output.
+    /// for SVG on standard output. Of a drawing of several sheets, sheet 1 is
+    /// written here and sheet n beside it as `name-n.svg` (one PDF of several
+    /// pages).
     #[arg(short, long)]
     output: PathBuf,
-    /// Also write the sheet as DXF (R2000) to this file.
+    /// Also write the drawing as DXF (R2000) to this file (sheet n of several
+    /// beside it as `name-n.dxf`).
     #[arg(long)]
     dxf: Option<PathBuf>,
     /// Sheet size.
@@ -111,7 +122,7 @@ pub fn run(args: DrawingArgs) -> ExitCode {
         };
         options = options.with_hidden(view, HiddenLines::Omitted);
     }
-    let sheet = match sheet(&model, &args.vessel, &options) {
+    let sheets = match sheets(&model, &args.vessel, &options) {
         Ok(s) => s,
         Err(e) => {
             eprintln!("error: {e}");
@@ -119,12 +130,22 @@ pub fn run(args: DrawingArgs) -> ExitCode {
         }
     };
     let to_stdout = args.output.as_os_str() == "-";
+    if to_stdout && sheets.len() > 1 {
+        eprintln!(
+            "error: the drawing of {} has {} sheets and standard output takes one SVG \
+             document: give a file name (sheets 2, 3, … are written beside it as name-2.svg, …)",
+            args.vessel,
+            sheets.len()
+        );
+        return ExitCode::from(1);
+    }
     let is_pdf = args
         .output
         .extension()
         .is_some_and(|e| e.eq_ignore_ascii_case("pdf"));
     let written = if is_pdf {
-        match print_pdf(&to_svg(&sheet), size, &args.output) {
+        let svgs: Vec<String> = sheets.iter().map(to_svg).collect();
+        match print_pdf(&svgs, size, &args.output) {
             Ok(()) => Ok(()),
             Err(e) => {
                 eprintln!("error: {e}");
@@ -134,10 +155,14 @@ pub fn run(args: DrawingArgs) -> ExitCode {
     } else if to_stdout {
         use std::io::Write;
         let mut out = std::io::stdout().lock();
-        out.write_all(to_svg(&sheet).as_bytes())
+        out.write_all(to_svg(&sheets[0]).as_bytes())
             .and_then(|()| out.flush())
     } else {
-        std::fs::write(&args.output, to_svg(&sheet))
+        sheets.iter().try_for_each(|s| {
+            let path = sheet_path(&args.output, s);
+            std::fs::write(&path, to_svg(s))
+                .map_err(|e| std::io::Error::new(e.kind(), format!("{}: {e}", path.display())))
+        })
     };
     match written {
         // The reader of standard output went away: it had what it wanted.
@@ -149,28 +174,50 @@ pub fn run(args: DrawingArgs) -> ExitCode {
         Ok(()) => {}
     }
     if let Some(path) = &args.dxf {
-        let written = to_dxf_bytes(&sheet)
-            .map_err(|e| e.to_string())
-            .and_then(|bytes| {
-                std::fs::write(path, bytes).map_err(|e| format!("writing {}: {e}", path.display()))
-            });
-        if let Err(e) = written {
-            eprintln!("error: {e}");
-            return ExitCode::from(2);
+        for s in &sheets {
+            let path = sheet_path(path, s);
+            let written = to_dxf_bytes(s)
+                .map_err(|e| e.to_string())
+                .and_then(|bytes| {
+                    std::fs::write(&path, bytes)
+                        .map_err(|e| format!("writing {}: {e}", path.display()))
+                });
+            if let Err(e) = written {
+                eprintln!("error: {e}");
+                return ExitCode::from(2);
+            }
         }
     }
+    let first = &sheets[0];
+    let details: usize = sheets.iter().map(|s| s.details.len()).sum();
     let summary = format!(
-        "{}: {} sheet at 1:{}, {} nozzles scheduled, {} dimensions; built {} vessel(s), \
+        "{}: {} {} at 1:{}{}, {} nozzles scheduled, {} dimensions; built {} vessel(s), \
          {} meshes, {} triangles; {:.0} ms",
         if to_stdout {
             "<stdout>".into()
+        } else if sheets.len() > 1 && !is_pdf {
+            sheets
+                .iter()
+                .map(|s| sheet_path(&args.output, s).display().to_string())
+                .collect::<Vec<_>>()
+                .join(", ")
         } else {
             args.output.display().to_string()
         },
         size.name(),
-        sheet.scale,
-        sheet.schedule.len(),
-        sheet.dimensions.len(),
+        if sheets.len() == 1 {
+            "sheet".to_string()
+        } else {
+            format!("{} sheets", sheets.len())
+        },
+        first.scale,
+        if details > 0 {
+            format!(" with {details} detail views")
+        } else {
+            String::new()
+        },
+        first.schedule.len(),
+        sheets.iter().map(|s| s.dimensions.len()).sum::<usize>(),
         work.vessels_resolved,
         work.meshes_rebuilt,
         work.triangles_meshed,
@@ -185,14 +232,36 @@ pub fn run(args: DrawingArgs) -> ExitCode {
     ExitCode::SUCCESS
 }
 
-/// Prints the sheet's `svg` to `out` as a one-page PDF of the sheet's `size`
-/// with headless Chromium.
-fn print_pdf(svg: &str, size: SheetSize, out: &Path) -> Result<(), String> {
+/// Where sheet `s` of a drawing written to `path` goes: `path` itself for
+/// sheet 1, `stem-n.ext` beside it for sheet n.
+fn sheet_path(path: &Path, s: &Sheet) -> PathBuf {
+    if s.number <= 1 {
+        return path.to_path_buf();
+    }
+    let stem = path
+        .file_stem()
+        .map_or_else(String::new, |f| f.to_string_lossy().into_owned());
+    let name = match path.extension() {
+        Some(ext) => format!("{stem}-{}.{}", s.number, ext.to_string_lossy()),
+        None => format!("{stem}-{}", s.number),
+    };
+    path.with_file_name(name)
+}
+
+/// Prints the sheets' `svgs` to `out` as a PDF of one page per sheet, each of
+/// the sheets' `size`, with headless Chromium.
+fn print_pdf(svgs: &[String], size: SheetSize, out: &Path) -> Result<(), String> {
     let paper = size.dimensions();
+    let body: String = svgs
+        .iter()
+        .map(|svg| format!("<div class=\"page\">{svg}</div>"))
+        .collect();
     let page = format!(
         "<!doctype html><html><head><meta charset=\"utf-8\"><style>\
          @page{{size:{w}mm {h}mm;margin:0}}html,body{{margin:0;padding:0}}\
-         svg{{display:block;width:{w}mm;height:{h}mm}}</style></head><body>{svg}</body></html>",
+         .page{{width:{w}mm;height:{h}mm;overflow:hidden;break-after:page}}\
+         .page:last-child{{break-after:auto}}\
+         svg{{display:block;width:{w}mm;height:{h}mm}}</style></head><body>{body}</body></html>",
         w = paper.x,
         h = paper.y,
     );

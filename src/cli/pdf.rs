@@ -3,10 +3,8 @@
 //! calculation report) both go through here.
 
 use std::path::Path;
-use std::process::Command;
 
-/// Where headless Chromium is looked for (Debian's package, as `.ci/run` installs it).
-pub const CHROMIUM: &str = "/usr/bin/chromium";
+use vesselcad::drawing::chromium::{CHROMIUM, headless};
 
 /// Prints the HTML `page` to `out` as PDF (the page's own `@page` rule sets the
 /// paper). `instead` names the extension to write when Chromium is missing.
@@ -26,19 +24,8 @@ pub fn print_html(page: &str, out: &Path, instead: &str) -> Result<(), String> {
     std::fs::write(&html, page).map_err(|e| e.to_string())?;
     let target = std::path::absolute(out).map_err(|e| e.to_string())?;
     std::fs::remove_file(&target).ok();
-    let result = Command::new(CHROMIUM)
-        .args([
-            "--headless",
-            "--no-sandbox",
-            "--disable-gpu",
-            "--disable-quic",
-            "--no-first-run",
-            "--disable-background-networking",
-            "--disable-component-update",
-            "--disable-sync",
-            "--no-pdf-header-footer",
-        ])
-        .arg(format!("--user-data-dir={}", dir.join("profile").display()))
+    let result = headless(&dir.join("profile"))
+        .arg("--no-pdf-header-footer")
         .arg(format!("--print-to-pdf={}", target.display()))
         .arg(format!("file://{}", html.display()))
         .output();

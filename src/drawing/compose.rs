@@ -1,14 +1,19 @@
 //! Composes a vessel's sheet: border, the four views at one scale with their
 //! titles, dimensions on the front elevation, notes with leaders to their targets,
 //! north arrow beside the plan, tables in the right-hand column and the revision
-//! triangle — all as a [`Sheet`] display list in paper mm.
+//! triangle — all as a [`Sheet`] display list in paper mm. One sheet of several
+//! ([`Content`], chosen by `sheets`) shows some of the views, the detail circles
+//! on its elevation or detail views in a grid, and the title block alone after
+//! the first sheet.
 
 use glam::DVec2;
 
 use super::data::VesselData;
+use super::detail;
 use super::dimensions::{self, format_mm};
 use super::labels::{self, Movable};
 use super::layout::{Margins, Placement, enlarged_scale, lay_out};
+use super::legibility::{DetailSpec, detail_radius};
 use super::orientation;
 use super::sheet::{
     Align, HiddenLines, Item, Layer, PlacedDimension, Rect, Sheet, SheetOptions, SheetSize,
@@ -28,9 +33,56 @@ fn frame_sizes(size: SheetSize) -> (f64, f64) {
     }
 }
 
-/// Composes the sheet of one vessel.
+/// What one sheet of a drawing shows.
+#[derive(Clone, Debug, PartialEq)]
+pub struct Content {
+    /// The views drawn, in `ViewKind::ALL` order.
+    pub shown: [bool; 4],
+    /// Whether the table column has the design data, schedule and notes (the
+    /// first sheet) or the title block alone.
+    pub full_tables: bool,
+    /// The sheet's number, from 1, and how many there are.
+    pub number: (usize, usize),
+    /// Details whose circles are drawn on this sheet's elevation.
+    pub marks: Vec<DetailSpec>,
+    /// Details drawn on this sheet.
+    pub details: Vec<DetailSpec>,
+}
+
+impl Content {
+    /// Everything on one sheet.
+    pub fn single() -> Self {
+        Self {
+            shown: [true; 4],
+            full_tables: true,
+            number: (1, 1),
+            marks: Vec::new(),
+            details: Vec::new(),
+        }
+    }
+}
+
+/// The drawing area of a sheet of `size`: inside the border, left of the table
+/// column.
+pub fn drawing_area(size: SheetSize) -> Rect {
+    let paper = size.dimensions();
+    let (margin, column) = frame_sizes(size);
+    let inner = Rect::new(DVec2::splat(margin), paper - DVec2::splat(margin));
+    Rect::new(
+        inner.min + DVec2::splat(4.0),
+        DVec2::new(inner.max.x - column - 6.0, inner.max.y - 4.0),
+    )
+}
+
+/// Composes the sheet of one vessel with every view.
 pub fn compose(data: &VesselData, options: &SheetOptions) -> Sheet {
+    compose_content(data, options, &Content::single())
+}
+
+/// Composes one sheet of a vessel's drawing showing `content`.
+pub fn compose_content(data: &VesselData, options: &SheetOptions, content: &Content) -> Sheet {
     let size = options.size;
+    let shown = content.shown;
     let h = size.text_height();
     let paper = size.dimensions();
     let (margin, column) = frame_sizes(size);
@@ -47,10 +99,7 @@ pub fn compose(data: &VesselData, options: &SheetOptions) -> Sheet {
         closed: true,
     });
     let column_left = inner.max.x - column;
-    let area = Rect::new(
-        inner.min + DVec2::splat(4.0),
-        DVec2::new(column_left - 6.0, inner.max.y - 4.0),
-    );
+    let area = drawing_area(size);
     // Layout: margins depend on the scale (dimension packing is in paper mm), so
     // lay out twice.
     let bounds: [(DVec2, DVec2); 4] =
@@ -104,16 +153,23 @@ pub fn compose(data: &VesselData, options: &SheetOptions) -> Sheet {
         (hi - lo).max_element()
     };
     let settle = |factors: [f64; 4]| {
-        let first = lay_out(&bounds, &margins_with(1.0), area, factors);
-        let mut p = lay_out(&bounds, &margins_with(first.scale), area, factors);
+        let first = lay_out(&bounds, &margins_with(1.0), area, factors, shown);
+        let mut p = lay_out(&bounds, &margins_with(first.scale), area, factors, shown);
         if p.scale < first.scale {
-            p = lay_out(&bounds, &margins_with(p.scale), area, factors);
+            p = lay_out(&bounds, &margins_with(p.scale), area, factors, shown);
         }
         p
     };
     let mut factors = [1.0; 4];
     let mut placement = settle(factors);
+    if !shown.contains(&true) {
+        // A sheet of details: its scale is its elevation's (the details say theirs).
+        placement.scale = content.details.first().map_or(1.0, |d| d.scale);
+    }
     for _ in 0..4 {
+        if !shown[1] {
+            break;
+        }
         let want = if plan_extent / placement.scale < min_plan {
             (placement.scale / enlarged_scale(plan_extent, min_plan)).max(1.0)
         } else {
@@ -126,14 +182,21 @@ pub fn compose(data: &VesselData, options: &SheetOptions) -> Sheet {
         placement = settle(factors);
     }
     let view_boxes: [Rect; 4] = std::array::from_fn(|k| {
-        Rect::new(
-            placement.to_sheet(k, bounds[k].0),
-            placement.to_sheet(k, bounds[k].1),
-        )
+        if shown[k] {
+            Rect::new(
+                placement.to_sheet(k, bounds[k].0),
+                placement.to_sheet(k, bounds[k].1),
+            )
+        } else {
+            Rect::new(DVec2::ZERO, DVec2::ZERO)
+        }
     });
     // Views.
     let mut titles = Vec::new();
     for (k, view) in data.views.iter().enumerate() {
+        if !shown[k] {
+            continue;
+        }
         for line in view.entities.iter().flat_map(|e| &e.lines) {
             let layer = match line.kind {
                 LineKind::Visible => Layer::Outline,
@@ -172,26 +235,20 @@ pub fn compose(data: &VesselData, options: &SheetOptions) -> Sheet {
     }
     let mut placed = Vec::new();
     let mut dim_texts = Vec::new();
-    dimensions::place(
-        &dims,
-        0,
-        view_boxes[0],
-        &placement,
-        h,
-        &mut items,
-        &mut placed,
-        &mut dim_texts,
-    );
-    dimensions::place(
-        &side_dims,
-        2,
-        view_boxes[2],
-        &placement,
-        h,
-        &mut items,
-        &mut placed,
-        &mut dim_texts,
-    );
+    for (k, d) in [(0, &dims), (2, &side_dims)] {
+        if shown[k] {
+            dimensions::place(
+                d,
+                k,
+                view_boxes[k],
+                &placement,
+                h,
+                &mut items,
+                &mut placed,
+                &mut dim_texts,
+            );
+        }
+    }
     let mut movable: Vec<Movable> = dim_texts
         .iter()
         .map(|&item| Movable {
@@ -200,20 +257,63 @@ pub fn compose(data: &VesselData, options: &SheetOptions) -> Sheet {
             outside_views: true,
         })
         .collect();
-    movable.extend(orientation::draw(data, &placement, h, &mut items));
-    movable.extend(notes(data, &placement, area, &placed, h, &mut items));
+    if shown[ov] {
+        movable.extend(orientation::draw(data, &placement, h, shown, &mut items));
+    }
+    if shown[0] {
+        movable.extend(notes(data, &placement, area, &placed, h, &mut items));
+    }
     movable.extend(titles.iter().map(|&item| Movable {
         item,
         target: None,
         outside_views: false,
     }));
-    north_arrow(data, view_boxes[1], h, &mut items);
+    if shown[1] {
+        north_arrow(data, view_boxes[1], h, &mut items);
+    }
+    // Detail circles on the elevation, detail views in a grid.
+    let mut detail_marks = Vec::new();
+    if shown[0] {
+        for spec in &content.marks {
+            let (m, label) = detail::mark(spec, &placement, h, &mut items);
+            detail_marks.push(m);
+            movable.push(label);
+        }
+    }
+    let mut details = Vec::new();
+    let mut keep_views: Vec<Rect> = view_boxes.to_vec();
+    let radius = detail_radius(size);
+    for (spec, cell) in
+        content
+            .details
+            .iter()
+            .zip(detail_cells(data, &content.details, area, h, radius))
+    {
+        let (view, dims, labels) =
+            detail::draw(data, spec, cell, radius, options.hidden[0], h, &mut items);
+        keep_views.push(Rect::new(
+            view.centre - DVec2::splat(radius),
+            view.centre + DVec2::splat(radius),
+        ));
+        details.push(view);
+        placed.extend(dims);
+        movable.extend(labels);
+    }
     let schedule = tables::schedule(data);
+    let scale_cell = if shown.contains(&true) {
+        scale_text(placement.scale)
+    } else {
+        "AS SHOWN".to_string()
+    };
     let (_, revision_at) = tables::draw(
         data,
         &schedule,
-        size,
-        placement.scale,
+        &tables::Frame {
+            size,
+            scale: &scale_cell,
+            number: content.number,
+            full: content.full_tables,
+        },
         DVec2::new(column_left, inner.min.y),
         inner.max.x,
         &mut items,
@@ -221,9 +321,14 @@ pub fn compose(data: &VesselData, options: &SheetOptions) -> Sheet {
     let revision = tables::title_fields(data).revision;
     revision_triangle(revision_at, &revision, h, &mut items);
     // Every movable text where it touches no other text and no outline.
-    labels::place_labels(&mut items, &movable, paper, area, &[], &view_boxes, h);
-    for (d, &item) in placed.iter_mut().zip(&dim_texts) {
-        if let Some(b) = items.get(item).and_then(labels::item_box) {
+    labels::place_labels(&mut items, &movable, paper, area, &[], &keep_views, h);
+    for d in placed.iter_mut() {
+        if let Some(b) = d
+            .items
+            .clone()
+            .filter_map(|i| items.get(i))
+            .find_map(labels::item_box)
+        {
             d.text_box = b;
         }
     }
@@ -250,7 +355,58 @@ pub fn compose(data: &VesselData, options: &SheetOptions) -> Sheet {
             DVec2::new(column_left, inner.min.y),
             DVec2::new(inner.max.x, inner.max.y),
         ),
+        number: content.number.0,
+        of: content.number.1,
+        shown,
+        detail_marks,
+        details,
     }
+}
+
+/// Cells for `specs` on `area`: a grid of equal cells (the largest detail's),
+/// filled row by row from the top left, the spare room shared out.
+fn detail_cells(
+    data: &VesselData,
+    specs: &[DetailSpec],
+    area: Rect,
+    h: f64,
+    radius: f64,
+) -> Vec<Rect> {
+    let cell = specs
+        .iter()
+        .map(|s| detail::cell_size(data, s, radius, h))
+        .fold(DVec2::ZERO, DVec2::max);
+    let (cols, _) = detail_grid(area, cell);
+    let rows = specs.len().div_ceil(cols.max(1)).max(1);
+    let spare = (area.size() - cell * DVec2::new(cols as f64, rows as f64)).max(DVec2::ZERO);
+    let gap = spare / DVec2::new(cols as f64 + 1.0, rows as f64 + 1.0);
+    (0..specs.len())
+        .map(|i| {
+            let (c, r) = ((i % cols) as f64, (i / cols) as f64);
+            let min = DVec2::new(
+                area.min.x + gap.x + c * (cell.x + gap.x),
+                area.max.y - (r + 1.0) * (cell.y + gap.y),
+            );
+            Rect::new(min, min + cell)
+        })
+        .collect()
+}
+
+/// Columns and rows of cells of `cell` size that fit on `area` (at least one).
+pub fn detail_grid(area: Rect, cell: DVec2) -> (usize, usize) {
+    let fit = |avail: f64, c: f64| ((avail / c.max(1.0)).floor() as usize).max(1);
+    (fit(area.size().x, cell.x), fit(area.size().y, cell.y))
+}
+
+/// How many details of `specs` a detail sheet of `size` holds.
+pub fn details_per_sheet(data: &VesselData, specs: &[DetailSpec], size: SheetSize) -> usize {
+    let h = size.text_height();
+    let cell = specs
+        .iter()
+        .map(|s| detail::cell_size(data, s, detail_radius(size), h))
+        .fold(DVec2::ZERO, DVec2::max);
+    let (cols, rows) = detail_grid(drawing_area(size), cell);
+    cols * rows
 }
 
 /// `1:n` for a scale.

@@ -180,6 +180,36 @@ pub fn plan(data: &VesselData) -> Dimensions {
                     text: format!("HEAD {}", format_mm((crown - tl).abs())),
                 });
             }
+            (PartDesign::Boot(b), PartGeometry::Boot(g)) => {
+                // The boot's frame has its axis (+Z) through the course's axis:
+                // the cylinder runs from the host's outside radius to the boot
+                // head's tangent line. Its OD along the vessel axis, its length
+                // below the shell and its position as an ordinate.
+                let host = g.host_diameter / 2.0;
+                let shell = part.frame.transform_point3(DVec3::new(0.0, 0.0, host));
+                let tl = part
+                    .frame
+                    .transform_point3(DVec3::new(0.0, 0.0, host + g.length));
+                let r = g.diameter / 2.0;
+                dims.linear.push(LinearDim {
+                    side: DimSide::Below,
+                    a: p(tl - DVec3::Z * r),
+                    b: p(tl + DVec3::Z * r),
+                    text: format!("BOOT OD {} ({})", format_mm(g.diameter), b.id),
+                });
+                dims.linear.push(LinearDim {
+                    side: low_side,
+                    a: p(shell),
+                    b: p(tl),
+                    text: format!("BOOT {} ({})", format_mm(g.length), b.id),
+                });
+                dims.ordinates.push(Ordinate {
+                    side: DimSide::Below,
+                    at: p(tl),
+                    text: format!("{} POS {}", b.id, format_mm(b.position)),
+                    value: b.position,
+                });
+            }
             (PartDesign::Skirt(_), geometry) => {
                 let edge = outline_at(data, radial, 0.0);
                 dims.linear.push(LinearDim {

@@ -7,7 +7,8 @@
 //! ordinate) of the `VESSELCAD` dimension style (scale = the sheet's), each with
 //! its anonymous block of lines, arrowheads and text. The border and the tables
 //! are in paper space at sheet millimetres, and the layout has a viewport on the
-//! drawing area at the sheet's scale (and one on the enlarged plan at its own).
+//! drawing area at the sheet's scale (and one on the enlarged plan, and on each
+//! detail view, at its own: a detail's model space is the elevation at 1:1).
 //! Layers carry line types (HIDDEN, CENTER defined in the table) and line
 //! weights; ° and ⌀ are written `%%d` and `%%c`. The `dxf` crate writes the
 //! drawing; [`super::dxf_fixup`] adds what it leaves out (table handles, layer
@@ -73,7 +74,7 @@ pub fn cad_text(text: &str) -> String {
 }
 
 /// The space an item belongs to.
-fn space_of(sheet: &Sheet, item: &Item, spaces: &[Space; 3]) -> Space {
+fn space_of(sheet: &Sheet, item: &Item, spaces: &[Space]) -> Space {
     let first = match item {
         Item::Line { layer, points, .. } | Item::Fill { layer, points } => {
             if *layer == Layer::Border {
@@ -84,7 +85,14 @@ fn space_of(sheet: &Sheet, item: &Item, spaces: &[Space; 3]) -> Space {
         Item::Circle { centre, .. } => *centre,
         Item::Text { .. } => item_box(item).map_or(DVec2::ZERO, |b| 0.5 * (b.min + b.max)),
     };
-    if sheet.tables.contains(first) {
+    space_at(sheet, first, spaces)
+}
+
+/// The space of the sheet point `first`.
+fn space_at(sheet: &Sheet, first: DVec2, spaces: &[Space]) -> Space {
+    if let Some(k) = sheet.details.iter().position(|d| d.region.contains(first)) {
+        spaces[3 + k]
+    } else if sheet.tables.contains(first) {
         spaces[0]
     } else if sheet.factors[1] > 1.0 && sheet.plan_region.contains(first) {
         spaces[2]
@@ -258,9 +266,14 @@ pub fn to_dxf(sheet: &Sheet) -> Drawing {
             drawing.add_entity(e);
         }
     }
-    // Dimensions: an anonymous block of what the sheet draws, and the entity.
-    let main = spaces[1];
+    // Dimensions: an anonymous block of what the sheet draws, and the entity,
+    // in the space of the view they belong to.
     for (n, d) in sheet.dimensions.iter().enumerate() {
+        let at = match d.measure {
+            Measure::Linear { a, .. } => a,
+            Measure::Ordinate { feature, .. } => feature,
+        };
+        let main = space_at(sheet, at, &spaces);
         let name = format!("*D{}", n + 1);
         let entities: Vec<Entity> = d
             .items

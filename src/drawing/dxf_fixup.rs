@@ -4,7 +4,8 @@
 //! layers' line weights (its `LineWeight` cannot be set to a value), and the
 //! paper-space `VIEWPORT` entities (it has no such entity): the sheet's own
 //! viewport, one on the drawing area at the sheet's scale and, for an enlarged
-//! plan, one on the plan at its scale. New handles continue from `$HANDSEED`,
+//! plan, one on the plan at its scale, and one on each detail view at its scale.
+//! New handles continue from `$HANDSEED`,
 //! which is moved past them.
 
 use glam::DVec2;
@@ -180,7 +181,8 @@ pub fn fix_up(text: &str, sheet: &Sheet) -> Result<String, DrawingError> {
         .find(|&j| p[j].0 == 0 && p[j].1.trim() == "ENDSEC")
         .ok_or_else(|| missing("end of the ENTITIES section"))?;
     let paper = sheet.size.dimensions();
-    let [_, main, plan] = spaces(sheet);
+    let spaces = spaces(sheet);
+    let (main, plan) = (spaces[1], spaces[2]);
     let area = sheet_area(sheet);
     let mut vps = viewport(fresh(), &owner, 1, paper / 2.0, paper, paper / 2.0, paper.y);
     let c = 0.5 * (area.0 + area.1);
@@ -204,6 +206,20 @@ pub fn fix_up(text: &str, sheet: &Sheet) -> Result<String, DrawingError> {
             r.size(),
             plan.offset + c * plan.factor,
             r.size().y * plan.factor,
+        ));
+    }
+    for (k, d) in sheet.details.iter().enumerate() {
+        let space = spaces[3 + k];
+        let r = d.region;
+        let c = 0.5 * (r.min + r.max);
+        vps.extend(viewport(
+            fresh(),
+            &owner,
+            4 + k as i32,
+            c,
+            r.size(),
+            space.offset + c * space.factor,
+            r.size().y * space.factor,
         ));
     }
     p.splice(end..end, vps);

@@ -40,8 +40,9 @@ impl Space {
     }
 }
 
-/// The three spaces of a sheet: paper, the main model area, the enlarged plan.
-pub fn spaces(sheet: &Sheet) -> [Space; 3] {
+/// The spaces of a sheet: paper, the main model area, the enlarged plan, then
+/// one per detail view (each at 1:1 in model space, in a row beyond the plan).
+pub fn spaces(sheet: &Sheet) -> Vec<Space> {
     let paper = Space {
         paper: true,
         factor: 1.0,
@@ -66,5 +67,17 @@ pub fn spaces(sheet: &Sheet) -> [Space; 3] {
         factor: f,
         offset: target - c * f,
     };
-    [paper, main, plan]
+    let mut out = vec![paper, main, plan];
+    // Details: each region's lower-left corner at the next free x.
+    let mut x = (2.0 * size.x + sheet.plan_region.size().x) * sheet.scale;
+    for d in &sheet.details {
+        let origin = DVec2::new(x, d.region.min.y * d.scale);
+        out.push(Space {
+            paper: false,
+            factor: d.scale,
+            offset: origin - d.region.min * d.scale,
+        });
+        x += 1.25 * d.region.size().x * d.scale;
+    }
+    out
 }

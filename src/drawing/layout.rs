@@ -75,19 +75,31 @@ const GAP: f64 = 6.0;
 /// order (0 front, 1 top, 2 side, 3 iso).
 const ARRANGEMENTS: [&[&[usize]]; 2] = [&[&[1, 3], &[0, 2]], &[&[0, 2, 1, 3]]];
 
-/// Lays out views with model `bounds` and paper `margins` in `area`, view `k`
-/// drawn `factors[k]` times larger than the sheet's scale.
+/// Lays out the views `shown` with model `bounds` and paper `margins` in
+/// `area`, view `k` drawn `factors[k]` times larger than the sheet's scale (a
+/// view not shown takes no room; its offset is meaningless).
 pub fn lay_out(
     bounds: &[(DVec2, DVec2); 4],
     margins: &[Margins; 4],
     area: Rect,
     factors: [f64; 4],
+    shown: [bool; 4],
 ) -> Placement {
     let bounds: [(DVec2, DVec2); 4] =
         std::array::from_fn(|k| (bounds[k].0 * factors[k], bounds[k].1 * factors[k]));
     let size = |k: usize| (bounds[k].1 - bounds[k].0).max(DVec2::splat(1.0));
-    let mut best: Option<(f64, &[&[usize]])> = None;
-    for rows in ARRANGEMENTS {
+    let arrangements: Vec<Vec<Vec<usize>>> = ARRANGEMENTS
+        .iter()
+        .map(|rows| {
+            rows.iter()
+                .map(|r| r.iter().copied().filter(|&k| shown[k]).collect::<Vec<_>>())
+                .filter(|r| !r.is_empty())
+                .collect()
+        })
+        .filter(|rows: &Vec<Vec<usize>>| !rows.is_empty())
+        .collect();
+    let mut best: Option<(f64, &[Vec<usize>])> = None;
+    for rows in &arrangements {
         let cols = rows.iter().map(|r| r.len()).max().unwrap_or(1);
         let (mut widths, mut col_margins) = (vec![0.0f64; cols], vec![0.0f64; cols]);
         let (mut heights, mut row_margins) = (vec![0.0f64; rows.len()], vec![0.0f64; rows.len()]);
@@ -112,7 +124,13 @@ pub fn lay_out(
             best = Some((s, rows));
         }
     }
-    let (fit, rows) = best.unwrap_or((1.0, ARRANGEMENTS[0]));
+    let Some((fit, rows)) = best else {
+        return Placement {
+            scale: 1.0,
+            factors,
+            offsets: [DVec2::ZERO; 4],
+        };
+    };
     let scale = SCALES
         .iter()
         .copied()

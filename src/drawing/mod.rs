@@ -1,6 +1,8 @@
 //! Drawing sheets: a vessel's four views laid out on a standard sheet with border,
 //! title block, design-data block, nozzle schedule, notes with leaders, north
 //! arrow, revision triangle and automatic dimensions; written as SVG and DXF.
+//! When one sheet would be illegible the drawing goes to several ([`sheets`]):
+//! the elevation, the other views, and enlarged detail views.
 //!
 //! The last consumer in the data flow: it reads the views the Project stage keeps
 //! per entity (`crate::project`) and the resolved figures of the model
@@ -14,16 +16,20 @@
 //! # Ok(()) }
 //! ```
 
+pub mod chromium;
 mod compose;
 mod data;
+mod detail;
 mod dimensions;
 mod dxf;
 mod dxf_fixup;
 mod dxf_spaces;
 mod labels;
 mod layout;
+mod legibility;
 mod orientation;
 mod sheet;
+mod sheets;
 mod single;
 mod svg;
 mod tables;
@@ -33,13 +39,18 @@ pub use compose::compose;
 pub use data::{
     NoteData, NozzleData, PartData, VesselData, vessel_data, vessel_views, view_inputs,
 };
+pub use detail::clip_to_circle;
 pub use dimensions::format_mm;
 pub use dxf::{cad_text, to_dxf, to_dxf_bytes};
 pub use labels::{collisions, item_box, layout_problems};
-pub use sheet::{
-    Align, HiddenLines, Item, Layer, Measure, PlacedDimension, Rect, ScheduleRow, Sheet,
-    SheetOptions, SheetSize,
+pub use legibility::{
+    MAX_ONE_SHEET_SCALE, MIN_DETAIL_NOZZLE_PAPER, MIN_NOZZLE_PAPER, legibility_problems,
 };
+pub use sheet::{
+    Align, DetailMark, DetailView, HiddenLines, Item, Layer, Measure, PlacedDimension, Rect,
+    ScheduleRow, Sheet, SheetOptions, SheetSize,
+};
+pub use sheets::compose_sheets;
 pub use single::{LISTED_TAGS, SheetModelError, list_tags, sheet_model};
 pub use svg::to_svg;
 pub use tables::{SCHEDULE_COLUMNS, design_data};
@@ -72,6 +83,16 @@ pub enum DrawingError {
 /// The sheet of vessel `tag` as of the model's last update.
 pub fn sheet(model: &Model, tag: &str, options: &SheetOptions) -> Result<Sheet, DrawingError> {
     Ok(compose(&vessel_data(model, tag)?, options))
+}
+
+/// Every sheet of vessel `tag`'s drawing (one when one is legible; see
+/// [`compose_sheets`]).
+pub fn sheets(
+    model: &Model,
+    tag: &str,
+    options: &SheetOptions,
+) -> Result<Vec<Sheet>, DrawingError> {
+    Ok(compose_sheets(&vessel_data(model, tag)?, options))
 }
 
 /// The sheet of vessel `tag` as an SVG document.

@@ -40,12 +40,14 @@ fn nozzle_ends(n: &super::data::NozzleData) -> (DVec3, DVec3, bool) {
     (axis, face, axis.cross(DVec3::Z).length() < 1e-6)
 }
 
-/// Draws the circle, its ticks and labels, and the nozzle labels; returns the
-/// labels for the placer.
+/// Draws the circle, its ticks and labels, and the nozzle labels (on the plan
+/// of a horizontal vessel too when the sheet `shown` it); returns the labels for
+/// the placer.
 pub fn draw(
     data: &VesselData,
     placement: &Placement,
     h: f64,
+    shown: [bool; 4],
     items: &mut Vec<Item>,
 ) -> Vec<Movable> {
     let mut movable = Vec::new();
@@ -126,7 +128,7 @@ pub fn draw(
         });
     }
     // The plan of a horizontal vessel: marks at the nozzle faces.
-    if k != 1 {
+    if k != 1 && shown[1] {
         let plan = data.views[1].projection;
         for n in &data.nozzles {
             let at = placement.to_sheet(1, plan.project(nozzle_ends(n).1));

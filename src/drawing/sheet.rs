@@ -324,6 +324,47 @@ pub struct Sheet {
     /// The region of the plan view with its orientation labels, mm.
     pub plan_region: Rect,
     /// The table column at the right (title block, design data, schedule,
-    /// notes), mm.
+    /// notes; the title block alone on sheets after the first), mm.
     pub tables: Rect,
+    /// This sheet's number, from 1.
+    pub number: usize,
+    /// How many sheets the drawing has.
+    pub of: usize,
+    /// Which views this sheet shows, in [`ViewKind::ALL`](crate::project::ViewKind::ALL) order.
+    pub shown: [bool; 4],
+    /// The detail circles drawn on this sheet's elevation.
+    pub detail_marks: Vec<DetailMark>,
+    /// The enlarged detail views drawn on this sheet.
+    pub details: Vec<DetailView>,
+}
+
+/// A detail's circle and label on its parent view (the front elevation).
+#[derive(Clone, Debug, PartialEq)]
+pub struct DetailMark {
+    /// The detail's letter, e.g. `"A"`.
+    pub label: String,
+    /// Centre of the circle on the sheet, mm.
+    pub centre: DVec2,
+    /// Radius of the circle on the sheet, mm.
+    pub radius: f64,
+}
+
+/// An enlarged detail view: a circle of the front elevation drawn at a larger
+/// scale, titled `DETAIL A (SCALE 1:10)`.
+#[derive(Clone, Debug, PartialEq)]
+pub struct DetailView {
+    /// The detail's letter.
+    pub label: String,
+    /// The scale it is drawn at (model mm per paper mm, the `n` of 1:n).
+    pub scale: f64,
+    /// Centre of the detail's circle in the front view's model coordinates, mm.
+    pub model_centre: DVec2,
+    /// Centre of the detail's circle on this sheet, mm.
+    pub centre: DVec2,
+    /// Radius of the detail's circle on this sheet, mm.
+    pub radius: f64,
+    /// The marks of the nozzles it shows.
+    pub nozzles: Vec<String>,
+    /// The detail's cell on the sheet (circle, dimensions and title), mm.
+    pub region: Rect,
 }

@@ -319,19 +319,32 @@ pub fn title_fields(data: &VesselData) -> TitleFields {
     }
 }
 
+/// What the title block says about the sheet itself.
+pub struct Frame<'a> {
+    /// Sheet size.
+    pub size: SheetSize,
+    /// The scale cell: `1:60`, or `AS SHOWN` on a sheet of details.
+    pub scale: &'a str,
+    /// The sheet's number and how many there are.
+    pub number: (usize, usize),
+    /// Whether the design data, schedule and notes follow the title block (the
+    /// first sheet) or not.
+    pub full: bool,
+}
+
 /// Draws the tables in the column from its lower-left corner `origin` to `right`,
 /// bottom up; returns the rectangle they take and where the revision cell is (for
 /// the triangle).
 pub fn draw(
     data: &VesselData,
     rows: &[ScheduleRow],
-    size: SheetSize,
-    scale: f64,
+    frame: &Frame,
     origin: DVec2,
     right: f64,
     items: &mut Vec<Item>,
 ) -> (Rect, DVec2) {
     let (left, bottom) = (origin.x, origin.y);
+    let size = frame.size;
     let h = size.text_height();
     let mut t = Table {
         items,
@@ -343,10 +356,11 @@ pub fn draw(
     let fields = title_fields(data);
     let two = [0.38, 0.62];
     let four = [0.19, 0.31, 0.19, 0.31];
-    let scale_text = format!("1:{}", format_mm(scale));
-    t.row(&["SHEET", size.name(), "SCALE", &scale_text], &four);
+    t.row(&["SIZE", size.name(), "SCALE", frame.scale], &four);
     let rev_y = t.top;
     t.row(&["REV.", &fields.revision, "DATE", &fields.date], &four);
+    let sheet_no = format!("{} OF {}", frame.number.0, frame.number.1);
+    t.row(&["SHEET", &sheet_no], &two);
     t.row(&["DWG. NO.", &fields.number], &two);
     t.row(&["TITLE", &fields.title], &two);
     t.row(&["VESSEL", &data.design.tag], &two);
@@ -371,6 +385,12 @@ pub fn draw(
         left + 0.19 * (right - left) + 0.8 + text_width(&fields.revision, h) + 2.0 * h,
         rev_y + 0.95 * h,
     );
+    if !frame.full {
+        return (
+            Rect::new(DVec2::new(left, bottom), DVec2::new(right, t.top)),
+            revision_at,
+        );
+    }
     // Design data.
     let data_bottom = t.top + h;
     t.top = data_bottom;

@@ -1,10 +1,10 @@
 """Renders a drawing sheet's DXF (its paper-space layout, with the viewports
-onto model space) or PDF (its first page) to a PNG of a given width whose
+onto model space) or PDF (one page, the first unless given) to a PNG of a given width whose
 pixels map onto the whole paper, for tests/drawing_render.rs to compare with
 Chromium's rendering of the SVG.
 
     render_sheet.py dxf sheet.dxf out.png WIDTH_PX PAPER_W_MM PAPER_H_MM
-    render_sheet.py pdf sheet.pdf out.png WIDTH_PX
+    render_sheet.py pdf sheet.pdf out.png WIDTH_PX [PAGE]
 """
 
 import sys
@@ -38,10 +38,10 @@ def render_dxf(path, out, width, paper_w, paper_h):
     fig.savefig(out, dpi=width / inches[0], facecolor="white")
 
 
-def render_pdf(path, out, width):
+def render_pdf(path, out, width, page_index=0):
     import pymupdf
 
-    page = pymupdf.open(path)[0]
+    page = pymupdf.open(path)[page_index]
     zoom = width / page.rect.width
     page.get_pixmap(matrix=pymupdf.Matrix(zoom, zoom), alpha=False).save(out)
 
@@ -51,6 +51,6 @@ if __name__ == "__main__":
     if kind == "dxf":
         render_dxf(path, out, int(width), float(sys.argv[5]), float(sys.argv[6]))
     elif kind == "pdf":
-        render_pdf(path, out, int(width))
+        render_pdf(path, out, int(width), int(sys.argv[5]) if len(sys.argv) > 5 else 0)
     else:
         sys.exit(f"unknown kind {kind}")
