@@ -1,4 +1,5 @@
-//! Finite-element test helpers: a one-vessel design of given heads and course,
+//! Finite-element test helpers: a one-vessel design of given heads and course
+//! (and one with a shell nozzle),
 //! and a CalculiX run of a model in a temporary directory (`None`, with a
 //! message, where `ccx` is not installed; CI installs it).
 
@@ -33,6 +34,24 @@ pub fn with_nozzles(head: &str, od: f64, length: f64, t: f64, kpa: f64, nozzles:
           "nozzles": [{nozzles}]}}]}}"#
     );
     parse(&text).unwrap_or_else(|e| panic!("test design: {e}"))
+}
+
+/// A shell nozzle `N1`, NPS 8 class 150, on the OD 1000 × 1500, t 10 course
+/// between 2:1 heads at 1 MPa, at elevation 750, orientation 60°, projection
+/// 900, with extra JSON fields `extra` (a pad, an offset, an inclination).
+pub fn shell_nozzle(extra: &str) -> Design {
+    let nozzle = format!(
+        r#"{{ "mark": "N1", "size": 8, "rating": 150, "host": "S1", "orientation": 60,
+             "elevation": 750, "projection": 900 {extra} }}"#
+    );
+    with_nozzles(
+        r#""shape": "ellipsoidal""#,
+        1000.0,
+        1500.0,
+        10.0,
+        1000.0,
+        &nozzle,
+    )
 }
 
 /// The design-case model of `V-1` at element size `size`.
