@@ -159,9 +159,9 @@ pub fn build_envelope(
         rings.push(ring);
     }
     // Tangent lines between pieces (of one part or two): the rings at segment changes.
-    for i in 1..mer.intervals.len() {
-        if mer.intervals[i - 1].seg != mer.intervals[i].seg {
-            b.mesh.junctions.extend(rings[i].iter().copied());
+    for (pair, ring) in mer.intervals.windows(2).zip(&rings[1..]) {
+        if pair[0].seg != pair[1].seg {
+            b.mesh.junctions.extend(ring.iter().copied());
         }
     }
     let meshed: Vec<String> = centre_necks.iter().map(|c| c.mark.clone()).collect();

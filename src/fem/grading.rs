@@ -24,7 +24,7 @@ pub fn layers(span: f64, first: f64, last: f64, cap: f64) -> Vec<f64> {
     let floor = 1e-9 * span.abs().max(1.0);
     let (first, last) = (first.max(floor), last.max(floor));
     let cap = cap.max(first.min(last));
-    if !(span > 0.0) || span <= 1.5 * first.min(last) {
+    if span.is_nan() || span <= 1.5 * first.min(last) {
         return vec![0.0, 1.0];
     }
     let h = |x: f64| {
