@@ -30,6 +30,7 @@ fn meshes(design: &Design, options: &FemOptions) -> Vec<(String, FeMesh)> {
 fn example_designs_mesh_conforming_and_well_shaped() {
     for name in EXAMPLES {
         for (tag, mesh) in meshes(&example(name), &FemOptions::default()) {
+            eprintln!("{name} {tag}: notes {:?}", mesh.notes);
             assert_good(&format!("{name} {tag}"), &mesh);
         }
     }
@@ -148,4 +149,32 @@ fn ellipsoid_mid_surface_within_the_stated_bound() {
     assert_eq!(ellipsoid_mid_surface_error(500.0, 500.0, 5.0), Some(0.0));
     let e = ellipsoid_mid_surface_error(500.0, 250.0, 5.0).expect("bound");
     assert!((e - 0.29).abs() < 0.01, "{e}");
+}
+
+/// The graded rows of a ring or a cap: they start near the first edge's size,
+/// end near the last's, and neighbours differ by less than 1.7 in thickness
+/// (√area: 1.3 between rows of one width).
+#[test]
+fn rows_grade_from_both_edges() {
+    use vesselcad::fem::grading::layers;
+    for (span, first, last, cap) in [
+        (300.0, 10.0, 60.0, 80.0),
+        (100.0, 5.0, 5.0, 50.0),
+        (50.0, 20.0, 40.0, 40.0),
+    ] {
+        let x = layers(span, first, last, cap);
+        let sizes: Vec<f64> = x.windows(2).map(|w| (w[1] - w[0]) * span).collect();
+        eprintln!("{span} {first} {last} {cap}: {sizes:.1?}");
+        assert!(
+            sizes[0] <= first * 1.01 && sizes[0] >= 0.5 * first,
+            "{sizes:?}"
+        );
+        let end = sizes[sizes.len() - 1];
+        assert!(end <= last * 1.01 && end >= 0.5 * last, "{sizes:?}");
+        for w in sizes.windows(2) {
+            assert!(w[0].max(w[1]) / w[0].min(w[1]) < 1.7, "{sizes:?}");
+        }
+        assert!(sizes.iter().all(|&s| s <= cap * 1.01), "{sizes:?}");
+    }
+    assert_eq!(layers(10.0, 8.0, 8.0, 8.0), vec![0.0, 1.0]);
 }

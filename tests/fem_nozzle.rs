@@ -9,32 +9,15 @@
 
 mod common;
 
-use common::fem::{assert_good, model, solve, with_nozzles};
+use common::fem::{assert_good, model, shell_nozzle, solve, with_nozzles};
 use glam::DVec3;
 use vesselcad::design::Design;
 use vesselcad::fem::FeMesh;
 use vesselcad::fem::results::intensity;
 
-/// OD 1000 × 1500, t = 10, 2:1 heads, 1 MPa; NPS 8 (OD 219.1, STD wall 8.18)
-/// at elevation 750, orientation 60°, with `pad`.
-fn design(pad: &str) -> Design {
-    let nozzle = format!(
-        r#"{{ "mark": "N1", "size": 8, "rating": 150, "host": "S1", "orientation": 60,
-             "elevation": 750, "projection": 900 {pad} }}"#
-    );
-    with_nozzles(
-        r#""shape": "ellipsoidal""#,
-        1000.0,
-        1500.0,
-        10.0,
-        1000.0,
-        &nozzle,
-    )
-}
-
 #[test]
 fn radial_nozzle_with_pad_meshes_conforming_on_exact_surfaces() {
-    let design = design(r#", "pad": { "od": 420, "thickness": 10 }"#);
+    let design = shell_nozzle(r#", "pad": { "od": 420, "thickness": 10 }"#);
     for size in [80.0, 40.0] {
         let m = model(&design, size);
         let mesh = &m.mesh;
@@ -96,7 +79,7 @@ fn radial_nozzle_with_pad_meshes_conforming_on_exact_surfaces() {
 /// refined: the last two refinements differ by less than 10 %.
 #[test]
 fn junction_peak_above_membrane_and_converging() {
-    let design = design("");
+    let design = shell_nozzle("");
     let mut table = Vec::new();
     // CI solves two sizes; `cargo run --example fem_convergence` the full table.
     for size in [100.0, 60.0] {
@@ -209,23 +192,6 @@ fn assert_neck(
             );
         }
     }
-}
-
-/// A shell nozzle NPS 8 on the OD 1000 × 1500, t 10 course at elevation 750,
-/// orientation 60°, with extra JSON fields `extra`.
-fn shell_nozzle(extra: &str) -> Design {
-    let nozzle = format!(
-        r#"{{ "mark": "N1", "size": 8, "rating": 150, "host": "S1", "orientation": 60,
-             "elevation": 750, "projection": 900 {extra} }}"#
-    );
-    with_nozzles(
-        r#""shape": "ellipsoidal""#,
-        1000.0,
-        1500.0,
-        10.0,
-        1000.0,
-        &nozzle,
-    )
 }
 
 /// Hillside, tangential and inclined nozzles: the neck's nodes on its

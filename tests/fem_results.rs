@@ -1,8 +1,10 @@
 //! A solved model of the example drum read back: the deformed shape with von
 //! Mises vertex colours as a Khronos-valid GLB (one mesh per part, a colour per
 //! vertex, the largest stress red), and the per-part table of the largest
-//! membrane (Pm) and membrane-plus-bending (Pm+Pb) stress intensity against the
-//! allowable S of `calc`'s materials table at the design temperature. Skipped,
+//! general membrane (Pm, away from junctions), local membrane (PL, within
+//! √(R·t) of one) and membrane-plus-bending stress intensity against the
+//! allowable S of `calc`'s materials table at the design temperature (Pm ≈
+//! P·R/t on the course). Skipped,
 //! with a message, where `ccx` is not installed (CI installs it).
 
 mod common;
@@ -39,16 +41,42 @@ fn drum_results_as_a_coloured_glb_and_a_table_against_the_allowable() {
     assert_eq!(rows.len(), m.mesh.parts.len());
     for row in &rows {
         eprintln!(
-            "{:<16} Pm {:8.2}  Pm+Pb {:8.2}  S {:?}",
-            row.name, row.membrane, row.membrane_bending, row.allowable
+            "{:<16} Pm {:?}  PL {:?}  Pm/PL+Pb {:8.2}  S {:?}",
+            row.name, row.membrane, row.local, row.membrane_bending, row.allowable
         );
         assert_eq!(row.allowable, Some(s), "{}", row.name);
-        assert!(row.membrane > 0.0 && row.membrane_bending >= row.membrane);
+        let most = row.membrane.unwrap_or(0.0).max(row.local.unwrap_or(0.0));
+        assert!(most > 0.0 && row.membrane_bending >= most, "{row:?}");
     }
-    // The course carries at least its hoop membrane P·R/t (1 MPa, R 1193 on the
-    // mid-surface, t 14).
+    // Away from the junctions the course's general membrane stress intensity
+    // is near its hoop P·R/t (1 MPa, R 1193 on the mid-surface, t 14: 85.2
+    // MPa); the nozzles' disturbances are local (PL), far above it (before
+    // the classification they were the course's "Pm").
     let course = rows.iter().find(|r| r.name == "V-101/S1").expect("S1 row");
-    assert!(course.membrane >= 0.98 * 1193.0 / 14.0, "{course:?}");
+    let local = vesselcad::fem::zones::local_nodes(&m.mesh);
+    let k = m.mesh.parts.iter().position(|p| p.id == "S1").expect("S1");
+    let worst = m
+        .mesh
+        .part_nodes(k)
+        .into_iter()
+        .filter(|&n| !local[n])
+        .max_by(|&a, &b| {
+            let si = |n: usize| vesselcad::fem::results::intensity(results[n].membrane);
+            si(a).total_cmp(&si(b))
+        })
+        .expect("general nodes");
+    eprintln!("S1's Pm at node {worst}, {:.0}", m.mesh.nodes[worst]);
+    let hoop = 1193.0 / 14.0;
+    let pm = course.membrane.expect("a general membrane region on S1");
+    // Measured 95.5 MPa (+12 %) at a node near the bottom, x = 6351, beyond
+    // √(R·t) of every junction; not yet traced, so the bound is 15 %.
+    assert!((pm - hoop).abs() <= 0.15 * hoop, "{course:?}");
+    let pl = course.local.expect("local regions on S1");
+    assert!(pl > 2.0 * pm, "{course:?}");
+    assert_eq!(
+        course.passes(),
+        Some(pm <= s && pl <= 1.5 * s && course.membrane_bending <= 1.5 * s)
+    );
     // The GLB: valid, a mesh per part, COLOR_0 on every vertex, red at the top.
     let bytes = von_mises_glb(&m.mesh, &results, "V-101");
     if let Some(report) = validate("fem-drum", &bytes) {

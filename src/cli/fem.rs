@@ -161,20 +161,23 @@ fn write_and_run(args: &FemArgs, model: &vesselcad::fem::FeModel) -> Result<(), 
         beside("glb").display(),
         glb::magnification(&model.mesh, &results)
     );
-    outln!("part                 Pm max MPa   Pm+Pb max MPa   S MPa   check");
+    outln!(
+        "part                 Pm max MPa   PL max MPa   Pm/PL+Pb max MPa   S MPa   check (Pm <= S, PL <= 1.5 S, +Pb <= 1.5 S)"
+    );
+    let cell = |v: Option<f64>| v.map_or("-".to_string(), |v| format!("{v:.2}"));
     for p in part_stresses(model, &results) {
-        let s = p.allowable.map_or("-".to_string(), |s| format!("{s:.1}"));
         let verdict = match p.passes() {
-            Some(true) => "Pm <= S, Pm+Pb <= 1.5 S",
+            Some(true) => "ok",
             Some(false) => "EXCEEDS",
             None => "no allowable",
         };
         outln!(
-            "{:<20} {:>10.2} {:>15.2} {:>7} {verdict}",
+            "{:<20} {:>10} {:>12} {:>18.2} {:>7} {verdict}",
             p.name,
-            p.membrane,
+            cell(p.membrane),
+            cell(p.local),
             p.membrane_bending,
-            s
+            p.allowable.map_or("-".to_string(), |s| format!("{s:.1}"))
         );
     }
     Ok(())

@@ -1,9 +1,13 @@
 //! A pole closed with quadrilaterals: an O-grid ("butterfly") cap. An inner
 //! m × m grid, its outline rounded towards a circle, is joined to the rim ring
-//! of 4m nodes by layers of quads blending the outline into the rim. The cap is
+//! of 4m nodes by layers of quads blending the outline into the rim, graded
+//! ([`super::grading`]) from the outline's spacing to the rim's, then smoothed
+//! (Laplacian, the rim fixed) in the plane. The cap is
 //! laid out in the plane across the axis and lifted onto the exact surface over
 //! each point (the point of the piece at that radius), so every corner and
 //! mid-side node lies on the surface; no triangle is needed at the pole.
+
+use std::f64::consts::TAU;
 
 use glam::DVec2;
 
@@ -13,6 +17,8 @@ use super::builder::Builder;
 const INNER: f64 = 0.45;
 /// Blend of the inner grid towards the disk mapping (0: a square, 1: a disk).
 const ROUND: f64 = 0.5;
+/// Laplacian smoothing sweeps over the cap's nodes.
+const SMOOTHING: usize = 30;
 
 /// The square [-1, 1]² onto the unit disk (the elliptical grid mapping).
 fn disk(p: DVec2) -> DVec2 {
@@ -45,12 +51,13 @@ pub fn cap(
         );
         u * a * (1.0 - ROUND) + disk(u) * a * 1.2 * ROUND
     };
-    // Inner grid nodes (the outline included).
+    // The cap's nodes in the plane: local ids, the rim's last.
+    let mut plane: Vec<DVec2> = Vec::new();
     let mut grid = vec![vec![0usize; m + 1]; m + 1];
     for (i, row) in grid.iter_mut().enumerate() {
         for (j, id) in row.iter_mut().enumerate() {
-            let p = inner(i, j);
-            *id = b.node(lift(p), Some(p));
+            *id = plane.len();
+            plane.push(inner(i, j));
         }
     }
     // The outline, counter-clockwise from (+a, 0), 4m nodes.
@@ -72,53 +79,93 @@ pub fn cap(
         outline.push((full, j));
     }
     debug_assert_eq!(outline.len(), n);
-    let layers = ((1.0 - INNER) * rim / (1.2 * rim / m as f64))
-        .round()
-        .max(1.0) as usize;
+    // Layers graded from the outline's spacing to the rim's (the spacing of
+    // the ring beyond the rim, which the meridian grades to match).
+    let mean = outline
+        .iter()
+        .map(|&(i, j)| inner(i, j).length())
+        .sum::<f64>()
+        / n as f64;
+    let (first, last) = (TAU * mean / n as f64, TAU * rim / n as f64);
+    let lambdas = super::grading::layers(rim - mean, first, last, last);
+    let layers = lambdas.len() - 1;
+    let rim_at = |k: usize| {
+        let theta = TAU * k as f64 / n as f64;
+        DVec2::new(theta.cos(), theta.sin()) * rim
+    };
     let mut rows: Vec<Vec<usize>> = vec![outline.iter().map(|&(i, j)| grid[i][j]).collect()];
-    for l in 1..layers {
-        let lambda = l as f64 / layers as f64;
+    for &lambda in &lambdas[1..] {
         let row = outline
             .iter()
             .enumerate()
             .map(|(k, &(i, j))| {
-                let theta = std::f64::consts::TAU * k as f64 / n as f64;
-                let rimp = DVec2::new(theta.cos(), theta.sin()) * rim;
-                let p = inner(i, j) * (1.0 - lambda) + rimp * lambda;
-                b.node(lift(p), Some(p))
+                plane.push(inner(i, j) * (1.0 - lambda) + rim_at(k) * lambda);
+                plane.len() - 1
             })
             .collect();
         rows.push(row);
     }
-    rows.push(ring.to_vec());
-    let mid = |b: &mut Builder, x: usize, y: usize| {
-        let p = 0.5 * (b.plane(x) + b.plane(y));
-        b.mid(x, y, || lift(p))
-    };
-    let quad = |b: &mut Builder, c: [usize; 4]| {
-        let c = if upward { c } else { [c[0], c[3], c[2], c[1]] };
-        b.quad(part, c, &mut |b, x, y| mid(b, x, y));
-    };
+    let mut quads: Vec<[usize; 4]> = Vec::new();
     for i in 0..m {
         for j in 0..m {
-            quad(
-                b,
-                [
-                    grid[i][j],
-                    grid[i + 1][j],
-                    grid[i + 1][j + 1],
-                    grid[i][j + 1],
-                ],
-            );
+            quads.push([
+                grid[i][j],
+                grid[i + 1][j],
+                grid[i + 1][j + 1],
+                grid[i][j + 1],
+            ]);
         }
     }
     for l in 0..layers {
         for k in 0..n {
             let k1 = (k + 1) % n;
-            quad(
-                b,
-                [rows[l][k], rows[l + 1][k], rows[l + 1][k1], rows[l][k1]],
-            );
+            quads.push([rows[l][k], rows[l + 1][k], rows[l + 1][k1], rows[l][k1]]);
+        }
+    }
+    let rim_start = rows[layers][0];
+    smooth(&mut plane, &quads, rim_start);
+    // Into the builder: the rim is `ring`, the rest lifted onto the surface.
+    let ids: Vec<usize> = (0..plane.len())
+        .map(|v| {
+            if v >= rim_start {
+                ring[v - rim_start]
+            } else {
+                b.node(lift(plane[v]), Some(plane[v]))
+            }
+        })
+        .collect();
+    let mid = |b: &mut Builder, x: usize, y: usize| {
+        let p = 0.5 * (b.plane(x) + b.plane(y));
+        b.mid(x, y, || lift(p))
+    };
+    for q in quads {
+        let c = q.map(|v| ids[v]);
+        let c = if upward { c } else { [c[0], c[3], c[2], c[1]] };
+        b.quad(part, c, &mut |b, x, y| mid(b, x, y));
+    }
+}
+
+/// Laplacian smoothing of the plane positions of the nodes below `fixed`
+/// (the rim's nodes, from `fixed` on, stay): [`SMOOTHING`] sweeps moving each
+/// node to the mean of its edge neighbours, which evens the sizes of the
+/// O-grid's corner cells and its layers.
+fn smooth(plane: &mut [DVec2], quads: &[[usize; 4]], fixed: usize) {
+    let mut neighbours: Vec<Vec<usize>> = vec![Vec::new(); plane.len()];
+    for q in quads {
+        for k in 0..4 {
+            let (x, y) = (q[k], q[(k + 1) % 4]);
+            if !neighbours[x].contains(&y) {
+                neighbours[x].push(y);
+                neighbours[y].push(x);
+            }
+        }
+    }
+    for _ in 0..SMOOTHING {
+        for v in 0..fixed {
+            let around = &neighbours[v];
+            if !around.is_empty() {
+                plane[v] = around.iter().map(|&w| plane[w]).sum::<DVec2>() / around.len() as f64;
+            }
         }
     }
 }

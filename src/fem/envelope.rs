@@ -136,8 +136,8 @@ pub fn build_envelope(
             rule: format!("below 1e-4 of the vessel radius {r_max} mm"),
         });
     }
-    let mer = meridian::stations(chain, size);
     let n = ((TAU * r_max / size).ceil() as usize).div_ceil(8).max(2) * 8;
+    let mer = meridian::stations(chain, size, n);
     let theta = |k: f64| TAU * k / n as f64;
     let mut b = Builder::new(options.order == 2);
     b.mesh.parts = parts;
@@ -157,6 +157,12 @@ pub fn build_envelope(
             })
             .collect();
         rings.push(ring);
+    }
+    // Tangent lines between pieces (of one part or two): the rings at segment changes.
+    for (pair, ring) in mer.intervals.windows(2).zip(&rings[1..]) {
+        if pair[0].seg != pair[1].seg {
+            b.mesh.junctions.extend(ring.iter().copied());
+        }
     }
     let meshed: Vec<String> = centre_necks.iter().map(|c| c.mark.clone()).collect();
     let holes = super::window::plan(resolved, &mer, n, &b.mesh.parts, &meshed, &mut b.mesh.notes);

@@ -5,7 +5,8 @@
 //! Stations are placed by a size field along the meridian's arc length σ: the
 //! target `size` away from junctions, `0.5·√(r·t)` within `√(r·t)` of every
 //! junction (part ends and the tangent lines inside a head, where bending
-//! stresses peak), growing linearly at slope [`GROWTH`] in between, so adjacent
+//! stresses peak), the rim's circumferential spacing at a cap's rim, growing
+//! linearly at slope [`GROWTH`] in between, so adjacent
 //! elements differ by less than a factor 1.5. Each segment gets the element
 //! count that integrates `1/h` over it (rounded up) and its stations
 //! equidistribute that integral. Every station is an exact point of its piece;
@@ -182,8 +183,10 @@ fn on_axis(rz: DVec2, scale: f64) -> bool {
     rz.x <= 1e-9 * scale.max(1.0)
 }
 
-/// Places the stations of `segments` for element size `size`.
-pub fn stations(segments: Vec<Segment>, size: f64) -> Meridian {
+/// Places the stations of `segments` for element size `size`, on a mesh of
+/// `divisions` circumferential divisions (a cap's rim is a junction whose size is the
+/// rim's circumferential spacing, which the cap's outer layer also takes).
+pub fn stations(segments: Vec<Segment>, size: f64, divisions: usize) -> Meridian {
     let scale = segments
         .iter()
         .map(|s| s.rz(s.s0).x.max(s.rz(s.s1).x))
@@ -236,6 +239,14 @@ pub fn stations(segments: Vec<Segment>, size: f64) -> Meridian {
             let rt = (r.max(t) * t).sqrt();
             junctions.push((sigma, 0.5 * rt, rt));
         }
+    }
+    let spacing =
+        |cap: Option<Cap>| cap.map(|c| std::f64::consts::TAU * c.radius / divisions as f64);
+    if let Some(w) = spacing(start_cap) {
+        junctions.push((0.0, w, 0.0));
+    }
+    if let Some(w) = spacing(end_cap) {
+        junctions.push((sigma, w, 0.0));
     }
     let h = |x: f64| -> f64 {
         junctions

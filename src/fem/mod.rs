@@ -22,6 +22,7 @@ pub mod envelope;
 pub mod error;
 pub mod frd;
 pub mod glb;
+pub mod grading;
 pub mod head_nozzle;
 pub mod inp;
 pub mod meridian;
@@ -31,6 +32,7 @@ pub mod quality;
 pub mod results;
 pub mod vtu;
 pub mod window;
+pub mod zones;
 
 pub use conditions::{FeModel, LoadCase, Support};
 pub use envelope::{FemOptions, build_envelope};
@@ -100,6 +102,10 @@ pub struct FeMesh {
     pub parts: Vec<FePart>,
     /// Nodes on a real boundary of the shell (an open end), by index.
     pub boundary: Vec<usize>,
+    /// Nodes on a discontinuity inside a part (a tangent line between two of
+    /// its pieces, e.g. a head's knuckle and crown); junctions between parts
+    /// are the nodes their elements share.
+    pub junctions: Vec<usize>,
     /// The vessel axis in the plant frame: a point and a unit direction.
     pub axis: (DVec3, DVec3),
     /// The open ends of the nozzle necks meshed.

@@ -10,8 +10,8 @@
 //! cylinder; the curve's nodes are at neck angles φ whose unrolled polar
 //! angles spread evenly over each side of the window, between the polar angles
 //! of its corners. The ring's layers blend the curve into the window
-//! boundary, graded geometrically (ratio ≤ [`GRADE`]) from the curve's edge
-//! length. Every corner and mid-side node is an exact point of its surface:
+//! boundary, graded ([`super::grading`]) from the curve's edge length to the
+//! window's cells. Every corner and mid-side node is an exact point of its surface:
 //! ring nodes of the cylinder, curve nodes (and the mid-side nodes between
 //! them) of the intersection, neck nodes of the neck cylinder.
 //!
@@ -26,40 +26,10 @@ use std::f64::consts::TAU;
 use glam::{DVec2, DVec3};
 
 use super::builder::Builder;
+use super::grading;
 use super::meridian::Meridian;
 use super::window::Hole;
 use super::{FePart, NeckEnd};
-
-/// Largest ratio of neighbouring layer thicknesses in the ring and the neck.
-pub const GRADE: f64 = 1.3;
-
-/// Layer positions 0..=1 of `count` layers graded from `first` (a fraction of
-/// the span) by a ratio ≤ [`GRADE`].
-fn graded(span: f64, first: f64, cap: f64) -> Vec<f64> {
-    if span <= first * 1.5 {
-        return vec![0.0, 1.0];
-    }
-    // Smallest count reaching the span with ratio GRADE, sizes capped at `cap`.
-    let mut sizes = vec![first];
-    let mut total = first;
-    while total < span {
-        let next = (sizes[sizes.len() - 1] * GRADE).min(cap.max(first));
-        sizes.push(next);
-        total += next;
-    }
-    // Scale down so the layers fill the span exactly.
-    let scale = span / total;
-    let mut out = vec![0.0];
-    let mut acc = 0.0;
-    for s in sizes {
-        acc += s * scale;
-        out.push(acc / span);
-    }
-    if let Some(last) = out.last_mut() {
-        *last = 1.0;
-    }
-    out
-}
 
 /// Neck angle φ at the mid-point of nodes with angles `a` and `b` (the short way).
 fn mid_angle(a: f64, b: f64) -> f64 {
@@ -149,8 +119,11 @@ pub fn mesh(
         .map(|j| outer[j].1.distance(curve_uv(phis[j])))
         .sum::<f64>()
         / count as f64;
-    let cell = (TAU * big_r / n as f64).min(size);
-    let lambdas = graded(gap, first, cell);
+    // The window's cells: its neighbours outside are about √(width·height).
+    let width = TAU * big_r / n as f64;
+    let height = (station_z(i1) - station_z(i0)) / bb.max(1) as f64;
+    let cell = (width * height).sqrt().min(size);
+    let lambdas = grading::layers(gap, first, cell, width.max(height).min(size));
     let mut plane: HashMap<usize, DVec2> = HashMap::new();
     for &(id, p) in &outer {
         plane.insert(id, p);
@@ -205,7 +178,7 @@ pub fn mesh(
         thickness: hole.wall,
     });
     let length = hole.end - h0(0.0).max(h0(std::f64::consts::FRAC_PI_2));
-    let vs = graded(length, first, size);
+    let vs = grading::layers(length, first, size, size);
     let mut at: HashMap<usize, (f64, f64)> = HashMap::new();
     for (j, &id) in curve.iter().enumerate() {
         at.insert(id, (phis[j], 0.0));

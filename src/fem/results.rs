@@ -7,8 +7,10 @@
 //! mid-surface (the mean of the two faces where no mid-surface node was
 //! written), the membrane-plus-bending stress the worse of the two faces.
 //! Stress intensity is the largest difference of principal stresses (Tresca),
-//! compared per part with the allowable S (membrane) and 1.5 S (membrane plus
-//! bending), as ASME VIII-2 Part 5 classifies a shell's linearised stresses.
+//! compared per part with the allowable S (general membrane Pm, away from
+//! junctions), 1.5 S (local membrane PL, within √(R·t) of a junction, see
+//! [`super::zones`]) and 1.5 S (membrane plus bending), as ASME VIII-2 5.2.2
+//! classifies a shell's linearised stresses.
 
 use std::collections::HashMap;
 use std::path::{Path, PathBuf};
@@ -192,38 +194,50 @@ pub fn nodal(model: &FeModel, frd: &Frd) -> Vec<NodeResult> {
         .collect()
 }
 
-/// The stresses of one part against its allowable.
+/// The stresses of one part against its allowable, classified as VIII-2
+/// 5.2.2 does ([`super::zones`]): general membrane away from junctions, local
+/// membrane near them.
 #[derive(Clone, Debug, PartialEq)]
 pub struct PartStress {
     /// Part name (`V-101/S1`).
     pub name: String,
-    /// Largest membrane stress intensity, MPa.
-    pub membrane: f64,
-    /// Largest membrane-plus-bending stress intensity, MPa.
+    /// Largest general membrane stress intensity Pm (nodes farther than
+    /// √(R·t) from every junction), MPa; `None` when the whole part is near one.
+    pub membrane: Option<f64>,
+    /// Largest local membrane stress intensity PL (nodes within √(R·t) of a
+    /// junction), MPa; `None` when no node of the part is near one.
+    pub local: Option<f64>,
+    /// Largest membrane-plus-bending stress intensity (Pm + Pb or PL + Pb),
+    /// MPa.
     pub membrane_bending: f64,
     /// Allowable S at the design temperature, MPa, if known.
     pub allowable: Option<f64>,
 }
 
 impl PartStress {
-    /// Whether Pm ≤ S and Pm + Pb ≤ 1.5 S (unknown S: `None`).
+    /// Whether Pm ≤ S, PL ≤ 1.5 S and Pm + Pb (PL + Pb) ≤ 1.5 S (unknown S:
+    /// `None`).
     pub fn passes(&self) -> Option<bool> {
-        self.allowable
-            .map(|s| self.membrane <= s && self.membrane_bending <= 1.5 * s)
+        self.allowable.map(|s| {
+            self.membrane.is_none_or(|pm| pm <= s)
+                && self.local.is_none_or(|pl| pl <= 1.5 * s)
+                && self.membrane_bending <= 1.5 * s
+        })
     }
 }
 
 /// Per-part maxima of `results` (one per model node).
 pub fn part_stresses(model: &FeModel, results: &[NodeResult]) -> Vec<PartStress> {
+    let local = super::zones::local_nodes(&model.mesh);
+    let max = |it: &mut dyn Iterator<Item = f64>| it.reduce(f64::max);
     (0..model.mesh.parts.len())
         .map(|k| {
             let nodes = model.mesh.part_nodes(k);
+            let si = |n: &usize| intensity(results[*n].membrane);
             PartStress {
                 name: model.mesh.parts[k].name.clone(),
-                membrane: nodes
-                    .iter()
-                    .map(|&n| intensity(results[n].membrane))
-                    .fold(0.0, f64::max),
+                membrane: max(&mut nodes.iter().filter(|&&n| !local[n]).map(si)),
+                local: max(&mut nodes.iter().filter(|&&n| local[n]).map(si)),
                 membrane_bending: nodes
                     .iter()
                     .map(|&n| results[n].surface_intensity)

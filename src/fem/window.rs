@@ -4,7 +4,9 @@
 //! opening, which [`super::nozzle`] re-meshes as a ring of quadrilaterals from
 //! the window's edges to the exact intersection curve, and then the neck. The
 //! window reaches at least [`MARGIN`] times the opening's extent on each side of
-//! the point where the nozzle axis meets the course (and past the pad), holds at
+//! the point where the nozzle axis meets the course (and past the pad), and
+//! far enough past it for the ring to grade from the opening's node spacing to
+//! the cells' width at [`super::grading::GROWTH`], holds at
 //! least [`MIN_LOOP`] cell edges round its boundary (so the opening gets as many
 //! nodes), and stays on its course. The intersection of the neck's and the
 //! course's mid-surfaces is solved in closed form along each generator of the
@@ -277,7 +279,17 @@ pub fn plan(
             lo *= grow;
             hi *= grow;
         }
-        let (lo, hi) = (lo * MARGIN, hi * MARGIN);
+        // Room round the opening for the ring to grade from the curve's
+        // spacing to the cells' width: at least (w − spacing)/GROWTH.
+        let w = TAU * big_r / n as f64;
+        let mut reach = 0.0;
+        for _ in 0..3 {
+            let perimeter = 2.0 * ((hi - lo).x + (hi - lo).y) + 8.0 * reach;
+            let edges = (perimeter / w).max(MIN_LOOP as f64);
+            reach = ((w - TAU * r / edges) / super::grading::GROWTH).max(0.0);
+        }
+        let lo = (lo * MARGIN).min(lo - DVec2::splat(reach));
+        let hi = (hi * MARGIN).max(hi + DVec2::splat(reach));
         let cell = TAU / n as f64;
         let kc = hole.theta / cell;
         let mut k0 = (kc + lo.x / (big_r * cell)).floor() as i64;
