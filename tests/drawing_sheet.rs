@@ -404,7 +404,7 @@ fn notes_follow_their_targets() {
         s.items
             .iter()
             .find_map(|i| match i {
-                Item::Text { text, at, .. } if text == "See detail A" => Some(*at),
+                Item::Text { text, at, .. } if text == "Internal feed pipe by others" => Some(*at),
                 _ => None,
             })
             .expect("note T3 drawn")

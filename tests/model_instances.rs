@@ -162,7 +162,7 @@ fn openings_of_one_size_in_one_course_diameter_share_one_march() {
     }
     for p in &mut twin.parts {
         if let PartDesign::Shell(s) = p {
-            s.length += 500.0;
+            s.length += 300.0;
         }
     }
     let c = m.edit(Edit::SetVessel(twin)).unwrap();
