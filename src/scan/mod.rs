@@ -25,6 +25,7 @@ pub mod defects;
 pub mod fit;
 pub mod glb;
 pub mod grid;
+pub mod grid_file;
 pub mod inspect;
 pub mod points;
 pub mod register;
