@@ -17,8 +17,9 @@ use vesselcad::scan::grid_file::{max_residual, read_grid, surface_json};
 use vesselcad::scan::inspect::{InspectOptions, inspect};
 use vesselcad::scan::points::{PointFormat, load_points, write_points};
 use vesselcad::scan::register::RegisterOptions;
-use vesselcad::scan::report::{to_html, to_json};
+use vesselcad::scan::report::{to_html_with_maps, to_json};
 use vesselcad::scan::simulate::{SimulateOptions, SiteTransform, simulate};
+use vesselcad::scan::unrolled::unrolled_maps;
 use vesselcad::scan::{Envelope, ScanError};
 
 use super::output::outln;
@@ -268,12 +269,15 @@ fn run_fit(a: &FitArgs) -> Result<(), ScanError> {
         },
     };
     let inspection = inspect(&env, points, &options)?;
-    std::fs::write(&a.output, to_html(&inspection)).map_err(|e| ScanError::io(&a.output, e))?;
+    let scale = (3.0 * a.noise).max(5.0);
+    let maps = unrolled_maps(&env, &inspection);
+    std::fs::write(&a.output, to_html_with_maps(&inspection, &maps, scale))
+        .map_err(|e| ScanError::io(&a.output, e))?;
     if let Some(path) = &a.json {
         std::fs::write(path, to_json(&inspection)).map_err(|e| ScanError::io(path, e))?;
     }
     if let Some(path) = &a.glb {
-        let bytes = deviation_glb(&env, &inspection, (3.0 * a.noise).max(5.0));
+        let bytes = deviation_glb(&env, &inspection, scale);
         std::fs::write(path, bytes).map_err(|e| ScanError::io(path, e))?;
     }
     for f in &inspection.checks.findings {

@@ -32,6 +32,7 @@ pub mod register;
 pub mod report;
 pub mod settlement;
 pub mod simulate;
+pub mod unrolled;
 
 pub use envelope::{Envelope, Role, ScanPart, ScanSurface, ShellMaterial};
 pub use error::ScanError;
