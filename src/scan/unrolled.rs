@@ -237,7 +237,7 @@ pub fn to_svg(map: &UnrolledMap, scale: f64) -> String {
             let _ = write!(
                 s,
                 "<svg class=\"map\" data-part=\"{}\" xmlns=\"http://www.w3.org/2000/svg\" \
-                 width=\"340\" height=\"340\" viewBox=\"-170 -170 340 340\" font-size=\"11\">",
+                 width=\"400\" height=\"350\" viewBox=\"-200 -175 400 350\" font-size=\"11\">",
                 attr(&map.part)
             );
             let at = |o: f64, r: f64| {
