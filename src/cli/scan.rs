@@ -1,5 +1,6 @@
-//! `vesselcad scan simulate …` and `vesselcad scan fit …`: synthetic scans with a
-//! known truth, and a scan compared with its design (see `vesselcad::scan`).
+//! `vesselcad scan simulate …`, `vesselcad scan fit …` and `vesselcad scan
+//! interpolate …`: synthetic scans with a known truth, a scan compared with its
+//! design, and an ordered CMM grid interpolated exactly (see `vesselcad::scan`).
 
 use std::path::{Path, PathBuf};
 use std::process::ExitCode;
@@ -11,11 +12,14 @@ use vesselcad::scan::checks::CheckOptions;
 use vesselcad::scan::defects::parse_defects;
 use vesselcad::scan::fit::FitOptions;
 use vesselcad::scan::glb::deviation_glb;
+use vesselcad::scan::grid::{Parametrization, interpolate_grid};
+use vesselcad::scan::grid_file::{max_residual, read_grid, surface_json};
 use vesselcad::scan::inspect::{InspectOptions, inspect};
 use vesselcad::scan::points::{PointFormat, load_points, write_points};
 use vesselcad::scan::register::RegisterOptions;
-use vesselcad::scan::report::{to_html, to_json};
+use vesselcad::scan::report::{to_html_with_maps, to_json};
 use vesselcad::scan::simulate::{SimulateOptions, SiteTransform, simulate};
+use vesselcad::scan::unrolled::unrolled_maps;
 use vesselcad::scan::{Envelope, ScanError};
 
 use super::output::outln;
@@ -34,6 +38,27 @@ enum ScanCommand {
     Simulate(SimulateArgs),
     /// Compare a scan with its design: register, fit, check, report.
     Fit(FitArgs),
+    /// Interpolate an ordered grid of points (a CMM's rows and columns) exactly
+    /// by a B-spline surface and write it as JSON.
+    Interpolate(InterpolateArgs),
+}
+
+/// Arguments of `vesselcad scan interpolate`.
+#[derive(Args)]
+pub struct InterpolateArgs {
+    /// The grid: one point `x y z` a line (spaces, commas, tabs or
+    /// semicolons), rows separated by blank lines, every row as long as the first.
+    grid: PathBuf,
+    /// The surface, JSON (degrees, knots, control points, parameters, residual).
+    #[arg(short, long)]
+    output: PathBuf,
+    /// Degree along the rows (u) and along each row (v); lowered to the points
+    /// less one in a direction that has fewer.
+    #[arg(long, default_value_t = 3)]
+    degree: usize,
+    /// Data parameters: `chord`, `centripetal` or `uniform` (the seed's paper).
+    #[arg(long, default_value = "chord")]
+    parametrization: String,
 }
 
 /// Arguments of `vesselcad scan simulate`.
@@ -108,6 +133,7 @@ pub fn run(args: ScanArgs) -> ExitCode {
     let result = match args.command {
         ScanCommand::Simulate(a) => run_simulate(&a),
         ScanCommand::Fit(a) => run_fit(&a),
+        ScanCommand::Interpolate(a) => run_interpolate(&a),
     };
     match result {
         Ok(()) => ExitCode::SUCCESS,
@@ -243,12 +269,15 @@ fn run_fit(a: &FitArgs) -> Result<(), ScanError> {
         },
     };
     let inspection = inspect(&env, points, &options)?;
-    std::fs::write(&a.output, to_html(&inspection)).map_err(|e| ScanError::io(&a.output, e))?;
+    let scale = (3.0 * a.noise).max(5.0);
+    let maps = unrolled_maps(&env, &inspection);
+    std::fs::write(&a.output, to_html_with_maps(&inspection, &maps, scale))
+        .map_err(|e| ScanError::io(&a.output, e))?;
     if let Some(path) = &a.json {
         std::fs::write(path, to_json(&inspection)).map_err(|e| ScanError::io(path, e))?;
     }
     if let Some(path) = &a.glb {
-        let bytes = deviation_glb(&env, &inspection, (3.0 * a.noise).max(5.0));
+        let bytes = deviation_glb(&env, &inspection, scale);
         std::fs::write(path, bytes).map_err(|e| ScanError::io(path, e))?;
     }
     for f in &inspection.checks.findings {
@@ -277,6 +306,62 @@ fn run_fit(a: &FitArgs) -> Result<(), ScanError> {
         inspection.registration.rms,
         read,
         start.elapsed().as_secs_f64()
+    );
+    Ok(())
+}
+
+fn run_interpolate(a: &InterpolateArgs) -> Result<(), ScanError> {
+    let parametrization = match a.parametrization.as_str() {
+        "chord" => Parametrization::ChordLength,
+        "centripetal" => Parametrization::Centripetal,
+        "uniform" => Parametrization::Uniform,
+        other => {
+            return Err(ScanError::Unsupported {
+                option: "--parametrization",
+                value: other.to_string(),
+                rule: "must be chord, centripetal or uniform",
+            });
+        }
+    };
+    if !a
+        .output
+        .extension()
+        .is_some_and(|e| e.eq_ignore_ascii_case("json"))
+    {
+        return Err(ScanError::Unsupported {
+            option: "-o",
+            value: a.output.display().to_string(),
+            rule: "must name a .json file (the surface's degrees, knots and control points)",
+        });
+    }
+    if same_file(&a.output, &a.grid) {
+        return Err(ScanError::SameFile {
+            option: "-o",
+            path: a.output.clone(),
+            other: "grid",
+        });
+    }
+    let grid = read_grid(&a.grid)?;
+    let degrees = (a.degree.min(grid.rows - 1), a.degree.min(grid.columns - 1));
+    let fit = interpolate_grid(
+        &grid.points,
+        (grid.rows, grid.columns),
+        degrees,
+        parametrization,
+    )?;
+    let residual = max_residual(&fit, &grid);
+    let json = surface_json(&fit, parametrization, residual);
+    std::fs::write(&a.output, json).map_err(|e| ScanError::io(&a.output, e))?;
+    outln!(
+        "{}: {} × {} grid, degrees {} × {}, {} × {} control points, max residual {:.3e} mm at the grid points",
+        a.output.display(),
+        grid.rows,
+        grid.columns,
+        degrees.0,
+        degrees.1,
+        fit.surface.u_count(),
+        fit.surface.v_count(),
+        residual
     );
     Ok(())
 }

@@ -69,6 +69,17 @@ pub enum ScanError {
         /// The rule it breaks.
         rule: &'static str,
     },
+    /// A text option names something not supported: the option, its value and
+    /// the rule.
+    #[error("{option} {value:?}: {rule}")]
+    Unsupported {
+        /// The option.
+        option: &'static str,
+        /// Its value.
+        value: String,
+        /// The rule it breaks.
+        rule: &'static str,
+    },
     /// An output path names one of the inputs (or another output): writing it
     /// would overwrite that file.
     #[error("{option} {path}: is the {other} as well; refusing to overwrite it")]

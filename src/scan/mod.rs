@@ -25,12 +25,14 @@ pub mod defects;
 pub mod fit;
 pub mod glb;
 pub mod grid;
+pub mod grid_file;
 pub mod inspect;
 pub mod points;
 pub mod register;
 pub mod report;
 pub mod settlement;
 pub mod simulate;
+pub mod unrolled;
 
 pub use envelope::{Envelope, Role, ScanPart, ScanSurface, ShellMaterial};
 pub use error::ScanError;

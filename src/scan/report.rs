@@ -5,6 +5,7 @@
 use std::fmt::Write;
 
 use super::inspect::Inspection;
+use super::unrolled::{Layout, UnrolledMap, to_svg};
 
 /// `text` with HTML's special characters escaped.
 fn escape(text: &str) -> String {
@@ -30,6 +31,13 @@ fn size(value: f64, unit: &str) -> String {
 
 /// The report as a self-contained HTML page.
 pub fn to_html(inspection: &Inspection) -> String {
+    to_html_with_maps(inspection, &[], 1.0)
+}
+
+/// The report with each part's unrolled deviation map (see
+/// [`unrolled_maps`](super::unrolled::unrolled_maps)) as SVG after the
+/// findings, `scale` mm full colour as in the GLB.
+pub fn to_html_with_maps(inspection: &Inspection, maps: &[UnrolledMap], scale: f64) -> String {
     let mut h = String::new();
     let i = inspection;
     let _ = write!(
@@ -89,6 +97,38 @@ pub fn to_html(inspection: &Inspection) -> String {
             );
         }
         h.push_str("</table>");
+    }
+    if !maps.is_empty() {
+        let _ = write!(
+            h,
+            "<h2>Deviation maps</h2><p>The fitted surface's deviation from the design along its \
+             normal: blue inward, red outward, full colour at ±{scale:.1} mm (as the GLB), grey \
+             without data. Courses and cones unrolled (orientation across, elevation up); heads \
+             in plan (0° up, orientation clockwise, distance from the axis out).</p>"
+        );
+        for m in maps {
+            let extreme = m.extreme().and_then(|c| {
+                let where_ = match m.layout {
+                    Layout::Unrolled => format!("EL {:.0}", (c.band.0 + c.band.1) / 2.0),
+                    Layout::Polar => format!("r {:.0}", (c.band.0 + c.band.1) / 2.0),
+                };
+                c.deviation.map(|d| {
+                    format!(
+                        "; extreme cell {d:+.1} mm at {where_} / {:.1}°",
+                        (c.orientation.0 + c.orientation.1) / 2.0
+                    )
+                })
+            });
+            let _ = write!(
+                h,
+                "<h3>{}</h3><p>{} × {} cells{}</p>{}",
+                escape(&m.part),
+                m.sectors,
+                m.rows,
+                extreme.unwrap_or_default(),
+                to_svg(m, scale)
+            );
+        }
     }
     h.push_str(
         "<h2>Parts</h2><table><tr><th>Part</th><th>Role</th><th>Points</th><th>Mean, mm</th>\
