@@ -260,3 +260,12 @@ fn the_example_column_gets_its_seams_and_levels() {
         assert_eq!(report["numErrors"], 0, "{report:#}");
     }
 }
+
+#[test]
+fn seams_refuse_bytes_that_are_not_glb() {
+    use vesselcad::fab::seam_glb::add_seams;
+    let e = add_seams(b"not a GLB file at all", &[]).unwrap_err();
+    assert!(e.to_string().contains("not a binary glTF file"), "{e}");
+    let e = add_seams(b"glTF", &[]).unwrap_err();
+    assert!(e.to_string().contains("truncated"), "{e}");
+}
