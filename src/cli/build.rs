@@ -4,14 +4,18 @@
 use std::io::Write;
 use std::path::{Path, PathBuf};
 use std::process::ExitCode;
+use std::sync::Arc;
 use std::time::Instant;
 
 use clap::{Args, ValueEnum};
 use vesselcad::design::{Design, load};
 use vesselcad::export::{
-    Compression, ExportError, GlbOptions, Granularity, merge_scene, quantization_budget,
-    stream_glb_with, stream_glb_with_to, write_tiles,
+    Compression, ExportError, GlbOptions, Granularity, Scene, merge_scene, quantization_budget,
+    stream_glb_with, stream_glb_with_to, write_glb_with, write_tiles,
 };
+use vesselcad::fab::scene_levels::annotate_scene;
+use vesselcad::fab::seam_glb::{add_seams, seam_lines};
+use vesselcad::fab::{ProcessPlan, ShopRules};
 use vesselcad::mesh::{
     DEFAULT_VERTEX_BUDGET, MAX_VERTEX_BUDGET, MIN_VERTEX_BUDGET, TessellationOptions,
 };
@@ -68,6 +72,11 @@ pub struct BuildArgs {
     /// `part`, `vessel` or `plant`; merged meshes keep the tolerance.
     #[arg(long, value_enum, default_value = "patch")]
     granularity: GranularityArg,
+    /// Add fabrication data from each vessel's process plan (built-in shop
+    /// rules): `fab: {level, operations}` in the extras of part and nozzle
+    /// nodes, and the seams as line nodes under each vessel.
+    #[arg(long, conflicts_with = "tiles")]
+    fab: bool,
 }
 
 /// Granularities of `--granularity`.
@@ -115,6 +124,7 @@ pub fn run(args: BuildArgs) -> ExitCode {
         instancing,
         granularity,
         tiles,
+        fab,
     } = args;
     let output = output.unwrap_or_default();
     let glb = GlbOptions {
@@ -145,7 +155,7 @@ pub fn run(args: BuildArgs) -> ExitCode {
         Ok(d) => d,
         Err(e) => return fail(&e),
     };
-    let model = match build_with_progress(
+    let mut model = match build_with_progress(
         &d,
         TessellationOptions::chord(glb.meshing_tolerance(tolerance))
             .with_max_stretch(max_stretch)
@@ -176,10 +186,13 @@ pub fn run(args: BuildArgs) -> ExitCode {
         }
         return ExitCode::from(1);
     }
-    let scene = match Granularity::from(granularity) {
+    let mut scene = match Granularity::from(granularity) {
         Granularity::Patch => model.scene(),
         g => merge_scene(&model.scene(), g),
     };
+    if fab {
+        return write_fab(&mut model, &mut scene, &glb, (tolerance, &output), start);
+    }
     let triangles: usize = scene
         .vessels
         .iter()
@@ -240,6 +253,80 @@ pub fn run(args: BuildArgs) -> ExitCode {
         triangles,
         tolerance,
         bytes,
+        start.elapsed().as_secs_f64() * 1e3
+    );
+    if to_stdout {
+        eprintln!("{summary}");
+    } else {
+        outln!("{summary}");
+    }
+    ExitCode::SUCCESS
+}
+
+/// `build --fab`: the process plans kept by the model, their levels on the
+/// scene's nodes and their seams as lines, written to `output` (or `-`).
+fn write_fab(
+    model: &mut Model,
+    scene: &mut Scene,
+    glb: &GlbOptions,
+    (tolerance, output): (f64, &Path),
+    start: Instant,
+) -> ExitCode {
+    model.set_process_planning(Some(Arc::new(ShopRules::builtin())));
+    model.update();
+    let mut plans = Vec::new();
+    for vessel in &scene.vessels {
+        match (model.fab_plan(&vessel.tag), model.process_plan(&vessel.tag)) {
+            (Some(Ok(f)), Some(Ok(p))) => plans.push((f, p)),
+            (Some(Err(e)), _) | (_, Some(Err(e))) => {
+                eprintln!("warning: {}: no fabrication data: {e}", vessel.tag);
+            }
+            _ => {}
+        }
+    }
+    let process: Vec<&ProcessPlan> = plans.iter().map(|(_, p)| &**p).collect();
+    annotate_scene(scene, &process);
+    let seams: Vec<_> = plans
+        .iter()
+        .map(|(f, p)| (f.tag.clone(), seam_lines(f, p, tolerance)))
+        .collect();
+    let bytes = match write_glb_with(scene, glb).map(|b| add_seams(&b, &seams)) {
+        Ok(Ok(b)) => b,
+        Ok(Err(e)) => {
+            eprintln!("error: {}: {e}", output.display());
+            return ExitCode::from(2);
+        }
+        Err(e) => {
+            eprintln!("error: {e}");
+            return ExitCode::from(2);
+        }
+    };
+    let to_stdout = output.as_os_str() == "-";
+    let written = if to_stdout {
+        std::io::stdout().lock().write_all(&bytes)
+    } else {
+        std::fs::write(output, &bytes)
+    };
+    match written {
+        Ok(()) => {}
+        Err(e) if to_stdout && e.kind() == std::io::ErrorKind::BrokenPipe => {
+            return ExitCode::SUCCESS;
+        }
+        Err(e) => {
+            eprintln!("error: {}: {e}", output.display());
+            return ExitCode::from(2);
+        }
+    }
+    let summary = format!(
+        "{}: {} vessel(s) with fabrication data, {} seam(s), {} bytes, {:.0} ms",
+        if to_stdout {
+            "<stdout>".into()
+        } else {
+            output.display().to_string()
+        },
+        plans.len(),
+        seams.iter().map(|(_, s)| s.len()).sum::<usize>(),
+        bytes.len(),
         start.elapsed().as_secs_f64() * 1e3
     );
     if to_stdout {

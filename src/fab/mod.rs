@@ -22,7 +22,9 @@
 //! [`weld_prep`]), and its operations in precedence levels ([`operations`],
 //! [`levels`]) from the shop rules as data ([`shop_rules`],
 //! `data/shop_rules.json`); written as a traveler ([`traveler`]), a weld-map GLB
-//! ([`weld_glb`]) and sheet ([`weld_svg`]).
+//! ([`weld_glb`]) and sheet ([`weld_svg`]). `vesselcad build --fab` puts the
+//! levels on the main GLB's part and nozzle nodes ([`scene_levels`]) and the
+//! seams in it as lines ([`seam_glb`]).
 
 pub mod bom;
 pub mod develop;
@@ -38,6 +40,8 @@ pub mod plate_size;
 pub mod plates;
 pub mod process;
 pub mod process_files;
+pub mod scene_levels;
+pub mod seam_glb;
 pub mod seams;
 pub mod shop;
 pub mod shop_rules;

@@ -8,9 +8,8 @@
 //! `{weld, category, kind, length_mm, operation, level}` (the operation that
 //! makes it and its level), and the root node has `{kind: "weld_map", levels,
 //! operations: [{id, level, item}]}` — every operation of the plan. The main
-//! export (`src/export`) would need the same `operation`/`level` keys on its
-//! part and nozzle nodes to colour the vessel itself by level; it is left as
-//! it is here.
+//! GLB carries levels on its part and nozzle nodes and the seams as lines
+//! with `vesselcad build --fab` ([`super::scene_levels`], [`super::seam_glb`]).
 
 use std::f32::consts::FRAC_1_SQRT_2;
 
