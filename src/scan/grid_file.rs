@@ -16,6 +16,7 @@ use serde_json::json;
 
 use super::ScanError;
 use super::grid::{GridFit, Parametrization};
+use super::points::{bad, xyz_line};
 
 /// An ordered grid: `rows × columns` points, `points[i * columns + j]`.
 #[derive(Clone, Debug, PartialEq)]
@@ -26,14 +27,6 @@ pub struct Grid {
     pub rows: usize,
     /// Points per row (along v).
     pub columns: usize,
-}
-
-fn bad(path: &Path, line: u64, message: impl Into<String>) -> ScanError {
-    ScanError::Points {
-        path: path.to_path_buf(),
-        line,
-        message: message.into(),
-    }
 }
 
 /// Reads the grid of `path` (layout in the module's note).
@@ -70,35 +63,10 @@ pub fn parse_grid(path: &Path, text: &str) -> Result<Grid, ScanError> {
         if line.starts_with('#') || line.starts_with("//") {
             continue;
         }
-        let mut fields = line
-            .split(|c: char| c.is_whitespace() || c == ',' || c == ';')
-            .filter(|f| !f.is_empty())
-            .map(str::parse::<f64>);
-        let mut xyz = [0.0; 3];
-        let mut parsed = 0;
-        for slot in &mut xyz {
-            match fields.next() {
-                Some(Ok(v)) if v.is_finite() => {
-                    *slot = v;
-                    parsed += 1;
-                }
-                Some(Ok(v)) => {
-                    return Err(bad(path, number, format!("coordinate {v} is not finite")));
-                }
-                _ => break,
-            }
-        }
-        if parsed < 3 {
-            if !seen_data && parsed == 0 {
-                seen_data = true;
-                continue;
-            }
-            return Err(bad(
-                path,
-                number,
-                format!("expected three numbers x y z, found {line:?}"),
-            ));
-        }
+        let Some(point) = xyz_line(line, !seen_data).map_err(|m| bad(path, number, m))? else {
+            seen_data = true;
+            continue;
+        };
         seen_data = true;
         if !in_row {
             rows.push((number, 0));
@@ -107,7 +75,7 @@ pub fn parse_grid(path: &Path, text: &str) -> Result<Grid, ScanError> {
         if let Some(row) = rows.last_mut() {
             row.1 += 1;
         }
-        points.push(DVec3::from(xyz));
+        points.push(point);
     }
     let Some(&(first_line, columns)) = rows.first() else {
         return Err(bad(path, 1, "no points: a grid needs rows of x y z"));

@@ -115,7 +115,7 @@ pub fn load_points(path: &Path) -> Result<Vec<DVec3>, ScanError> {
     Ok(all)
 }
 
-fn bad(path: &Path, line: u64, message: impl Into<String>) -> ScanError {
+pub(super) fn bad(path: &Path, line: u64, message: impl Into<String>) -> ScanError {
     ScanError::Points {
         path: path.to_path_buf(),
         line,
@@ -138,37 +138,13 @@ fn read_xyz(
         if text.is_empty() || text.starts_with('#') || text.starts_with("//") {
             continue;
         }
-        let mut fields = text
-            .split(|c: char| c.is_whitespace() || c == ',' || c == ';')
-            .filter(|f| !f.is_empty());
-        let mut xyz = [0.0; 3];
-        let mut parsed = 0;
-        for slot in &mut xyz {
-            match fields.next().map(str::parse::<f64>) {
-                Some(Ok(v)) if v.is_finite() => {
-                    *slot = v;
-                    parsed += 1;
-                }
-                Some(Ok(v)) => {
-                    return Err(bad(path, number, format!("coordinate {v} is not finite")));
-                }
-                _ => break,
-            }
-        }
-        if parsed < 3 {
-            if !seen_data && parsed == 0 {
-                // One header line (column names) before the data.
-                seen_data = true;
-                continue;
-            }
-            return Err(bad(
-                path,
-                number,
-                format!("expected three numbers x y z, found {text:?}"),
-            ));
-        }
+        let Some(point) = xyz_line(text, !seen_data).map_err(|m| bad(path, number, m))? else {
+            // One header line (column names) before the data.
+            seen_data = true;
+            continue;
+        };
         seen_data = true;
-        chunk.push(DVec3::from(xyz));
+        chunk.push(point);
         count += 1;
         if chunk.len() == CHUNK {
             sink(&chunk);
@@ -179,6 +155,34 @@ fn read_xyz(
         sink(&chunk);
     }
     Ok(count)
+}
+
+/// One non-blank, non-comment line of an XYZ/CSV file: three numbers x y z
+/// split by spaces, commas, tabs or semicolons (more fields are ignored).
+/// `Ok(None)` for a line with no number when `header_allowed` (a header of
+/// column names before the data); otherwise a short line or a coordinate
+/// that is not finite is an error message.
+pub(super) fn xyz_line(text: &str, header_allowed: bool) -> Result<Option<DVec3>, String> {
+    let mut fields = text
+        .split(|c: char| c.is_whitespace() || c == ',' || c == ';')
+        .filter(|f| !f.is_empty());
+    let mut xyz = [0.0; 3];
+    let mut parsed = 0;
+    for slot in &mut xyz {
+        match fields.next().map(str::parse::<f64>) {
+            Some(Ok(v)) if v.is_finite() => {
+                *slot = v;
+                parsed += 1;
+            }
+            Some(Ok(v)) => return Err(format!("coordinate {v} is not finite")),
+            _ => break,
+        }
+    }
+    match parsed {
+        3 => Ok(Some(DVec3::from(xyz))),
+        0 if header_allowed => Ok(None),
+        _ => Err(format!("expected three numbers x y z, found {text:?}")),
+    }
 }
 
 /// A scalar PLY property type: its size in bytes and whether it is a float.
