@@ -353,7 +353,7 @@ fn weld_map_glb_passes_the_khronos_validator() {
     let plan = plan_process(&design, &design.vessels[0].tag, &ShopRules::builtin())
         .unwrap()
         .1;
-    let glb = vesselcad::fab::weld_glb::weld_glb(&plan, resolved[0].frame);
+    let glb = vesselcad::fab::weld_glb::weld_glb(&plan, resolved[0].frame).unwrap();
     let gltf = gltf::Gltf::from_slice(&glb).unwrap();
     let drawn = plan.welds.iter().filter(|w| w.path.len() >= 2).count();
     assert_eq!(gltf.meshes().count(), drawn);

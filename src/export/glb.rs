@@ -49,7 +49,17 @@ pub fn write_glb(scene: &Scene) -> Result<Vec<u8>, ExportError> {
 pub fn write_glb_with(scene: &Scene, options: &GlbOptions) -> Result<Vec<u8>, ExportError> {
     let document = document(scene, options)?;
     let json = document.json_bytes()?;
-    let bin = document.buffers.bin;
+    glb_container(&json, &document.buffers.bin)
+}
+
+/// The GLB container of a glTF JSON text and its binary buffer: the 12-byte
+/// header, the JSON chunk padded with spaces, and the BIN chunk (left out when
+/// `bin` is empty) padded with zeros. Every GLB vesselcad writes is framed here.
+///
+/// # Errors
+///
+/// [`ExportError::TooLarge`] past the format's 4 GiB.
+pub fn glb_container(json: &[u8], bin: &[u8]) -> Result<Vec<u8>, ExportError> {
     let json_len = padded(json.len());
     let bin_len = padded(bin.len());
     let mut total = HEADER_LEN + CHUNK_HEADER_LEN + json_len;
@@ -64,9 +74,9 @@ pub fn write_glb_with(scene: &Scene, options: &GlbOptions) -> Result<Vec<u8>, Ex
     for word in [MAGIC, VERSION, total_u32] {
         out.extend_from_slice(&word.to_le_bytes());
     }
-    push_chunk(&mut out, CHUNK_JSON, &json, json_len, b' ');
+    push_chunk(&mut out, CHUNK_JSON, json, json_len, b' ');
     if !bin.is_empty() {
-        push_chunk(&mut out, CHUNK_BIN, &bin, bin_len, 0);
+        push_chunk(&mut out, CHUNK_BIN, bin, bin_len, 0);
     }
     Ok(out)
 }

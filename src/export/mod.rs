@@ -37,7 +37,7 @@ pub use delta::{delta_scene, node_id, scene_ids, write_delta_glb};
 pub use direct::{build_scene, patch_name};
 pub use error::ExportError;
 pub use extras::{nozzle_extras, part_extras, vessel_extras};
-pub use glb::{write_glb, write_glb_to, write_glb_with};
+pub use glb::{glb_container, write_glb, write_glb_to, write_glb_with};
 pub use glb_options::{Compression, GlbOptions, quantization_budget};
 pub use glb_stream::{stream_glb, stream_glb_to, stream_glb_with, stream_glb_with_to};
 pub use gltf_document::{PLANT_NODE, PLANT_ROTATION};

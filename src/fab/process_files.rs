@@ -64,7 +64,13 @@ pub fn write_process_files(
         (format!("{tag}-bom.csv"), bom_csv(plan).into_bytes()),
         (format!("{tag}-welds.csv"), welds_csv(plan).into_bytes()),
         (format!("{tag}-welds.json"), welds_json.into_bytes()),
-        (format!("{tag}-welds.glb"), weld_glb(plan, frame)),
+        (
+            format!("{tag}-welds.glb"),
+            weld_glb(plan, frame).map_err(|e| PlanError::Io {
+                path: dir.join(format!("{tag}-welds.glb")).display().to_string(),
+                message: e.to_string(),
+            })?,
+        ),
         (format!("{tag}-weld-map.svg"), weld_svg(plan).into_bytes()),
         (
             format!("{tag}-process.json"),

@@ -222,7 +222,8 @@ pub fn add_seams(glb: &[u8], seams: &[(String, Vec<SeamLine>)]) -> Result<Vec<u8
             None => doc["buffers"] = json!([{"byteLength": bin.len()}]),
         }
     }
-    container(&serde_json::to_vec(&doc)?, &bin)
+    crate::export::glb_container(&serde_json::to_vec(&doc)?, &bin)
+        .map_err(|_| SeamGlbError::TooLarge)
 }
 
 /// Appends `value` to the array `key` of `doc`; returns its index.
@@ -267,28 +268,4 @@ fn split(glb: &[u8]) -> Result<(Value, Vec<u8>), SeamGlbError> {
         Vec::new()
     };
     Ok((doc, bin))
-}
-
-/// The GLB container of `json` and `bin`.
-fn container(json: &[u8], bin: &[u8]) -> Result<Vec<u8>, SeamGlbError> {
-    let pad = |n: usize| n.div_ceil(4) * 4;
-    let (jl, bl) = (pad(json.len()), pad(bin.len()));
-    let total = 12 + 8 + jl + if bin.is_empty() { 0 } else { 8 + bl };
-    let total32 = u32::try_from(total).map_err(|_| SeamGlbError::TooLarge)?;
-    let mut out = Vec::with_capacity(total);
-    let word = |out: &mut Vec<u8>, w: u32| out.extend_from_slice(&w.to_le_bytes());
-    word(&mut out, 0x4654_6C67);
-    word(&mut out, 2);
-    word(&mut out, total32);
-    word(&mut out, jl as u32);
-    word(&mut out, 0x4E4F_534A);
-    out.extend_from_slice(json);
-    out.resize(20 + jl, b' ');
-    if !bin.is_empty() {
-        word(&mut out, bl as u32);
-        word(&mut out, 0x004E_4942);
-        out.extend_from_slice(bin);
-        out.resize(total, 0);
-    }
-    Ok(out)
 }

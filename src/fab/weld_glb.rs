@@ -11,6 +11,7 @@
 //! GLB carries levels on its part and nozzle nodes and the seams as lines
 //! with `vesselcad build --fab` ([`super::scene_levels`], [`super::seam_glb`]).
 
+use crate::export::{ExportError, glb_container};
 use std::f32::consts::FRAC_1_SQRT_2;
 
 use glam::DAffine3;
@@ -65,7 +66,11 @@ fn raw(v: &serde_json::Value) -> Option<Box<serde_json::value::RawValue>> {
 
 /// The weld map of `plan` as GLB bytes; `frame` maps the vessel frame into
 /// the plant frame.
-pub fn weld_glb(plan: &ProcessPlan, frame: DAffine3) -> Vec<u8> {
+///
+/// # Errors
+///
+/// [`ExportError::TooLarge`] past the format's 4 GiB.
+pub fn weld_glb(plan: &ProcessPlan, frame: DAffine3) -> Result<Vec<u8>, ExportError> {
     let mut root = json::Root {
         asset: json::Asset {
             generator: Some(format!("vesselcad {} weld map", env!("CARGO_PKG_VERSION"))),
@@ -213,27 +218,4 @@ pub fn weld_glb(plan: &ProcessPlan, frame: DAffine3) -> Vec<u8> {
     }
     let text = serde_json::to_vec(&root).unwrap_or_default();
     glb_container(&text, &bin)
-}
-
-/// The GLB container: header, JSON chunk (space-padded), BIN chunk.
-fn glb_container(json: &[u8], bin: &[u8]) -> Vec<u8> {
-    let pad = |n: usize| n.div_ceil(4) * 4;
-    let (jl, bl) = (pad(json.len()), pad(bin.len()));
-    let total = 12 + 8 + jl + if bin.is_empty() { 0 } else { 8 + bl };
-    let mut out = Vec::with_capacity(total);
-    let word = |out: &mut Vec<u8>, w: u32| out.extend_from_slice(&w.to_le_bytes());
-    word(&mut out, 0x4654_6C67);
-    word(&mut out, 2);
-    word(&mut out, total as u32);
-    word(&mut out, jl as u32);
-    word(&mut out, 0x4E4F_534A);
-    out.extend_from_slice(json);
-    out.resize(20 + jl, b' ');
-    if !bin.is_empty() {
-        word(&mut out, bl as u32);
-        word(&mut out, 0x004E_4942);
-        out.extend_from_slice(bin);
-        out.resize(total, 0);
-    }
-    out
 }
