@@ -90,7 +90,8 @@ pub struct SimulateArgs {
     /// Write PLY as ASCII (binary otherwise).
     #[arg(long)]
     ascii: bool,
-    /// Output: `.ply` (PLY), anything else XYZ text.
+    /// Output: `.ply` (PLY), `.las` (LAS 1.2), `.laz` (compressed LAS),
+    /// anything else XYZ text.
     #[arg(short, long)]
     output: PathBuf,
 }
@@ -103,7 +104,7 @@ pub struct FitArgs {
     /// The vessel scanned.
     #[arg(long)]
     vessel: String,
-    /// The scan: XYZ/CSV text or PLY (ASCII or binary).
+    /// The scan: XYZ/CSV text, PLY (ASCII or binary), LAS or LAZ; mm.
     points: PathBuf,
     /// The HTML report.
     #[arg(short, long)]

@@ -2,7 +2,7 @@
 //! design surfaces, part by part, in the vessel's own coordinates.
 //!
 //! ```text
-//! points (XYZ/CSV, PLY; streamed) ──▶ register (ICP on the exact NURBS, trimmed)
+//! points (XYZ/CSV, PLY, LAS/LAZ; streamed) ──▶ register (ICP on the exact NURBS, trimmed)
 //!   ──▶ project (point inversion: part, patch, u, v, signed normal deviation)
 //!   ──▶ fit (least-squares NURBS per patch with smoothing, net grown to the noise;
 //!       or, for an ordered CMM grid, exact interpolation: `grid`)
@@ -16,6 +16,7 @@
 mod band;
 mod envelope;
 mod error;
+mod las_file;
 mod profile;
 mod project;
 mod random;

@@ -1,5 +1,6 @@
-//! Scan point files, streamed: XYZ / CSV text and PLY (ASCII, binary little- and
-//! big-endian), read in chunks handed to a callback and written from a slice.
+//! Scan point files, streamed: XYZ / CSV text, PLY (ASCII, binary little- and
+//! big-endian) and LAS/LAZ (through `las_file`), read in chunks handed to a
+//! callback and written from a slice.
 //!
 //! The PLY reader is our own (about a hundred lines): the `ply-rs` crate parses
 //! a whole file into maps of properties per vertex, which for a scan of millions
@@ -14,6 +15,7 @@ use std::path::Path;
 use glam::DVec3;
 
 use super::ScanError;
+use super::las_file::{MAGIC, read_las, write_las};
 
 /// Points handed to the callback at a time.
 pub const CHUNK: usize = 65_536;
@@ -28,37 +30,49 @@ pub enum PointFormat {
     PlyAscii,
     /// PLY, binary little-endian (the default for `.ply`).
     PlyBinary,
+    /// ASPRS LAS 1.2, point format 0 (`.las`).
+    Las,
+    /// LAZ, compressed LAS (`.laz`).
+    Laz,
 }
 
 impl PointFormat {
-    /// The format a file name's extension implies (`.ply` binary, else text).
+    /// The format a file name's extension implies (`.ply` binary unless
+    /// `ascii`, `.las`, `.laz`, else XYZ text).
     pub fn of_path(path: &Path, ascii: bool) -> Self {
-        let ply = path
+        let ext = path
             .extension()
-            .is_some_and(|e| e.eq_ignore_ascii_case("ply"));
-        match (ply, ascii) {
-            (true, true) => PointFormat::PlyAscii,
-            (true, false) => PointFormat::PlyBinary,
+            .map(|e| e.to_string_lossy().to_ascii_lowercase());
+        match (ext.as_deref(), ascii) {
+            (Some("ply"), true) => PointFormat::PlyAscii,
+            (Some("ply"), false) => PointFormat::PlyBinary,
+            (Some("las"), _) => PointFormat::Las,
+            (Some("laz"), _) => PointFormat::Laz,
             _ => PointFormat::Xyz,
         }
     }
 }
 
-/// Writes `points` to `path` in `format` (mm, six decimals in text).
+/// Writes `points` to `path` in `format` (mm, six decimals in text, 0.001 mm
+/// steps in LAS/LAZ).
 ///
 /// # Errors
 ///
 /// [`ScanError::Io`] when the file cannot be written.
 pub fn write_points(path: &Path, format: PointFormat, points: &[DVec3]) -> Result<(), ScanError> {
     let io = |e| ScanError::io(path, e);
-    let mut out = BufWriter::new(File::create(path).map_err(io)?);
+    let mut out = match format {
+        PointFormat::Las => return write_las(path, points, false),
+        PointFormat::Laz => return write_las(path, points, true),
+        _ => BufWriter::new(File::create(path).map_err(io)?),
+    };
     match format {
         PointFormat::Xyz => {
             for p in points {
                 writeln!(out, "{:.6} {:.6} {:.6}", p.x, p.y, p.z).map_err(io)?;
             }
         }
-        PointFormat::PlyAscii | PointFormat::PlyBinary => {
+        _ => {
             let kind = if format == PointFormat::PlyAscii {
                 "ascii"
             } else {
@@ -86,7 +100,8 @@ pub fn write_points(path: &Path, format: PointFormat, points: &[DVec3]) -> Resul
 }
 
 /// Reads the points of `path` (format from its content: PLY by its magic line,
-/// else XYZ/CSV), handing them to `sink` in chunks of at most [`CHUNK`].
+/// LAS/LAZ by `LASF`, else XYZ/CSV), handing them to `sink` in chunks of at
+/// most [`CHUNK`].
 /// Returns the number of points read.
 ///
 /// # Errors
@@ -99,6 +114,9 @@ pub fn read_points(path: &Path, mut sink: impl FnMut(&[DVec3])) -> Result<u64, S
     let head = reader.fill_buf().map_err(|e| ScanError::io(path, e))?;
     if head.starts_with(b"ply") {
         read_ply(path, reader, &mut sink)
+    } else if head.starts_with(MAGIC) {
+        drop(reader);
+        read_las(path, &mut sink)
     } else {
         read_xyz(path, reader, &mut sink)
     }
