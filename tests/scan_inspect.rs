@@ -182,9 +182,8 @@ fn tank_settlement_is_fitted_by_a_cosine() {
 fn out_of_plane_settlement_past_the_api_653_allowable_is_flagged() {
     // A local sag of the shell's bottom edge at a station (45°: the stations
     // are every 45° from 0) pulls it down out of the cosine's plane.
-    // In plant coordinates: registered from a site frame, this scan (seed 15,
-    // at 200 and 1000 points/m²) is turned 132–137° wrong about the axis by the
-    // levelled ICP (RMS 8.5 mm), which then reads the sag and the cosine there.
+    // Registered from its site frame: this scan (seed 15) used to register
+    // 140 mm low and 132–137° wrong about the axis (tests/scan_register).
     let env = envelope(TANK);
     let station = 45.0;
     let points = simulate(
@@ -194,7 +193,7 @@ fn out_of_plane_settlement_past_the_api_653_allowable_is_flagged() {
             noise: 1.5,
             occlusion: 0.2,
             seed: 15,
-            site: None,
+            site: Some(SiteTransform::from_seed(15)),
             defects: parse_defects(
                 &format!("settlement=cosine:30mm@200°,sag=25mm@{station}°/3000mm"),
                 &env,
@@ -204,15 +203,7 @@ fn out_of_plane_settlement_past_the_api_653_allowable_is_flagged() {
     )
     .unwrap()
     .points;
-    let options = InspectOptions {
-        register: None,
-        fit: FitOptions {
-            noise: 1.5,
-            ..FitOptions::DEFAULT
-        },
-        ..InspectOptions::DEFAULT
-    };
-    let i = inspect(&env, points, &options).unwrap();
+    let i = inspected(&env, points);
     let s = i.checks.settlement.as_ref().expect("a settlement fit");
     let f = find(&i.checks.findings, "out_of_plane_settlement", "TK-1");
     assert!(f.exceeds, "{f:?}");

@@ -16,6 +16,7 @@
 mod band;
 mod envelope;
 mod error;
+mod features;
 mod las_file;
 mod profile;
 mod project;
