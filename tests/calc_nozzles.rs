@@ -74,10 +74,15 @@ fn b16_5_refuses_what_it_does_not_know() {
         e.contains("temperature = 540") && e.contains("-29 to 538"),
         "{e}"
     );
-    let e = rating("2.1", FlangeClass::C150, 100.0)
+    let e = rating("1.2", FlangeClass::C150, 100.0)
         .unwrap_err()
         .to_string();
-    assert!(e.contains("group 2.1") && e.contains("Tables 2-1.1"), "{e}");
+    assert!(e.contains("group 1.2") && e.contains("Tables 2-1.1"), "{e}");
+    // Group 2.1 is shipped to 300 °C only.
+    let e = rating("2.1", FlangeClass::C150, 325.0)
+        .unwrap_err()
+        .to_string();
+    assert!(e.contains("Table 2-2.1 is shipped for -29 to 300"), "{e}");
     // Groups 2.2 and 2.3 are shipped to 300 °C only.
     let e = rating("2.2", FlangeClass::C300, 325.0)
         .unwrap_err()
@@ -341,4 +346,32 @@ fn a_hydrotest_above_a_flange_s_shell_test_is_a_deficiency() {
             c.vessel.deficiencies
         );
     }
+}
+
+/// B16.5 Table 2-2.1 (Group 2.1, A182 F304 / A240 304), bar, as the public data
+/// file cited in `flange::SOURCE` prints it: Class 150 at −29 to 38 °C 19.0
+/// (275 psig, the same as Group 2.2), 100 °C 15.7, 300 °C 10.2; Class 300 at
+/// 38 °C 49.6 (720 psig), 50 °C 47.8, 200 °C 34.5; Class 600 at 150 °C 74.0;
+/// Class 900 at 250 °C 97.5. Interpolated at 75 °C, Class 300:
+/// 47.8 + (25/50)·(40.9 − 47.8) = 44.35 bar. A 304 vessel's flanges are rated.
+#[test]
+fn b16_5_group_2_1() {
+    let bar = |c, t| rating("2.1", c, t).unwrap() * 10.0;
+    close(bar(FlangeClass::C150, 38.0), 19.0, 1e-12);
+    close(bar(FlangeClass::C150, 100.0), 15.7, 1e-12);
+    close(bar(FlangeClass::C150, 300.0), 10.2, 1e-12);
+    close(bar(FlangeClass::C300, -29.0), 49.6, 1e-12);
+    close(bar(FlangeClass::C300, 50.0), 47.8, 1e-12);
+    close(bar(FlangeClass::C300, 200.0), 34.5, 1e-12);
+    close(bar(FlangeClass::C600, 150.0), 74.0, 1e-12);
+    close(bar(FlangeClass::C900, 250.0), 97.5, 1e-12);
+    close(bar(FlangeClass::C300, 75.0), 44.35, 1e-12);
+    for t in [38.0, 50.0, 100.0, 150.0, 200.0, 250.0, 300.0] {
+        let r: Vec<f64> = FlangeClass::ALL.iter().map(|&c| bar(c, t)).collect();
+        assert!(r.windows(2).all(|w| w[0] < w[1]), "{t} °C: {r:?}");
+    }
+    let f = flange_rating("N1", FlangeClass::C150, "2.1", 1.0, 100.0).unwrap();
+    close(f.rating, 1.57, 1e-12);
+    close(f.test_limit, 1.5 * 1.9, 1e-12);
+    assert!(f.deficiency.is_none());
 }

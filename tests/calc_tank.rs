@@ -219,3 +219,165 @@ fn bottom_and_roof_plates() {
         c.vessel.deficiencies
     );
 }
+
+/// Table 5.1a against ITSdesign's published question (itsdesign.blogspot.com,
+/// 10 Dec 2012, "Annular Ring Thickness Calculations"): a 45 mm first course,
+/// product stress 220 MPa, hydrotest stress 240 MPa, CA 1 mm. The fifth row
+/// gives 16 mm at ≤ 220 MPa and 19 mm at ≤ 250 MPa; Note b takes the greater
+/// stress (240 → the 250 column, 19 mm) and 5.5.3 adds the CA: 19 + 1 = 20 mm
+/// ("you will always be using" the test column plus CA, their reply).
+/// Width, hand calculation with H = 20 m, G = 1:
+/// L = 215 · 20 / √20 = 4300 / 4.472 136 = 961.51 mm.
+#[test]
+fn annular_plate_thickness_reproduces_itsdesign_example() {
+    use vesselcad::calc::annular::{FirstCourse, annular, table_thickness};
+    assert_eq!(table_thickness(45.0, 220.0).unwrap(), 16.0);
+    assert_eq!(table_thickness(45.0, 240.0).unwrap(), 19.0);
+    // The same through 5.5.3: t_d = 45 with Sd = 220 gives (45 − 1)/(45 − 1)·220
+    // = 220 MPa; t_t = 45 with St = 240 gives 240 MPa.
+    let course = FirstCourse {
+        thickness: 45.0,
+        design: 45.0,
+        test: 45.0,
+        corrosion_allowance: 1.0,
+        design_stress: 220.0,
+        test_stress: 240.0,
+        level: 20.0,
+        gravity: 1.0,
+    };
+    let a = annular(&course, Some("IV")).unwrap();
+    close(a.product_stress, 220.0, 1e-9);
+    close(a.test_stress, 240.0, 1e-9);
+    assert_eq!((a.table_thickness, a.thickness), (19.0, 20.0));
+    close(a.width_formula, 961.51, 0.01);
+    close(a.width, 961.51, 0.01);
+    // 5.5.1: Group IV above 160 and 171 MPa needs annular plates.
+    assert_eq!(a.required, Some(true), "{}", a.reason);
+}
+
+/// Table 5.1a Note b's stresses on JStephen's published example (eng-tips
+/// thread 457258, 2019): t = 1.00 in, CA = 0.06 in, t_d = 0.95 in, t_t = 0.82 in:
+/// product stress = (0.95 − 0.06)/0.94 · Sd = 0.946 809 · Sd; hydrostatic
+/// stress = 0.82/1.00 · St. Dimensionless, so taken in mm with Sd = St = 100.
+#[test]
+fn first_course_stresses_follow_table_5_1a_note_b() {
+    use vesselcad::calc::annular::{FirstCourse, course_stresses};
+    let c = FirstCourse {
+        thickness: 1.00,
+        design: 0.95,
+        test: 0.82,
+        corrosion_allowance: 0.06,
+        design_stress: 100.0,
+        test_stress: 100.0,
+        level: 10.0,
+        gravity: 1.0,
+    };
+    let (p, t) = course_stresses(&c).unwrap();
+    close(p, 94.680_85, 1e-4);
+    close(t, 82.0, 1e-9);
+}
+
+/// 5.5.1's cases and the table's reach, hand figures: a 19 mm course at
+/// exactly 190 MPa is row 1, column 1 (6 mm); 19.01 mm at 190.01 MPa row 2,
+/// column 2 (7 mm); 600 mm governs when L is smaller.
+#[test]
+fn annular_plates_required_and_out_of_scope() {
+    use vesselcad::calc::annular::{FirstCourse, annular, table_thickness};
+    assert_eq!(table_thickness(19.0, 190.0).unwrap(), 6.0);
+    assert_eq!(table_thickness(19.01, 190.01).unwrap(), 7.0);
+    assert_eq!(table_thickness(33.0, 200.0).unwrap(), 11.0);
+    let e = table_thickness(46.0, 200.0).unwrap_err().to_string();
+    assert!(e.contains("5.5.3") && e.contains("46"), "{e}");
+    let e = table_thickness(20.0, 251.0).unwrap_err().to_string();
+    assert!(e.contains("251.0"), "{e}");
+    // A 20 mm course, t_d = 18 (CA 2: (16/18)·173 = 153.78 MPa ≤ 160) and
+    // t_t = 19 (19/20 · 195 = 185.25 MPa): lap-welded bottom permitted in Group IV.
+    let c = FirstCourse {
+        thickness: 20.0,
+        design: 18.0,
+        test: 19.0,
+        corrosion_allowance: 2.0,
+        design_stress: 173.0,
+        test_stress: 195.0,
+        level: 15.0,
+        gravity: 0.9,
+    };
+    let a = annular(&c, Some("IV")).unwrap();
+    close(a.product_stress, 153.777_78, 1e-4);
+    close(a.test_stress, 185.25, 1e-9);
+    assert_eq!(a.required, Some(false), "{}", a.reason);
+    // Row 19 < t ≤ 25, column ≤ 190: 6 mm + CA 2 = 8 mm; L = 1720/3.674 235 =
+    // 468.12 mm < 600 mm.
+    assert_eq!(a.thickness, 8.0);
+    close(a.width_formula, 468.12, 0.01);
+    assert_eq!(a.width, 600.0);
+    // t_d = 20 (product 173 MPa) too: both limits exceeded, required.
+    let hot = FirstCourse { design: 20.0, ..c };
+    assert_eq!(annular(&hot, Some("V")).unwrap().required, Some(true));
+    assert_eq!(annular(&hot, Some("III")).unwrap().required, Some(false));
+    assert_eq!(annular(&hot, None).unwrap().required, None);
+    // H·G above 23 m is outside the table (5.5.3).
+    let tall = FirstCourse {
+        level: 24.0,
+        gravity: 1.0,
+        ..c
+    };
+    let e = annular(&tall, Some("IV")).unwrap_err().to_string();
+    assert!(e.contains("5.5.3") && e.contains("24.00"), "{e}");
+    let bad = FirstCourse {
+        thickness: -1.0,
+        ..c
+    };
+    let e = annular(&bad, Some("IV")).unwrap_err().to_string();
+    assert!(e.contains("thickness") && e.contains("-1"), "{e}");
+}
+
+/// The example tank TK-301 (A283-C, Group I; first course 10 mm, CA 1.5,
+/// t_d 3.986 23, t_t 2.211 78, Sd 137, St 154, H 9 m, G 1), hand calculation:
+///   product stress = (3.986 23 − 1.5)/(10 − 1.5) · 137 = 40.072 MPa
+///   test stress = 2.211 78/10 · 154 = 34.061 MPa
+///   Table 5.1a row t ≤ 19, column ≤ 190: 6 mm; + CA: 7.5 mm
+///   L = 215 · 7.5 / √9 = 537.5 mm → 600 mm; Group I: not required.
+/// Live and pure agree (the tank test above compares whole calculations), and
+/// the report shows the table.
+#[test]
+fn the_example_tank_reports_its_annular_plates() {
+    use vesselcad::calc::html::{ReportVessel, html};
+    assert_eq!(
+        MaterialTable::builtin()
+            .get("SA-516-70")
+            .unwrap()
+            .api650_group
+            .as_ref()
+            .map(|g| g.value.as_str()),
+        Some("IV")
+    );
+    let d = example("storage-tank");
+    let resolved = design::resolve(&d).unwrap();
+    let c = calculate(&d.vessels[0], &resolved[0], &MaterialTable::builtin());
+    let a = c.vessel.annular.as_ref().unwrap().as_ref().unwrap();
+    close(a.product_stress, 40.0722, 1e-3);
+    close(a.test_stress, 34.0614, 1e-3);
+    assert_eq!((a.table_thickness, a.thickness), (6.0, 7.5));
+    close(a.width_formula, 537.5, 1e-3);
+    assert_eq!(a.width, 600.0);
+    assert_eq!(a.required, Some(false), "{}", a.reason);
+    assert!(a.reason.contains("Group I"), "{}", a.reason);
+    let page = html(
+        "storage-tank",
+        &[ReportVessel {
+            design: &d.vessels[0],
+            calculation: &c,
+            weights: Err("not needed".into()),
+        }],
+    );
+    assert!(page.contains("Annular bottom plates (API 650 5.5)"));
+    assert!(page.contains("215·t_b/(H·G)^0.5"));
+    let json = serde_json::to_value(&c.vessel).unwrap();
+    assert_eq!(json["annular"]["Ok"]["thickness"], 7.5);
+    // A pressure vessel has no annular figures.
+    let drum = example("horizontal-drum");
+    let r = design::resolve(&drum).unwrap();
+    let c = calculate(&drum.vessels[0], &r[0], &MaterialTable::builtin());
+    assert!(c.vessel.annular.is_none());
+}

@@ -185,7 +185,7 @@ pub fn plate(
             shape: "tank bottom plate",
             required: BOTTOM_MINIMUM + ca,
             paragraph: "API 650 5.4.1",
-            formula: "t = 6 mm + CA (annular plates, 5.5, not assessed)",
+            formula: "t = 6 mm + CA (annular plates: 5.5, with the vessel figures)",
             self_supporting: None,
         });
     }

@@ -55,6 +55,8 @@ pub struct Conditions {
     pub flange_group: Option<String>,
     /// The material's Fig. UCS-66 curve letter, when it is a Part UCS material.
     pub ucs66_curve: Option<String>,
+    /// The material's API 650 Table 4.4a group, for a tank (5.5.1).
+    pub api650_group: Option<String>,
     /// External design pressure, MPa (0 when the design gives none).
     pub external_pressure: f64,
     /// Specified minimum yield strength, MPa (the elastic limit of UG-28).
@@ -121,6 +123,7 @@ pub fn conditions(
         stress_source: material.allowable_stress.source.clone(),
         flange_group: material.b16_5_group.as_ref().map(|g| g.value.clone()),
         ucs66_curve: material.ucs66_curve.as_ref().map(|g| g.value.clone()),
+        api650_group: None,
         external_pressure: external * 1e-3,
         yield_strength: material.yield_strength.value,
         modulus: material.modulus.value,
@@ -169,6 +172,7 @@ fn tank_conditions(design: &DesignConditions, table: &MaterialTable) -> Result<C
         ),
         flange_group: None,
         ucs66_curve: None,
+        api650_group: material.api650_group.as_ref().map(|g| g.value.clone()),
         external_pressure: 0.0,
         yield_strength: material.yield_strength.value,
         modulus: material.modulus.value,

@@ -111,3 +111,66 @@ pub fn ellipsoidal_ro(do_: f64, ratio: f64) -> Result<f64, String> {
     }
     Ok(0.9 * do_)
 }
+
+/// The elastic-line check at the thickness a `required_*` function found.
+fn check_elastic(a: f64, e: f64, sy: f64, what: &str) -> Result<(), String> {
+    elastic_b(a, e, sy)
+        .map(|_| ())
+        .map_err(|why| format!("{what}: the required thickness is outside the elastic line: {why}"))
+}
+
+/// UG-28(c)(1) inverted: the corroded wall a cylinder of outside diameter `do_`
+/// and unsupported length `l` (mm) needs to carry external pressure `p` MPa,
+/// mm, found by bisection on the (increasing) allowable pressure to 1e-9 of
+/// `do_`; an error when it is thicker than Do/10 or outside the elastic line.
+pub fn required_cylinder(do_: f64, l: f64, e: f64, sy: f64, p: f64) -> Result<f64, String> {
+    if !(do_ > 0.0 && l > 0.0 && p > 0.0 && e > 0.0) {
+        return Err(format!(
+            "UG-28: Do = {do_}, L = {l} mm, P = {p} MPa, E = {e} MPa must be > 0"
+        ));
+    }
+    let allowable = |t: f64| 4.0 * cylinder_factor_a(do_, t, l) * e / 2.0 / (3.0 * do_ / t);
+    let (mut lo, mut hi) = (0.0, do_ / 10.0);
+    if allowable(hi) < p {
+        return Err(format!(
+            "UG-28(c)(2): {p} MPa would need a wall thicker than Do/10 = {hi:.2} mm"
+        ));
+    }
+    while hi - lo > 1e-9 * do_ {
+        let mid = 0.5 * (lo + hi);
+        if allowable(mid) < p {
+            lo = mid
+        } else {
+            hi = mid
+        }
+    }
+    check_elastic(cylinder_factor_a(do_, hi, l), e, sy, "UG-28")?;
+    Ok(hi)
+}
+
+/// UG-28(c)(1) for a cylinder of any length, the long-cylinder branch
+/// A = 1.1·(t/Do)² (the least A, so the thickest wall, of every length):
+/// Pa = (2.2/3)·E·(t/Do)³ gives t = Do·(3·P/(2.2·E))^(1/3), mm.
+pub fn required_long_cylinder(do_: f64, e: f64, sy: f64, p: f64) -> Result<f64, String> {
+    if !(do_ > 0.0 && p > 0.0 && e > 0.0) {
+        return Err(format!(
+            "UG-28: Do = {do_} mm, P = {p} MPa, E = {e} MPa must be > 0"
+        ));
+    }
+    let t = do_ * (3.0 * p / (2.2 * e)).cbrt();
+    check_elastic(1.1 * (t / do_).powi(2), e, sy, "UG-28")?;
+    Ok(t)
+}
+
+/// UG-33 inverted for a head of outside crown radius `ro` mm: in the elastic
+/// range Pa = B/(Ro/t) = 0.0625·E·(t/Ro)², so t = 4·Ro·(P/E)^0.5, mm.
+pub fn required_head(ro: f64, e: f64, sy: f64, p: f64) -> Result<f64, String> {
+    if !(ro > 0.0 && p > 0.0 && e > 0.0) {
+        return Err(format!(
+            "UG-33: Ro = {ro} mm, P = {p} MPa, E = {e} MPa must be > 0"
+        ));
+    }
+    let t = 4.0 * ro * (p / e).sqrt();
+    check_elastic(0.125 * t / ro, e, sy, "UG-33")?;
+    Ok(t)
+}

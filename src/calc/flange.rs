@@ -7,13 +7,14 @@
 //!
 //! Shipped: Table 2-1.1 (Group 1.1: A105, A350 LF2, A216 WCB, A515-70, A516-70)
 //! of ASME B16.5-2009/-2013 in bar, the same values B16.34-2013 Table 2-1.1 lists
-//! for the standard class; and Tables 2-2.2 (Group 2.2: A182 F316, A240 316) and
+//! for the standard class; Table 2-2.1 (Group 2.1: A182 F304, A240 304) from −29
+//! to 300 °C as a public data file reproduces it ([`SOURCE`]); and Tables 2-2.2 (Group 2.2: A182 F316, A240 316) and
 //! 2-2.3 (Group 2.3: A182 F304L/F316L, A240 304L/316L) of the same edition from
 //! −29 to 300 °C, the rows published alike by flange makers and by public
 //! engineering tables (cross-read against a public data file citing them; the
 //! 38 °C values are the well-known 275/720/1440/2160 psi of 316 and 230/600/1200/
-//! 1800 psi of 316L). Above 300 °C those two groups and every other group
-//! (1.2, 2.1, …) are not shipped: their flanges are reported as not rated, never
+//! 1800 psi of 316L). Above 300 °C those three groups and every other group
+//! (1.2, …) are not shipped: their flanges are reported as not rated, never
 //! guessed.
 
 use serde::Serialize;
@@ -47,6 +48,16 @@ const GROUP_1_1: [[f64; 17]; 4] = [
     ],
 ];
 
+/// Group 2.1 (304) working pressures, bar, Class 150, 300, 600, 900, at the first
+/// eight [`TEMPERATURES`] (−29 to 300 °C): B16.5 Table 2-2.1 as a public data file
+/// reproduces it (see [`SOURCE`]).
+const GROUP_2_1: [[f64; 8]; 4] = [
+    [19.0, 19.0, 18.3, 15.7, 14.2, 13.2, 12.1, 10.2],
+    [49.6, 49.6, 47.8, 40.9, 37.0, 34.5, 32.5, 30.9],
+    [99.3, 99.3, 95.6, 81.7, 74.0, 69.0, 65.0, 61.8],
+    [148.9, 148.9, 143.5, 122.6, 111.0, 103.4, 97.5, 92.7],
+];
+
 /// Group 2.2 (316) working pressures, bar, Class 150, 300, 600, 900, at the first
 /// eight [`TEMPERATURES`] (−29 to 300 °C).
 const GROUP_2_2: [[f64; 8]; 4] = [
@@ -65,9 +76,13 @@ const GROUP_2_3: [[f64; 8]; 4] = [
 ];
 
 /// Where the shipped ratings come from.
-pub const SOURCE: &str = "ASME B16.5-2009/-2013 Tables 2-1.1 (Group 1.1, −29 to 538 °C), 2-2.2 \
-    and 2-2.3 (Groups 2.2 and 2.3, −29 to 300 °C), standard class, bar; Table 2-1.1 \
-    identical to ASME B16.34-2013 Table 2-1.1 as published by valve makers";
+pub const SOURCE: &str = "ASME B16.5-2009/-2013 Tables 2-1.1 (Group 1.1, −29 to 538 °C), 2-2.1, \
+    2-2.2 and 2-2.3 (Groups 2.1, 2.2 and 2.3, −29 to 300 °C), standard class, bar; Table 2-1.1 \
+    identical to ASME B16.34-2013 Table 2-1.1 as published by valve makers; Table 2-2.1 as a \
+    public flange-rating data file on GitHub reproduces it (a TypeScript table stating \
+    B16.5-2020 Table 2-2.1, whose Group 1.1 rows equal the Table 2-1.1 shipped here; the \
+    same file gives Group 1.2 the Group 1.1 values, which B16.5 does not, so 1.2 is not \
+    taken from it)";
 
 /// The class's number, e.g. 150.
 pub fn class_number(class: FlangeClass) -> u32 {
@@ -91,6 +106,7 @@ pub fn rating(group: &str, class: FlangeClass, temperature: f64) -> Result<f64, 
     };
     let (row, table): (&[f64], &str) = match group {
         "1.1" => (&GROUP_1_1[k], "Table 2-1.1"),
+        "2.1" => (&GROUP_2_1[k], "Table 2-2.1"),
         "2.2" => (&GROUP_2_2[k], "Table 2-2.2"),
         "2.3" => (&GROUP_2_3[k], "Table 2-2.3"),
         _ => {
@@ -98,8 +114,8 @@ pub fn rating(group: &str, class: FlangeClass, temperature: f64) -> Result<f64, 
                 entity: format!("B16.5 group {group}"),
                 field: "group".into(),
                 value: f64::NAN,
-                rule: "only the Group 1.1, 2.2 and 2.3 rating tables (Tables 2-1.1, 2-2.2, \
-                       2-2.3) are shipped"
+                rule: "only the Group 1.1, 2.1, 2.2 and 2.3 rating tables (Tables 2-1.1, \
+                       2-2.1, 2-2.2, 2-2.3) are shipped"
                     .into(),
             });
         }

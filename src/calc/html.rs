@@ -227,35 +227,36 @@ fn vessel(o: &mut String, v: &ReportVessel) {
                 "B16.5",
             ],
         );
+        let areas = |r: &super::Reinforcement| {
+            let mut cells: Vec<String> = [r.d, r.t, r.tr, r.tn, r.trn, r.te]
+                .iter()
+                .map(|x| format!("{x:.2}"))
+                .collect();
+            cells.extend(
+                [
+                    r.a_required,
+                    r.a1,
+                    r.a2,
+                    r.a41,
+                    r.a42,
+                    r.a5,
+                    r.a_available,
+                    r.margin,
+                ]
+                .iter()
+                .map(|x| format!("{x:.0}")),
+            );
+            cells.push(match (r.exempt, r.deficient()) {
+                (Some(e), _) => format!("exempt: {e}"),
+                (None, true) => format!("{}: DEFICIENT", r.paragraph),
+                (None, false) => format!("{}: OK", r.paragraph),
+            });
+            cells
+        };
         for n in &v.calculation.nozzles {
             let mut cells = vec![n.mark.clone()];
             match &n.reinforcement {
-                Some(r) => {
-                    cells.extend(
-                        [r.d, r.t, r.tr, r.tn, r.trn, r.te]
-                            .iter()
-                            .map(|x| format!("{x:.2}")),
-                    );
-                    cells.extend(
-                        [
-                            r.a_required,
-                            r.a1,
-                            r.a2,
-                            r.a41,
-                            r.a42,
-                            r.a5,
-                            r.a_available,
-                            r.margin,
-                        ]
-                        .iter()
-                        .map(|x| format!("{x:.0}")),
-                    );
-                    cells.push(match (r.exempt, r.deficient()) {
-                        (Some(e), _) => format!("exempt: {e}"),
-                        (None, true) => "DEFICIENT".into(),
-                        (None, false) => "OK".into(),
-                    });
-                }
+                Some(r) => cells.extend(areas(r)),
                 None => cells.extend(std::iter::repeat_n("—".to_string(), 15)),
             }
             match &n.flange {
@@ -277,11 +278,18 @@ fn vessel(o: &mut String, v: &ReportVessel) {
                 None => cells.extend(std::iter::repeat_n("—".to_string(), 3)),
             }
             row(o, &cells);
+            if let Some(r) = &n.reinforcement_external {
+                let mut cells = vec![format!("{} (external)", n.mark)];
+                cells.extend(areas(r));
+                cells.extend(std::iter::repeat_n("—".to_string(), 3));
+                row(o, &cells);
+            }
         }
-        o.push_str("</table><p>UG-37 area replacement, Fig. UG-37.1, radial nozzle set through the wall, no inward projection: A = d·tr; A1 = max(d, 2(t + tn))·(t − tr); A2 = min(5(tn − trn)·t, 5(tn − trn)·tn), with a pad min(5(tn − trn)·t, 2(tn − trn)(2.5·tn + te)); A41, A42 = leg² of the smallest UW-16(d) welds; A5 = pad within the parallel limit max(d, Rn + tn + t) each side. Neck, wall, pad and flange of the vessel's material (fr = 1); F = E1 = 1. B16.5 rating at the design temperature from Table 2-1.1, 2-2.2 or 2-2.3 (Groups 1.1, 2.2, 2.3), interpolated; the vessel's hydrotest must not exceed 1.5 × the 38 °C rating.</p>\n");
+        o.push_str("</table><p>UG-37 area replacement, Fig. UG-37.1, radial nozzle set through the wall, no inward projection: A = d·tr (UG-37(c)), and under the design's external pressure A = 0.5·d·tr with tr and trn the walls UG-28 / UG-33 require (UG-37(d)(1); the neck as a cylinder of any length); A1 = max(d, 2(t + tn))·(t − tr); A2 = min(5(tn − trn)·t, 5(tn − trn)·tn), with a pad min(5(tn − trn)·t, 2(tn − trn)(2.5·tn + te)); A41, A42 = leg² of the smallest UW-16(d) welds; A5 = pad within the parallel limit max(d, Rn + tn + t) each side. Neck, wall, pad and flange of the vessel's material (fr = 1); F = E1 = 1. B16.5 rating at the design temperature from Table 2-1.1, 2-2.1, 2-2.2 or 2-2.3 (Groups 1.1, 2.1, 2.2, 2.3), interpolated; the vessel's hydrotest must not exceed 1.5 × the 38 °C rating.</p>\n");
     }
     external(o, &v.calculation.parts);
     saddles(o, &calc.saddles);
+    super::report_tables::annular(o, calc.annular.as_ref());
     super::report_supports::supports(o, calc);
     o.push_str("<h3>MAWP / MDMT summary and hydrotest</h3><table>\n");
     row(

@@ -64,6 +64,11 @@ pub struct Material {
     /// UCS material; none for materials outside Part UCS.
     #[serde(default)]
     pub ucs66_curve: Option<Sourced<String>>,
+    /// API 650 Table 4.4a material group (`I`, `II`, `III`, `IIIA`, `IV`, `IVA`,
+    /// `V`, `VI`) of a tank plate material; it decides whether a tank's bottom
+    /// needs annular plates (5.5.1).
+    #[serde(default)]
+    pub api650_group: Option<Sourced<String>>,
     /// Allowable stress S at temperature, MPa.
     pub allowable_stress: StressTable,
 }

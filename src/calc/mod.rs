@@ -16,6 +16,7 @@
 //! stresses, [`saddles`]) and a whole vessel ([`calculate`]). The ECS system
 //! `systems::update_calculations` keeps the same figures live as components.
 
+pub mod annular;
 pub mod api650;
 mod conditions;
 mod deficiency;
@@ -51,7 +52,7 @@ pub use materials::{Material, MaterialTable};
 pub use mdmt::Mdmt;
 pub use nozzle::{NozzleCalc, PIPE_UNDERTOLERANCE, nozzle_calc};
 pub use part::{Input, PartCalc, part_calc, pressure_shape};
-pub use reinforcement::{Opening, Reinforcement, reinforcement};
+pub use reinforcement::{Opening, Reinforcement, reinforcement, reinforcement_external};
 pub use shape::{Formula, Shape, Strength, mawp, required_thickness};
 pub use summary::{
     Calculation, LateralFigures, Liquid, VesselCalc, calculate, has_calculated_supports,

@@ -11,8 +11,9 @@
 
 use serde::Serialize;
 
+use super::external::required_long_cylinder;
 use super::flange::flange_rating;
-use super::reinforcement::{Opening, reinforcement};
+use super::reinforcement::{Opening, reinforcement, reinforcement_external};
 use super::shells::circumferential_thickness;
 use super::vessel::UG16_MINIMUM;
 use super::{Conditions, FlangeRating, PartCalc, Reinforcement};
@@ -47,8 +48,12 @@ pub struct NozzleCalc {
     pub required: f64,
     /// Why the neck fails UG-45, when it does.
     pub deficiency: Option<String>,
-    /// UG-37 reinforcement of the opening, when it could be calculated.
+    /// UG-37(c) reinforcement of the opening under internal pressure, when it
+    /// could be calculated.
     pub reinforcement: Option<Reinforcement>,
+    /// UG-37(d)(1) reinforcement of the opening under the design's external
+    /// pressure, when it gives one and it could be calculated.
+    pub reinforcement_external: Option<Reinforcement>,
     /// Why the reinforcement fails, when it does.
     pub reinforcement_deficiency: Option<String>,
     /// B16.5 rating of the flange, when its group's table is shipped.
@@ -112,14 +117,7 @@ pub fn nozzle_calc(
     });
     let mut notes = Vec::new();
     let opening = match host.thickness {
-        _ if host.pressure <= 0.0 => {
-            notes.push(format!(
-                "{mark}: no internal pressure on {}; UG-37(d) reinforcement under external \
-                 pressure is not calculated",
-                host.id
-            ));
-            None
-        }
+        _ if host.pressure <= 0.0 => None,
         _ if host.shape == "flat head" => {
             notes.push(format!(
                 "{mark}: UG-39 (openings in flat heads) is not calculated"
@@ -151,16 +149,74 @@ pub fn nozzle_calc(
             }
         },
     };
-    if let Some(note) = opening.as_ref().and_then(|r| r.note.clone()) {
+    let external = match (&host.external_required, host.thickness) {
+        _ if host.shape == "flat head" => None,
+        (None, _) => None,
+        (Some(Err(e)), _) => {
+            notes.push(format!(
+                "{mark}: UG-37(d) not calculated: the wall of {} under external pressure: {e}",
+                host.id
+            ));
+            None
+        }
+        (Some(Ok(_)), None) => {
+            notes.push(format!(
+                "{mark}: UG-37(d) needs the host {}'s thickness",
+                host.id
+            ));
+            None
+        }
+        (Some(Ok(tr)), Some(wall)) => {
+            let opening = Opening {
+                pressure: c.external_pressure,
+                stress: c.stress,
+                corrosion_allowance: ca,
+                neck_od: od,
+                neck_wall: nominal,
+                wall,
+                wall_required: *tr,
+                host_diameter: host.inside_diameter,
+                pad,
+            };
+            match required_long_cylinder(od, c.modulus, c.yield_strength, c.external_pressure)
+                .map_err(|e| format!("the neck's wall under external pressure: {e}"))
+                .and_then(|trn| reinforcement_external(&opening, trn).map_err(|e| e.to_string()))
+            {
+                Ok(r) => Some(r),
+                Err(e) => {
+                    notes.push(format!("{mark}: UG-37(d): {e}"));
+                    None
+                }
+            }
+        }
+    };
+    if host.pressure <= 0.0 && external.is_none() && host.external_required.is_none() {
+        notes.push(format!(
+            "{mark}: no pressure on {}: UG-37 not calculated",
+            host.id
+        ));
+    }
+    if let Some(note) = opening
+        .as_ref()
+        .or(external.as_ref())
+        .and_then(|r| r.note.clone())
+    {
         notes.push(format!("{mark}: {note}"));
     }
-    let reinforcement_deficiency = opening.as_ref().filter(|r| r.deficient()).map(|r| {
+    let short = |r: &Reinforcement| {
         format!(
-            "{mark}: UG-37 area available {:.0} mm² is less than the {:.0} mm² required \
+            "{mark}: {} area available {:.0} mm² is less than the {:.0} mm² required \
              (A1 {:.0}, A2 {:.0}, A41 {:.0}, A42 {:.0}, A5 {:.0} mm²)",
-            r.a_available, r.a_required, r.a1, r.a2, r.a41, r.a42, r.a5
+            r.paragraph, r.a_available, r.a_required, r.a1, r.a2, r.a41, r.a42, r.a5
         )
-    });
+    };
+    let shorts: Vec<String> = opening
+        .iter()
+        .chain(&external)
+        .filter(|r| r.deficient())
+        .map(short)
+        .collect();
+    let reinforcement_deficiency = (!shorts.is_empty()).then(|| shorts.join("; "));
     let flange = match &c.flange_group {
         None => {
             notes.push(format!(
@@ -192,6 +248,7 @@ pub fn nozzle_calc(
         required,
         deficiency,
         reinforcement: opening,
+        reinforcement_external: external,
         reinforcement_deficiency,
         flange,
         notes,

@@ -65,6 +65,10 @@ pub struct PartCalc {
     /// UG-28 / UG-33 under the design's external pressure, corroded, when it
     /// gives one: the figures, or why they are not computed.
     pub external: Option<Result<External, String>>,
+    /// The corroded wall UG-28 / UG-33 require under the design's external
+    /// pressure (UG-37(d)'s tr for openings in the part), mm, or why it is not
+    /// computed; `None` without external pressure.
+    pub external_required: Option<Result<f64, String>>,
     /// Why the part fails, when it does.
     pub deficiency: Option<String>,
 }
@@ -313,6 +317,7 @@ pub fn part_calc(
             .zip(thickness)
             .map(|(curve, t)| super::mdmt::mdmt(curve, t)),
         external,
+        external_required: (c.external_pressure > 0.0).then(|| external_required(geometry, c)),
         deficiency: match (deficiency, external_short) {
             (Some(a), Some(b)) => Some(format!("{a}; {b}")),
             (a, b) => a.or(b),
@@ -403,6 +408,7 @@ fn tank_part(
         openings,
         mdmt: None,
         external: None,
+        external_required: None,
         deficiency,
     }))
 }
@@ -430,6 +436,39 @@ fn external_check(geometry: &PartGeometry, t: f64, c: &Conditions) -> Result<Ext
                 _ => return Err("UG-33: only hemispherical, 2:1 ellipsoidal and torispherical heads are computed".into()),
             };
             head(ro, t, e, sy)
+        }
+        _ => Err("UG-28/UG-33: reducers and cones under external pressure are not computed".into()),
+    }
+}
+
+/// The corroded wall a part of `geometry` needs under the external pressure of
+/// `c`, mm: UG-28 inverted for a shell (the unsupported length of
+/// `external_check`), UG-33 for the heads it computes.
+fn external_required(geometry: &PartGeometry, c: &Conditions) -> Result<f64, String> {
+    use super::external::{ellipsoidal_ro, required_cylinder, required_head};
+    let (e, sy, p) = (c.modulus, c.yield_strength, c.external_pressure);
+    match geometry {
+        PartGeometry::Shell(s) => required_cylinder(
+            s.outside_diameter,
+            s.length + s.outside_diameter / 3.0,
+            e,
+            sy,
+            p,
+        ),
+        PartGeometry::Head(h) => {
+            let ro = match h.kind {
+                HeadKind::Hemispherical => h.outside_diameter / 2.0,
+                HeadKind::Ellipsoidal { ratio } => ellipsoidal_ro(h.outside_diameter, ratio)?,
+                HeadKind::Torispherical { crown_radius, .. } => crown_radius,
+                _ => {
+                    return Err(
+                        "UG-33: only hemispherical, 2:1 ellipsoidal and torispherical \
+                                heads are computed"
+                            .into(),
+                    );
+                }
+            };
+            required_head(ro, e, sy, p)
         }
         _ => Err("UG-28/UG-33: reducers and cones under external pressure are not computed".into()),
     }
@@ -497,6 +536,7 @@ fn tank_plate(
         openings,
         mdmt: None,
         external: None,
+        external_required: None,
         deficiency,
     })
 }

@@ -14,6 +14,11 @@
 //! — counted as legs² (leg = throat / 0.7071). UG-36(c)(3) exempts small
 //! openings; UG-36(b)(1)'s size limit is reported, not enforced (Appendix 1-7
 //! would then also apply).
+//!
+//! Under external pressure, UG-37(d)(1): the same areas with half the required
+//! area, A = 0.5·d·tr, where tr is the host's and trn the neck's wall required
+//! by the external-pressure rules ([`reinforcement_external`]); a vessel under
+//! both is checked for each.
 
 use serde::Serialize;
 
@@ -47,6 +52,8 @@ pub struct Opening {
 /// The UG-37 figures of one opening, mm and mm².
 #[derive(Clone, Debug, PartialEq, Serialize)]
 pub struct Reinforcement {
+    /// The paragraph: `UG-37(c)` (internal) or `UG-37(d)(1)` (external).
+    pub paragraph: &'static str,
     /// d: finished opening diameter, corroded, mm.
     pub d: f64,
     /// t: host wall, corroded, mm.
@@ -99,8 +106,27 @@ fn leg(throat: f64) -> f64 {
     throat / std::f64::consts::FRAC_1_SQRT_2
 }
 
-/// The UG-37 area replacement of `o`.
+/// The UG-37(c) area replacement of `o` under internal pressure.
 pub fn reinforcement(o: &Opening) -> Result<Reinforcement, CalcError> {
+    area_replacement(o, 1.0, None, "UG-37(c)")
+}
+
+/// UG-37(d)(1): the area replacement of `o` under external pressure
+/// `o.pressure`, with `o.wall_required` the host's and `neck_required` the
+/// neck's corroded wall required by UG-28 / UG-33 (mm): A = 0.5·d·tr.
+pub fn reinforcement_external(o: &Opening, neck_required: f64) -> Result<Reinforcement, CalcError> {
+    non_negative("opening", "neck_required", neck_required)?;
+    area_replacement(o, 0.5, Some(neck_required), "UG-37(d)(1)")
+}
+
+/// The area replacement of `o` with required area `factor`·d·tr and the neck's
+/// required wall `neck_required` (UG-27(c)(1) at E = 1 when `None`).
+fn area_replacement(
+    o: &Opening,
+    factor: f64,
+    neck_required: Option<f64>,
+    paragraph: &'static str,
+) -> Result<Reinforcement, CalcError> {
     const E: &str = "opening";
     positive(E, "pressure", o.pressure)?;
     positive(E, "stress", o.stress)?;
@@ -125,11 +151,11 @@ pub fn reinforcement(o: &Opening) -> Result<Reinforcement, CalcError> {
     positive(E, "d", d)?;
     let rn = d / 2.0;
     let p = o.pressure;
-    let trn = p * rn / (o.stress - 0.6 * p);
+    let trn = neck_required.unwrap_or(p * rn / (o.stress - 0.6 * p));
     let tr = o.wall_required;
     let limit_parallel = d.max(rn + tn + t);
     let limit_normal = (2.5 * t).min(2.5 * tn + te);
-    let a_required = d * tr;
+    let a_required = factor * d * tr;
     let a1 = (d.max(2.0 * (t + tn)) * (t - tr)).max(0.0);
     let excess_neck = (tn - trn).max(0.0);
     let a2 = if te > 0.0 {
@@ -170,6 +196,7 @@ pub fn reinforcement(o: &Opening) -> Result<Reinforcement, CalcError> {
         )
     });
     Ok(Reinforcement {
+        paragraph,
         d,
         t,
         tr,

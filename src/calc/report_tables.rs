@@ -1,11 +1,13 @@
 //! Pieces of the HTML calculation report: the cell helpers every table uses,
 //! the external-pressure table (UG-28 / UG-33 per part: factors A and B, the
 //! allowable Pa against the design's external pressure) and the saddle table
-//! (Zick's stresses per saddle and load case, each against its allowable).
+//! (Zick's stresses per saddle and load case, each against its allowable), and
+//! a tank's annular bottom plates (API 650 5.5).
 
 use std::fmt::Write;
 
 use super::PartCalc;
+use super::annular::Annular;
 use super::saddles::SaddleCase;
 
 pub(super) fn esc(text: &str) -> String {
@@ -147,4 +149,79 @@ pub(super) fn saddles(o: &mut String, cases: &[SaddleCase]) {
         temperature; each saddle's load by statics from the case's centre of gravity. \
         B of UG-23(b) on the elastic line A·E/2, capped at Sy/4.</p>\n",
     );
+}
+
+/// A tank's annular bottom plates (API 650 5.5), when it is a tank.
+pub(super) fn annular(o: &mut String, annular: Option<&Result<Annular, String>>) {
+    let Some(a) = annular else { return };
+    o.push_str("<h3>Annular bottom plates (API 650 5.5)</h3>");
+    let a = match a {
+        Ok(a) => a,
+        Err(e) => {
+            let _ = writeln!(o, "<p>Not computed: {}</p>", esc(e));
+            return;
+        }
+    };
+    o.push_str("<table>\n");
+    head(o, &["Quantity", "Formula", "Value", "Paragraph"]);
+    let rows = [
+        (
+            "First course t",
+            "nominal",
+            a.course_thickness,
+            "mm",
+            "5.5.3",
+        ),
+        (
+            "Product stress",
+            "(t_d − CA)/(t − CA)·Sd",
+            a.product_stress,
+            "MPa",
+            "Table 5.1a Note b",
+        ),
+        (
+            "Test stress",
+            "t_t/t·St",
+            a.test_stress,
+            "MPa",
+            "Table 5.1a Note b",
+        ),
+        (
+            "Table thickness",
+            "at the greater stress",
+            a.table_thickness,
+            "mm",
+            "Table 5.1a",
+        ),
+        ("Least t_b", "table + CA", a.thickness, "mm", "5.5.3"),
+        ("L", "215·t_b/(H·G)^0.5", a.width_formula, "mm", "5.5.2"),
+        (
+            "Least radial width inside the shell",
+            "max(600 mm, L)",
+            a.width,
+            "mm",
+            "5.5.2",
+        ),
+    ];
+    for (q, f, v, unit, para) in rows {
+        row(
+            o,
+            &[q.into(), f.into(), format!("{v:.1} {unit}"), para.into()],
+        );
+    }
+    let needed = match a.required {
+        Some(true) => "required",
+        Some(false) => "not required",
+        None => "not assessed",
+    };
+    row(
+        o,
+        &[
+            "Annular plates".into(),
+            a.reason.clone(),
+            needed.into(),
+            "5.5.1".into(),
+        ],
+    );
+    o.push_str("</table>\n");
 }

@@ -7,6 +7,7 @@
 
 use serde::Serialize;
 
+use super::annular::{Annular, FirstCourse, annular};
 use super::lateral::Lateral;
 use super::legs::{LegsCalc, LugsCalc, legs_calc, lugs_calc};
 use super::saddles::{SaddleCase, saddle_cases};
@@ -130,6 +131,9 @@ pub struct VesselCalc {
     pub legs: Vec<LegsCalc>,
     /// Lugs under weight, wind and earthquake.
     pub lugs: Vec<LugsCalc>,
+    /// An API 650 tank's annular bottom plates (5.5) from its first course, or
+    /// why they are not computed; `None` for a pressure vessel.
+    pub annular: Option<Result<Annular, String>>,
 }
 
 /// A vertical vessel's wind and earthquake figures at its base (unfactored).
@@ -201,7 +205,12 @@ impl VesselCalc {
                 }
             }
         }
+        let annular = conditions
+            .as_ref()
+            .filter(|c| c.code == "API 650")
+            .and_then(|c| tank_annular(parts, c));
         VesselCalc {
+            annular,
             tag: tag.to_string(),
             code: code_of(kind),
             conditions,
@@ -217,6 +226,36 @@ impl VesselCalc {
             lugs: Vec::new(),
         }
     }
+}
+
+/// The annular plates of a tank whose parts are `parts`, from its first course:
+/// the shell course under the most liquid. `None` for a tank without courses.
+fn tank_annular(parts: &[&PartCalc], c: &Conditions) -> Option<Result<Annular, String>> {
+    let first = parts
+        .iter()
+        .filter(|p| p.shape == "tank shell course")
+        .max_by(|a, b| a.static_head.total_cmp(&b.static_head))?;
+    let input = |name: &str| {
+        first
+            .inputs
+            .iter()
+            .find(|i| i.name == name)
+            .map_or(f64::NAN, |i| i.value)
+    };
+    let course = FirstCourse {
+        thickness: first.thickness.unwrap_or(first.required.value),
+        design: input("t_d"),
+        test: input("t_t"),
+        corrosion_allowance: c.corrosion_allowance,
+        design_stress: c.stress,
+        test_stress: c.stress_test,
+        level: input("H"),
+        gravity: input("G"),
+    };
+    Some(
+        annular(&course, c.api650_group.as_deref())
+            .map_err(|e| format!("{} (first course): {e}", first.id)),
+    )
 }
 
 /// Adds the supports' calculations of vessel `design` resolved as `resolved` to

@@ -208,10 +208,11 @@ fn print_text(c: &Calculated) {
                 "ok"
             }
         );
-        if let Some(r) = &n.reinforcement {
+        for r in n.reinforcement.iter().chain(&n.reinforcement_external) {
             println!(
-                "  {:<8} UG-37 area {:>8.0} mm² available, {:>8.0} mm² required  {}",
+                "  {:<8} {:<11} area {:>8.0} mm² available, {:>8.0} mm² required  {}",
                 n.mark,
+                r.paragraph,
                 r.a_available,
                 r.a_required,
                 match (r.exempt, r.deficient()) {
@@ -275,6 +276,14 @@ fn print_text(c: &Calculated) {
             h.value * 1e3,
             h.paragraph
         );
+    }
+    match &v.annular {
+        Some(Ok(a)) => println!(
+            "  annular (5.5):    t_b >= {:.1} mm, width >= {:.0} mm inside the shell; {}",
+            a.thickness, a.width, a.reason
+        ),
+        Some(Err(e)) => println!("  annular (5.5):    not computed: {e}"),
+        None => {}
     }
     match &c.weights {
         Ok(w) => println!(
