@@ -34,6 +34,11 @@ use tokio_tungstenite::tungstenite::protocol::WebSocketConfig;
 use vesselcad::mesh::TessellationOptions;
 use vesselcad::server::{ServeOptions, start};
 
+/// The binary's allocator (`src/cli/alloc.rs`), so that the server's times
+/// are those of `vesselcad serve`.
+#[global_allocator]
+static GLOBAL: mimalloc::MiMalloc = mimalloc::MiMalloc;
+
 struct Args {
     viewers: usize,
     editors: usize,
