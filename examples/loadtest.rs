@@ -8,8 +8,13 @@
 //! ```sh
 //! cargo run --release --example loadtest -- --viewers 50 --editors 5 --seconds 20
 //! #   [--design examples/designs/small-plant.json | --plant 1000] [--tolerance 0.5]
-//! #   [--progressive]
+//! #   [--full]
 //! ```
+//!
+//! Viewers connect as the viewer page does, to `/ws?progressive=1` (a hello of
+//! every vessel's box, no GLB; they fetch no vessel GLB themselves); `--full`
+//! connects them to `/ws`, whose hello and resyncs carry the whole model's GLB
+//! (at 1,000 vessels that is every viewer receiving the whole plant).
 //!
 //! `--plant N` serves the generated plant of `vesselcad plant generate --vessels
 //! N --seed 1` instead of a design file.
@@ -34,13 +39,19 @@ use tokio_tungstenite::tungstenite::protocol::WebSocketConfig;
 use vesselcad::mesh::TessellationOptions;
 use vesselcad::server::{ServeOptions, start};
 
+/// The binary's allocator (`src/cli/alloc.rs`), so that the server's times
+/// are those of `vesselcad serve`.
+#[global_allocator]
+static GLOBAL: mimalloc::MiMalloc = mimalloc::MiMalloc;
+
 struct Args {
     viewers: usize,
     editors: usize,
     seconds: f64,
     design: String,
     tolerance: f64,
-    /// Viewers connect to `/ws?progressive=1` (hello without the whole GLB).
+    /// Viewers connect to `/ws?progressive=1` (hello without the whole GLB),
+    /// as the viewer page does; `--full`: to `/ws`.
     progressive: bool,
     /// Serve a generated plant of this many vessels instead of `design`.
     plant: Option<usize>,
@@ -57,13 +68,16 @@ fn args() -> Args {
         )
         .into(),
         tolerance: TessellationOptions::DEFAULT.tolerance,
-        progressive: false,
+        progressive: true,
         plant: None,
     };
     let mut list: Vec<String> = std::env::args().skip(1).collect();
     if let Some(k) = list.iter().position(|a| a == "--progressive") {
         list.remove(k);
-        a.progressive = true;
+    }
+    if let Some(k) = list.iter().position(|a| a == "--full") {
+        list.remove(k);
+        a.progressive = false;
     }
     for pair in list.chunks(2) {
         let value = pair.get(1).map(String::as_str).unwrap_or("");
@@ -167,7 +181,7 @@ async fn main() {
         if args.progressive {
             " (progressive)"
         } else {
-            ""
+            " (whole GLB in each hello)"
         },
         args.editors,
         args.seconds,
@@ -198,10 +212,17 @@ async fn main() {
                 .max_message_size(None)
                 .max_frame_size(None)
                 .read_buffer_size(16 * 1024);
-            let (mut ws, _) = tokio_tungstenite::connect_async_with_config(url, Some(config), true)
-                .await
-                .expect("ws connect");
             let mut seen = Seen::default();
+            let mut ws =
+                match tokio_tungstenite::connect_async_with_config(url, Some(config), true).await {
+                    Ok((ws, _)) => ws,
+                    Err(e) => {
+                        seen.error = Some(format!("cannot connect: {e}"));
+                        let _ = ready.send(()).await;
+                        return seen;
+                    }
+                };
+            let mut greeted = false;
             let mut header: Option<Value> = None;
             loop {
                 let next = tokio::time::timeout(Duration::from_secs(1), ws.next()).await;
@@ -245,6 +266,7 @@ async fn main() {
                     match h["type"].as_str() {
                         Some("hello") => {
                             seen.last = revision;
+                            greeted = true;
                             let _ = ready.send(()).await;
                         }
                         Some("resync") => {
@@ -267,13 +289,23 @@ async fn main() {
                     }
                 }
             }
+            if !greeted {
+                // Dropped before its hello (e.g. the server's send timeout on a
+                // whole-plant GLB): counted as failed, not waited for.
+                let _ = ready.send(()).await;
+            }
             seen
         }));
     }
     drop(ready_tx);
+    let connecting = Instant::now();
     for _ in 0..args.viewers {
         ready_rx.recv().await;
     }
+    println!(
+        "every viewer's hello in: {:.2} s",
+        connecting.elapsed().as_secs_f64()
+    );
 
     // Editors: edit back and forth until the time is up.
     let deadline = Instant::now() + Duration::from_secs_f64(args.seconds);
@@ -321,6 +353,7 @@ async fn main() {
     let mut resyncs = 0usize;
     let mut bytes = 0usize;
     let mut worst_viewer_p99: f64 = 0.0;
+    let mut failed = 0usize;
     for task in viewer_tasks {
         let seen = tokio::time::timeout(Duration::from_secs(60), task)
             .await
@@ -328,6 +361,7 @@ async fn main() {
             .expect("viewer");
         if let Some(e) = &seen.error {
             eprintln!("a viewer failed: {e}");
+            failed += 1;
         }
         resyncs += seen.resyncs;
         duplicated += seen.duplicates;
@@ -369,6 +403,7 @@ async fn main() {
         latencies.len(),
         worst_viewer_p99
     );
+    println!("viewers failed:          {failed} of {}", args.viewers);
     println!("lost revisions:          {lost}");
     println!("duplicated revisions:    {duplicated}");
     println!("resyncs:                 {resyncs}");

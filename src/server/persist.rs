@@ -27,18 +27,39 @@ pub enum PersistError {
     Unavailable(String),
 }
 
-/// One accepted edit, as the session hands it to be made durable.
+/// One accepted edit, as the session hands it to be made durable: the patch as
+/// sent, and the design after it with the patch that takes it back, from which
+/// [`Record::designs`] makes both designs for a persistence that needs them
+/// (the store); the journal needs the patch alone, so an edit copies no design.
 pub struct Record<'a> {
     /// The revision it becomes.
     pub revision: u64,
     /// The editor's JSON Patch as sent.
     pub patch: &'a Value,
-    /// The design before (revision − 1).
-    pub before: &'a Design,
-    /// The design after.
-    pub after: &'a Design,
+    /// The design after, as the canonical JSON the session holds.
+    pub design: &'a Value,
+    /// The JSON Patch from `design` back to the design before (revision − 1).
+    pub inverse: &'a json_patch::Patch,
     /// Why (`edit`, `undo`, `redo`).
     pub message: &'a str,
+}
+
+impl Record<'_> {
+    /// The designs before and after the edit.
+    ///
+    /// # Errors
+    ///
+    /// The reason when the inverse does not apply or a design does not parse
+    /// (a bug: both were designs the session held).
+    pub fn designs(&self) -> Result<(Design, Design), String> {
+        let mut before = self.design.clone();
+        json_patch::patch(&mut before, self.inverse)
+            .map_err(|e| format!("the edit's inverse does not apply: {e}"))?;
+        let parse = |v: Value| {
+            serde_json::from_value::<Design>(v).map_err(|e| format!("not a design: {e}"))
+        };
+        Ok((parse(before)?, parse(self.design.clone())?))
+    }
 }
 
 /// Where a session's edits go.

@@ -44,7 +44,7 @@ use serde::Deserialize;
 use serde_json::json;
 
 use super::assets::{self, Asset};
-use super::broadcast::{MAX_VIEWER_MESSAGE, Ticket, Update, run_viewer};
+use super::broadcast::{MAX_VIEWER_MESSAGE, Ticket, Update, VIEWER_READ_BUFFER, run_viewer};
 use super::error::ApiError;
 use super::guard::guard;
 use super::session::{Accepted, SheetFormat};
@@ -434,6 +434,7 @@ async fn viewer_socket(
         .and_then(|Query(q)| q.progressive)
         .is_some_and(|p| p != "0" && p != "false");
     ws.max_message_size(MAX_VIEWER_MESSAGE)
+        .read_buffer_size(VIEWER_READ_BUFFER)
         .on_upgrade(move |socket| async move {
             let queue = state.hub.subscribe();
             let shutdown = state.shutdown.clone();

@@ -23,6 +23,7 @@ use std::sync::{Arc, OnceLock};
 
 use serde_json::{Value, json};
 
+mod inverse;
 mod replay;
 mod stage;
 
@@ -189,10 +190,11 @@ pub struct Session {
     units: Units,
     /// Where accepted edits are made durable: the journal, or a store.
     pub(super) persistence: Box<dyn Persistence>,
-    /// Designs an undo goes back to, newest last (at most [`UNDO_DEPTH`]).
-    pub(super) undo: Vec<Design>,
-    /// Designs a redo goes forward to, newest last.
-    pub(super) redo: Vec<Design>,
+    /// JSON Patches an undo applies (each takes back one edit of this
+    /// server's), newest last (at most [`UNDO_DEPTH`]).
+    pub(super) undo: Vec<json_patch::Patch>,
+    /// JSON Patches a redo applies (each takes back one undo), newest last.
+    pub(super) redo: Vec<json_patch::Patch>,
     /// The whole model at the current revision, its GLB written on first
     /// request (without the session lock).
     full: Option<Arc<FullModel>>,
@@ -255,14 +257,29 @@ impl Session {
         self.apply_as(body, "edit")
     }
 
-    /// [`Session::apply_patch`] with the message the revision is recorded with.
+    /// [`Session::apply_patch`] as a new edit of this server's: its inverse
+    /// goes on the undo stack and the redo stack is emptied.
     pub(super) fn apply_as(&mut self, body: &[u8], message: &str) -> Result<Accepted, ApiError> {
+        let (accepted, inverse) = self.apply_recorded(body, message)?;
+        self.redo.clear();
+        push_bounded(&mut self.undo, inverse);
+        Ok(accepted)
+    }
+
+    /// [`Session::apply_patch`] with the message the revision is recorded
+    /// with: the accepted edit and the JSON Patch that takes it back. The
+    /// design is changed in place (only the vessels the edit changed are
+    /// copied, into the inverse); neither stack is touched.
+    pub(super) fn apply_recorded(
+        &mut self,
+        body: &[u8],
+        message: &str,
+    ) -> Result<(Accepted, json_patch::Patch), ApiError> {
         let value: Value = serde_json::from_slice(body)
             .map_err(|e| ApiError::Malformed(format!("the body is not JSON: {e}")))?;
         let mut normalized = value.clone();
         canonical_numbers(&mut normalized);
         let patch = parse_patch(normalized)?;
-        let before = self.model.design();
         let count = self.design["vessels"].as_array().map_or(0, Vec::len);
         let scoped = match scoped::vessel_scope(&patch, count) {
             Some(indices) => self.stage_vessels(&patch, &indices)?,
@@ -275,19 +292,20 @@ impl Session {
                 (Next::Whole(next), work)
             }
         };
-        let after = self.model.design();
+        let inverse = inverse::inverse(&self.design, &next);
+        let (previous, touched) = self.swap_in(next);
         let record = Record {
             revision: self.revision + 1,
             patch: &value,
-            before: &before,
-            after: &after,
+            design: &self.design,
+            inverse: &inverse,
             message,
         };
         let durable = match self.persistence.record(&record) {
             Ok(pending) => pending,
             Err(e) => {
-                // Not durable: put the model back as it was before answering.
-                self.restore(&next);
+                // Not durable: put the design and the model back as they were.
+                self.put_back(previous);
                 return Err(match e {
                     PersistError::Conflict { current } => ApiError::Conflict {
                         current,
@@ -302,36 +320,10 @@ impl Session {
                 });
             }
         };
-        if message == "edit" {
-            self.redo.clear();
-        }
-        if message != "undo" {
-            self.undo.push(before);
-            if self.undo.len() > UNDO_DEPTH {
-                self.undo.remove(0);
-            }
-        }
-        let touched = match next {
-            Next::Whole(next) => {
-                let touched = scoped::differing_vessels(&self.design, &next);
-                self.design = next;
-                touched
-            }
-            Next::Vessels(vessels) => {
-                let mut touched = Vec::new();
-                for (i, value) in vessels {
-                    if let Some(tag) = value.get("tag").and_then(Value::as_str) {
-                        touched.push(tag.to_string());
-                    }
-                    self.design["vessels"][i] = value;
-                }
-                touched
-            }
-        };
         self.revision += 1;
         let mut accepted = self.accepted(work, touched);
         accepted.durable = durable;
-        Ok(accepted)
+        Ok((accepted, inverse))
     }
 
     /// The answer for the model's change since the last one, at the current
@@ -629,6 +621,15 @@ pub struct Saved {
     pub written: bool,
     /// Whether the file had been deleted while serving and was written again.
     pub recreated: bool,
+}
+
+/// Pushes `patch` on an undo or redo stack, forgetting the oldest beyond
+/// [`UNDO_DEPTH`].
+pub(super) fn push_bounded(stack: &mut Vec<json_patch::Patch>, patch: json_patch::Patch) {
+    stack.push(patch);
+    if stack.len() > UNDO_DEPTH {
+        stack.remove(0);
+    }
 }
 
 /// The file `path` names: a symbolic link's target (resolved even when the

@@ -142,9 +142,9 @@ impl Persistence for StoreLink {
             message: record.message.to_string(),
         };
         let parent = record.revision as i64 - 1;
-        let commit = |store: &mut Store, name: &str| {
-            store.commit(name, parent, record.before, record.after, &change)
-        };
+        let (before, after) = record.designs().map_err(PersistError::Failed)?;
+        let commit =
+            |store: &mut Store, name: &str| store.commit(name, parent, &before, &after, &change);
         // Committed (synchronously) before this returns.
         match self.with_store(commit) {
             Ok(_) => Ok(None),

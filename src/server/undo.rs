@@ -1,14 +1,15 @@
 //! Undo, redo, history and catching up, on top of [`Session`]: an undo or a redo
 //! is a new revision whose design is an earlier one (history is never
-//! rewritten), made durable like any edit. The undo and redo stacks hold the
-//! designs of this server's last [`UNDO_DEPTH`] edits (in memory: a restart
+//! rewritten), made durable like any edit. The undo and redo stacks hold, for
+//! this server's last [`UNDO_DEPTH`](super::session::UNDO_DEPTH) edits, the
+//! JSON Patch that takes each back (in memory: a restart
 //! starts them empty; the store's history stays, and `store checkout` reaches
 //! any revision). Catching up adopts the newest revision another server
 //! committed to the same store.
 
 use super::error::ApiError;
-use super::session::{Accepted, Session, UNDO_DEPTH, design_value};
-use crate::design::{Design, to_canonical_json};
+use super::session::{Accepted, Session, design_value, push_bounded};
+use crate::design::to_canonical_json;
 use crate::model::Edit;
 use crate::store::Revision;
 
@@ -22,16 +23,13 @@ impl Session {
     /// [`ApiError::NothingTo`] with nothing to undo, and as
     /// [`Session::apply_patch`].
     pub fn undo(&mut self) -> Result<Accepted, ApiError> {
-        let Some(target) = self.undo.last().cloned() else {
+        let Some(patch) = self.undo.last() else {
             return Err(ApiError::NothingTo("undo"));
         };
-        let current = self.model.design();
-        let accepted = self.go_to(&target, "undo")?;
+        let body = serde_json::to_vec(patch).map_err(|e| ApiError::Malformed(e.to_string()))?;
+        let (accepted, inverse) = self.apply_recorded(&body, "undo")?;
         self.undo.pop();
-        self.redo.push(current);
-        if self.redo.len() > UNDO_DEPTH {
-            self.redo.remove(0);
-        }
+        push_bounded(&mut self.redo, inverse);
         Ok(accepted)
     }
 
@@ -43,19 +41,14 @@ impl Session {
     /// [`ApiError::NothingTo`] with nothing to redo, and as
     /// [`Session::apply_patch`].
     pub fn redo(&mut self) -> Result<Accepted, ApiError> {
-        let Some(target) = self.redo.last().cloned() else {
+        let Some(patch) = self.redo.last() else {
             return Err(ApiError::NothingTo("redo"));
         };
-        let accepted = self.go_to(&target, "redo")?;
+        let body = serde_json::to_vec(patch).map_err(|e| ApiError::Malformed(e.to_string()))?;
+        let (accepted, inverse) = self.apply_recorded(&body, "redo")?;
         self.redo.pop();
+        push_bounded(&mut self.undo, inverse);
         Ok(accepted)
-    }
-
-    /// Makes `target` the design, through the edit path (a JSON Patch).
-    fn go_to(&mut self, target: &Design, message: &str) -> Result<Accepted, ApiError> {
-        let patch = json_patch::diff(&self.design, &design_value(target));
-        let body = serde_json::to_vec(&patch).map_err(|e| ApiError::Malformed(e.to_string()))?;
-        self.apply_as(&body, message)
     }
 
     /// The revisions kept, oldest first.
