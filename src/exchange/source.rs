@@ -222,17 +222,29 @@ mod tests {
 
     /// The exchange cuts the openings the scene build cuts (one list, one
     /// cutter: `export::openings`), and on the same curves: each loop of the
-    /// example drum (its manway on a head), cut in the exchange's unturned head
-    /// frames and in the scene's turned ones, lies in the vessel frame within
-    /// the tolerance of the other's samples.
+    /// example drum and of a repro with a nozzle on a head's seam, cut in the
+    /// exchange's unturned head frames and in the scene's turned ones, lies in
+    /// the vessel frame within the tolerance of the other's samples.
     #[test]
     fn the_exchange_and_the_scene_cut_the_same_loops() {
-        let path =
-            Path::new(env!("CARGO_MANIFEST_DIR")).join("examples/designs/horizontal-drum.json");
-        let design = load(&path).expect("example");
+        let designs = [
+            "examples/designs/horizontal-drum.json",
+            "tests/repros/D2-ellipsoidal-head-seam-nozzle.json",
+        ];
+        let mut turned = 0;
+        for path in designs {
+            let path = Path::new(env!("CARGO_MANIFEST_DIR")).join(path);
+            turned += turned_loops(&load(&path).expect("design"));
+        }
+        assert!(turned > 0, "no opening in a turned head");
+    }
+
+    /// Checks the loops of `design` as above; returns how many were cut in a
+    /// turned head.
+    fn turned_loops(design: &Design) -> usize {
         let tolerance = 0.01;
-        let resolved = resolve(&design).expect("resolves");
-        let sources = vessel_sources(&design, &[], tolerance).expect("cuts");
+        let resolved = resolve(design).expect("resolves");
+        let sources = vessel_sources(design, &[], tolerance).expect("cuts");
         let shared = SharedMarches::default();
         let mut turned = 0;
         for (vessel, source) in resolved.iter().zip(&sources) {
@@ -295,6 +307,6 @@ mod tests {
                 }
             }
         }
-        assert!(turned > 0, "no opening in a turned head");
+        turned
     }
 }
