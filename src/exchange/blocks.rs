@@ -20,6 +20,7 @@ use super::source::vessel_source;
 use super::step::{PlacedBlock, StepBlock, vessel_block, write_step};
 use super::topology::vessel_brep_with;
 use crate::design::{Design, DrawingInfo, Placement, VesselDesign, resolve};
+use crate::export::SharedMarches;
 
 /// What an exchange export is built to.
 #[derive(Clone, Copy, Debug, PartialEq)]
@@ -130,13 +131,15 @@ pub fn export_step(
         .filter(|(_, v)| tags.is_empty() || tags.contains(&v.tag))
         .map(|(i, v)| (i, block_key(v, options)))
         .collect();
+    // Openings of one canonical march (across vessels) are placed from one.
+    let shared = SharedMarches::default();
     let blocks: Vec<Result<(Arc<StepBlock>, bool), ExchangeError>> = chosen
         .par_iter()
         .map(|&(i, key)| {
             if let Some(block) = cache.blocks.get(&key) {
                 return Ok((block.clone(), false));
             }
-            let source = vessel_source(&resolved[i], options.tolerance)?;
+            let source = vessel_source(&resolved[i], options.tolerance, &shared)?;
             let brep = vessel_brep_with(&source, options.solids)?;
             Ok((Arc::new(vessel_block(&brep, options.solids)), true))
         })

@@ -43,6 +43,14 @@ pub(super) struct LoopFit {
     pub(super) pcurves: Vec<Vec<DVec2>>,
 }
 
+/// One piece's slopes (between two breaks, from sample `lo`): in 3D and in
+/// each plane, at each of its samples.
+struct Slopes {
+    lo: usize,
+    d3: Vec<DVec3>,
+    d2: Vec<Vec<DVec2>>,
+}
+
 /// One pcurve's samples on its surface, with `|S_u|` and `|S_v|` there.
 struct Plane<'a> {
     uv: &'a [DVec2],
@@ -88,25 +96,31 @@ pub(super) fn fit_loop(
         }
     }
     cuts.push(n - 1);
-    // Spans (a, b) with the piece (lo, hi) their slopes are taken on.
-    let mut spans: Vec<(usize, usize, usize, usize)> = Vec::new();
+    // Spans (a, b) with the piece their slopes are taken on; each piece's
+    // slopes at every sample, in 3D and in each plane (a break's sample has
+    // one on each side), computed once.
+    let mut spans: Vec<(usize, usize, usize)> = Vec::new();
+    let mut slopes: Vec<Slopes> = Vec::with_capacity(cuts.len() - 1);
     for w in cuts.windows(2) {
         let (lo, hi) = (w[0], w[1]);
+        let stencils: Vec<Stencil> = (lo..=hi).map(|k| stencil(t, lo, hi, k)).collect();
+        let piece = Slopes {
+            lo,
+            d3: stencils.iter().map(|s| s.apply(points)).collect(),
+            d2: planes
+                .iter()
+                .map(|p| stencils.iter().map(|s| s.apply(p.uv)).collect())
+                .collect(),
+        };
         let fits = |a: usize, b: usize| -> bool {
-            let (da, db) = (
-                derivative(t, points, lo, hi, a),
-                derivative(t, points, lo, hi, b),
-            );
+            let (da, db) = (piece.d3[a - lo], piece.d3[b - lo]);
             if (a + 1..b)
                 .any(|k| hermite(t, points, a, b, da, db, t[k]).distance(points[k]) > bound)
             {
                 return false;
             }
-            planes.iter().all(|p| {
-                let (da, db) = (
-                    derivative(t, p.uv, lo, hi, a),
-                    derivative(t, p.uv, lo, hi, b),
-                );
+            planes.iter().zip(&piece.d2).all(|(p, d)| {
+                let (da, db) = (d[a - lo], d[b - lo]);
                 (a + 1..b).all(|k| {
                     let e = (hermite(t, p.uv, a, b, da, db, t[k]) - p.uv[k]).abs();
                     e.dot(p.metric[k]) <= bound
@@ -143,31 +157,28 @@ pub(super) fn fit_loop(
                 }
             }
             step = (good - a).max(2);
-            spans.push((a, good, lo, hi));
+            spans.push((a, good, slopes.len()));
             a = good;
         }
+        slopes.push(piece);
     }
     // The Bézier net: a double knot at a node inside a piece (both spans take
     // its one slope: C¹), a triple one at a break (each side its own slope).
     let mut knots = vec![t[0]; 4];
     let mut c3 = vec![points[0]];
     let mut c2: Vec<Vec<DVec2>> = planes.iter().map(|p| vec![p.uv[0]]).collect();
-    for (j, &(a, b, lo, hi)) in spans.iter().enumerate() {
+    for (j, &(a, b, piece)) in spans.iter().enumerate() {
         let h = t[b] - t[a];
-        let (da, db) = (
-            derivative(t, points, lo, hi, a),
-            derivative(t, points, lo, hi, b),
-        );
+        let piece = &slopes[piece];
+        let (da, db) = (piece.d3[a - piece.lo], piece.d3[b - piece.lo]);
         c3.push(points[a] + da * (h / 3.0));
         c3.push(points[b] - db * (h / 3.0));
-        for (c, p) in c2.iter_mut().zip(&planes) {
-            let (da, db) = (
-                derivative(t, p.uv, lo, hi, a),
-                derivative(t, p.uv, lo, hi, b),
-            );
+        for ((c, p), d) in c2.iter_mut().zip(&planes).zip(&piece.d2) {
+            let (da, db) = (d[a - piece.lo], d[b - piece.lo]);
             c.push(p.uv[a] + da * (h / 3.0));
             c.push(p.uv[b] - db * (h / 3.0));
         }
+        let hi = piece.lo + piece.d3.len() - 1;
         let last = j + 1 == spans.len();
         if last || b == hi {
             knots.extend(std::iter::repeat_n(t[b], if last { 4 } else { 3 }));
@@ -184,35 +195,62 @@ pub(super) fn fit_loop(
     Ok(LoopFit { curve, pcurves: c2 })
 }
 
-/// The derivative at sample `k` of the Lagrange polynomial through the
-/// [`STENCIL`] samples nearest to it within `lo..=hi`.
-fn derivative<V>(t: &[f64], values: &[V], lo: usize, hi: usize, k: usize) -> V
-where
-    V: Copy + std::ops::Mul<f64, Output = V> + std::ops::Add<Output = V> + Default,
-{
+/// The derivative at a sample of the Lagrange polynomial through the
+/// [`STENCIL`] samples nearest to it within a piece, as weights of those
+/// samples' values: the same for the 3D points and every pcurve's (u, v).
+struct Stencil {
+    first: usize,
+    count: usize,
+    weights: [f64; STENCIL],
+}
+
+impl Stencil {
+    /// The derivative of `values` at the stencil's sample.
+    fn apply<V>(&self, values: &[V]) -> V
+    where
+        V: Copy + std::ops::Mul<f64, Output = V> + std::ops::Add<Output = V> + Default,
+    {
+        let mut out = V::default();
+        for (i, &w) in self.weights[..self.count].iter().enumerate() {
+            out = out + values[self.first + i] * w;
+        }
+        out
+    }
+}
+
+/// The stencil of sample `k` within `lo..=hi`.
+fn stencil(t: &[f64], lo: usize, hi: usize, k: usize) -> Stencil {
     let count = STENCIL.min(hi - lo + 1);
     let first = k.saturating_sub(count / 2).max(lo).min(hi + 1 - count);
     let xs = &t[first..first + count];
-    let x = t[k];
-    let mut out = V::default();
+    let at = k - first;
+    let x = xs[at];
+    // L_i'(x) = Σ_{j≠i} 1/(xi − xj) · Π_{l≠i,j} (x − xl)/(xi − xl), at the
+    // node x = x_at: for i ≠ at only the term j = at is not zero; for i = at
+    // every product is 1.
+    let mut weights = [0.0; STENCIL];
     for (i, &xi) in xs.iter().enumerate() {
-        // L_i'(x) = Σ_{j≠i} 1/(xi − xj) · Π_{l≠i,j} (x − xl)/(xi − xl)
-        let mut weight = 0.0;
-        for (j, &xj) in xs.iter().enumerate() {
-            if j == i {
-                continue;
-            }
-            let mut term = 1.0 / (xi - xj);
+        weights[i] = if i == at {
+            xs.iter()
+                .enumerate()
+                .filter(|&(j, _)| j != at)
+                .map(|(_, &xj)| 1.0 / (xi - xj))
+                .sum()
+        } else {
+            let mut term = 1.0 / (xi - x);
             for (l, &xl) in xs.iter().enumerate() {
-                if l != i && l != j {
+                if l != i && l != at {
                     term *= (x - xl) / (xi - xl);
                 }
             }
-            weight += term;
-        }
-        out = out + values[first + i] * weight;
+            term
+        };
     }
-    out
+    Stencil {
+        first,
+        count,
+        weights,
+    }
 }
 
 /// The cubic Hermite interpolant between samples `a` and `b` (slopes `da`,

@@ -5,7 +5,7 @@
 //! hole across a closed patch's seam, a loop round a pole, a pad's annulus
 //! (on its surface with the seam moved half a turn where its loops cross it).
 
-use std::collections::HashMap;
+use rustc_hash::FxHashMap;
 
 use glam::{DAffine3, DVec2, DVec3};
 
@@ -31,13 +31,13 @@ pub(super) struct Builder {
     pub(super) tolerance: f64,
     pub(super) vertices: Vec<DVec3>,
     /// Vertices by group and cell of the match distance's size.
-    pub(super) vertex_cells: HashMap<(usize, glam::I64Vec3), Vec<usize>>,
+    pub(super) vertex_cells: FxHashMap<(usize, glam::I64Vec3), Vec<usize>>,
     /// Faces of one group share vertices and edges: 0 for the envelope (parts
     /// and nozzles), 1 + the node's index for a support.
     pub(super) group: usize,
     pub(super) edges: Vec<Edge>,
     /// Exact edges by their (smaller, larger) vertex pair.
-    pub(super) by_ends: HashMap<(usize, usize), Vec<usize>>,
+    pub(super) by_ends: FxHashMap<(usize, usize), Vec<usize>>,
     /// Each loop edge with the parameters its fit must keep as nodes.
     pub(super) loop_breaks: Vec<(usize, Vec<f64>)>,
 }

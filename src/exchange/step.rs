@@ -72,6 +72,29 @@ pub(super) fn real(out: &mut String, x: f64) {
     }
 }
 
+/// Appends `n` in decimal (what `write!(out, "{n}")` writes, without the
+/// formatting machinery: the writer appends some 40 000 ids per vessel).
+pub(super) fn decimal(out: &mut String, mut n: usize) {
+    let mut digits = [0u8; 20];
+    let mut at = digits.len();
+    loop {
+        at -= 1;
+        digits[at] = b'0' + (n % 10) as u8;
+        n /= 10;
+        if n == 0 {
+            break;
+        }
+    }
+    // ASCII digits only.
+    out.push_str(std::str::from_utf8(&digits[at..]).unwrap_or_default());
+}
+
+/// Appends `#n`.
+fn reference(out: &mut String, n: usize) {
+    out.push('#');
+    decimal(out, n);
+}
+
 /// Appends a STEP string literal (quotes doubled, non-ASCII as `\X2\` hex).
 fn string(out: &mut String, s: &str) {
     out.push('\'');
@@ -104,7 +127,8 @@ impl Writer {
     fn begin(&mut self) -> usize {
         let id = self.next;
         self.next += 1;
-        let _ = write!(self.out, "#{id}=");
+        reference(&mut self.out, id);
+        self.out.push('=');
         id
     }
 
@@ -120,7 +144,7 @@ impl Writer {
             if i > 0 {
                 self.out.push(',');
             }
-            let _ = write!(self.out, "#{id}");
+            reference(&mut self.out, *id);
         }
         self.out.push(')');
     }
@@ -144,7 +168,7 @@ impl Writer {
             if i > 0 {
                 self.out.push(',');
             }
-            let _ = write!(self.out, "{x}");
+            decimal(&mut self.out, *x);
         }
         self.out.push(')');
     }
@@ -584,6 +608,10 @@ fn face_edges(face: &Face) -> impl Iterator<Item = &OrientedEdge> {
 /// Appends `block` with every local id (≥ [`LOCAL_BASE`]) moved by `offset`.
 /// Ids inside string literals are left alone.
 pub fn rebase(out: &mut String, block: &str, offset: usize) {
+    if offset == 0 {
+        out.push_str(block);
+        return;
+    }
     let bytes = block.as_bytes();
     let mut i = 0;
     let mut copied = 0;
@@ -594,16 +622,20 @@ pub fn rebase(out: &mut String, block: &str, offset: usize) {
             b'#' if !quoted => {
                 let start = i + 1;
                 let mut end = start;
+                let mut id = Some(0usize);
                 while end < bytes.len() && bytes[end].is_ascii_digit() {
+                    id = id
+                        .and_then(|n| n.checked_mul(10))
+                        .and_then(|n| n.checked_add(usize::from(bytes[end] - b'0')));
                     end += 1;
                 }
-                if end > start {
-                    let id: usize = block[start..end].parse().unwrap_or(0);
-                    if id >= LOCAL_BASE {
-                        out.push_str(&block[copied..start]);
-                        let _ = write!(out, "{}", id + offset);
-                        copied = end;
-                    }
+                let moved = id
+                    .filter(|&n| n >= LOCAL_BASE)
+                    .and_then(|n| n.checked_add(offset));
+                if let (true, Some(moved)) = (end > start, moved) {
+                    out.push_str(&block[copied..start]);
+                    decimal(out, moved);
+                    copied = end;
                 }
                 i = end;
                 continue;

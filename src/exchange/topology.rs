@@ -92,10 +92,10 @@ pub fn vessel_brep_with(
     let mut builder = Builder {
         tolerance: (size * MATCH_RELATIVE).max(MATCH_MIN),
         vertices: Vec::new(),
-        vertex_cells: HashMap::new(),
+        vertex_cells: Default::default(),
         group: 0,
         edges: Vec::new(),
-        by_ends: HashMap::new(),
+        by_ends: Default::default(),
         loop_breaks: Vec::new(),
     };
     let entity = |node: usize| format!("{}/{}", source.tag, source.nodes[node].id);

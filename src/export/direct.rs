@@ -14,13 +14,14 @@ use rayon::prelude::*;
 
 use super::error::ExportError;
 use super::extras::{nozzle_extras, part_extras, vessel_extras};
+use super::openings::{Opening, SharedMarches, cut_opening, openings};
 use super::scene::{Scene, SceneNode, SceneNodeKind, ScenePatch, SceneVessel};
 use crate::constraints::PartGeometry;
 use crate::design::{Design, resolve};
 use crate::mesh::cdt::mesh_patch_region;
 use crate::mesh::{
-    HostTrim, Notch, PackedMesh, PadCut, TessellationOptions, cut_opening_reusing, host_region,
-    pad_region, patch_extent, storage_options,
+    HostTrim, Notch, PackedMesh, PadCut, TessellationOptions, host_region, pad_region,
+    patch_extent, storage_options,
 };
 use crate::nurbs::intersect::IntersectionLoop;
 use crate::parts::{Nozzle, PartError, Patch};
@@ -101,53 +102,34 @@ pub fn build_scene(design: &Design, options: &TessellationOptions) -> Result<Sce
     let stored = storage_options(options, extent);
     let options = &stored;
 
-    // Openings: every boot's shell and every nozzle's neck cut against its host, in
-    // parallel. Per vessel the boots come first, then the nozzles in design order:
-    // the order the model relates them to their hosts, so holes are listed alike.
+    // Openings: every boot's shell and every nozzle's neck cut against its host
+    // (`openings`, shared with the exchange), in parallel. Per vessel the boots
+    // come first, then the nozzles in design order: the order the model relates
+    // them to their hosts, so holes are listed alike.
     let by_node: HashMap<(usize, usize), &Vec<Patch>> =
         patches.iter().map(|(k, list)| (*k, list)).collect();
-    let jobs: Vec<(usize, usize, usize, Option<f64>)> = resolved
+    let jobs: Vec<(usize, Opening)> = resolved
         .iter()
         .enumerate()
-        .flat_map(|(v, vessel)| {
-            let parts = vessel.parts.len();
-            let boots = vessel
-                .parts
-                .iter()
-                .enumerate()
-                .filter_map(move |(i, part)| part.host.map(|h| (v, i, h, None)));
-            let nozzles = vessel
-                .nozzles
-                .iter()
-                .enumerate()
-                .map(move |(i, nozzle)| (v, parts + i, nozzle.host, nozzle.pad.map(|p| p.0)));
-            boots.chain(nozzles)
-        })
+        .flat_map(|(v, vessel)| openings(vessel).into_iter().map(move |o| (v, o)))
         .collect();
+    let shared = SharedMarches::default();
     let cut: Vec<_> = jobs
         .par_iter()
-        .map(|&(v, n, h, pad)| {
-            let hosts: Vec<&Patch> = by_node
-                .get(&(v, h))
-                .map(|l| l.iter().collect())
-                .unwrap_or_default();
+        .map(|&(v, opening)| {
+            let (n, h) = (opening.neck, opening.host);
+            let hosts = by_node.get(&(v, h)).map_or(&[][..], |l| l.as_slice());
             let neck = by_node.get(&(v, n)).and_then(|l| l.first());
-            let (nozzle_frame, host_frame) =
-                (&vessels[v].nodes[n].frame, &vessels[v].nodes[h].frame);
-            let result = match neck {
-                Some(neck) => cut_opening_reusing(
-                    neck,
-                    pad,
-                    nozzle_frame,
-                    host_frame,
-                    &hosts,
-                    options.tolerance,
-                    None,
-                )
-                .map(|c| (c.cut, c.pad))
-                .map_err(|e| e.to_string()),
-                None => Err("the part has no patch to cut into its host".to_string()),
-            };
+            let frames = (&vessels[v].nodes[n].frame, &vessels[v].nodes[h].frame);
+            let result = cut_opening(
+                neck,
+                opening.pad_od,
+                frames,
+                hosts,
+                options.tolerance,
+                &shared,
+            )
+            .map(|c| (c.cut, c.pad));
             ((v, n, h), result)
         })
         .collect();

@@ -29,6 +29,7 @@ mod gltf_encoding;
 mod gltf_instancing;
 mod gltf_materials;
 mod granularity;
+mod openings;
 mod scene;
 mod tiles;
 
@@ -43,5 +44,6 @@ pub use glb_stream::{stream_glb, stream_glb_to, stream_glb_with, stream_glb_with
 pub use gltf_document::{PLANT_NODE, PLANT_ROTATION};
 pub use gltf_encoding::quantization_bound;
 pub use granularity::{Granularity, MERGED_PATCH, merge_scene};
+pub use openings::{Opening, SharedMarches, cut_opening, openings};
 pub use scene::{Scene, SceneNode, SceneNodeKind, ScenePatch, SceneVessel};
 pub use tiles::{TILESET, write_tiles};
