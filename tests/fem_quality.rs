@@ -75,7 +75,7 @@ fn figures_of_a_hand_made_mesh() {
 
 #[test]
 fn parts_add_up_to_the_mesh() {
-    let design = vesselcad::design::load(&example_path("vertical-column")).expect("example");
+    let design = vesselcad::design::load(example_path("vertical-column")).expect("example");
     let resolved = vesselcad::design::resolve(&design).expect("valid");
     let mesh = vesselcad::fem::build_envelope(
         &design.vessels[0],
