@@ -68,9 +68,10 @@ fn drum_results_as_a_coloured_glb_and_a_table_against_the_allowable() {
     eprintln!("S1's Pm at node {worst}, {:.0}", m.mesh.nodes[worst]);
     let hoop = 1193.0 / 14.0;
     let pm = course.membrane.expect("a general membrane region on S1");
-    // Measured 95.5 MPa (+12 %) at a node near the bottom, x = 6351, beyond
-    // √(R·t) of every junction; not yet traced, so the bound is 15 %.
-    assert!((pm - hoop).abs() <= 0.15 * hoop, "{course:?}");
+    // Within 2 % (measured 85.6 MPa, +0.5 %); with a √(R·t) zone it read
+    // 95.5 (+12 %), the heads' and nozzles' disturbances beyond √(R·t) counted
+    // as general membrane (see vesselcad::fem::zones).
+    assert!((pm - hoop).abs() <= 0.02 * hoop, "{course:?}");
     let pl = course.local.expect("local regions on S1");
     assert!(pl > 2.0 * pm, "{course:?}");
     assert_eq!(

@@ -10,7 +10,7 @@ use glam::DVec3;
 use vesselcad::fem::results::{part_stresses, principal};
 
 /// R = 1000 mm on the mid-surface, t = 10 mm, P = 1 MPa: hoop 100 MPa, axial
-/// 50 MPa on the course farther than 2.5·√(R·t) from the heads.
+/// 50 MPa on the course farther than 3·√(R·t) from the heads.
 #[test]
 fn course_between_two_to_one_heads() {
     let design = vessel(r#""shape": "ellipsoidal""#, 2010.0, 3000.0, 10.0, 1000.0);
@@ -41,15 +41,16 @@ fn course_between_two_to_one_heads() {
         checked += 1;
     }
     assert!(checked > 100, "only {checked} nodes checked");
-    // The per-part table: the course's general membrane Pm (beyond √(R·t) of
-    // the heads) is the hoop stress intensity P·R/t plus what is left there
-    // of the heads' discontinuity (the 2:1 head's hoop overshoot, about
-    // e^(−3π/4)·sin(3π/4) ≈ 7 % at β·x = 3π/4): measured 107.8 MPa.
+    // The per-part table: the course's general membrane Pm (beyond
+    // 3·√(R·t) of the heads, where the 2:1 heads' pull has died out) is the
+    // hoop stress intensity P·R/t within 2 %; within √(R·t) alone it read
+    // 107.8 MPa (the heads' hoop overshoot round 1.6·√(R·t)), within 2.5·√(R·t)
+    // 103.3.
     let rows = part_stresses(&m, &results);
     let row = rows.iter().find(|r| r.name == "V-1/S1").expect("S1 row");
     eprintln!("{row:?}");
     let pm = row.membrane.expect("a general membrane region");
-    assert!((98.0..=110.0).contains(&pm), "{row:?}");
+    assert!((98.0..=102.0).contains(&pm), "{row:?}");
     assert!(row.local.is_some(), "{row:?}");
 }
 

@@ -1,7 +1,9 @@
 //! `vesselcad fem <design> --vessel TAG -o model.inp [--size mm] [--order 1|2]
-//! [--case design|operating|test] [--run]`: the shell finite-element model of
+//! [--case design|operating|test] [--quality] [--run]`: the shell finite-element model of
 //! one vessel (see `vesselcad::fem`) as a CalculiX deck, with the same mesh as
-//! Gmsh `.msh` and ParaView `.vtu` and a units side file beside it; `--run`
+//! Gmsh `.msh` and ParaView `.vtu` and a units side file beside it;
+//! `--quality` prints the mesh quality per part with the cos(min angle)
+//! histogram; `--run`
 //! solves it with `ccx`, reports the stresses per part against the allowable
 //! and writes the deformed shape with von Mises colours as `.glb`.
 
@@ -49,6 +51,10 @@ pub struct FemArgs {
     /// Load case.
     #[arg(long, value_enum, default_value_t = Case::Design)]
     case: Case,
+    /// Report the mesh quality per part (angles, scaled Jacobian, aspect,
+    /// grading) and the cos(min angle) histogram.
+    #[arg(long)]
+    quality: bool,
     /// Run `ccx` on the deck, report the stresses per part and write the
     /// deformed shape with von Mises colours (`.glb`).
     #[arg(long)]
@@ -137,6 +143,11 @@ fn write_and_run(args: &FemArgs, model: &vesselcad::fem::FeModel) -> Result<(), 
         q.coincident_nodes,
         q.max_size_ratio
     );
+    if args.quality {
+        for line in vesselcad::fem::quality_table::report(&model.mesh).lines() {
+            outln!("{line}");
+        }
+    }
     if !args.run {
         return Ok(());
     }

@@ -12,7 +12,7 @@
 //! ([`cap`]); [`conditions`] attaches a load case; [`inp`], [`msh`] and [`vtu`]
 //! write it; [`frd`] and [`results`] read a CalculiX run back and classify the
 //! stresses per part, and [`glb`] draws the deformed shape with von Mises
-//! colours; [`quality`] measures the mesh. Nozzles: [`window`] and [`nozzle`]
+//! colours; [`quality`] measures the mesh and [`quality_table`] reports it. Nozzles: [`window`] and [`nozzle`]
 //! on cylindrical courses (radial or not), [`head_nozzle`] on a head's centre.
 
 pub mod builder;
@@ -29,6 +29,7 @@ pub mod meridian;
 pub mod msh;
 pub mod nozzle;
 pub mod quality;
+pub mod quality_table;
 pub mod results;
 pub mod vtu;
 pub mod window;

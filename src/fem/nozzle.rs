@@ -123,7 +123,7 @@ pub fn mesh(
     let width = TAU * big_r / n as f64;
     let height = (station_z(i1) - station_z(i0)) / bb.max(1) as f64;
     let cell = (width * height).sqrt().min(size);
-    let lambdas = grading::layers(gap, first, cell, width.max(height).min(size));
+    let lambdas = grading::layers_at(gap, first, cell, width.max(height).min(size), hole.growth);
     let mut plane: HashMap<usize, DVec2> = HashMap::new();
     for &(id, p) in &outer {
         plane.insert(id, p);

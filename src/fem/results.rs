@@ -8,7 +8,7 @@
 //! written), the membrane-plus-bending stress the worse of the two faces.
 //! Stress intensity is the largest difference of principal stresses (Tresca),
 //! compared per part with the allowable S (general membrane Pm, away from
-//! junctions), 1.5 S (local membrane PL, within √(R·t) of a junction, see
+//! junctions), 1.5 S (local membrane PL, within 3·√(R·t) of a junction, see
 //! [`super::zones`]) and 1.5 S (membrane plus bending), as ASME VIII-2 5.2.2
 //! classifies a shell's linearised stresses.
 
@@ -202,9 +202,9 @@ pub struct PartStress {
     /// Part name (`V-101/S1`).
     pub name: String,
     /// Largest general membrane stress intensity Pm (nodes farther than
-    /// √(R·t) from every junction), MPa; `None` when the whole part is near one.
+    /// 3·√(R·t) from every junction), MPa; `None` when the whole part is near one.
     pub membrane: Option<f64>,
-    /// Largest local membrane stress intensity PL (nodes within √(R·t) of a
+    /// Largest local membrane stress intensity PL (nodes within 3·√(R·t) of a
     /// junction), MPa; `None` when no node of the part is near one.
     pub local: Option<f64>,
     /// Largest membrane-plus-bending stress intensity (Pm + Pb or PL + Pb),

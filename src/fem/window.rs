@@ -6,7 +6,8 @@
 //! window reaches at least [`MARGIN`] times the opening's extent on each side of
 //! the point where the nozzle axis meets the course (and past the pad), and
 //! far enough past it for the ring to grade from the opening's node spacing to
-//! the cells' width at [`super::grading::GROWTH`], holds at
+//! the cells' width at [`super::grading::RING_GROWTH`] (at
+//! [`super::grading::GROWTH`] where the course's end cuts that room short), holds at
 //! least [`MIN_LOOP`] cell edges round its boundary (so the opening gets as many
 //! nodes), and stays on its course. The intersection of the neck's and the
 //! course's mid-surfaces is solved in closed form along each generator of the
@@ -76,6 +77,8 @@ pub struct Hole {
     pub end: f64,
     /// Pad (outside diameter, thickness), mm.
     pub pad: Option<(f64, f64)>,
+    /// Growth of the ring's size field ([`super::grading::layers_at`]).
+    pub growth: f64,
 }
 
 impl Hole {
@@ -242,6 +245,7 @@ pub fn plan(
             e2,
             end: g.projection - flange,
             pad: nz.pad,
+            growth: super::grading::RING_GROWTH,
         };
         let Some(tc) = meet(o, d, centre, big_r) else {
             skip("its axis misses its course's mid-surface");
@@ -282,19 +286,16 @@ pub fn plan(
         // Room round the opening for the ring to grade from the curve's
         // spacing to the cells' width: at least (w − spacing)/GROWTH.
         let w = TAU * big_r / n as f64;
-        let mut reach = 0.0;
-        for _ in 0..3 {
-            let perimeter = 2.0 * ((hi - lo).x + (hi - lo).y) + 8.0 * reach;
-            let edges = (perimeter / w).max(MIN_LOOP as f64);
-            reach = ((w - TAU * r / edges) / super::grading::GROWTH).max(0.0);
-        }
-        let lo = (lo * MARGIN).min(lo - DVec2::splat(reach));
-        let hi = (hi * MARGIN).max(hi + DVec2::splat(reach));
-        let cell = TAU / n as f64;
-        let kc = hole.theta / cell;
-        let mut k0 = (kc + lo.x / (big_r * cell)).floor() as i64;
-        let mut k1 = (kc + hi.x / (big_r * cell)).ceil() as i64;
-        // Stations of this segment, and the window's.
+        let reach_at = |growth: f64| {
+            let mut reach = 0.0;
+            for _ in 0..3 {
+                let perimeter = 2.0 * ((hi - lo).x + (hi - lo).y) + 8.0 * reach;
+                let edges = (perimeter / w).max(MIN_LOOP as f64);
+                reach = ((w - TAU * r / edges) / growth).max(0.0);
+            }
+            reach
+        };
+        // Stations of this segment.
         let on_seg: Vec<usize> = (0..mer.intervals.len())
             .filter(|&i| mer.intervals[i].seg == seg)
             .collect();
@@ -304,6 +305,23 @@ pub fn plan(
         };
         let top = last + 1;
         let zc = hole.z;
+        // Where the course's end cuts the slow ring's room short, the ring
+        // grows faster, as the room allows (a slow growth there squeezes its
+        // layers on that side).
+        let slow = reach_at(hole.growth);
+        if station_z(mer, first) > zc + (lo.y * MARGIN).min(lo.y - slow)
+            || station_z(mer, top) < zc + (hi.y * MARGIN).max(hi.y + slow)
+        {
+            hole.growth = super::grading::GROWTH;
+        }
+        let reach = reach_at(hole.growth);
+        let lo = (lo * MARGIN).min(lo - DVec2::splat(reach));
+        let hi = (hi * MARGIN).max(hi + DVec2::splat(reach));
+        let cell = TAU / n as f64;
+        let kc = hole.theta / cell;
+        let mut k0 = (kc + lo.x / (big_r * cell)).floor() as i64;
+        let mut k1 = (kc + hi.x / (big_r * cell)).ceil() as i64;
+        // The window's stations.
         let mut i0 = (first..=top)
             .rev()
             .find(|&i| station_z(mer, i) <= zc + lo.y)
