@@ -62,8 +62,7 @@ const MATCH_MIN: f64 = 1e-7;
 /// # Errors
 ///
 /// [`ExchangeError::Topology`] for a trim this builder does not handle yet (a
-/// padded opening across a seam between two host patches, a notch across a
-/// closed patch's seam in u), [`ExchangeError::Geometry`] where a
+/// notch across a closed patch's seam in u), [`ExchangeError::Geometry`] where a
 /// surface or curve cannot be mapped or split.
 pub fn vessel_brep(source: &VesselSource) -> Result<VesselBrep, ExchangeError> {
     vessel_brep_with(source, false)
@@ -137,12 +136,6 @@ pub fn vessel_brep_with(
             .iter()
             .find(|(_, t)| matches!(t, HostTrim::Notches(_)))
         {
-            if cut.cut.pad.is_some() {
-                return Err(fail(
-                    *k,
-                    "a padded opening across the seam between two host patches is not written yet",
-                ));
-            }
             let (edges, uses) = notched_loop(
                 &mut builder,
                 &cut.cut,
@@ -154,7 +147,18 @@ pub fn vessel_brep_with(
             for (k, notch) in uses {
                 notches.entry((cut.host, k)).or_default().push(notch);
             }
-            pairs.push((c, edges));
+            // A pad across the seam: its face on the host patches joined, from
+            // the notching loop (the pad's) to the neck's, one closed edge.
+            match &cut.pad {
+                Some(pad) => {
+                    let neck_edges = builder
+                        .loop_edges(&cut.cut.neck, &host_frame, &[], &neck_knots)
+                        .map_err(|rule| fail(*k, &rule))?;
+                    pad_faces.push((cut, pad, neck_edges.clone(), edges, false, None));
+                    pairs.push((c, neck_edges));
+                }
+                None => pairs.push((c, edges)),
+            }
             continue;
         }
         // The host patch a hole lies in, and the seam sample of a loop round its pole.
