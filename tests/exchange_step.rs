@@ -175,6 +175,11 @@ fn occt_reads_valid_sewn_named_faces() {
         ("across-seam", across_seam()),
         // An opening across the knuckle–crown seam beside one round the pole.
         ("D4", repro("D4-seam-crossing-plus-centre-nozzle")),
+        // A reinforcing pad across the seam of a head's knuckle and its crown,
+        // cone or plate: the pad's loop notches both host faces.
+        ("D7", repro("D7-pad-across-knuckle-crown-seam")),
+        ("D7b", repro("D7b-pad-across-toriconical-knuckle-cone")),
+        ("D7c", repro("D7c-pad-across-flat-head-knuckle-plate")),
     ] {
         let text = export_step(
             &design,
@@ -342,7 +347,9 @@ fn occt_displacement_solid_volume() {
 /// The head-seam repros that used to be refused (issue 30 §1: an off-centre
 /// nozzle at an ellipsoidal head's seam angle, a ring of four round a centre
 /// nozzle, a ring of eight on every seam step; D4, an opening across a
-/// torispherical head's knuckle–crown seam, whose loop notches both patches) go through the same seam choice in the exchange model: with blind
+/// torispherical head's knuckle–crown seam, whose loop notches both patches;
+/// D7, D7b, D7c, a reinforcing pad across a knuckle's seam, whose loop notches
+/// both patches and whose face lies on the two joined) go through the same seam choice in the exchange model: with blind
 /// flanges closing every bore, each vessel is one closed shell, each edge used
 /// twice.
 #[test]
@@ -351,6 +358,9 @@ fn head_seam_repros_export_closed_shells() {
         "D2-ellipsoidal-head-seam-nozzle",
         "D4-seam-crossing-plus-centre-nozzle",
         "D5-ring-of-4-plus-centre",
+        "D7-pad-across-knuckle-crown-seam",
+        "D7b-pad-across-toriconical-knuckle-cone",
+        "D7c-pad-across-flat-head-knuckle-plate",
         "D8-ring-of-8-on-every-seam-angle",
     ] {
         let mut design = load(format!(
@@ -365,5 +375,45 @@ fn head_seam_repros_export_closed_shells() {
             assert_eq!(brep.shells.len(), 1, "{name}");
             assert!(brep.shells[0].closed, "{name}: the shell is open");
         }
+    }
+}
+
+/// A reinforcing pad across a head's knuckle seam (D7, D7b, D7c) fills
+/// exactly what its loop notches out of the two host faces: the head's faces
+/// and the pad's face together have the area of the same head cut by the
+/// neck alone (the design without the pad), to 1e-6 relative; the pad's face
+/// lies on the two host patches joined, bounded by its loop (shared with the
+/// notches) and the neck's.
+#[test]
+fn a_pad_across_a_knuckle_seam_fills_its_notches() {
+    for name in [
+        "D7-pad-across-knuckle-crown-seam",
+        "D7b-pad-across-toriconical-knuckle-cone",
+        "D7c-pad-across-flat-head-knuckle-plate",
+    ] {
+        let padded = repro(name);
+        let mut bare = padded.clone();
+        bare.vessels[0].nozzles[0].pad = None;
+        let area = |design: &Design| {
+            let brep = breps(design).remove(0);
+            let pads = brep
+                .faces
+                .iter()
+                .filter(|f| f.patch == vesselcad::mesh::PAD_PATCH)
+                .count();
+            let area: f64 = brep
+                .faces
+                .iter()
+                .filter(|f| brep.nodes[f.node] == "H2" || f.patch == vesselcad::mesh::PAD_PATCH)
+                .map(|f| face_measures(&brep.edges, f).area)
+                .sum();
+            (area, pads)
+        };
+        let ((with_pad, pads), (without, none)) = (area(&padded), area(&bare));
+        assert_eq!((pads, none), (1, 0), "{name}");
+        assert!(
+            (with_pad - without).abs() <= 1e-6 * without,
+            "{name}: head and pad {with_pad} mm² vs the head cut by the neck {without} mm²"
+        );
     }
 }

@@ -496,7 +496,7 @@ pub(crate) fn place(
                 if let Some((pad_od, _)) = pad
                     && let Some(refusal) = pad_seam_refusal(head, offset, pad_od)
                 {
-                    report.push(format!("{path}.offset"), id, "offset", offset, format!("the reinforcing pad (OD {pad_od} mm) {refusal} of head {}: move the nozzle or change the pad's OD", n.host));
+                    report.push(format!("{path}.offset"), id, "offset", offset, format!("the reinforcing pad (OD {pad_od} mm) on head {} {refusal}: move the nozzle or change the pad's OD", n.host));
                     continue;
                 }
                 // The neck meets the head highest on its side nearest the axis
