@@ -152,6 +152,11 @@ fn a_knuckle_and_the_piece_beyond_lie_on_their_knuckled_surface() {
                         }
                         let at = |d: f64| analytic.distance(p + n * d);
                         assert!(at(0.0) < TOL, "{:?} {}: {}", head.kind, patch.name, at(0.0));
+                        // Off the surface, away from a cone's apex (where the
+                        // nearest point inside is on the other side).
+                        if p.truncate().length() < 50.0 {
+                            continue;
+                        }
                         for d in [-3.0, 3.0] {
                             assert!(
                                 (at(d) - 3.0).abs() < 1e-6,
