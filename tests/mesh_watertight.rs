@@ -424,7 +424,7 @@ fn a_pad_across_a_head_seam_builds_and_one_at_the_seam_is_refused_clearly() {
         thickness: 10.0,
     };
     let mut design = column_with_seam_nozzles(&[(3.0, 30.0, -0.5)]);
-    design.vessels[0].nozzles.last_mut().unwrap().pad = Some(pad.clone());
+    design.vessels[0].nozzles.last_mut().unwrap().pad = Some(pad);
     vesselcad::design::validate(&design).unwrap();
     assert_eq!(openings_across_seams(check_design(&design, 1.0)), 1);
 

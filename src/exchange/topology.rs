@@ -21,6 +21,12 @@
 //!   the exchange tolerance and fitted (`fit`) as a cubic B-spline over the
 //!   neck's parameter, with each face's pcurve fitted on the same knots, all
 //!   within the tolerance of the exact curve;
+//! - a reinforcing pad across the seam between two host patches (a head's
+//!   knuckle and the crown, cone or plate beyond): a face on each host patch,
+//!   bounded by the pad loop's notch in it and the seam's isocurve between
+//!   the notch's ends (an edge the two pieces share), the neck's loop a hole
+//!   in the piece holding it; one face on the patches joined where the neck's
+//!   loop crosses the seam too;
 //! - shells: the faces joined through shared edges, closed when every edge of
 //!   the shell is used twice.
 
