@@ -127,6 +127,7 @@ fn occt_reads_iges_as_it_reads_step() {
         ("small-plant", example("small-plant.json")),
         ("across-seam", across_seam()),
         ("D4", repro("D4-seam-crossing-plus-centre-nozzle")),
+        ("D7", repro("D7-pad-across-knuckle-crown-seam")),
     ] {
         let options = ExchangeOptions::DEFAULT;
         let iges = export_iges(&design, &[], &options, "x.igs").expect("iges");

@@ -380,17 +380,58 @@ proptest! {
     }
 }
 
-/// A pad reaching across a head's knuckle–crown seam is refused by `check`,
-/// naming the nozzle's offset (it used to pass `check` and fail to cut, issue 30
-/// §1); without the pad the same nozzle builds.
+proptest! {
+    #![proptest_config(ProptestConfig { cases: 6, failure_persistence: None, ..ProptestConfig::default() })]
+
+    /// Random padded nozzles across the knuckle–crown seam of the column's top
+    /// head: of random size, orientation, pad OD (1.5 to 2.5 times the neck's)
+    /// and position, the pad's edges at least its end gap beyond the seam on
+    /// both sides (the rule's range): `check` accepts each and it builds closed.
+    #[test]
+    fn random_pads_across_a_head_seam_are_watertight(
+        size in prop_oneof![Just(2.0), Just(3.0), Just(4.0), Just(6.0)],
+        orientation in 0.0..360.0f64,
+        ratio in 1.5..2.5f64,
+        along in 0.0..1.0f64,
+    ) {
+        let design = example("vertical-column");
+        let (seam, radius) = (crown_seam_radius(&design, "H2"), 700.0);
+        let r = vesselcad::parts::tables::pipe(vesselcad::parts::tables::Nps::try_new(size).unwrap())
+            .outside_diameter / 2.0;
+        let od = (2.0 * r * ratio).round();
+        let gap = (0.05 * od).max(5.0) + 1.0;
+        // The pad's centre from seam − od/2 + gap to the lesser of seam + od/2
+        // − gap and the head's radius less od/2 and 1 mm.
+        let (lo, hi) = (seam - od / 2.0 + gap, (seam + od / 2.0 - gap).min(radius - od / 2.0 - 1.0));
+        prop_assume!(hi > lo);
+        let offset = lo + along * (hi - lo);
+        let mut design = column_with_seam_nozzles(&[(size, orientation, (offset - seam) / r)]);
+        design.vessels[0].nozzles.last_mut().unwrap().pad = Some(PadDesign { od, thickness: 10.0 });
+        vesselcad::design::validate(&design).unwrap();
+        prop_assert_eq!(openings_across_seams(check_design(&design, 1.0)), 1);
+    }
+}
+
+/// A pad reaching across a head's knuckle–crown seam was refused by `check`
+/// (issue 30 §1: it passed `check` and failed to cut before that): it now
+/// builds closed, its opening notching both patches. A pad whose edge comes
+/// within the end gap of the seam without crossing it by more is refused,
+/// naming the nozzle's offset; without the pad the same nozzle builds.
 #[test]
-fn a_pad_across_a_head_seam_is_refused_clearly() {
-    let mut design = column_with_seam_nozzles(&[(3.0, 30.0, -0.5)]);
-    let n = design.vessels[0].nozzles.last_mut().unwrap();
-    n.pad = Some(PadDesign {
+fn a_pad_across_a_head_seam_builds_and_one_at_the_seam_is_refused_clearly() {
+    let pad = PadDesign {
         od: 120.0,
         thickness: 10.0,
-    });
+    };
+    let mut design = column_with_seam_nozzles(&[(3.0, 30.0, -0.5)]);
+    design.vessels[0].nozzles.last_mut().unwrap().pad = Some(pad);
+    vesselcad::design::validate(&design).unwrap();
+    assert_eq!(openings_across_seams(check_design(&design, 1.0)), 1);
+
+    // Centred 63 mm inside the seam: the pad's edge stops 3 mm short of it
+    // (its end gap is 6 mm).
+    let mut design = column_with_seam_nozzles(&[(3.0, 30.0, -63.0 / 44.45)]);
+    design.vessels[0].nozzles.last_mut().unwrap().pad = Some(pad);
     let refused = vesselcad::design::validate(&design).unwrap_err();
     let violations = refused.violations();
     assert_eq!(violations.len(), 1, "{violations:?}");
@@ -407,6 +448,85 @@ fn a_pad_across_a_head_seam_is_refused_clearly() {
     vesselcad::design::validate(&design).unwrap();
     let model = Model::from_design(&design, TessellationOptions::chord(1.0)).unwrap();
     assert!(model.errors().0.is_empty(), "{:?}", model.errors());
+}
+
+/// A reinforcing pad across the seam between a head's knuckle and the crown
+/// (D7, torispherical), the cone (D7b, toriconical) or the plate (D7c, flat)
+/// was refused ("a pad must lie on one patch"; issue 30): its loop now
+/// notches both host patches and the pad lies on the two joined, whose exact
+/// surface is the torus up to the seam and the sphere, cone or plane beyond
+/// (`Analytic::Knuckled`). Each builds closed, with the pad's triangles on
+/// both sides of the seam, every point of every triangle within the
+/// tolerance of its exact surface at 1 and 0.5 mm, and the incremental model
+/// equal to the full build; so does D7 with a smaller pad whose neck crosses
+/// the seam too.
+#[test]
+fn pads_across_a_knuckle_seam_build_closed_within_the_bound() {
+    use vesselcad::components::{PatchMesh, PatchSurface};
+    use vesselcad::parts::Analytic;
+    let repro = |name: &str| {
+        let path = format!("{}/tests/repros/{name}.json", env!("CARGO_MANIFEST_DIR"));
+        load(&path).unwrap_or_else(|e| panic!("{name} is refused: {e}"))
+    };
+    let mut neck_across = repro("D7-pad-across-knuckle-crown-seam");
+    {
+        let n = &mut neck_across.vessels[0].nozzles[0];
+        n.offset = Some(1100.0);
+        n.pad = Some(PadDesign {
+            od: 180.0,
+            thickness: 10.0,
+        });
+    }
+    vesselcad::design::validate(&neck_across).unwrap();
+    for (name, design) in [
+        ("D7", repro("D7-pad-across-knuckle-crown-seam")),
+        ("D7b", repro("D7b-pad-across-toriconical-knuckle-cone")),
+        ("D7c", repro("D7c-pad-across-flat-head-knuckle-plate")),
+        ("D7 neck across", neck_across),
+    ] {
+        closed_within_the_bound(name, &design);
+        let options = TessellationOptions::chord(1.0);
+        let mut model = check_design_with(&design, options);
+        common::full_build::assert_matches_full_build(&model, &options);
+        assert_eq!(
+            openings_across_seams(check_design(&design, 1.0)),
+            1,
+            "{name}"
+        );
+        let mut query = model.query::<(&PatchSurface, &PatchMesh)>();
+        let world = model.world();
+        let (surface, mesh) = query
+            .iter(world)
+            .find(|(s, _)| s.0.name == vesselcad::mesh::PAD_PATCH)
+            .expect("a pad patch");
+        let Analytic::Knuckled {
+            center,
+            axis,
+            major,
+            seam,
+            ..
+        } = surface.0.analytic
+        else {
+            panic!("{name}: the pad lies on {:?}", surface.0.analytic);
+        };
+        // Which side of the seam each vertex lies on, in the meridian plane.
+        let normal = glam::DVec2::from_angle(seam);
+        let (mut knuckle, mut beyond) = (0, 0);
+        for p in mesh.0.unpack().positions {
+            let d = p - center;
+            let h = d.dot(axis);
+            let q = glam::DVec2::new((d - axis * h).length() - major, h);
+            if normal.perp_dot(q) < 0.0 {
+                knuckle += 1;
+            } else {
+                beyond += 1;
+            }
+        }
+        assert!(
+            knuckle > 10 && beyond > 10,
+            "{name}: the pad has {knuckle} vertices on the knuckle, {beyond} beyond"
+        );
+    }
 }
 
 /// Openings on a course that cover every one of its eight standard seam-cut

@@ -109,3 +109,67 @@ fn reducers_are_exact_cones() {
         }
     }
 }
+
+/// A head's knuckle and the crown, cone or plate tangent to it, joined in v
+/// (the surface a reinforcing pad across their seam lies on), lie on their
+/// `Analytic::knuckled` surface: points of both pieces at distance 0, points
+/// 3 mm along the normal on either side at 3 mm, near the seam as well. Any
+/// other pair of patches (a conical head's cone and plate, a knuckle with the
+/// straight flange) has no such surface.
+#[test]
+fn a_knuckle_and_the_piece_beyond_lie_on_their_knuckled_surface() {
+    use vesselcad::parts::Analytic;
+    let mut joined = 0;
+    for head in all_heads(OD) {
+        let patches = head.patches().unwrap();
+        for pair in patches.windows(2) {
+            let (a, b) = (&pair[0], &pair[1]);
+            let ((u0, _), (_, v1)) = a.surface.domain();
+            let seam = a.surface.point(u0, v1);
+            let Some(analytic) = Analytic::knuckled(&a.analytic, &b.analytic, seam) else {
+                assert!(
+                    a.name != "knuckle" || b.name == "straight flange",
+                    "{:?}: {} then {}",
+                    head.kind,
+                    a.name,
+                    b.name
+                );
+                continue;
+            };
+            assert!(matches!(analytic, Analytic::Knuckled { .. }));
+            joined += 1;
+            for patch in [a, b] {
+                let ((u0, u1), (v0, v1)) = patch.surface.domain();
+                for i in 0..=8 {
+                    for j in 0..=20 {
+                        let (u, v) = (
+                            u0 + (u1 - u0) * i as f64 / 8.0,
+                            v0 + (v1 - v0) * j as f64 / 20.0,
+                        );
+                        let (p, n) = (patch.surface.point(u, v), patch.surface.normal(u, v));
+                        if !n.is_finite() || n.length() < 0.5 {
+                            continue; // a pole
+                        }
+                        let at = |d: f64| analytic.distance(p + n * d);
+                        assert!(at(0.0) < TOL, "{:?} {}: {}", head.kind, patch.name, at(0.0));
+                        // Off the surface, away from a cone's apex (where the
+                        // nearest point inside is on the other side).
+                        if p.truncate().length() < 50.0 {
+                            continue;
+                        }
+                        for d in [-3.0, 3.0] {
+                            assert!(
+                                (at(d) - 3.0).abs() < 1e-6,
+                                "{:?} {} at ({u}, {v}), {d} mm off: {}",
+                                head.kind,
+                                patch.name,
+                                at(d)
+                            );
+                        }
+                    }
+                }
+            }
+        }
+    }
+    assert!(joined >= 6, "{joined} knuckle seams");
+}

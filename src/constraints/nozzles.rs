@@ -92,22 +92,68 @@ pub(crate) fn end_gap(reach: f64) -> f64 {
     (0.05 * reach).max(5.0)
 }
 
-/// The radii from the axis at which a head's patches meet (each patch's
-/// start but the first's: the straight flange's end, the knuckle–crown joint).
-fn head_seam_radii(head: &crate::parts::heads::Head) -> Vec<f64> {
+/// The seams between a head's dished patches (each patch's start but the
+/// first's, inside the head's radius: the knuckle–crown joint, not the tangent
+/// line): their radii from the axis and whether a reinforcing pad may cross
+/// them (a knuckle and the crown, cone or plate tangent to it, see
+/// [`Analytic::knuckled`](crate::parts::Analytic::knuckled)).
+fn head_seams(head: &crate::parts::heads::Head) -> Vec<(f64, bool)> {
+    let radius = head.outside_diameter / 2.0;
     head.patches().map_or(Vec::new(), |patches| {
         patches
-            .iter()
-            .skip(1)
-            .filter_map(|p| {
-                let points = p
+            .windows(2)
+            .filter_map(|w| {
+                let start = *w[1]
                     .surface
                     .boundary(crate::nurbs::Side::VMin)
-                    .control_points();
-                points.first().map(|q| q.truncate().length())
+                    .control_points()
+                    .first()?;
+                let r = start.truncate().length();
+                let crossable =
+                    crate::parts::Analytic::knuckled(&w[0].analytic, &w[1].analytic, start)
+                        .is_some();
+                (r < radius * (1.0 - 1e-9)).then_some((r, crossable))
             })
             .collect()
     })
+}
+
+/// Why a reinforcing pad of `pad_od` on a nozzle at `offset` from the axis of
+/// `head` cannot be built across its seams, if it cannot (the end of a
+/// sentence naming the pad first): it reaches a seam it may not cross, comes
+/// within the end gap of one without crossing it by more, goes round the
+/// centre across one, or crosses two.
+fn pad_seam_refusal(head: &crate::parts::heads::Head, offset: f64, pad_od: f64) -> Option<String> {
+    let gap = end_gap(pad_od);
+    let (near, far) = (offset - pad_od / 2.0, offset + pad_od / 2.0);
+    let reached: Vec<(f64, bool)> = head_seams(head)
+        .into_iter()
+        .filter(|&(r, _)| near.max(0.0) - gap <= r && r <= far + gap)
+        .collect();
+    match reached.as_slice() {
+        [] => None,
+        [(r, true)] if near > 0.0 && near + gap < *r && *r < far - gap => None,
+        [(r, true)] if near <= 0.0 => Some(format!(
+            "reaches the seam at {r:.1} mm from the axis and goes round the head's \
+             centre: a pad may cross the knuckle's seam only off the centre (its inner \
+             edge, offset − OD/2 = {near:.1} mm, must be > 0)"
+        )),
+        [(r, true)] => Some(format!(
+            "comes within {gap} mm of the seam at {r:.1} mm from the axis (it spans \
+             {near:.1} to {far:.1} mm): a pad must cross that seam by more than {gap} mm \
+             on both sides or stay {gap} mm clear of it"
+        )),
+        [(r, false)] => Some(format!(
+            "reaches across or within {gap} mm of the seam at {r:.1} mm from the axis, \
+             between patches that are not a knuckle and the crown, cone or plate tangent \
+             to it: a pad must lie on one patch there"
+        )),
+        _ => Some(format!(
+            "reaches {} seams (it spans {near:.1} to {far:.1} mm from the axis): a pad may \
+             cross one seam only",
+            reached.len()
+        )),
+    }
 }
 
 /// A frame whose +Z is `axis` (unit) and whose +X is `x_hint` made orthogonal.
@@ -442,18 +488,15 @@ pub(crate) fn place(
                     report.push(format!("{path}.offset"), id, "offset", offset, format!("a reinforcing pad round the head's centre (pad OD {pad_od} mm) needs its nozzle round the centre too: the offset must be below the neck radius {} mm, or above the pad radius {} mm", pipe_od / 2.0, pad_od / 2.0));
                     continue;
                 }
-                // A pad is laid out on one patch of its head: its footprint may
-                // not reach across (nor to within the end gap of) a seam between
-                // two of the dished patches, such as the knuckle–crown joint.
+                // A pad is laid out on one patch of its head, or across the one
+                // seam between a knuckle and the crown, cone or plate tangent to
+                // it (the two joined: `mesh::cut`): its footprint may reach no
+                // other seam (nor come within the end gap of one), and crosses
+                // that one by more than the gap, off the head's centre.
                 if let Some((pad_od, _)) = pad
-                    && let Some(seam) = head_seam_radii(head).into_iter().find(|&r| {
-                        let gap = end_gap(pad_od);
-                        r < radius * (1.0 - 1e-9)
-                            && (offset - pad_od / 2.0).max(0.0) - gap <= r
-                            && r <= offset + pad_od / 2.0 + gap
-                    })
+                    && let Some(refusal) = pad_seam_refusal(head, offset, pad_od)
                 {
-                    report.push(format!("{path}.offset"), id, "offset", offset, format!("the reinforcing pad (OD {pad_od} mm) reaches across or within {} mm of the seam between the patches of head {} at {seam:.1} mm from its axis; a pad must lie on one patch: move the nozzle clear of that radius or make the pad smaller", end_gap(pad_od), n.host));
+                    report.push(format!("{path}.offset"), id, "offset", offset, format!("the reinforcing pad (OD {pad_od} mm) on head {} {refusal}: move the nozzle or change the pad's OD", n.host));
                     continue;
                 }
                 // The neck meets the head highest on its side nearest the axis

@@ -32,7 +32,9 @@ struct Placed<'a> {
 
 /// The edges of an opening loop that crosses the seams between the host
 /// patches `hosts` (host part frame, mapped into the vessel's by `host_frame`),
-/// split at its seam samples, and each host patch's notch uses. `neck_knots`
+/// split at its seam samples, and each host patch's notch uses: the neck's
+/// loop, or the reinforcing pad's where the nozzle has one (its face, on the
+/// patches joined, runs from that loop to the neck's). `neck_knots`
 /// as for [`Builder::loop_edges`].
 ///
 /// # Errors
@@ -47,7 +49,8 @@ pub(super) fn notched_loop(
     host_frame: &DAffine3,
     neck_knots: &[f64],
 ) -> Result<Notched, (usize, String)> {
-    let curve = &cut.neck;
+    // The loop the hosts are notched by: the pad's, if the nozzle has one.
+    let curve = cut.pad.as_ref().unwrap_or(&cut.neck);
     let n = curve.points.len();
     let mut placed = Vec::new();
     for (k, trim) in &cut.hosts {

@@ -21,6 +21,12 @@
 //!   the exchange tolerance and fitted (`fit`) as a cubic B-spline over the
 //!   neck's parameter, with each face's pcurve fitted on the same knots, all
 //!   within the tolerance of the exact curve;
+//! - a reinforcing pad across the seam between two host patches (a head's
+//!   knuckle and the crown, cone or plate beyond): a face on each host patch,
+//!   bounded by the pad loop's notch in it and the seam's isocurve between
+//!   the notch's ends (an edge the two pieces share), the neck's loop a hole
+//!   in the piece holding it; one face on the patches joined where the neck's
+//!   loop crosses the seam too;
 //! - shells: the faces joined through shared edges, closed when every edge of
 //!   the shell is used twice.
 
@@ -35,13 +41,16 @@ use glam::DVec3;
 use super::brep::{Face, Port, VesselBrep, shells};
 use super::error::ExchangeError;
 use super::fit::fit_loops;
-use super::loops::{Builder, Hole, LoopEdges, NotchUse, SeamHole, seam_index};
+use super::loops::{Builder, Hole, LoopEdges, Loops, NotchUse, SeamHole, seam_index};
 use super::notch::notched_loop;
 use super::seam::{on_pad_cylinder, uv_with_inserted, with_seam_samples};
 use super::source::{NodeKind, VesselSource};
-use crate::mesh::{HostTrim, closed_in_u};
+use crate::mesh::{Cut, HostTrim, closed_in_u};
 use crate::nurbs::builders::{line, revolve};
 use crate::nurbs::intersect::IntersectionLoop;
+use crate::nurbs::{NurbsSurface, Side};
+use crate::parts::Patch;
+use glam::DVec2;
 use std::f64::consts::TAU;
 
 /// The nozzle patch whose inner edge is the bore.
@@ -62,8 +71,7 @@ const MATCH_MIN: f64 = 1e-7;
 /// # Errors
 ///
 /// [`ExchangeError::Topology`] for a trim this builder does not handle yet (a
-/// padded opening across a seam between two host patches, a notch across a
-/// closed patch's seam in u), [`ExchangeError::Geometry`] where a
+/// notch across a closed patch's seam in u), [`ExchangeError::Geometry`] where a
 /// surface or curve cannot be mapped or split.
 pub fn vessel_brep(source: &VesselSource) -> Result<VesselBrep, ExchangeError> {
     vessel_brep_with(source, false)
@@ -112,6 +120,7 @@ pub fn vessel_brep_with(
     let mut seam_holes: HashMap<(usize, usize), Vec<SeamHole>> = HashMap::new();
     let mut notches: HashMap<(usize, usize), Vec<NotchUse>> = HashMap::new();
     let mut pairs = Vec::new();
+    let mut pad_pieces = Vec::new();
     for (c, cut) in source.cuts.iter().enumerate() {
         let host_frame = source.nodes[cut.host].frame;
         let fail = |k: usize, rule: &str| ExchangeError::Topology {
@@ -137,12 +146,6 @@ pub fn vessel_brep_with(
             .iter()
             .find(|(_, t)| matches!(t, HostTrim::Notches(_)))
         {
-            if cut.cut.pad.is_some() {
-                return Err(fail(
-                    *k,
-                    "a padded opening across the seam between two host patches is not written yet",
-                ));
-            }
             let (edges, uses) = notched_loop(
                 &mut builder,
                 &cut.cut,
@@ -151,10 +154,28 @@ pub fn vessel_brep_with(
                 &neck_knots,
             )
             .map_err(|(k, rule)| fail(k, &rule))?;
+            let pieces = uses.clone();
             for (k, notch) in uses {
                 notches.entry((cut.host, k)).or_default().push(notch);
             }
-            pairs.push((c, edges));
+            // A pad across the seam: a face on each host patch, from its
+            // notch to the seam, with the neck's loop as a hole where it lies
+            // in one patch; one face on the patches joined where the neck's
+            // loop crosses the seam too.
+            match &cut.pad {
+                Some(pad) => {
+                    let neck_edges = builder
+                        .loop_edges(&cut.cut.neck, &host_frame, &[], &neck_knots)
+                        .map_err(|rule| fail(*k, &rule))?;
+                    let hosts = &source.nodes[cut.host].patches;
+                    match neck_in_one_patch(&cut.cut, hosts) {
+                        Some(inside) => pad_pieces.push((c, pieces, inside, neck_edges.clone())),
+                        None => pad_faces.push((cut, pad, neck_edges.clone(), edges, false, None)),
+                    }
+                    pairs.push((c, neck_edges));
+                }
+                None => pairs.push((c, edges)),
+            }
             continue;
         }
         // The host patch a hole lies in, and the seam sample of a loop round its pole.
@@ -417,6 +438,35 @@ pub fn vessel_brep_with(
         });
     }
 
+    for (c, pieces, inside, neck_edges) in pad_pieces {
+        let cut = &source.cuts[c];
+        let host_frame = source.nodes[cut.host].frame;
+        for (k, notch) in pieces {
+            let patch = &source.nodes[cut.host].patches[k];
+            let surface = patch.surface.transformed(&host_frame).map_err(|source| {
+                ExchangeError::Geometry {
+                    entity: entity(cut.neck),
+                    source,
+                }
+            })?;
+            let hole = (inside.0 == k).then_some((&neck_edges, inside.1.as_slice()));
+            let (outer, holes) =
+                pad_piece(&mut builder, &surface, &notch, hole).map_err(|rule| {
+                    ExchangeError::Topology {
+                        entity: entity(cut.neck),
+                        patch: crate::mesh::PAD_PATCH.to_string(),
+                        rule,
+                    }
+                })?;
+            faces.push(Face {
+                node: cut.neck,
+                patch: crate::mesh::PAD_PATCH.to_string(),
+                surface,
+                outer,
+                holes,
+            });
+        }
+    }
     fit_loops(
         &mut builder.edges,
         &mut faces,
@@ -459,4 +509,60 @@ pub fn vessel_brep_with(
         shells,
         ports,
     })
+}
+
+/// Where the neck's loop of an opening across the seam between two host
+/// patches lies, when it lies in one of them: that patch's index and the
+/// loop's (u, v) on it (the cut gives them on the patches joined in v).
+fn neck_in_one_patch(cut: &Cut, hosts: &[Patch]) -> Option<(usize, Vec<DVec2>)> {
+    let [(a, _), (b, _)] = cut.hosts.as_slice() else {
+        return None;
+    };
+    let (first, second) = (&hosts[*a].surface, &hosts[*b].surface);
+    let seam = first.domain().1.1;
+    let shift = seam - second.domain().1.0;
+    let uv = &cut.neck.host_uv;
+    if uv.iter().all(|p| p.y < seam) {
+        Some((*a, uv.clone()))
+    } else if uv.iter().all(|p| p.y > seam) {
+        Some((
+            *b,
+            uv.iter().map(|p| DVec2::new(p.x, p.y - shift)).collect(),
+        ))
+    } else {
+        None
+    }
+}
+
+/// The face of a reinforcing pad's piece on one host patch (`surface`, vessel
+/// frame): the pad's loop along `notch` the other way round from the host's
+/// face, then the side's isocurve between the notch's ends (the edge the
+/// piece on the neighbouring patch shares), and the neck's loop (its edges
+/// and (u, v) on the patch) as a hole where it lies in this patch.
+fn pad_piece(
+    builder: &mut Builder,
+    surface: &NurbsSurface,
+    notch: &NotchUse,
+    hole: Option<(&LoopEdges, &[DVec2])>,
+) -> Result<Loops, String> {
+    let ((u0, u1), (v0, v1)) = surface.domain();
+    let (v, bottom) = match notch.side {
+        Side::VMin => (v0, true),
+        _ => (v1, false),
+    };
+    let (low, high) = notch.u;
+    let mut side = surface.isocurve_v(v);
+    if low > u0 {
+        side = side.split_at(low).map_err(|e| e.to_string())?.1;
+    }
+    if high < u1 {
+        side = side.split_at(high).map_err(|e| e.to_string())?.0;
+    }
+    let mut outer = Builder::against(notch.uses.clone());
+    outer.push(builder.side_use(side, DVec2::new(low, v), DVec2::new(high, v), bottom));
+    let holes = match hole {
+        Some((edges, uv)) => vec![builder.hole_use(surface, edges, uv, false)?],
+        None => Vec::new(),
+    };
+    Ok((outer, holes))
 }

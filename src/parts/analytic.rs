@@ -78,6 +78,29 @@ pub enum Analytic {
         /// Semi-axis along the axis.
         polar: f64,
     },
+    /// A head's knuckle and the dished piece beyond its seam as one surface (a
+    /// reinforcing pad across the seam lies on both): the torus about the axis
+    /// through `center` along `axis` (tube centres on the circle of radius
+    /// `major`, tube radius `minor`) up to the seam, where the tube's meridian
+    /// circle is at angle `seam` (radians from the plane of the centre circle,
+    /// towards `axis`), and beyond it the surface of revolution tangent to the
+    /// torus along the seam whose meridian is the circle of radius `beyond` (a
+    /// sphere centred on the axis) or, for `beyond` = ∞, the tangent line (a
+    /// cone or a plane).
+    Knuckled {
+        /// Centre of the torus (on the axis, in the plane of its centre circle).
+        center: DVec3,
+        /// Unit axis.
+        axis: DVec3,
+        /// Radius of the circle of tube centres.
+        major: f64,
+        /// Tube radius.
+        minor: f64,
+        /// Angle of the seam on the tube's meridian circle, radians.
+        seam: f64,
+        /// Meridian radius beyond the seam, mm (∞: a straight meridian).
+        beyond: f64,
+    },
 }
 
 /// (radial, axial) coordinates of `p` about the axis through `origin` along `axis`.
@@ -257,7 +280,61 @@ impl Analytic {
                 let q = radial_axial(p, center, axis);
                 ellipse_distance(DVec2::new(q.x, q.y.abs()), equatorial, polar)
             }
+            Analytic::Knuckled {
+                center,
+                axis,
+                major,
+                minor,
+                seam,
+                beyond,
+            } => {
+                // In the meridian half-plane: the tube's circle up to the normal
+                // line through the seam, the piece beyond past it.
+                let q = radial_axial(p, center, axis);
+                let tube = DVec2::new(major, 0.0);
+                let normal = DVec2::from_angle(seam);
+                let d = q - tube;
+                if normal.perp_dot(d) <= 0.0 {
+                    return (d.length() - minor).abs();
+                }
+                let at = tube + minor * normal;
+                if beyond.is_finite() {
+                    ((q - (at - beyond * normal)).length() - beyond).abs()
+                } else {
+                    (q - at).dot(normal).abs()
+                }
+            }
         }
+    }
+
+    /// The knuckle `knuckle` (a torus) and the piece `next` beyond its seam (a
+    /// sphere centred on the torus's axis, a cone or a plane, tangent to it
+    /// there) as one [`Analytic::Knuckled`] surface, the seam passing through
+    /// `seam_point`; `None` for any other pair.
+    pub fn knuckled(knuckle: &Analytic, next: &Analytic, seam_point: DVec3) -> Option<Analytic> {
+        let Analytic::Torus {
+            center,
+            axis,
+            major,
+            minor,
+        } = *knuckle
+        else {
+            return None;
+        };
+        let beyond = match *next {
+            Analytic::Sphere { radius, .. } => radius,
+            Analytic::Cone { .. } | Analytic::Plane { .. } => f64::INFINITY,
+            _ => return None,
+        };
+        let d = radial_axial(seam_point, center, axis) - DVec2::new(major, 0.0);
+        Some(Analytic::Knuckled {
+            center,
+            axis,
+            major,
+            minor,
+            seam: d.y.atan2(d.x),
+            beyond,
+        })
     }
 }
 
@@ -379,6 +456,21 @@ impl Analytic {
                 axis: v(axis),
                 equatorial,
                 polar,
+            },
+            Analytic::Knuckled {
+                center,
+                axis,
+                major,
+                minor,
+                seam,
+                beyond,
+            } => Analytic::Knuckled {
+                center: p(center),
+                axis: v(axis),
+                major,
+                minor,
+                seam,
+                beyond,
             },
         }
     }

@@ -118,11 +118,11 @@ pub enum CutError {
         patches: Vec<&'static str>,
     },
     /// A nozzle with a reinforcing pad whose opening crosses a seam between host
-    /// patches: the pad would lie on two surfaces.
+    /// patches other than a knuckle and the crown, cone or plate tangent to it.
     #[error(
-        "the opening crosses the seam between host patches {patches:?}; a reinforcing pad \
-         there would lie on two surfaces and is not supported: remove the pad or move the \
-         nozzle inside one patch"
+        "the reinforcing pad crosses the seam between host patches {patches:?}; a pad may \
+         cross only one seam, between a head's knuckle and the crown, cone or plate \
+         tangent to it: make the pad smaller or move the nozzle inside one patch"
     )]
     PadAcrossSeam {
         /// The host patches, in order along v.

@@ -32,7 +32,7 @@ use crate::nurbs::intersect::{
     neck_host_intersection,
 };
 use crate::nurbs::{NurbsError, NurbsSurface};
-use crate::parts::Patch;
+use crate::parts::{Analytic, Patch};
 
 /// Bisection steps placing the seam sample.
 const SEAM_STEPS: usize = 80;
@@ -339,11 +339,17 @@ fn cut_with(plan: &OpeningPlan, kept: Option<&Arc<AxialCut>>) -> Result<Reusable
             Err(e) => last = Some(e),
         }
     }
-    match cut_across_seams(&neck_placed, pad.is_some(), host_patches, tolerance)? {
-        // A pad across a seam is refused there.
-        Some(cut) => Ok(ReusableCut {
+    let across = cut_across_seams(
+        &neck_placed,
+        pad.as_ref(),
+        host_patches,
+        tolerance,
+        &(nozzle_frame.inverse() * *host_frame),
+    )?;
+    match across {
+        Some((cut, pad)) => Ok(ReusableCut {
             cut,
-            pad: None,
+            pad,
             axial: None,
             reused: false,
         }),
@@ -419,14 +425,19 @@ fn segment_in_box(a: DVec3, b: DVec3, lo: DVec3, hi: DVec3) -> f64 {
 
 /// The opening cut across the seams of a run of neighbouring host patches (joined
 /// in v), if one holds the loop: `Ok(None)` if none does, an error if one does but
-/// the opening cannot be cut there.
+/// the opening cannot be cut there. With a `pad` (its outside cylinder, placed
+/// as the neck is), the pad's loop is the one cut across the seam and the
+/// pad's patch is the run joined, moved into the nozzle's frame by
+/// `into_nozzle` (see [`pad_across`]).
 fn cut_across_seams(
     neck: &NurbsSurface,
-    has_pad: bool,
+    pad: Option<&NurbsSurface>,
     host_patches: &[&Patch],
     tolerance: f64,
-) -> Result<Option<Cut>, CutError> {
+    into_nozzle: &DAffine3,
+) -> Result<Option<(Cut, Option<PadCut>)>, CutError> {
     let count = host_patches.len();
+    let hole = pad.unwrap_or(neck);
     for len in 2..=count {
         for first in 0..=count - len {
             let run = &host_patches[first..first + len];
@@ -434,15 +445,12 @@ fn cut_across_seams(
             let Ok((joined, shifts)) = run[0].surface.joined_v(&rest) else {
                 continue;
             };
-            let Ok(mut curve) = neck_host_intersection(neck, &joined, tolerance) else {
+            let Ok(mut curve) = neck_host_intersection(hole, &joined, tolerance) else {
                 continue;
             };
             let names: Vec<&'static str> = run.iter().map(|p| p.name).collect();
             if curve.host_turns(&joined) != 0 {
                 return Err(CutError::AcrossSeamRoundPole { patches: names });
-            }
-            if has_pad {
-                return Err(CutError::PadAcrossSeam { patches: names });
             }
             let placed: Vec<Placed> = run
                 .iter()
@@ -453,7 +461,7 @@ fn cut_across_seams(
                 })
                 .collect();
             let seams: Vec<f64> = placed[..len - 1].iter().map(|p| p.v.1 + p.shift).collect();
-            insert_seam_samples(neck, &joined, &mut curve, &seams, &names)?;
+            insert_seam_samples(hole, &joined, &mut curve, &seams, &names)?;
             let notches = split_at_seams(&curve, &placed, &names)?;
             let hosts = notches
                 .into_iter()
@@ -461,14 +469,86 @@ fn cut_across_seams(
                 .filter(|(_, n)| !n.is_empty())
                 .map(|(k, n)| (first + k, HostTrim::Notches(n.into())))
                 .collect();
-            return Ok(Some(Cut {
-                hosts,
-                neck: curve,
-                pad: None,
-            }));
+            if pad.is_none() {
+                return Ok(Some((
+                    Cut {
+                        hosts,
+                        neck: curve,
+                        pad: None,
+                    },
+                    None,
+                )));
+            }
+            let (neck_loop, pad_cut) =
+                pad_across(neck, run, (&joined, &seams), &curve, tolerance, into_nozzle)?;
+            return Ok(Some((
+                Cut {
+                    hosts,
+                    neck: neck_loop,
+                    pad: Some(curve),
+                },
+                Some(pad_cut),
+            )));
         }
     }
     Ok(None)
+}
+
+/// A reinforcing pad across the seam between two host patches `run` (joined
+/// in v into `joined`, whose seam lies at v = `seams[0]`): the neck's loop on
+/// the joined surface and the pad's patch, the joined surface moved into the
+/// nozzle's frame by `into_nozzle` with the knuckle's and the next piece's
+/// analytic surfaces as one ([`Analytic::knuckled`]), trimmed by the pad's
+/// loop `outer` (cut on the joined surface, with its seam samples) and the
+/// neck's. The pad lies on the host's outside surface as it does on one
+/// patch; the two patches' pieces of it meet on their seam inside the one
+/// patch, exactly (the joined surface is each patch's own, unchanged).
+///
+/// # Errors
+///
+/// [`CutError::PadAcrossSeam`] when the run is not a knuckle (a torus) and
+/// the piece tangent to it beyond (a sphere, a cone or a plane), or crosses
+/// more than one seam; the neck's loop's own errors, or
+/// [`CutError::AcrossSeamRoundPole`] when it goes round the pole.
+fn pad_across(
+    neck: &NurbsSurface,
+    run: &[&Patch],
+    (joined, seams): (&NurbsSurface, &[f64]),
+    outer: &IntersectionLoop,
+    tolerance: f64,
+    into_nozzle: &DAffine3,
+) -> Result<(IntersectionLoop, PadCut), CutError> {
+    let names: Vec<&'static str> = run.iter().map(|p| p.name).collect();
+    let refused = || CutError::PadAcrossSeam {
+        patches: names.clone(),
+    };
+    let ([a, b], [seam]) = (run, seams) else {
+        return Err(refused());
+    };
+    let ((u0, _), _) = joined.domain();
+    let seam_point = joined.point(u0, *seam);
+    let analytic = Analytic::knuckled(&a.analytic, &b.analytic, seam_point)
+        .or_else(|| Analytic::knuckled(&b.analytic, &a.analytic, seam_point))
+        .ok_or_else(refused)?;
+    let inner = neck_host_intersection(neck, joined, tolerance).map_err(|source| {
+        CutError::Intersection {
+            which: CutLoop::Neck,
+            patch: a.name,
+            source,
+        }
+    })?;
+    if inner.host_turns(joined) != 0 {
+        return Err(CutError::AcrossSeamRoundPole { patches: names });
+    }
+    let surface = joined
+        .transformed(into_nozzle)
+        .map_err(CutError::Placement)?;
+    let pad = PadCut {
+        patch: Patch::new(PAD_PATCH, surface, analytic.transformed(into_nozzle)),
+        outer: Arc::new(outer.clone()),
+        inner: Arc::new(inner.clone()),
+    };
+    Ok((inner, pad))
 }
 
 /// Inserts a sample of the loop exactly at the host's seam angle u0 (mod period);

@@ -125,6 +125,14 @@ fn analytic_bits(analytic: &Analytic, write: &mut impl FnMut(u64)) {
             equatorial,
             polar,
         } => vector(6, &[center, axis], &[equatorial, polar]),
+        Analytic::Knuckled {
+            center,
+            axis,
+            major,
+            minor,
+            seam,
+            beyond,
+        } => vector(7, &[center, axis], &[major, minor, seam, beyond]),
     }
 }
 
