@@ -138,9 +138,10 @@ pub(super) struct PatchInfo<'a> {
     pub scale: DVec2,
     /// Sizes for seeding and flips.
     pub sizing: Sizing,
-    /// The analytic surface the patch lies on, when its distance query is exact
-    /// (every kind but the oblique cone): probes then measure the distance in
-    /// closed form instead of inverting the NURBS.
+    /// The analytic surface the patch lies on: probes then measure the distance
+    /// in closed form instead of inverting the NURBS (whose inversion, clamped
+    /// to the domain, measured a point off a cone's end ring to the ring, not
+    /// along the normal: up to 1 / cos of the slope more).
     pub analytic: Option<Analytic>,
     /// The extrusion the surface is when it is swept straight along Z (a
     /// course): one row evaluator then serves every v (loop vertices, screen
@@ -208,12 +209,9 @@ impl<'a> PatchInfo<'a> {
         }
     }
 
-    /// The same facts with the exact `analytic` surface the patch lies on (ignored
-    /// when its distance is not exact).
+    /// The same facts with the exact `analytic` surface the patch lies on.
     pub fn with_analytic(mut self, analytic: Option<&Analytic>) -> Self {
-        self.analytic = analytic
-            .copied()
-            .filter(|a| !matches!(a, Analytic::ObliqueCone { .. }));
+        self.analytic = analytic.copied();
         self
     }
 

@@ -42,6 +42,7 @@ use super::quarter::QUARTERS;
 use super::region::Region;
 use super::trimesh::{NONE, TriMesh};
 use crate::mesh::TessellationOptions;
+use crate::parts::Analytic;
 use cavity::Cavity;
 use kept::Memo;
 use lattice::{Chain, Kind, Rings};
@@ -51,6 +52,7 @@ mod cavity_fill;
 pub(super) mod kept;
 pub(super) mod lattice;
 mod mend;
+mod ruled;
 mod sector;
 mod sweep;
 
@@ -123,6 +125,16 @@ fn structured(
     let rows = match &bottom {
         Side::Path(_) => Vec::new(),
         _ => seed::rows(info, region, budget)?,
+    };
+    // An oblique cone without openings: rows holding its rings' own u values,
+    // zipped along its generators (see `ruled`).
+    let by_u =
+        matches!(info.analytic, Some(Analytic::ObliqueCone { .. })) && region.holes.is_empty();
+    let (rows, by_u) = match (&bottom, &top) {
+        (Side::Ring(b), Side::Ring(t)) if by_u => {
+            (ruled::rows(rows, b, t, (lo.x, hi.x), (lo.y, hi.y)), true)
+        }
+        _ => (rows, false),
     };
     if rows.is_empty() && matches!((&bottom, &top), (Side::Pole, Side::Pole)) {
         return Ok(None);
@@ -204,7 +216,7 @@ fn structured(
             None => return Ok(None),
         }
     };
-    let Some(mut strips) = build(&mut mesh, &chains, &cavities, path.is_some()) else {
+    let Some(mut strips) = build(&mut mesh, &chains, &cavities, path.is_some(), by_u) else {
         return Ok(None);
     };
     // Rows are parallel in (u, v), so their strips cannot fold; a path's strip
@@ -357,12 +369,14 @@ fn evaluate(info: &PatchInfo, rows: &[(f64, &[f64])]) -> Result<Vec<Vec<Vertex>>
 ///
 /// With `path`, the first chain is a path whose v varies: its strip is zipped by
 /// u alone (the shorter diagonal in u), so that every triangle spans as little of
-/// the turn as the two chains allow, whatever the path's ups and downs.
+/// the turn as the two chains allow, whatever the path's ups and downs. With
+/// `by_u`, every strip is zipped so (an oblique cone's rows, see `ruled`).
 fn build(
     mesh: &mut TriMesh,
     chains: &[Chain],
     cavities: &[Cavity],
     path: bool,
+    by_u: bool,
 ) -> Option<Vec<Range<u32>>> {
     mesh.tris.clear();
     mesh.adj.clear();
@@ -395,7 +409,7 @@ fn build(
                     (sa, sb) = (ra, rb);
                 }
                 let (pa, pb) = (a.first + sa as u32, b.first + sb as u32);
-                if path && k == 0 {
+                if by_u || (path && k == 0) {
                     zip_by(mesh, (pa, a.len - sa), (pb, b.len - sb), |x, y| {
                         (x.uv.x - y.uv.x).abs()
                     });
