@@ -75,7 +75,7 @@ pub fn boot_plates(
 ) -> Vec<BootPlate> {
     let n = boot.plate_count(shop.max_plate_length);
     let m = cut.saddle.len().saturating_sub(1);
-    if m == 0 || m % n != 0 {
+    if m == 0 || !m.is_multiple_of(n) {
         return Vec::new();
     }
     let per = m / n;
