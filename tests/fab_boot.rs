@@ -306,3 +306,23 @@ fn fab_writes_the_boot_plate_and_blank_dxf() {
     assert!(summary.contains("boot plate V-101-B1-P1"), "{summary}");
     assert!(!summary.contains("not developed"), "{summary}");
 }
+
+#[test]
+fn a_boot_no_plate_layout_can_hold_is_an_error_naming_it() {
+    // Plates 700 mm round: B1's 616 mm opening and its clearance cannot fit
+    // between two long seams of S1-C2 (loop validity, as for a nozzle).
+    let shop = Shop {
+        max_plate_length: 700.0,
+        ..Shop::default()
+    };
+    let err = plan(&example("horizontal-drum"), "V-101", &shop).unwrap_err();
+    let vesselcad::fab::FabError::Rules(v) = &err else {
+        panic!("{err}");
+    };
+    assert!(
+        v.iter().any(|e| e.entity == "V-101/B1"
+            && e.path == "vessels[0].parts[5]"
+            && e.rule.contains("longitudinal seam")),
+        "{err}"
+    );
+}
