@@ -152,12 +152,8 @@ fn openings_rolled_back_onto_the_course_lie_on_the_intersection_curve() {
             let r = rolled.radius.0;
             let theta0 = course.seam(plate.seam);
             for o in &plate.openings {
-                let cut = p
-                    .openings
-                    .cuts
-                    .iter()
-                    .find(|c| c.mark == o.mark)
-                    .expect("a cut");
+                // A nozzle's or a boot's.
+                let cut = p.openings.all().find(|c| c.mark == o.mark).expect("a cut");
                 for q in &o.contour {
                     // Roll the developed point back onto the mid-surface cylinder.
                     let theta = theta0 + q.x / r;

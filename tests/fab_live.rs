@@ -225,9 +225,18 @@ fn plan_vessel_from_a_previous_plan_equals_a_fresh_plan() {
                         let mark = &d.vessels[vi].nozzles[ni].mark;
                         let (courses, plates) = expected_work(&previous, &k, mark);
                         let on_course = k.openings.cuts.iter().any(|c| &c.mark == mark);
+                        // A head nozzle's opening is mapped onto its blank
+                        // again, when the turn moved it (a centre one's
+                        // resolves the same).
+                        let on_blank = k
+                            .openings
+                            .formed
+                            .iter()
+                            .any(|f| &f.mark == mark && f.blank.is_some())
+                            && previous.resolved.nozzles[ni] != k.resolved.nozzles[ni];
                         let expected = FabWork {
                             parts: 0,
-                            openings: usize::from(on_course),
+                            openings: usize::from(on_course || on_blank),
                             courses,
                             plates: plates.len(),
                         };

@@ -1,8 +1,9 @@
 //! `vesselcad fab <design> --vessel TAG -o out/ [--rules shop_rules.json]
 //! [--shop plates.json]`: the fabrication files of one vessel (see
 //! `vesselcad::fab`): flat patterns, head blanks, seams with their
-//! deficiencies, one DXF per plate, per pad and per neck template (the
-//! saddle cut wrapped round the neck) and the nesting; the process plan on that
+//! deficiencies, one DXF per plate (a boot's too), per head blank (its
+//! openings marked), per pad and per neck template (the saddle cut wrapped
+//! round the neck) and the nesting; the process plan on that
 //! plate layout — traveler (HTML, CSV), BOM, weld map (CSV, JSON, GLB, SVG) —
 //! written into the output directory with a summary printed (and saved as
 //! `summary.txt`). One shop file holds it all (`data/shop_rules.json`: its
@@ -14,6 +15,8 @@ use std::process::ExitCode;
 
 use clap::Args;
 use vesselcad::design::load;
+use vesselcad::fab::blank_dxf::write_blank;
+use vesselcad::fab::boot::boot_drawing;
 use vesselcad::fab::plate_dxf::write_plate;
 use vesselcad::fab::process_files::write_process_files;
 use vesselcad::fab::template_dxf::write_templates;
@@ -97,6 +100,29 @@ pub fn run(args: FabArgs) -> ExitCode {
             return fail(&e);
         }
     }
+    let boot_plates = plan.boot_plates();
+    for plate in &boot_plates {
+        let path = args.output.join(plate.file_name());
+        if let Err(e) = boot_drawing(plate, &plan.grade).save_file(&path) {
+            return fail(&FabError::Dxf {
+                path,
+                message: e.to_string(),
+            });
+        }
+    }
+    let mut blanks = 0;
+    for blank in plan.blanks() {
+        let formed: Vec<_> = plan
+            .openings
+            .formed
+            .iter()
+            .filter(|f| f.host == blank.id)
+            .collect();
+        match write_blank(&args.output, &plan.tag, blank, &plan.grade, &formed) {
+            Ok(_) => blanks += 1,
+            Err(e) => return fail(&e),
+        }
+    }
     let mut templates = 0;
     for cut in &plan.openings.cuts {
         let shell = plan.developments.rolled[cut.rolled].outside.0;
@@ -106,8 +132,9 @@ pub fn run(args: FabArgs) -> ExitCode {
         }
     }
     lines.push(format!(
-        "{} plate DXF files, {templates} pad and neck template DXF files in {}",
+        "{} plate DXF files, {} boot plate, {blanks} head blank, {templates} pad and neck template DXF files in {}",
         plan.plates.len(),
+        boot_plates.len(),
         args.output.display()
     ));
     lines.extend(nesting(&plan.nesting(&shop)));
@@ -241,21 +268,37 @@ fn developments(plan: &FabPlan) -> Vec<String> {
             outline.area() * 1e-6
         ));
     }
-    for h in &plan.developments.heads {
+    for p in plan.boot_plates() {
+        let (w, h) = p.extent();
+        out.push(format!(
+            "  {:<6} t {:>5.1} mm  boot plate {} {w:.1} x {h:.1} mm (host end saddle-cut), {:.3} m², roll to R {:.1}",
+            p.part,
+            p.thickness,
+            p.id,
+            p.mid_area * 1e-6,
+            p.radius
+        ));
+    }
+    for h in plan.blanks() {
         out.push(format!(
             "  {:<6} t {:>5.1} mm  blank diameter {:.1} mm",
             h.id, h.thickness, h.diameter
         ));
     }
-    if !plan.developments.heads.is_empty() {
+    if plan.blanks().next().is_some() {
         out.push(format!("  (head blanks: {BLANK_RULE})"));
     }
     for s in &plan.developments.skipped {
         out.push(format!("  {:<6} not developed: {}", s.id, s.reason));
     }
     for f in &plan.openings.formed {
+        let on_blank = if f.blank.is_some() {
+            " (outline marked on the blank)"
+        } else {
+            ""
+        };
         out.push(format!(
-            "  {:<6} opening on {}: marked and cut after forming",
+            "  {:<6} opening on {}: marked and cut after forming{on_blank}",
             f.mark, f.host
         ));
     }

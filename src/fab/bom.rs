@@ -12,7 +12,8 @@
 //! nozzle split into its pipe (the neck outside the host, B36.10M wall) and
 //! its flange (the rest of the model's nozzle body). A part the development
 //! leaves out (an eccentric reducer) keeps one line with the closed-form size
-//! of `plate_size`.
+//! of `plate_size`. A boot's mass is shared likewise among its plates and
+//! its head's blank; a head's line names the openings marked on its blank.
 //! Bolts and gaskets are listed on their flange's line, not weighed (the
 //! weight model does not carry them).
 //!
@@ -183,6 +184,95 @@ fn plate_lines(
         .collect()
 }
 
+/// `"; openings N1, M1 marked on the blank, cut after forming"` for the
+/// openings mapped onto head `head`'s blank, or nothing.
+fn marked_openings(fab: &FabPlan, head: &str) -> String {
+    let marks: Vec<&str> = fab
+        .openings
+        .formed
+        .iter()
+        .filter(|f| f.host == head && f.blank.is_some())
+        .map(|f| f.mark.as_str())
+        .collect();
+    if marks.is_empty() {
+        String::new()
+    } else {
+        format!(
+            "; openings {} marked on the blank, cut after forming",
+            marks.join(", ")
+        )
+    }
+}
+
+/// A boot's lines: one per plate (its bounding rectangle, host end
+/// saddle-cut) and its head's blank, sharing the boot's `mass` by developed
+/// mid-surface area; `None` when the boot has no plates or head blank.
+fn boot_lines(
+    fab: &FabPlan,
+    boot: &str,
+    head_shape: &str,
+    grade: &str,
+    mass: f64,
+) -> Option<Vec<BomLine>> {
+    let shell = fab.developments.boots.iter().find(|b| b.id == boot)?;
+    let head = shell.head.as_ref()?;
+    let plates: Vec<_> = fab
+        .boot_plates()
+        .into_iter()
+        .filter(|p| p.part == boot)
+        .collect();
+    if plates.is_empty() {
+        return None;
+    }
+    let total = plates.iter().map(|p| p.mid_area).sum::<f64>() + head.mid_area;
+    let mut out: Vec<BomLine> = plates
+        .iter()
+        .map(|p| {
+            let (width, length) = p.extent();
+            let d = Developed::Rectangle {
+                width,
+                length,
+                rolling_radius: p.radius,
+            };
+            BomLine {
+                item: p.id.clone(),
+                part: boot.to_string(),
+                kind: "plate",
+                description: "boot shell, host end saddle-cut (size: its bounding rectangle)"
+                    .into(),
+                material: grade.to_string(),
+                thickness: Some(p.thickness),
+                size: d.label(),
+                developed: Some(d),
+                area: Some(p.mid_area * 1e-6),
+                quantity: 1,
+                mass: mass * p.mid_area / total,
+                bolting: None,
+                gasket: None,
+            }
+        })
+        .collect();
+    let d = Developed::Blank {
+        diameter: head.diameter,
+    };
+    out.push(BomLine {
+        item: head.id.clone(),
+        part: boot.to_string(),
+        kind: "head",
+        description: format!("{} head of boot {boot}", head_shape.to_lowercase()),
+        material: grade.to_string(),
+        thickness: Some(head.thickness),
+        size: d.label(),
+        developed: Some(d),
+        area: Some(head.mid_area * 1e-6),
+        quantity: 1,
+        mass: mass * head.mid_area / total,
+        bolting: None,
+        gasket: None,
+    });
+    Some(out)
+}
+
 /// The BOM of the vessel planned as `fab`.
 pub fn bom(fab: &FabPlan) -> Bom {
     let (design, resolved) = (&fab.vessel, &fab.resolved);
@@ -201,7 +291,9 @@ pub fn bom(fab: &FabPlan) -> Bom {
             };
             let head = matches!(d, PartDesign::Head(_));
             let description = match d {
-                PartDesign::Head(h) => format!("{:?} head", h.shape).to_lowercase(),
+                PartDesign::Head(h) => {
+                    format!("{:?} head", h.shape).to_lowercase() + &marked_openings(fab, &part.id)
+                }
                 PartDesign::Reducer(_) => "cone (reducer)".into(),
                 _ => "shell course".into(),
             };
@@ -235,6 +327,12 @@ pub fn bom(fab: &FabPlan) -> Bom {
                 bolting: None,
                 gasket: None,
             });
+        } else if let (PartDesign::Boot(b), Some(item)) =
+            (d, metal.iter().find(|i| i.id == part.id))
+            && let Some(boot) =
+                boot_lines(fab, &part.id, &format!("{:?}", b.head), &g.plate, item.mass)
+        {
+            lines.extend(boot);
         } else if let Some(item) = metal
             .iter()
             .find(|i| i.id == part.id && i.kind != "nozzle" && i.kind != "pad")

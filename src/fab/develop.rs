@@ -15,6 +15,11 @@
 //! depth less `t/2`), straight flange included. An eccentric reducer is an
 //! oblique cone: a [`Rolled`] with a flat side, developed exactly by
 //! [`super::oblique`].
+//!
+//! A boot is a cylinder ending on its host course in a saddle-shaped curve
+//! ([`BootShell`]): developed like a course (`u = r·φ` at its mid radius, `v`
+//! along its axis) by [`super::boot`] once its host end is cut
+//! ([`super::openings::cut_boot`]); its head gets a blank like the others.
 
 use glam::{DAffine3, DVec2, DVec3};
 
@@ -260,6 +265,48 @@ pub struct HeadBlank {
     pub diameter: f64,
 }
 
+/// A boot's cylinder and its head's blank. The design gives a boot no
+/// thickness: it takes its host course's (as the weight model does).
+#[derive(Clone, Debug, PartialEq)]
+pub struct BootShell {
+    /// Index of the part in the resolved vessel.
+    pub part: usize,
+    /// Part id.
+    pub id: String,
+    /// JSON path of the part.
+    pub path: String,
+    /// Index of its host course in the resolved vessel.
+    pub host: usize,
+    /// Boot local frame (origin on the host's axis, +Z along the boot away
+    /// from the host) → vessel frame.
+    pub frame: DAffine3,
+    /// Mid-surface radius, mm.
+    pub radius: f64,
+    /// Outside radius, mm.
+    pub outside: f64,
+    /// Wall thickness (its host course's), mm.
+    pub thickness: f64,
+    /// Local height of the head's tangent line (the boot-to-head seam), mm.
+    pub tangent: f64,
+    /// The blank of its head (id `B1-HEAD`), `None` when the mid-surface
+    /// head is not valid.
+    pub head: Option<HeadBlank>,
+}
+
+impl BootShell {
+    /// Plates round the boot: its mid circumference over the maximum plate
+    /// length, rounded up.
+    pub fn plate_count(&self, max_plate_length: f64) -> usize {
+        let c = std::f64::consts::TAU * self.radius;
+        ((c / max_plate_length).ceil() as usize).max(1)
+    }
+}
+
+/// The id of a boot's head, as blanks, welds and operations name it.
+pub fn boot_head_id(boot: &str) -> String {
+    format!("{boot}-HEAD")
+}
+
 /// The forming rule the blanks follow, as reports print it.
 pub const BLANK_RULE: &str = "blank area = exact mid-surface area of the head (D - t, radii - t/2, straight flange included)";
 
@@ -279,7 +326,9 @@ pub struct Developments {
     pub rolled: Vec<Rolled>,
     /// Head blanks in design order.
     pub heads: Vec<HeadBlank>,
-    /// Parts left out (supports other than skirts, boots).
+    /// Boots in design order.
+    pub boots: Vec<BootShell>,
+    /// Parts left out (supports other than skirts).
     pub skipped: Vec<Skipped>,
 }
 
@@ -311,6 +360,8 @@ pub enum PartDevelopment {
     Rolled(Rolled),
     /// A head's blank.
     Head(HeadBlank),
+    /// A boot.
+    Boot(BootShell),
     /// A part left out, and why.
     Skipped(Skipped),
 }
@@ -321,6 +372,7 @@ impl Developments {
         match d {
             PartDevelopment::Rolled(r) => self.rolled.push(r),
             PartDevelopment::Head(h) => self.heads.push(h),
+            PartDevelopment::Boot(b) => self.boots.push(b),
             PartDevelopment::Skipped(s) => self.skipped.push(s),
         }
     }
@@ -333,6 +385,9 @@ impl Developments {
         }
         if let Some(h) = self.heads.iter().find(|h| h.part == index) {
             return Some(PartDevelopment::Head(h.clone()));
+        }
+        if let Some(b) = self.boots.iter().find(|b| b.part == index) {
+            return Some(PartDevelopment::Boot(b.clone()));
         }
         self.skipped
             .iter()
@@ -368,6 +423,12 @@ pub fn develop_one(
     );
     let thickness = if needs_thickness {
         thickness_of(vessel, vessel_index, design_index)?
+    } else if let (PartGeometry::Boot(_), Some(host)) = (&part.geometry, part.host) {
+        let host_id = &resolved.parts[host].id;
+        match vessel.parts.iter().position(|p| p.id() == *host_id) {
+            Some(k) => thickness_of(vessel, vessel_index, k)?,
+            None => return Ok(None),
+        }
     } else {
         0.0
     };
@@ -471,7 +532,27 @@ fn develop_part(
                 "head: its mid-surface (t = {t} mm) is not a valid head of its kind, no blank"
             )),
         },
-        PartGeometry::Boot(_) => skipped("boot: developed with its drum in a later step".into()),
+        PartGeometry::Boot(b) => match part.host {
+            Some(host) => PartDevelopment::Boot(BootShell {
+                part: index,
+                id: part.id.clone(),
+                head: head_blank(
+                    &b.head_part(),
+                    index,
+                    &boot_head_id(&part.id),
+                    format!("{path}.head"),
+                    t,
+                ),
+                path,
+                host,
+                frame: part.frame,
+                radius: 0.5 * (b.diameter - t),
+                outside: 0.5 * b.diameter,
+                thickness: t,
+                tangent: b.tangent_line(),
+            }),
+            None => skipped("boot: not cut into a host course, not developed".into()),
+        },
         _ => return None,
     })
 }

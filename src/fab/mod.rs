@@ -11,8 +11,10 @@
 //! and courses into plates, staggering and clearing the seams, and checks
 //! loop validity; [`plates`] cuts the plates with their openings;
 //! [`plate_dxf`] writes one DXF per plate and [`template_dxf`] one per pad
-//! and neck template; [`oblique`] develops eccentric reducers; [`nest`] nests plates, pads and
-//! blanks onto stock sheets. [`plan`] runs it and returns a [`FabPlan`];
+//! and neck template; [`oblique`] develops eccentric reducers; [`boot`]
+//! develops a boot's plates from its host end; [`head_map`] maps head
+//! openings onto the head blanks, which [`blank_dxf`] draws; [`nest`] nests
+//! plates, pads and blanks onto stock sheets. [`plan`] runs it and returns a [`FabPlan`];
 //! [`plan_vessel`] does the same keeping what a previous plan of the vessel
 //! still holds (the live model's flat patterns, `vessel_plan`).
 //!
@@ -26,9 +28,12 @@
 //! levels on the main GLB's part and nozzle nodes ([`scene_levels`]) and the
 //! seams in it as lines ([`seam_glb`]).
 
+pub mod blank_dxf;
 pub mod bom;
+pub mod boot;
 pub mod develop;
 pub mod error;
+pub mod head_map;
 pub mod levels;
 pub mod nest;
 pub mod oblique;
@@ -54,7 +59,7 @@ pub mod weld_prep;
 pub mod weld_svg;
 pub mod welds;
 
-pub use develop::{BLANK_RULE, Developments, HeadBlank, Outline, Rolled, RolledKind};
+pub use develop::{BLANK_RULE, BootShell, Developments, HeadBlank, Outline, Rolled, RolledKind};
 pub use error::FabError;
 pub use nest::{Nesting, Piece};
 pub use openings::{NozzleCut, Openings};

@@ -22,14 +22,18 @@
 //!   the cut being where the neck meets the shell's inside (set-in) or
 //!   outside (set-on).
 //!
-//! Openings on heads and cones are marked and cut after forming; they are
-//! listed, not developed.
+//! - **Boot**: a boot is cut into its course like a set-in (or set-on) neck
+//!   ([`cut_boot`]): its opening in the course's plate, and its host end
+//!   developed on its own mid-surface, measured from its head's tangent line.
+//!
+//! Openings on heads are marked on the head's blank and cut after forming
+//! ([`super::head_map`]); openings on cones are listed, not developed.
 
 use std::f64::consts::{PI, TAU};
 
 use glam::{DAffine3, DVec2, DVec3};
 
-use super::develop::{Developments, RolledKind};
+use super::develop::{BootShell, Developments, RolledKind};
 use super::shop::{Attachment, Shop};
 use crate::constraints::ResolvedVessel;
 use crate::format::RuleViolation;
@@ -120,14 +124,14 @@ impl PadPiece {
     }
 }
 
-/// One nozzle's cuts on a cylindrical course.
+/// One nozzle's (or boot's) cuts on a cylindrical course.
 #[derive(Clone, Debug, PartialEq)]
 pub struct NozzleCut {
-    /// Index of the nozzle in the resolved vessel.
+    /// Index of the nozzle in the resolved vessel (a boot's: of its part).
     pub nozzle: usize,
-    /// Mark.
+    /// Mark (a boot's: its part id).
     pub mark: String,
-    /// JSON path, `vessels[0].nozzles[3]`.
+    /// JSON path, `vessels[0].nozzles[3]` (a boot's `vessels[0].parts[5]`).
     pub path: String,
     /// Index in [`Developments::rolled`] of its course.
     pub rolled: usize,
@@ -142,7 +146,8 @@ pub struct NozzleCut {
     /// The pad, if any.
     pub pad: Option<PadPiece>,
     /// The neck's end developed on its mid-surface: `(r·φ, length from the
-    /// cut to the flange's back)`, φ from 0 to 360° inclusive.
+    /// cut to the flange's back)`, φ from 0 to 360° inclusive (a boot's:
+    /// to its head's tangent line).
     pub saddle: Vec<DVec2>,
 }
 
@@ -153,6 +158,27 @@ pub struct FormedOpening {
     pub mark: String,
     /// Host part id.
     pub host: String,
+    /// Its opening (and pad) mapped onto the head's blank (by
+    /// [`super::vessel_plan::plan_vessel`] with `head_map::blank_mark`),
+    /// `None` on a cone or a head without blank.
+    pub blank: Option<BlankMark>,
+}
+
+/// A head opening mapped onto the head's blank by the forming rule of
+/// [`super::head_map`]: blank coordinates, centre at the pole, +x along the
+/// head's local +X.
+#[derive(Clone, Debug, PartialEq)]
+pub struct BlankMark {
+    /// Index of the nozzle in the resolved vessel.
+    pub nozzle: usize,
+    /// Radius of the cutting cylinder, mm.
+    pub cut_radius: f64,
+    /// Where the nozzle axis meets the mid-surface, mapped, mm.
+    pub centre: DVec2,
+    /// The opening (cutting cylinder ∩ mid-surface), mapped, mm.
+    pub outline: Vec<DVec2>,
+    /// The pad's outline (pad cylinder ∩ mid-surface), mapped, mm.
+    pub pad: Option<Vec<DVec2>>,
 }
 
 /// The openings of one vessel.
@@ -162,6 +188,8 @@ pub struct Openings {
     pub cuts: Vec<NozzleCut>,
     /// Openings on heads and cones, cut after forming.
     pub formed: Vec<FormedOpening>,
+    /// Boots cut into their courses, in part order.
+    pub boots: Vec<NozzleCut>,
 }
 
 /// Samples for a curve of radius `rho` within `tolerance` (chord sagitta),
@@ -217,6 +245,11 @@ pub enum NozzleOutcome {
 }
 
 impl Openings {
+    /// Every cut in a course: the nozzles' then the boots'.
+    pub fn all(&self) -> impl Iterator<Item = &NozzleCut> {
+        self.cuts.iter().chain(&self.boots)
+    }
+
     /// Adds one nozzle's outcome in its list.
     pub fn push(&mut self, o: NozzleOutcome) {
         match o {
@@ -226,7 +259,8 @@ impl Openings {
     }
 }
 
-/// Finds every nozzle's cuts.
+/// Finds every nozzle's cuts (head openings unmapped: `plan_vessel` maps
+/// them onto their blanks).
 ///
 /// # Errors
 ///
@@ -288,6 +322,8 @@ pub fn cut_nozzle(
         return Ok(NozzleOutcome::Formed(FormedOpening {
             mark: nozzle.mark.clone(),
             host: host.id.clone(),
+            // Mapped onto a head's blank by `head_map::blank_mark`.
+            blank: None,
         }));
     };
     let course = &developments.rolled[rolled_index];
@@ -390,4 +426,92 @@ pub fn cut_nozzle(
         pad,
         saddle,
     })))
+}
+
+/// Cuts boot `boot` into its host course: its opening developed on the
+/// course's mid-surface (the cutting cylinder the boot's outside plus the
+/// bevel allowance set-in, its bore set-on), and its host end developed on
+/// the boot's mid-surface, `(r·φ, length from the cut to the head's tangent
+/// line)`, the cut where the boot meets the course's inside (set-in) or
+/// outside (set-on). The host end is sampled at a multiple of the boot's
+/// plate count ([`BootShell::plate_count`]) so every plate seam is a
+/// sample.
+///
+/// # Errors
+///
+/// A violation naming the boot when its host is not a cylindrical course or
+/// the boot does not lie wholly on it.
+pub fn cut_boot(
+    resolved: &ResolvedVessel,
+    developments: &Developments,
+    shop: &Shop,
+    boot: &BootShell,
+) -> Result<NozzleCut, RuleViolation> {
+    let host = &resolved.parts[boot.host];
+    let bad = |rule: String| RuleViolation {
+        path: format!("{}.position", boot.path),
+        entity: format!("{}/{}", resolved.tag, boot.id),
+        field: "position".into(),
+        value: "-".into(),
+        rule,
+    };
+    let Some(rolled) = developments
+        .rolled
+        .iter()
+        .position(|r| r.part == boot.host && r.kind == RolledKind::Course)
+    else {
+        return Err(bad(format!(
+            "a boot is developed on a cylindrical course; its host {}/{} is not one",
+            resolved.tag, host.id
+        )));
+    };
+    let course = &developments.rolled[rolled];
+    let misses = |what: &str| {
+        bad(format!(
+            "the boot's {what} must lie wholly on course {}/{} to be developed",
+            resolved.tag, course.id
+        ))
+    };
+    let neck = NeckAxis::new(course.frame, boot.frame);
+    let cut_radius = match shop.attachment {
+        Attachment::SetIn => boot.outside + shop.bevel_allowance,
+        Attachment::SetOn => boot.outside - boot.thickness,
+    };
+    let (r_mid, r_out) = (course.radius.0, course.outside.0);
+    let Some((centre, _)) = neck.crossing(0.0, r_mid, 0.0) else {
+        return Err(misses("axis"));
+    };
+    let theta = centre.y.atan2(centre.x);
+    let n = samples(cut_radius, shop.chord_tolerance);
+    let Some(hole) = surface_loop(&neck, cut_radius, r_mid, theta, n) else {
+        return Err(misses("opening"));
+    };
+    let meets = match shop.attachment {
+        Attachment::SetIn => r_out - course.thickness,
+        Attachment::SetOn => r_out,
+    };
+    let plates = boot.plate_count(shop.max_plate_length);
+    let m = n.div_ceil(plates) * plates;
+    let saddle: Option<Vec<DVec2>> = (0..=m)
+        .map(|i| {
+            let phi = TAU * i as f64 / m as f64;
+            neck.crossing(boot.radius, meets, phi)
+                .map(|(_, s)| DVec2::new(boot.radius * phi, boot.tangent - s))
+        })
+        .collect();
+    let Some(saddle) = saddle else {
+        return Err(misses("host end"));
+    };
+    Ok(NozzleCut {
+        nozzle: boot.part,
+        mark: boot.id.clone(),
+        path: boot.path.clone(),
+        rolled,
+        neck,
+        cut_radius,
+        centre: DVec2::new(theta, centre.z),
+        hole,
+        pad: None,
+        saddle,
+    })
 }

@@ -85,8 +85,7 @@ pub fn cuts_in<'a>(
     }
     let theta0 = course.seam(k);
     openings
-        .cuts
-        .iter()
+        .all()
         .filter(|c| c.rolled == course.rolled)
         .filter(|c| {
             let rel = (c.centre.x - theta0).rem_euclid(TAU);

@@ -13,6 +13,7 @@ use std::collections::BTreeMap;
 use serde::Serialize;
 
 use super::bom::{Bom, BomLine, bom};
+use super::develop::boot_head_id;
 use super::operations::{Item, Operation, plan_operations};
 use super::plan_error::PlanError;
 use super::shop_rules::{ShopRules, VESSEL_ITEM};
@@ -105,6 +106,10 @@ fn items(resolved: &ResolvedVessel, welds: &[Weld]) -> Vec<Item> {
             None => support_host.get(p.id.as_str()).map(|h| (*h).to_string()),
         };
         out.push(item);
+        if kind == "boot" {
+            // Its head, formed like the vessel's and joined by a circ seam.
+            out.push(Item::new(boot_head_id(&p.id), "head"));
+        }
     }
     for w in welds.iter().filter(|w| w.kind == WeldKind::CircSeam) {
         let mut item = Item::new(w.item.clone(), "circ_joint");

@@ -133,7 +133,7 @@ struct Keep<'a> {
 
 fn keeps<'a>(tag: &str, openings: &'a Openings, rolled: usize) -> Vec<Keep<'a>> {
     let mut out = Vec::new();
-    for cut in openings.cuts.iter().filter(|c| c.rolled == rolled) {
+    for cut in openings.all().filter(|c| c.rolled == rolled) {
         let mut push = |entity: String, points: &'a [DVec2]| {
             let z = points
                 .iter()
@@ -167,11 +167,7 @@ pub fn lay_out(
 
 /// The cuts on rolled part `rolled`.
 fn cuts_on(openings: &Openings, rolled: usize) -> Vec<&NozzleCut> {
-    openings
-        .cuts
-        .iter()
-        .filter(|c| c.rolled == rolled)
-        .collect()
+    openings.all().filter(|c| c.rolled == rolled).collect()
 }
 
 /// Lays out the seams of every rolled part, keeping from `prior` (a layout

@@ -2,15 +2,18 @@
 //! seams and plates, made from nothing ([`plan`]) or from a previous plan of
 //! the same vessel keeping what an edit left unchanged ([`plan_vessel`]),
 //! which is how the live model keeps flat patterns current: moving a nozzle
-//! develops its opening and its plate(s) again and lays out the seams of its
-//! part (and of the parts above, only if those seams moved).
+//! develops its opening and its plate(s) again (or maps it onto its head's
+//! blank again) and lays out the seams of its part (and of the parts above,
+//! only if those seams moved).
 
 use glam::DVec2;
 
 use std::sync::Arc;
 
+use super::boot::{self, BootPlate};
 use super::develop::{self, Developments};
 use super::error::FabError;
+use super::head_map;
 use super::nest::{self, Nesting, Piece};
 use super::openings::{self, Openings};
 use super::plates::{self, Plate};
@@ -50,7 +53,8 @@ pub struct FabPlan {
 pub struct FabWork {
     /// Rolled parts and heads developed.
     pub parts: usize,
-    /// Nozzles whose opening, pad and neck end were developed.
+    /// Nozzles whose opening, pad and neck end were developed (or mapped onto
+    /// a head's blank), and boots cut into their course.
     pub openings: usize,
     /// Courses whose seams were laid out and checked.
     pub courses: usize,
@@ -59,7 +63,31 @@ pub struct FabWork {
 }
 
 impl FabPlan {
-    /// The pieces to nest: plates (net of openings), pads, head blanks.
+    /// The plates of every boot, in part order.
+    pub fn boot_plates(&self) -> Vec<BootPlate> {
+        let mut out = Vec::new();
+        for b in &self.developments.boots {
+            let Some(cut) = self.openings.boots.iter().find(|c| c.nozzle == b.part) else {
+                continue;
+            };
+            let course = &self.developments.rolled[cut.rolled];
+            out.extend(boot::boot_plates(&self.tag, b, cut, course, &self.shop));
+        }
+        out
+    }
+
+    /// Every head blank: the heads', then the boots' heads'.
+    pub fn blanks(&self) -> impl Iterator<Item = &develop::HeadBlank> {
+        let boots = self
+            .developments
+            .boots
+            .iter()
+            .filter_map(|b| b.head.as_ref());
+        self.developments.heads.iter().chain(boots)
+    }
+
+    /// The pieces to nest: plates (net of openings), boot plates, pads, head
+    /// blanks.
     pub fn pieces(&self) -> Vec<Piece> {
         let mut out: Vec<Piece> = self
             .plates
@@ -79,6 +107,15 @@ impl FabPlan {
                 }
             })
             .collect();
+        for p in self.boot_plates() {
+            let (w, h) = p.extent();
+            out.push(Piece {
+                id: p.id.clone(),
+                thickness: p.thickness,
+                size: DVec2::new(w, h),
+                area: openings::polygon_area(&p.outline).abs(),
+            });
+        }
         for cut in &self.openings.cuts {
             if let Some(pad) = &cut.pad {
                 let (lo, hi) = pad.outline.iter().fold(
@@ -93,7 +130,7 @@ impl FabPlan {
                 });
             }
         }
-        for h in &self.developments.heads {
+        for h in self.blanks() {
             out.push(Piece {
                 id: format!("{}-{}-BLANK", self.tag, h.id),
                 thickness: h.thickness,
@@ -159,9 +196,14 @@ pub fn plan_vessel(
     let mut errors = Vec::new();
     for (i, part) in resolved.parts.iter().enumerate() {
         let same_design = |p: &FabPlan| {
-            let at = |v: &VesselDesign| v.parts.iter().position(|d| d.id() == part.id);
-            let (old, new) = (at(&p.vessel), at(vessel));
-            old == new && new.is_none_or(|k| p.vessel.parts[k] == vessel.parts[k])
+            let same = |id: &str| {
+                let at = |v: &VesselDesign| v.parts.iter().position(|d| d.id() == id);
+                let (old, new) = (at(&p.vessel), at(vessel));
+                old == new && new.is_none_or(|k| p.vessel.parts[k] == vessel.parts[k])
+            };
+            // A boot takes its host course's thickness.
+            let host = part.host.and_then(|h| resolved.parts.get(h));
+            same(&part.id) && host.is_none_or(|h| same(&h.id))
         };
         let kept = previous
             .filter(|p| p.resolved.parts.get(i) == Some(part) && same_design(p))
@@ -204,15 +246,58 @@ pub fn plan_vessel(
                     .iter()
                     .find(|c| c.nozzle == i)
                     .map(|c| openings::NozzleOutcome::Cut(Box::new(c.clone()))),
-                None => None,
+                // On a head or cone: kept with the host and its blank.
+                None => {
+                    let host = nozzle.host;
+                    let blank = |d: &Developments| d.heads.iter().find(|h| h.part == host).cloned();
+                    let same_host = p.resolved.parts.get(host) == resolved.parts.get(host)
+                        && blank(&p.developments) == blank(&developments);
+                    same_host
+                        .then(|| p.openings.formed.iter().find(|f| f.mark == nozzle.mark))
+                        .flatten()
+                        .map(|f| openings::NozzleOutcome::Formed(f.clone()))
+                }
             }
         });
         let outcome = match kept {
             Some(o) => o,
+            None => match openings::cut_nozzle(index, resolved, &developments, shop, i) {
+                Ok(mut o) => {
+                    if let openings::NozzleOutcome::Formed(f) = &mut o {
+                        f.blank = head_map::blank_mark(resolved, &developments, shop, i);
+                    }
+                    // Developed on a course, or mapped onto a head's blank.
+                    work.openings += usize::from(match &o {
+                        openings::NozzleOutcome::Cut(_) => true,
+                        openings::NozzleOutcome::Formed(f) => f.blank.is_some(),
+                    });
+                    o
+                }
+                Err(e) => {
+                    errors.push(e);
+                    continue;
+                }
+            },
+        };
+        openings.push(outcome);
+    }
+    if !errors.is_empty() {
+        return Err(FabError::Rules(errors));
+    }
+    for b in &developments.boots {
+        let kept = previous.and_then(|p| {
+            let c = p.openings.boots.iter().find(|c| c.nozzle == b.part)?;
+            let same = p.developments.boots.iter().any(|old| old == b)
+                && p.resolved.parts.get(b.host) == resolved.parts.get(b.host)
+                && p.developments.rolled.get(c.rolled) == developments.rolled.get(c.rolled);
+            same.then(|| c.clone())
+        });
+        let cut = match kept {
+            Some(c) => c,
             None => {
-                work.openings += usize::from(course.is_some());
-                match openings::cut_nozzle(index, resolved, &developments, shop, i) {
-                    Ok(o) => o,
+                work.openings += 1;
+                match openings::cut_boot(resolved, &developments, shop, b) {
+                    Ok(c) => c,
                     Err(e) => {
                         errors.push(e);
                         continue;
@@ -220,7 +305,7 @@ pub fn plan_vessel(
                 }
             }
         };
-        openings.push(outcome);
+        openings.boots.push(cut);
     }
     if !errors.is_empty() {
         return Err(FabError::Rules(errors));

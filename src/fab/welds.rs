@@ -24,14 +24,17 @@
 //! outside surface at the seam's angle, over the course's height), and the
 //! circumferential seams between the courses of one part (`C-S1-C1-S1-C2`,
 //! the exact circle at the joint's mid radius), category A and B on pressure
-//! parts, none on a skirt.
+//! parts, none on a skirt. A boot's plates give its long seams
+//! (`L-B1-1`, category A) and its head its circumferential seam
+//! (`C-B1-B1-HEAD`, category by the head's shape as the stack's joints).
 
 use std::f64::consts::{PI, TAU};
 
 use glam::DVec3;
 use serde::Serialize;
 
-use super::develop::RolledKind;
+use super::boot::BootPlate;
+use super::develop::{BootShell, RolledKind, boot_head_id};
 use super::plan_error::PlanError;
 use super::shop_rules::{PrepChoice, ShopRules};
 use super::vessel_plan::FabPlan;
@@ -198,6 +201,62 @@ fn joint_radius(part: StackPart, z: f64) -> Option<(f64, glam::DVec2)> {
         }
     }
     best.map(|(_, r, c)| (r, c))
+}
+
+/// The shape of boot `id`'s head in `design`.
+fn boot_head_shape(design: &VesselDesign, id: &str) -> Option<HeadShape> {
+    design.parts.iter().find_map(|d| match d {
+        PartDesign::Boot(b) if b.id == id => Some(b.head),
+        _ => None,
+    })
+}
+
+/// A boot's long seams (one per plate, at its first edge, as long as the
+/// plate's generator there) and its circumferential seam to its head
+/// (category by the head's shape, as the stack's joints).
+fn boot_seams(b: &mut Builder, shell: &BootShell, plates: &[BootPlate], head: Option<HeadShape>) {
+    let pf = b.rules.prep_for.clone();
+    let at = |phi: f64, r: f64, z: f64| {
+        shell
+            .frame
+            .transform_point3(DVec3::new(r * phi.cos(), r * phi.sin(), z))
+    };
+    for p in plates.iter().filter(|p| p.part == shell.id) {
+        let high = p.outline.last().map_or(0.0, |q| q.y);
+        let path = vec![
+            at(p.from, shell.outside, shell.tangent),
+            at(p.from, shell.outside, shell.tangent - high),
+        ];
+        b.push(
+            format!("L-{}-{}", shell.id, p.index + 1),
+            WeldKind::LongSeam,
+            Some(Category::A),
+            [shell.id.clone(), shell.id.clone()],
+            shell.id.clone(),
+            (high, shell.thickness),
+            &pf.long_seam,
+            (path, false),
+        );
+    }
+    let head_id = boot_head_id(&shell.id);
+    let category = match head {
+        Some(HeadShape::Flat) => Category::C,
+        Some(HeadShape::Hemispherical) => Category::A,
+        _ => Category::B,
+    };
+    let ring = (0..96)
+        .map(|k| at(TAU * f64::from(k) / 96.0, shell.radius, shell.tangent))
+        .collect();
+    b.push(
+        format!("C-{}-{head_id}", shell.id),
+        WeldKind::CircSeam,
+        Some(category),
+        [shell.id.clone(), head_id.clone()],
+        format!("{}+{head_id}", shell.id),
+        (TAU * shell.radius, shell.thickness),
+        &pf.circ_seam,
+        (ring, true),
+    );
 }
 
 /// The weld map of the vessel planned as `fab`.
@@ -389,6 +448,7 @@ pub fn weld_map(fab: &FabPlan, rules: &ShopRules) -> Result<Vec<Weld>, PlanError
         }
     }
     // Boots and supports.
+    let boot_plates = fab.boot_plates();
     for (i, part) in resolved.parts.iter().enumerate() {
         let host_t = |host: Option<usize>| {
             host.and_then(|h| resolved.parts.get(h))
@@ -438,6 +498,14 @@ pub fn weld_map(fab: &FabPlan, rules: &ShopRules) -> Result<Vec<Weld>, PlanError
                     &pf.nozzle,
                     (curve, true),
                 );
+                if let Some(shell) = fab.developments.boots.iter().find(|s| s.part == i) {
+                    boot_seams(
+                        &mut b,
+                        shell,
+                        &boot_plates,
+                        boot_head_shape(design, &part.id),
+                    );
+                }
             }
             PartGeometry::Skirt(s) => {
                 let top = part.frame.transform_point3(DVec3::new(0.0, 0.0, s.height));
