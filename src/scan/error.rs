@@ -1,6 +1,6 @@
 //! Why a scan could not be read, simulated, registered or fitted.
 
-use std::path::PathBuf;
+use std::path::{Path, PathBuf};
 
 use thiserror::Error;
 
@@ -120,5 +120,14 @@ impl ScanError {
             path: path.to_path_buf(),
             source,
         }
+    }
+}
+
+/// A point file's error at `line` (0 when not line-based).
+pub(super) fn bad(path: &Path, line: u64, message: impl Into<String>) -> ScanError {
+    ScanError::Points {
+        path: path.to_path_buf(),
+        line,
+        message: message.into(),
     }
 }

@@ -15,8 +15,9 @@ use glam::DVec3;
 use serde_json::json;
 
 use super::ScanError;
+use super::error::bad;
 use super::grid::{GridFit, Parametrization};
-use super::points::{bad, xyz_line};
+use super::points::xyz_line;
 
 /// An ordered grid: `rows × columns` points, `points[i * columns + j]`.
 #[derive(Clone, Debug, PartialEq)]

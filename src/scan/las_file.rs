@@ -1,5 +1,5 @@
 //! ASPRS LAS and LAZ (compressed LAS) point files through the `las` crate,
-//! streamed: the reader decodes [`CHUNK`] points at a time into one reused
+//! streamed: the reader decodes the caller's chunk of points at a time into one reused
 //! buffer and hands their coordinates to the callback, so a scan of millions
 //! of points is never held twice.
 //!
@@ -14,7 +14,7 @@ use glam::DVec3;
 use las::{Builder, Point, PointDataBuilder, Reader, Transform, Vector, Writer};
 
 use super::ScanError;
-use super::points::{CHUNK, bad};
+use super::error::bad;
 
 /// The first four bytes of every LAS and LAZ file.
 pub const MAGIC: &[u8; 4] = b"LASF";
@@ -32,21 +32,25 @@ fn las_error(path: &Path, what: &str, e: las::Error) -> ScanError {
 }
 
 /// Reads the points of the LAS or LAZ file `path`, handing them to `sink` in
-/// chunks of at most [`CHUNK`]. Returns the number of points read.
+/// chunks of at most `chunk_len`. Returns the number of points read.
 ///
 /// # Errors
 ///
 /// [`ScanError::Io`] when the file cannot be read, [`ScanError::Points`] when
 /// its header or records are malformed or a coordinate is not finite.
-pub fn read_las(path: &Path, sink: &mut impl FnMut(&[DVec3])) -> Result<u64, ScanError> {
+pub fn read_las(
+    path: &Path,
+    chunk_len: usize,
+    sink: &mut impl FnMut(&[DVec3]),
+) -> Result<u64, ScanError> {
     let mut reader = Reader::from_path(path).map_err(|e| las_error(path, "LAS header", e))?;
     let total = reader.header().number_of_points();
     let mut data = PointDataBuilder::new().for_header(reader.header()).build();
-    let mut chunk = Vec::with_capacity(CHUNK);
+    let mut chunk = Vec::with_capacity(chunk_len);
     let mut count = 0u64;
     loop {
         let n = reader
-            .fill_points(CHUNK as u64, &mut data)
+            .fill_points(chunk_len as u64, &mut data)
             .map_err(|e| las_error(path, &format!("point {count} of {total}"), e))?;
         if n == 0 {
             break;

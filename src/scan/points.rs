@@ -15,6 +15,7 @@ use std::path::Path;
 use glam::DVec3;
 
 use super::ScanError;
+use super::error::bad;
 use super::las_file::{MAGIC, read_las, write_las};
 
 /// Points handed to the callback at a time.
@@ -116,7 +117,7 @@ pub fn read_points(path: &Path, mut sink: impl FnMut(&[DVec3])) -> Result<u64, S
         read_ply(path, reader, &mut sink)
     } else if head.starts_with(MAGIC) {
         drop(reader);
-        read_las(path, &mut sink)
+        read_las(path, CHUNK, &mut sink)
     } else {
         read_xyz(path, reader, &mut sink)
     }
@@ -131,14 +132,6 @@ pub fn load_points(path: &Path) -> Result<Vec<DVec3>, ScanError> {
     let mut all = Vec::new();
     read_points(path, |chunk| all.extend_from_slice(chunk))?;
     Ok(all)
-}
-
-pub(super) fn bad(path: &Path, line: u64, message: impl Into<String>) -> ScanError {
-    ScanError::Points {
-        path: path.to_path_buf(),
-        line,
-        message: message.into(),
-    }
 }
 
 fn read_xyz(
