@@ -291,7 +291,30 @@ fn developments(plan: &FabPlan) -> Vec<String> {
     for s in &plan.developments.skipped {
         out.push(format!("  {:<6} not developed: {}", s.id, s.reason));
     }
+    for c in &plan.openings.cones {
+        let plate = plan
+            .plates
+            .iter()
+            .find(|p| p.openings.iter().any(|o| o.mark == c.mark))
+            .map_or("-", |p| p.id.as_str());
+        out.push(format!(
+            "  {:<6} opening on {}: developed on cone plate {plate}",
+            c.mark, plan.developments.rolled[c.rolled].id
+        ));
+    }
     for f in &plan.openings.formed {
+        let eccentric = plan
+            .developments
+            .rolled
+            .iter()
+            .any(|r| r.id == f.host && r.flat_side.is_some());
+        if eccentric {
+            out.push(format!(
+                "  {:<6} opening on {}: listed, not developed (eccentric reducer: oblique cone), marked and cut after rolling",
+                f.mark, f.host
+            ));
+            continue;
+        }
         let on_blank = if f.blank.is_some() {
             " (outline marked on the blank)"
         } else {

@@ -1,0 +1,262 @@
+//! Nozzle openings on concentric cones (`vesselcad::fab::cone_openings`):
+//! the developed opening and pad footprint roll back onto the cutting
+//! cylinder and the cone's mid-surface (outside) to 1e-6 mm, a nozzle
+//! normal to a cone develops to an area within the bounds of π·r², the cone
+//! plate's DXF carries the opening, and an opening no cone plate layout can
+//! hold is a loop-validity error naming the opening and the seam.
+
+use std::f64::consts::{PI, TAU};
+
+use glam::{DVec2, DVec3};
+use vesselcad::design::parse;
+use vesselcad::fab::cone_openings::{ConeSurface, develop_point};
+use vesselcad::fab::openings::{NeckAxis, polygon_area, samples};
+use vesselcad::fab::plate_dxf::plate_drawing;
+use vesselcad::fab::{FabError, FabPlan, Shop, plan};
+use vesselcad::parts::tables::pipe;
+
+/// The cone R1 of the test vessel: OD 2000 → 1400 over 900 mm, t = 12.
+const LARGE: f64 = 1000.0;
+const SMALL: f64 = 700.0;
+const LENGTH: f64 = 900.0;
+const T: f64 = 12.0;
+
+/// A vertical vessel H1, S1 (OD 2000), R1 (the cone, from elevation 3000
+/// to 3900), S2 (OD 1400), H2, with `nozzles` (JSON objects).
+fn vessel(nozzles: &[&str], shop: &Shop) -> Result<FabPlan, FabError> {
+    let text = format!(
+        r#"{{"format": "vesselcad/1", "units": "mm", "vessels": [{{"tag": "V-1", "kind": "vertical",
+        "placement": {{"position": [0, 0, 0], "rotation": 0}},
+        "design": {{"pressure": 350, "temperature": 100, "material": "SA-516-70"}},
+        "parts": [
+          {{"head": {{"id": "H1", "shape": "ellipsoidal", "straight_flange": 50, "thickness": 12}}}},
+          {{"shell": {{"id": "S1", "od": 2000, "length": 3000, "thickness": 12}}}},
+          {{"reducer": {{"id": "R1", "length": 900, "thickness": 12}}}},
+          {{"shell": {{"id": "S2", "od": 1400, "length": 2000, "thickness": 10}}}},
+          {{"head": {{"id": "H2", "shape": "ellipsoidal", "straight_flange": 50, "thickness": 10}}}}],
+        "nozzles": [{}]}}]}}"#,
+        nozzles.join(",")
+    );
+    let design = parse(&text).expect("the test design parses");
+    plan(&design, "V-1", shop)
+}
+
+const N4: &str = r#"{"mark": "N4", "size": 8, "rating": 150, "facing": "RF", "host": "R1",
+    "orientation": 45, "elevation": 3450, "projection": 1300,
+    "pad": {"od": 400, "thickness": 12}}"#;
+
+/// dr/dz of R1's walls.
+fn taper() -> f64 {
+    (SMALL - LARGE) / LENGTH
+}
+
+/// R1's mid radius at part-local `z`, from the design's numbers: half the
+/// wall in from the outside along the wall's normal.
+fn mid_radius(z: f64) -> f64 {
+    LARGE - 0.5 * T * taper().hypot(1.0) + taper() * z
+}
+
+/// Distance of `q` from the line through `o` along unit `d`.
+fn off_axis(q: DVec3, o: DVec3, d: DVec3) -> f64 {
+    let v = q - o;
+    (v - v.dot(d) * d).length()
+}
+
+#[test]
+fn a_cone_opening_rolls_back_onto_its_cylinder_and_the_mid_surface() {
+    let shop = Shop::default();
+    let p = vessel(&[N4], &shop).unwrap_or_else(|e| panic!("{e}"));
+    assert!(
+        p.openings.formed.iter().all(|f| f.mark != "N4"),
+        "N4 is developed, not listed"
+    );
+    let cut = p.openings.cones.iter().find(|c| c.mark == "N4").unwrap();
+    let plate = p
+        .plates
+        .iter()
+        .find(|pl| pl.openings.iter().any(|o| o.mark == "N4"))
+        .expect("a cone plate holds N4");
+    let course = &p.seams.courses[plate.course_index];
+    let rolled = &p.developments.rolled[course.rolled];
+    assert_eq!(rolled.id, "R1");
+    assert_eq!(plate.part, "R1");
+    let opening = plate.openings.iter().find(|o| o.mark == "N4").unwrap();
+
+    // The neck axis in R1's frame, from the resolved nozzle.
+    let n = &p.resolved.nozzles[cut.nozzle];
+    let m = rolled.frame.inverse() * n.frame;
+    let (o, d) = (m.translation, m.matrix3.z_axis.normalize());
+    let rho = 0.5 * pipe(n.geometry.nps).outside_diameter + shop.bevel_allowance;
+
+    // Roll a developed point back: slant distance and sector angle from the
+    // plate's bisector (apex at the origin, bisector along +y).
+    let k = taper();
+    let sin = k.abs() / k.hypot(1.0);
+    let mid = course.seam(plate.seam) + 0.5 * course.pitch();
+    let roll = |q: DVec2| {
+        let slant = q.length();
+        let a = (-q.x).atan2(q.y);
+        let theta = mid - k.signum() * a / sin;
+        let r = slant * sin;
+        let z = (r - mid_radius(0.0)) / k;
+        DVec3::new(r * theta.cos(), r * theta.sin(), z)
+    };
+    assert!(opening.contour.len() >= 32);
+    let mut worst: f64 = 0.0;
+    for &q in &opening.contour {
+        let x = roll(q);
+        assert!(x.z > 0.0 && x.z < LENGTH, "{x} is on R1");
+        let on_cone = (x.truncate().length() - mid_radius(x.z)).abs();
+        let on_cylinder = (off_axis(x, o, d) - rho).abs();
+        worst = worst.max(on_cone).max(on_cylinder);
+    }
+    assert!(worst < 1e-6, "rolled back within {worst:e} mm");
+    // The centre rolls back onto the nozzle's axis.
+    let c = roll(opening.centre);
+    assert!(off_axis(c, o, d) < 1e-6);
+    assert!((c.truncate().length() - mid_radius(c.z)).abs() < 1e-6);
+    // A radial neck through a cone sloping at α: the opening is longer
+    // along the generator than round the cone.
+    let (lo, hi) = opening.contour.iter().fold(
+        (DVec2::splat(f64::INFINITY), DVec2::splat(f64::NEG_INFINITY)),
+        |(lo, hi), q| (lo.min(*q), hi.max(*q)),
+    );
+    assert!(hi.y - lo.y > hi.x - lo.x);
+
+    // The pad's footprint lies on the pad's cylinder and the cone's outside.
+    let pad = cut.pad.as_ref().expect("N4 has a pad");
+    let outside = |z: f64| LARGE + k * z;
+    for s in &pad.footprint {
+        let x = DVec3::new(outside(s.y) * s.x.cos(), outside(s.y) * s.x.sin(), s.y);
+        assert!((off_axis(x, o, d) - 200.0).abs() < 1e-6, "{s}");
+    }
+}
+
+#[test]
+fn a_neck_normal_to_a_cone_develops_to_about_pi_r_squared() {
+    let k = taper();
+    let cone = ConeSurface {
+        r0: 994.0,
+        z0: 0.0,
+        k,
+    };
+    let (theta, z) = (0.3_f64, 450.0);
+    let r = cone.radius(z);
+    let foot = DVec3::new(r * theta.cos(), r * theta.sin(), z);
+    let normal = DVec3::new(theta.cos(), theta.sin(), -k).normalize();
+    let e1 = DVec3::new(-theta.sin(), theta.cos(), 0.0);
+    let e2 = normal.cross(e1);
+    let neck = NeckAxis {
+        origin: foot - 500.0 * normal,
+        e1,
+        e2,
+        axis: normal,
+    };
+    for rho in [50.0, 100.0, 250.0] {
+        let n = samples(rho, 0.05);
+        let curve = cone
+            .surface_loop(&neck, rho, theta, n)
+            .expect("the neck meets the cone");
+        let developed: Vec<DVec2> = curve
+            .iter()
+            .map(|&p| develop_point(&cone, theta, p))
+            .collect();
+        let area = polygon_area(&developed).abs();
+        // The developed area is the cone's area inside the cylinder: at
+        // least its projection π·ρ² (less the inscribed polygon's deficit),
+        // at most that over the cosine of the largest tilt of the cone's
+        // normal from the axis inside it (normal curvature 1/R_n, R_n ≥
+        // r_min / cos α... here bounded by r_min).
+        let z_top = curve.iter().fold(f64::NEG_INFINITY, |m, p| m.max(p.y));
+        let r_min = cone.radius(z_top);
+        let disc = PI * rho * rho;
+        let deficit = 1.0 - (TAU / n as f64).sin() / (TAU / n as f64);
+        let tilt = (rho / r_min).asin();
+        assert!(
+            area >= disc * (1.0 - 2.0 * deficit) && area <= disc / tilt.cos(),
+            "ρ {rho}: area {area} vs π·ρ² {disc} (n {n}, tilt {tilt})"
+        );
+        // And the developed points are an isometry's image: each developed
+        // chord is no shorter than the 3-D chord it maps.
+        for w in curve.windows(2) {
+            let at = |p: DVec2| {
+                DVec3::new(
+                    cone.radius(p.y) * p.x.cos(),
+                    cone.radius(p.y) * p.x.sin(),
+                    p.y,
+                )
+            };
+            let chord3 = (at(w[1]) - at(w[0])).length();
+            let chord2 = (develop_point(&cone, theta, w[1]) - develop_point(&cone, theta, w[0]))
+                .length();
+            assert!(chord2 >= chord3 - 1e-9, "{chord2} < {chord3}");
+        }
+    }
+}
+
+#[test]
+fn the_cone_plate_dxf_carries_the_opening() {
+    let p = vessel(&[N4], &Shop::default()).unwrap_or_else(|e| panic!("{e}"));
+    let plate = p
+        .plates
+        .iter()
+        .find(|pl| pl.openings.iter().any(|o| o.mark == "N4"))
+        .unwrap();
+    let course = &p.seams.courses[plate.course_index];
+    let rolled = &p.developments.rolled[course.rolled];
+    let drawing = plate_drawing(plate, &p.grade, rolled, course);
+    let mut cut = Vec::new();
+    let mut texts = Vec::new();
+    for e in drawing.entities() {
+        match &e.specific {
+            dxf::entities::EntityType::LwPolyline(l) if e.common.layer == "CUT" => cut.push(
+                l.vertices
+                    .iter()
+                    .map(|v| DVec2::new(v.x, v.y))
+                    .collect::<Vec<_>>(),
+            ),
+            dxf::entities::EntityType::Text(t) => texts.push(t.value.clone()),
+            _ => {}
+        }
+    }
+    assert_eq!(cut.len(), 2, "the sector and N4's opening");
+    let opening = &plate.openings[0];
+    assert_eq!(cut[1], opening.contour);
+    assert!(texts.iter().any(|t| t == "N4"));
+    assert!(texts.iter().any(|t| t == &plate.id));
+    // The opening lies inside the sector: between its arcs and its edges.
+    let vesselcad::fab::Outline::Sector {
+        inner,
+        outer,
+        angle,
+    } = plate.outline
+    else {
+        panic!("a cone plate is a sector");
+    };
+    for q in &opening.contour {
+        assert!(q.length() > inner && q.length() < outer);
+        assert!((-q.x).atan2(q.y).abs() < 0.5 * angle);
+    }
+}
+
+#[test]
+fn an_opening_no_cone_plate_can_hold_is_an_error_naming_it_and_the_seam() {
+    // Plates 200 mm long round R1: narrower than N4's opening.
+    let shop = Shop {
+        max_plate_length: 200.0,
+        ..Shop::default()
+    };
+    let Err(FabError::Rules(errors)) = vessel(&[N4], &shop) else {
+        panic!("an opening across a cone plate's seam is refused");
+    };
+    let e = errors
+        .iter()
+        .find(|e| e.entity == "V-1/N4")
+        .unwrap_or_else(|| panic!("{errors:?}"));
+    assert_eq!(e.path, "vessels[0].nozzles[0]");
+    assert!(
+        e.rule.contains("crosses longitudinal seam R1/R1-C1-L"),
+        "{}",
+        e.rule
+    );
+}
