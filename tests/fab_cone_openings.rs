@@ -8,11 +8,12 @@
 use std::f64::consts::{PI, TAU};
 
 use glam::{DVec2, DVec3};
+use vesselcad::constraints::resolve_vessel;
 use vesselcad::design::parse;
 use vesselcad::fab::cone_openings::{ConeSurface, develop_point};
 use vesselcad::fab::openings::{NeckAxis, polygon_area, samples};
 use vesselcad::fab::plate_dxf::plate_drawing;
-use vesselcad::fab::{FabError, FabPlan, Shop, plan};
+use vesselcad::fab::{FabError, FabPlan, FabWork, Shop, plan, plan_vessel};
 use vesselcad::parts::tables::pipe;
 
 /// The cone R1 of the test vessel: OD 2000 → 1400 over 900 mm, t = 12.
@@ -130,6 +131,52 @@ fn a_cone_opening_rolls_back_onto_its_cylinder_and_the_mid_surface() {
         let x = DVec3::new(outside(s.y) * s.x.cos(), outside(s.y) * s.x.sin(), s.y);
         assert!((off_axis(x, o, d) - 200.0).abs() < 1e-6, "{s}");
     }
+    // The pad developed on its own mid-surface: at least its projection
+    // π·R² along the (radial) axis, at most that over the cosine of the
+    // cone's half-angle plus the largest tilt of the cone's normal inside it;
+    // nested as a piece at that area less its hole.
+    let ring = |p: &[DVec2]| polygon_area(p).abs();
+    let disc = PI * 200.0 * 200.0;
+    let deficit = 1.0 - (TAU / pad.outline.len() as f64).sin() / (TAU / pad.outline.len() as f64);
+    let tilt = sin.asin() + (200.0 / SMALL).asin();
+    let area = ring(&pad.outline);
+    assert!(
+        area >= disc * (1.0 - 2.0 * deficit) && area <= disc / tilt.cos(),
+        "pad area {area} vs π·R² {disc}"
+    );
+    assert!(ring(&pad.hole) > PI * rho * rho * (1.0 - 1e-3));
+    let piece = p
+        .pieces()
+        .into_iter()
+        .find(|x| x.id == "V-1-N4-PAD")
+        .expect("the cone pad is nested");
+    assert!((piece.area - (area - ring(&pad.hole))).abs() < 1e-9 * area);
+    assert_eq!(piece.thickness, 12.0);
+}
+
+#[test]
+fn moving_a_cone_nozzle_redevelops_it_and_equals_a_fresh_plan() {
+    let shop = Shop::default();
+    let before = vessel(&[N4], &shop).unwrap_or_else(|e| panic!("{e}"));
+    // The same design again: the cone cut is kept.
+    let resolved = resolve_vessel(&before.vessel, 0).unwrap();
+    let (again, work) = plan_vessel(&before.vessel, 0, &resolved, &shop, Some(&before)).unwrap();
+    assert_eq!(work, FabWork::default());
+    assert_eq!(again, before);
+    // Turned by 30°: its opening is developed again, the result is the
+    // plan made from nothing.
+    let moved = N4.replace("\"orientation\": 45", "\"orientation\": 75");
+    assert_ne!(moved, N4);
+    let fresh = vessel(&[&moved], &shop).unwrap_or_else(|e| panic!("{e}"));
+    let resolved = resolve_vessel(&fresh.vessel, 0).unwrap();
+    let (kept, work) = plan_vessel(&fresh.vessel, 0, &resolved, &shop, Some(&before)).unwrap();
+    assert_eq!(work.openings, 1);
+    assert_eq!(work.parts, 0);
+    assert_eq!(kept, fresh);
+    let centre = |p: &FabPlan| p.openings.cones[0].centre.x;
+    let turned = (centre(&kept) - centre(&before)).rem_euclid(TAU);
+    let turned = turned.min(TAU - turned);
+    assert!((turned - 30f64.to_radians()).abs() < 1e-9, "{turned}");
 }
 
 #[test]
@@ -187,8 +234,8 @@ fn a_neck_normal_to_a_cone_develops_to_about_pi_r_squared() {
                 )
             };
             let chord3 = (at(w[1]) - at(w[0])).length();
-            let chord2 = (develop_point(&cone, theta, w[1]) - develop_point(&cone, theta, w[0]))
-                .length();
+            let chord2 =
+                (develop_point(&cone, theta, w[1]) - develop_point(&cone, theta, w[0])).length();
             assert!(chord2 >= chord3 - 1e-9, "{chord2} < {chord3}");
         }
     }

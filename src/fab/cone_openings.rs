@@ -129,7 +129,9 @@ pub fn develop_point(surface: &ConeSurface, theta_mid: f64, p: DVec2) -> DVec2 {
     DVec2::new(-rho * a.sin(), rho * a.cos())
 }
 
-/// A reinforcing pad's footprint on a cone's outside.
+/// A reinforcing pad on a cone: its footprint on the cone's outside, and the
+/// pad developed on its own mid-surface (the cone's outside moved out by
+/// half the pad's thickness, a cone of the same angle).
 #[derive(Clone, Debug, PartialEq)]
 pub struct ConePad {
     /// Pad outside diameter, mm.
@@ -138,6 +140,12 @@ pub struct ConePad {
     pub thickness: f64,
     /// Its footprint on the cone's outside, surface coordinates `(θ, z)`.
     pub footprint: SurfaceLoop,
+    /// Developed outline on the pad's mid-surface, the nozzle axis at the
+    /// origin, the generator through it along +y, mm.
+    pub outline: Vec<DVec2>,
+    /// Developed hole for the neck (its outside plus the bevel allowance),
+    /// same frame, mm.
+    pub hole: Vec<DVec2>,
 }
 
 /// One nozzle's opening on a concentric cone.
@@ -236,13 +244,34 @@ pub fn cut_cone_nozzle(
         Some((pad_od, pad_t)) => {
             let n_pad = samples(0.5 * pad_od, shop.chord_tolerance);
             let outside = ConeSurface::outside(cone);
-            let Some(footprint) = outside.surface_loop(&neck, 0.5 * pad_od, theta, n_pad) else {
+            let pad_mid = ConeSurface {
+                r0: outside.r0 + 0.5 * pad_t * outside.k.hypot(1.0),
+                ..outside
+            };
+            let developed = |rho: f64, n: usize| -> Option<Vec<DVec2>> {
+                let (c, _) = pad_mid.crossing(&neck, 0.0, 0.0)?;
+                let origin = develop_point(&pad_mid, theta, DVec2::new(theta, c.z));
+                let curve = pad_mid.surface_loop(&neck, rho, theta, n)?;
+                Some(
+                    curve
+                        .iter()
+                        .map(|&q| develop_point(&pad_mid, theta, q) - origin)
+                        .collect(),
+                )
+            };
+            let footprint = outside.surface_loop(&neck, 0.5 * pad_od, theta, n_pad);
+            let outline = developed(0.5 * pad_od, n_pad);
+            let pad_hole = developed(0.5 * od + shop.bevel_allowance, n);
+            let (Some(footprint), Some(outline), Some(hole)) = (footprint, outline, pad_hole)
+            else {
                 return Err(misses("pad"));
             };
             Some(ConePad {
                 od: pad_od,
                 thickness: pad_t,
                 footprint,
+                outline,
+                hole,
             })
         }
     };

@@ -87,8 +87,8 @@ impl FabPlan {
         self.developments.heads.iter().chain(boots)
     }
 
-    /// The pieces to nest: plates (net of openings), boot plates, pads, head
-    /// blanks.
+    /// The pieces to nest: plates (net of openings), boot plates, pads (on
+    /// courses and cones), head blanks.
     pub fn pieces(&self) -> Vec<Piece> {
         let mut out: Vec<Piece> = self
             .plates
@@ -128,6 +128,21 @@ impl FabPlan {
                     thickness: pad.thickness,
                     size: hi - lo,
                     area: pad.area(),
+                });
+            }
+        }
+        for cut in &self.openings.cones {
+            if let Some(pad) = &cut.pad {
+                let (lo, hi) = pad.outline.iter().fold(
+                    (DVec2::splat(f64::INFINITY), DVec2::splat(f64::NEG_INFINITY)),
+                    |(lo, hi), p| (lo.min(*p), hi.max(*p)),
+                );
+                out.push(Piece {
+                    id: format!("{}-{}-PAD", self.tag, cut.mark),
+                    thickness: pad.thickness,
+                    size: hi - lo,
+                    area: openings::polygon_area(&pad.outline).abs()
+                        - openings::polygon_area(&pad.hole).abs(),
                 });
             }
         }
