@@ -124,6 +124,23 @@ fn a_cone_opening_rolls_back_onto_its_cylinder_and_the_mid_surface() {
     );
     assert!(hi.y - lo.y > hi.x - lo.x);
 
+    // The neck's end: each saddle point, put back on the neck's mid-surface,
+    // lies on R1's inside (set-in), and the template is closed by the
+    // flange's back.
+    let od = pipe(n.geometry.nps).outside_diameter;
+    let neck_mid = cut.saddle.last().unwrap().x / TAU;
+    assert!(neck_mid < 0.5 * od && neck_mid > 0.5 * od - 20.0);
+    let back = n.geometry.projection - n.geometry.flange_length().unwrap();
+    let inside = |z: f64| LARGE - T * k.hypot(1.0) + k * z;
+    let (e1, e2) = (m.matrix3.x_axis.normalize(), m.matrix3.y_axis.normalize());
+    for q in &cut.saddle {
+        let phi = q.x / neck_mid;
+        let x = o + neck_mid * (phi.cos() * e1 + phi.sin() * e2) + (back - q.y) * d;
+        assert!(
+            (x.truncate().length() - inside(x.z)).abs() < 1e-6,
+            "saddle {q} off R1's inside"
+        );
+    }
     // The pad's footprint lies on the pad's cylinder and the cone's outside.
     let pad = cut.pad.as_ref().expect("N4 has a pad");
     let outside = |z: f64| LARGE + k * z;

@@ -21,8 +21,8 @@ use vesselcad::fab::plate_dxf::write_plate;
 use vesselcad::fab::process_files::write_process_files;
 use vesselcad::fab::template_dxf::write_templates;
 use vesselcad::fab::{
-    BLANK_RULE, FabError, FabPlan, Nesting, Outline, PlanError, ProcessPlan, Shop, ShopRules, plan,
-    process_plan,
+    BLANK_RULE, FabError, FabPlan, Nesting, NozzleCut, Outline, PlanError, ProcessPlan, Shop,
+    ShopRules, plan, process_plan,
 };
 
 use super::output::outln;
@@ -127,6 +127,26 @@ pub fn run(args: FabArgs) -> ExitCode {
     for cut in &plan.openings.cuts {
         let shell = plan.developments.rolled[cut.rolled].outside.0;
         match write_templates(&args.output, &plan.tag, cut, &plan.grade, shell) {
+            Ok(w) => templates += w.len(),
+            Err(e) => return fail(&e),
+        }
+    }
+    for c in &plan.openings.cones {
+        // The neck template only: a cone pad is nested, not drawn.
+        let neck = NozzleCut {
+            nozzle: c.nozzle,
+            mark: c.mark.clone(),
+            path: c.path.clone(),
+            rolled: c.rolled,
+            neck: c.neck,
+            cut_radius: c.cut_radius,
+            centre: c.centre,
+            hole: c.hole.clone(),
+            pad: None,
+            saddle: c.saddle.clone(),
+        };
+        let shell = plan.developments.rolled[c.rolled].outside_at(c.centre.y);
+        match write_templates(&args.output, &plan.tag, &neck, &plan.grade, shell) {
             Ok(w) => templates += w.len(),
             Err(e) => return fail(&e),
         }

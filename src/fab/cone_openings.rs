@@ -9,7 +9,8 @@
 //! takes on a course) is the point of the opening. The cutting cylinder is
 //! the course's: the neck's outside plus the bevel allowance (set-in) or
 //! its bore (set-on); a pad's footprint is its cylinder on the cone's
-//! outside surface.
+//! outside surface; the neck's end (its saddle) is where the neck's
+//! mid-surface meets the cone's inside (set-in) or outside (set-on).
 //!
 //! A point `(θ, z)` of the cone develops onto its plate by the same map as the
 //! sector ([`super::develop::Rolled::outline`]): slant distance from the apex
@@ -169,6 +170,10 @@ pub struct ConeCut {
     pub hole: SurfaceLoop,
     /// The pad's footprint, if any.
     pub pad: Option<ConePad>,
+    /// The neck's end developed on its mid-surface: `(r·φ, length from the
+    /// cut to the flange's back)`, φ from 0 to 360° inclusive, the cut where
+    /// the neck meets the cone's inside (set-in) or outside (set-on).
+    pub saddle: Vec<DVec2>,
 }
 
 /// The index in `developments.rolled` of the concentric cone nozzle `index`
@@ -275,6 +280,27 @@ pub fn cut_cone_nozzle(
             })
         }
     };
+    let outside = ConeSurface::outside(cone);
+    let meets = match shop.attachment {
+        Attachment::SetIn => ConeSurface {
+            r0: outside.r0 - cone.thickness * outside.k.hypot(1.0),
+            ..outside
+        },
+        Attachment::SetOn => outside,
+    };
+    let neck_mid = 0.5 * (od - wall);
+    let back = g.projection - g.flange_length().unwrap_or(0.0);
+    let saddle: Option<Vec<DVec2>> = (0..=n)
+        .map(|i| {
+            let phi = TAU * i as f64 / n as f64;
+            meets
+                .crossing(&neck, neck_mid, phi)
+                .map(|(_, s)| DVec2::new(neck_mid * phi, back - s))
+        })
+        .collect();
+    let Some(saddle) = saddle else {
+        return Err(misses("neck"));
+    };
     Ok(ConeCut {
         nozzle: index,
         mark: nozzle.mark.clone(),
@@ -285,5 +311,6 @@ pub fn cut_cone_nozzle(
         centre: DVec2::new(theta, centre.z),
         hole,
         pad,
+        saddle,
     })
 }
