@@ -7,7 +7,7 @@
 //! part's mid-surface exactly and sizes head blanks; the [`Shop`] data (plate
 //! sizes, seam stagger and clearance, bevel allowance, stock sheets) drive
 //! the rest: [`openings`] develops every nozzle opening, pad and neck end
-//! from the exact intersection curves; [`seams`] splits parts into courses
+//! from the exact intersection curves ([`cone_openings`] on cones); [`seams`] splits parts into courses
 //! and courses into plates, staggering and clearing the seams, and checks
 //! loop validity; [`plates`] cuts the plates with their openings;
 //! [`plate_dxf`] writes one DXF per plate and [`template_dxf`] one per pad
@@ -31,10 +31,12 @@
 pub mod blank_dxf;
 pub mod bom;
 pub mod boot;
+pub mod cone_openings;
 pub mod develop;
 pub mod error;
 pub mod head_map;
 pub mod levels;
+pub mod neck_axis;
 pub mod nest;
 pub mod oblique;
 pub mod openings;

@@ -26,80 +26,23 @@
 //!   ([`cut_boot`]): its opening in the course's plate, and its host end
 //!   developed on its own mid-surface, measured from its head's tangent line.
 //!
-//! Openings on heads are marked on the head's blank and cut after forming
-//! ([`super::head_map`]); openings on cones are listed, not developed.
+//! Openings on concentric cones are developed onto the cone's plates the
+//! same way, on the cone's mid-surface ([`super::cone_openings`]); openings
+//! on heads are marked on the head's blank and cut after forming
+//! ([`super::head_map`]); openings on eccentric reducers (oblique cones)
+//! are listed, not developed.
 
-use std::f64::consts::{PI, TAU};
+use std::f64::consts::TAU;
 
-use glam::{DAffine3, DVec2, DVec3};
+use glam::DVec2;
 
+use super::cone_openings::{self, ConeCut};
 use super::develop::{BootShell, Developments, RolledKind};
+pub use super::neck_axis::{NeckAxis, SurfaceLoop, samples, theta_near};
 use super::shop::{Attachment, Shop};
 use crate::constraints::ResolvedVessel;
 use crate::format::RuleViolation;
 use crate::parts::tables::pipe;
-
-/// A neck axis in a course's local frame.
-#[derive(Clone, Copy, Debug, PartialEq)]
-pub struct NeckAxis {
-    /// Neck start (nozzle local origin), mm.
-    pub origin: DVec3,
-    /// Unit radial directions of the neck's φ = 0 and φ = 90°.
-    pub e1: DVec3,
-    /// See `e1`.
-    pub e2: DVec3,
-    /// Unit axis direction, outwards.
-    pub axis: DVec3,
-}
-
-impl NeckAxis {
-    /// The axis of a nozzle whose local frame maps by `nozzle` into the
-    /// vessel frame, seen from a part whose frame is `part`.
-    pub fn new(part: DAffine3, nozzle: DAffine3) -> Self {
-        let m = part.inverse() * nozzle;
-        NeckAxis {
-            origin: m.translation,
-            e1: m.matrix3.x_axis.normalize(),
-            e2: m.matrix3.y_axis.normalize(),
-            axis: m.matrix3.z_axis.normalize(),
-        }
-    }
-
-    /// The point at angle `phi` of the cylinder of radius `rho` about the
-    /// axis that lies on the cylinder of radius `big` about local +Z (the
-    /// outer crossing), and its distance along the axis; `None` where that
-    /// line misses the cylinder.
-    pub fn crossing(&self, rho: f64, big: f64, phi: f64) -> Option<(DVec3, f64)> {
-        let a = self.origin + rho * (phi.cos() * self.e1 + phi.sin() * self.e2);
-        let (ax, bx) = (a.truncate(), self.axis.truncate());
-        let qa = bx.length_squared();
-        let qb = 2.0 * ax.dot(bx);
-        let qc = ax.length_squared() - big * big;
-        let disc = qb * qb - 4.0 * qa * qc;
-        if qa <= 0.0 || disc < 0.0 {
-            return None;
-        }
-        // The larger root, written without cancellation.
-        let root = disc.sqrt();
-        let s = if qb >= 0.0 {
-            (-qb - root) / (2.0 * qa)
-        } else {
-            2.0 * qc / (-qb + root)
-        };
-        let other = if qb >= 0.0 {
-            2.0 * qc / (-qb - root)
-        } else {
-            (-qb + root) / (2.0 * qa)
-        };
-        let s = s.max(other);
-        Some((a + s * self.axis, s))
-    }
-}
-
-/// A closed curve on a course in surface coordinates `(θ, z)`: θ in radians
-/// about the part's axis from its +X, unwrapped to be continuous about the
-/// curve's centre; z along the part's axis, mm.
-pub type SurfaceLoop = Vec<DVec2>;
 
 /// A reinforcing pad developed as the region of the shell it covers.
 #[derive(Clone, Debug, PartialEq)]
@@ -160,7 +103,7 @@ pub struct FormedOpening {
     pub host: String,
     /// Its opening (and pad) mapped onto the head's blank (by
     /// [`super::vessel_plan::plan_vessel`] with `head_map::blank_mark`),
-    /// `None` on a cone or a head without blank.
+    /// `None` on an eccentric reducer or a head without blank.
     pub blank: Option<BlankMark>,
 }
 
@@ -186,18 +129,13 @@ pub struct BlankMark {
 pub struct Openings {
     /// Cuts on cylindrical courses, in nozzle order.
     pub cuts: Vec<NozzleCut>,
-    /// Openings on heads and cones, cut after forming.
+    /// Openings on heads and eccentric reducers, cut after forming.
     pub formed: Vec<FormedOpening>,
+    /// Openings on concentric cones, developed onto their plates, in nozzle
+    /// order.
+    pub cones: Vec<ConeCut>,
     /// Boots cut into their courses, in part order.
     pub boots: Vec<NozzleCut>,
-}
-
-/// Samples for a curve of radius `rho` within `tolerance` (chord sagitta),
-/// with a factor of two to spare for the shell's curvature.
-pub fn samples(rho: f64, tolerance: f64) -> usize {
-    let ratio = (1.0 - tolerance / rho.max(tolerance)).clamp(-1.0, 1.0);
-    let n = (2.0 * PI / ratio.acos()).ceil() * 2.0;
-    (n as usize).clamp(32, 20_000)
 }
 
 /// Signed area of a closed polygon (shoelace), mm².
@@ -207,12 +145,6 @@ pub fn polygon_area(points: &[DVec2]) -> f64 {
         .map(|i| points[i].perp_dot(points[(i + 1) % n]))
         .sum::<f64>()
         * 0.5
-}
-
-/// θ of `p` unwrapped to within π of `about`.
-fn theta_near(p: DVec3, about: f64) -> f64 {
-    let t = p.y.atan2(p.x);
-    about + (t - about + PI).rem_euclid(TAU) - PI
 }
 
 /// The loop where the cylinder of radius `rho` about `neck` meets the
@@ -240,7 +172,9 @@ pub fn surface_loop(
 pub enum NozzleOutcome {
     /// On a cylindrical course.
     Cut(Box<NozzleCut>),
-    /// On a head or cone.
+    /// On a concentric cone, developed onto its plate.
+    Cone(Box<ConeCut>),
+    /// On a head or an eccentric reducer.
     Formed(FormedOpening),
 }
 
@@ -254,6 +188,7 @@ impl Openings {
     pub fn push(&mut self, o: NozzleOutcome) {
         match o {
             NozzleOutcome::Cut(c) => self.cuts.push(*c),
+            NozzleOutcome::Cone(c) => self.cones.push(*c),
             NozzleOutcome::Formed(f) => self.formed.push(f),
         }
     }
@@ -318,6 +253,17 @@ pub fn cut_nozzle(
     let path = format!("vessels[{vessel_index}].nozzles[{index}]");
     let entity = format!("{}/{}", resolved.tag, nozzle.mark);
     let host = &resolved.parts[nozzle.host];
+    if let Some(cone) = cone_openings::host_cone(resolved, developments, index) {
+        return cone_openings::cut_cone_nozzle(
+            vessel_index,
+            resolved,
+            developments,
+            shop,
+            index,
+            cone,
+        )
+        .map(|c| NozzleOutcome::Cone(Box::new(c)));
+    }
     let Some(rolled_index) = host_course(resolved, developments, index) else {
         return Ok(NozzleOutcome::Formed(FormedOpening {
             mark: nozzle.mark.clone(),

@@ -6,8 +6,9 @@
 //! z₀` from its lower joint (seen from outside, x runs counter-clockwise
 //! about the part's axis). A cone's plate is an annular sector laid with its
 //! bisector along +y about the apex (an eccentric reducer's, the region
-//! between its developed curves, laid alike); it carries no openings (they
-//! are cut after forming).
+//! between its developed curves, laid alike); a concentric cone's plate
+//! carries its openings developed by [`super::cone_openings::develop_point`]
+//! (an eccentric reducer's carries none: they are listed).
 
 use std::collections::BTreeMap;
 use std::f64::consts::{PI, TAU};
@@ -15,7 +16,8 @@ use std::sync::Arc;
 
 use glam::DVec2;
 
-use super::develop::{Developments, Outline};
+use super::cone_openings::{ConeCut, ConeSurface, develop_point};
+use super::develop::{Developments, Outline, Rolled};
 use super::openings::{NozzleCut, Openings};
 use super::seams::{Course, Prior, SeamLayout};
 
@@ -94,6 +96,40 @@ pub fn cuts_in<'a>(
         .collect()
 }
 
+/// The cone openings whose nozzle axis falls in plate `k` of `course`.
+pub fn cone_cuts_in<'a>(course: &Course, k: usize, openings: &'a Openings) -> Vec<&'a ConeCut> {
+    let theta0 = course.seam(k);
+    openings
+        .cones
+        .iter()
+        .filter(|c| c.rolled == course.rolled)
+        .filter(|c| {
+            let rel = (c.centre.x - theta0).rem_euclid(TAU);
+            rel < course.pitch() && c.centre.y >= course.z.0 && c.centre.y < course.z.1
+        })
+        .collect()
+}
+
+/// Cone opening `cut` developed onto the plate of `course` from seam angle
+/// `theta0`.
+fn cone_opening(cut: &ConeCut, rolled: &Rolled, course: &Course, theta0: f64) -> PlateOpening {
+    let surface = ConeSurface::mid(rolled);
+    let mid = theta0 + 0.5 * course.pitch();
+    // θ of the centre within the plate, the loop unwrapped about it.
+    let centre_theta = theta0 + (cut.centre.x - theta0).rem_euclid(TAU);
+    let map = |p: DVec2| {
+        let t = centre_theta + (p.x - cut.centre.x + PI).rem_euclid(TAU) - PI;
+        develop_point(&surface, mid, DVec2::new(t, p.y))
+    };
+    let reach = cut.pad.as_ref().map_or(cut.cut_radius, |p| 0.5 * p.od) + 50.0;
+    PlateOpening {
+        mark: cut.mark.clone(),
+        contour: cut.hole.iter().map(|&p| map(p)).collect(),
+        centre: map(cut.centre),
+        reach: DVec2::splat(reach),
+    }
+}
+
 /// Cuts every course into its plates, keeping from `prior` (a plan made with
 /// the same shop data, and its plates) every plate of the same id whose
 /// course, part and openings are unchanged. Returns the plates and the
@@ -118,6 +154,7 @@ pub fn cut_plates_reusing(
             numbers[course.rolled] += 1;
             let id = format!("{tag}-{}-P{}", rolled.id, numbers[course.rolled]);
             let cuts = cuts_in(course, k, developments, openings);
+            let cones = cone_cuts_in(course, k, openings);
             let kept = prior.and_then(|(p, _)| {
                 let plate = old.get(id.as_str())?;
                 let old_course = p.seams.courses.get(plate.course_index)?;
@@ -125,7 +162,8 @@ pub fn cut_plates_reusing(
                     && plate.seam == k
                     && old_course == course
                     && p.developments.rolled.get(course.rolled) == Some(rolled)
-                    && cuts_in(old_course, k, p.developments, p.openings) == cuts;
+                    && cuts_in(old_course, k, p.developments, p.openings) == cuts
+                    && cone_cuts_in(old_course, k, p.openings) == cones;
                 same.then(|| Arc::clone(plate))
             });
             if let Some(plate) = kept {
@@ -135,7 +173,7 @@ pub fn cut_plates_reusing(
             cut += 1;
             let theta0 = course.seam(k);
             let r = rolled.radius_at(course.z.0);
-            let holes = cuts
+            let mut holes: Vec<PlateOpening> = cuts
                 .iter()
                 .map(|cut| {
                     let rel = (cut.centre.x - theta0).rem_euclid(TAU);
@@ -152,6 +190,11 @@ pub fn cut_plates_reusing(
                     }
                 })
                 .collect();
+            holes.extend(
+                cones
+                    .iter()
+                    .map(|c| cone_opening(c, rolled, course, theta0)),
+            );
             plates.push(Arc::new(Plate {
                 id,
                 part: rolled.id.clone(),

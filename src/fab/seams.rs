@@ -30,6 +30,7 @@ use std::f64::consts::TAU;
 
 use glam::{DVec2, DVec3};
 
+use super::cone_openings::ConeCut;
 use super::develop::{Developments, Rolled, RolledKind};
 use super::openings::{NozzleCut, Openings};
 use super::shop::Shop;
@@ -126,30 +127,60 @@ pub fn angle_gap(a: f64, b: f64) -> f64 {
 struct Keep<'a> {
     /// Entity named in reports, `C-201/N1` or `C-201/N1 pad`.
     entity: String,
-    cut: &'a NozzleCut,
+    /// JSON path of its nozzle (or boot): loops of one path are one cut.
+    path: &'a str,
+    /// Where its nozzle's axis meets the mid-surface, `(θ, z)`.
+    centre: DVec2,
     points: &'a [DVec2],
     z: (f64, f64),
 }
 
 fn keeps<'a>(tag: &str, openings: &'a Openings, rolled: usize) -> Vec<Keep<'a>> {
     let mut out = Vec::new();
-    for cut in openings.all().filter(|c| c.rolled == rolled) {
-        let mut push = |entity: String, points: &'a [DVec2]| {
-            let z = points
-                .iter()
-                .fold((f64::INFINITY, f64::NEG_INFINITY), |(lo, hi), p| {
-                    (lo.min(p.y), hi.max(p.y))
-                });
-            out.push(Keep {
-                entity,
-                cut,
-                points,
-                z,
+    let mut push = |entity: String, path: &'a str, centre: DVec2, points: &'a [DVec2]| {
+        let z = points
+            .iter()
+            .fold((f64::INFINITY, f64::NEG_INFINITY), |(lo, hi), p| {
+                (lo.min(p.y), hi.max(p.y))
             });
-        };
-        push(format!("{tag}/{}", cut.mark), &cut.hole);
+        out.push(Keep {
+            entity,
+            path,
+            centre,
+            points,
+            z,
+        });
+    };
+    for cut in openings.all().filter(|c| c.rolled == rolled) {
+        push(
+            format!("{tag}/{}", cut.mark),
+            &cut.path,
+            cut.centre,
+            &cut.hole,
+        );
         if let Some(pad) = &cut.pad {
-            push(format!("{tag}/{} pad", cut.mark), &pad.footprint);
+            push(
+                format!("{tag}/{} pad", cut.mark),
+                &cut.path,
+                cut.centre,
+                &pad.footprint,
+            );
+        }
+    }
+    for cut in openings.cones.iter().filter(|c| c.rolled == rolled) {
+        push(
+            format!("{tag}/{}", cut.mark),
+            &cut.path,
+            cut.centre,
+            &cut.hole,
+        );
+        if let Some(pad) = &cut.pad {
+            push(
+                format!("{tag}/{} pad", cut.mark),
+                &cut.path,
+                cut.centre,
+                &pad.footprint,
+            );
         }
     }
     out
@@ -168,6 +199,15 @@ pub fn lay_out(
 /// The cuts on rolled part `rolled`.
 fn cuts_on(openings: &Openings, rolled: usize) -> Vec<&NozzleCut> {
     openings.all().filter(|c| c.rolled == rolled).collect()
+}
+
+/// The cone openings on rolled part `rolled`.
+fn cones_on(openings: &Openings, rolled: usize) -> Vec<&ConeCut> {
+    openings
+        .cones
+        .iter()
+        .filter(|c| c.rolled == rolled)
+        .collect()
 }
 
 /// Lays out the seams of every rolled part, keeping from `prior` (a layout
@@ -219,7 +259,8 @@ pub fn lay_out_reusing(
             let old = p.seams.parts.iter().find(|o| o.rolled == ri)?;
             let same = p.developments.rolled.get(ri) == Some(rolled)
                 && old.below == lower
-                && cuts_on(p.openings, ri) == cuts_on(openings, ri);
+                && cuts_on(p.openings, ri) == cuts_on(openings, ri)
+                && cones_on(p.openings, ri) == cones_on(openings, ri);
             same.then(|| old.clone())
         });
         let part = kept.unwrap_or_else(|| {
@@ -270,10 +311,10 @@ fn lay_out_part(
     for (i, z, crossing) in faults {
         if !crossing {
             part.deficiencies.push(RuleViolation {
-                path: keep[i].cut.path.clone(),
+                path: keep[i].path.to_string(),
                 entity: keep[i].entity.clone(),
                 field: "elevation".into(),
-                value: format!("{:.3}", keep[i].cut.centre.y),
+                value: format!("{:.3}", keep[i].centre.y),
                 rule: format!(
                     "the circumferential seam of {}/{} at z = {z:.1} mm is closer than the clearance {} mm",
                     tag,
@@ -449,7 +490,7 @@ fn place_seams(
             half: 0.5 * (b - a) + clearance / r_min,
             what: k.entity.clone(),
             crossing_half,
-            path: k.cut.path.clone(),
+            path: k.path.to_string(),
             kind: AvoidKind::Loop,
         });
     }
@@ -591,10 +632,10 @@ fn check_loops(rolled: &Rolled, keep: &[Keep], part: &mut PartSeams) {
         for (z, name) in &joints {
             if k.z.0 < *z && k.z.1 > *z {
                 part.errors.push(RuleViolation {
-                    path: k.cut.path.clone(),
+                    path: k.path.to_string(),
                     entity: k.entity.clone(),
                     field: "elevation".into(),
-                    value: format!("{:.3}", k.cut.centre.y),
+                    value: format!("{:.3}", k.centre.y),
                     rule: format!(
                         "crosses the circumferential seam at {name} (z = {z:.1} mm of {})",
                         rolled.id
@@ -605,19 +646,15 @@ fn check_loops(rolled: &Rolled, keep: &[Keep], part: &mut PartSeams) {
     }
     for (i, a) in keep.iter().enumerate() {
         for b in &keep[i + 1..] {
-            if std::ptr::eq(a.cut, b.cut) {
+            if a.path == b.path {
                 continue;
             }
             if loops_meet(a.points, b.points) {
                 part.errors.push(RuleViolation {
-                    path: a.cut.path.clone(),
+                    path: a.path.to_string(),
                     entity: a.entity.clone(),
                     field: "position".into(),
-                    value: format!(
-                        "({:.3} deg, {:.1} mm)",
-                        a.cut.centre.x.to_degrees(),
-                        a.cut.centre.y
-                    ),
+                    value: format!("({:.3} deg, {:.1} mm)", a.centre.x.to_degrees(), a.centre.y),
                     rule: format!("overlaps {} (loops must not cross or nest)", b.entity),
                 });
             }

@@ -2,8 +2,8 @@
 //! seams and plates, made from nothing ([`plan`]) or from a previous plan of
 //! the same vessel keeping what an edit left unchanged ([`plan_vessel`]),
 //! which is how the live model keeps flat patterns current: moving a nozzle
-//! develops its opening and its plate(s) again (or maps it onto its head's
-//! blank again) and lays out the seams of its part (and of the parts above,
+//! develops its opening and its plate(s) again (on a course or a cone, or
+//! maps it onto its head's blank again) and lays out the seams of its part (and of the parts above,
 //! only if those seams moved).
 
 use glam::DVec2;
@@ -11,6 +11,7 @@ use glam::DVec2;
 use std::sync::Arc;
 
 use super::boot::{self, BootPlate};
+use super::cone_openings;
 use super::develop::{self, Developments};
 use super::error::FabError;
 use super::head_map;
@@ -86,8 +87,8 @@ impl FabPlan {
         self.developments.heads.iter().chain(boots)
     }
 
-    /// The pieces to nest: plates (net of openings), boot plates, pads, head
-    /// blanks.
+    /// The pieces to nest: plates (net of openings), boot plates, pads (on
+    /// courses and cones), head blanks.
     pub fn pieces(&self) -> Vec<Piece> {
         let mut out: Vec<Piece> = self
             .plates
@@ -127,6 +128,21 @@ impl FabPlan {
                     thickness: pad.thickness,
                     size: hi - lo,
                     area: pad.area(),
+                });
+            }
+        }
+        for cut in &self.openings.cones {
+            if let Some(pad) = &cut.pad {
+                let (lo, hi) = pad.outline.iter().fold(
+                    (DVec2::splat(f64::INFINITY), DVec2::splat(f64::NEG_INFINITY)),
+                    |(lo, hi), p| (lo.min(*p), hi.max(*p)),
+                );
+                out.push(Piece {
+                    id: format!("{}-{}-PAD", self.tag, cut.mark),
+                    thickness: pad.thickness,
+                    size: hi - lo,
+                    area: openings::polygon_area(&pad.outline).abs()
+                        - openings::polygon_area(&pad.hole).abs(),
                 });
             }
         }
@@ -231,13 +247,24 @@ pub fn plan_vessel(
     let mut openings = Openings::default();
     for (i, nozzle) in resolved.nozzles.iter().enumerate() {
         let course = openings::host_course(resolved, &developments, i);
+        let cone = cone_openings::host_cone(resolved, &developments, i);
         let kept = previous.and_then(|p| {
             let same = p.resolved.nozzles.get(i) == Some(nozzle)
                 && openings::host_course(&p.resolved, &p.developments, i) == course
+                && cone_openings::host_cone(&p.resolved, &p.developments, i) == cone
                 && course
+                    .or(cone)
                     .is_none_or(|c| p.developments.rolled.get(c) == developments.rolled.get(c));
             if !same {
                 return None;
+            }
+            if cone.is_some() {
+                return p
+                    .openings
+                    .cones
+                    .iter()
+                    .find(|c| c.nozzle == i)
+                    .map(|c| openings::NozzleOutcome::Cone(Box::new(c.clone())));
             }
             match course {
                 Some(_) => p
@@ -246,7 +273,7 @@ pub fn plan_vessel(
                     .iter()
                     .find(|c| c.nozzle == i)
                     .map(|c| openings::NozzleOutcome::Cut(Box::new(c.clone()))),
-                // On a head or cone: kept with the host and its blank.
+                // On a head or an eccentric reducer: kept with the host and its blank.
                 None => {
                     let host = nozzle.host;
                     let blank = |d: &Developments| d.heads.iter().find(|h| h.part == host).cloned();
@@ -268,7 +295,7 @@ pub fn plan_vessel(
                     }
                     // Developed on a course, or mapped onto a head's blank.
                     work.openings += usize::from(match &o {
-                        openings::NozzleOutcome::Cut(_) => true,
+                        openings::NozzleOutcome::Cut(_) | openings::NozzleOutcome::Cone(_) => true,
                         openings::NozzleOutcome::Formed(f) => f.blank.is_some(),
                     });
                     o

@@ -1,0 +1,316 @@
+//! Nozzle openings on concentric cones, developed onto the cone's plates.
+//!
+//! A concentric cone's mid-surface is the surface `ρ(z) = r₀ + k·(z − z₀)`
+//! about the part's +Z ([`ConeSurface`]). For every angle φ about the neck
+//! axis, the line of the cutting cylinder (radius ρ_c) at φ meets that cone
+//! where `|a_xy + s·b_xy|² = (ρ(a_z) + k·b_z·s)²`, a quadratic in the
+//! distance `s` along the neck axis: solved exactly, the outer crossing (the
+//! larger root on the cone's own nappe, as [`NeckAxis::crossing`]
+//! takes on a course) is the point of the opening. The cutting cylinder is
+//! the course's: the neck's outside plus the bevel allowance (set-in) or
+//! its bore (set-on); a pad's footprint is its cylinder on the cone's
+//! outside surface; the neck's end (its saddle) is where the neck's
+//! mid-surface meets the cone's inside (set-in) or outside (set-on).
+//!
+//! A point `(θ, z)` of the cone develops onto its plate by the same map as the
+//! sector ([`super::develop::Rolled::outline`]): slant distance from the apex
+//! `ρ(z)/sin α`, sector angle `(θ − θ_mid)·sin α` from the plate's bisector
+//! (laid along +y, apex at the origin), seen from outside ([`develop_point`]).
+//! The map is an isometry, so the developed opening is the exact curve
+//! unrolled. Openings on eccentric reducers (oblique cones) stay listed.
+
+use std::f64::consts::TAU;
+
+use glam::{DVec2, DVec3};
+
+use super::develop::{Developments, Rolled, RolledKind};
+use super::neck_axis::{NeckAxis, SurfaceLoop, samples, theta_near};
+use super::shop::{Attachment, Shop};
+use crate::constraints::ResolvedVessel;
+use crate::format::RuleViolation;
+use crate::parts::tables::pipe;
+
+/// A cone about local +Z: radius `r0 + k·(z − z0)`.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct ConeSurface {
+    /// Radius at `z0`, mm.
+    pub r0: f64,
+    /// Reference height, mm.
+    pub z0: f64,
+    /// dr/dz.
+    pub k: f64,
+}
+
+impl ConeSurface {
+    /// A rolled cone's mid-surface.
+    pub fn mid(rolled: &Rolled) -> Self {
+        ConeSurface {
+            r0: rolled.radius.0,
+            z0: rolled.z.0,
+            k: rolled.taper(),
+        }
+    }
+
+    /// A rolled cone's outside surface.
+    pub fn outside(rolled: &Rolled) -> Self {
+        ConeSurface {
+            r0: rolled.outside.0,
+            z0: rolled.z.0,
+            k: (rolled.outside.1 - rolled.outside.0) / (rolled.z.1 - rolled.z.0),
+        }
+    }
+
+    /// Radius at height `z`, mm.
+    pub fn radius(&self, z: f64) -> f64 {
+        self.r0 + self.k * (z - self.z0)
+    }
+
+    /// The point at angle `phi` of the cylinder of radius `rho` about `neck`
+    /// that lies on the cone (the larger root on the cone's own nappe), and
+    /// its distance along the axis; `None` where that line misses the cone.
+    pub fn crossing(&self, neck: &NeckAxis, rho: f64, phi: f64) -> Option<(DVec3, f64)> {
+        let a = neck.origin + rho * (phi.cos() * neck.e1 + phi.sin() * neck.e2);
+        let b = neck.axis;
+        let c = self.radius(a.z);
+        let kb = self.k * b.z;
+        let qa = b.x * b.x + b.y * b.y - kb * kb;
+        let qb = 2.0 * (a.x * b.x + a.y * b.y - c * kb);
+        let qc = a.x * a.x + a.y * a.y - c * c;
+        let roots: Vec<f64> = if qa.abs() <= 1e-14 {
+            // The line runs along a generator's direction: one crossing.
+            if qb == 0.0 { vec![] } else { vec![-qc / qb] }
+        } else {
+            let disc = qb * qb - 4.0 * qa * qc;
+            if disc < 0.0 {
+                return None;
+            }
+            // Both roots without cancellation.
+            let q = -0.5 * (qb + qb.signum() * disc.sqrt());
+            if q == 0.0 {
+                vec![0.0]
+            } else {
+                vec![q / qa, qc / q]
+            }
+        };
+        let s = roots
+            .into_iter()
+            .filter(|&s| c + kb * s >= 0.0)
+            .max_by(f64::total_cmp)?;
+        Some((a + s * b, s))
+    }
+
+    /// The loop where the cylinder of radius `rho` about `neck` meets the
+    /// cone, `n` points in surface coordinates `(θ, z)` about `centre_theta`;
+    /// `None` where part of it misses.
+    pub fn surface_loop(
+        &self,
+        neck: &NeckAxis,
+        rho: f64,
+        centre_theta: f64,
+        n: usize,
+    ) -> Option<SurfaceLoop> {
+        (0..n)
+            .map(|i| {
+                let phi = TAU * i as f64 / n as f64;
+                self.crossing(neck, rho, phi)
+                    .map(|(p, _)| DVec2::new(theta_near(p, centre_theta), p.z))
+            })
+            .collect()
+    }
+}
+
+/// The development of the point `(θ, z)` of cone `surface` on the plate
+/// whose bisector is at angle `theta_mid`: apex at the origin, bisector
+/// along +y, seen from the cone's outside (x runs with θ where the cone
+/// widens with z, against it where it narrows), mm.
+pub fn develop_point(surface: &ConeSurface, theta_mid: f64, p: DVec2) -> DVec2 {
+    let sin = surface.k.abs() / surface.k.hypot(1.0);
+    let rho = surface.radius(p.y) / sin;
+    let a = -surface.k.signum() * (p.x - theta_mid) * sin;
+    DVec2::new(-rho * a.sin(), rho * a.cos())
+}
+
+/// A reinforcing pad on a cone: its footprint on the cone's outside, and the
+/// pad developed on its own mid-surface (the cone's outside moved out by
+/// half the pad's thickness, a cone of the same angle).
+#[derive(Clone, Debug, PartialEq)]
+pub struct ConePad {
+    /// Pad outside diameter, mm.
+    pub od: f64,
+    /// Thickness, mm.
+    pub thickness: f64,
+    /// Its footprint on the cone's outside, surface coordinates `(θ, z)`.
+    pub footprint: SurfaceLoop,
+    /// Developed outline on the pad's mid-surface, the nozzle axis at the
+    /// origin, the generator through it along +y, mm.
+    pub outline: Vec<DVec2>,
+    /// Developed hole for the neck (its outside plus the bevel allowance),
+    /// same frame, mm.
+    pub hole: Vec<DVec2>,
+}
+
+/// One nozzle's opening on a concentric cone.
+#[derive(Clone, Debug, PartialEq)]
+pub struct ConeCut {
+    /// Index of the nozzle in the resolved vessel.
+    pub nozzle: usize,
+    /// Mark.
+    pub mark: String,
+    /// JSON path, `vessels[0].nozzles[3]`.
+    pub path: String,
+    /// Index in [`Developments::rolled`] of its cone.
+    pub rolled: usize,
+    /// The axis in the cone's frame.
+    pub neck: NeckAxis,
+    /// Radius of the cutting cylinder, mm.
+    pub cut_radius: f64,
+    /// Where the axis meets the cone's mid-surface, `(θ, z)`.
+    pub centre: DVec2,
+    /// The opening on the cone's mid-surface, `(θ, z)`.
+    pub hole: SurfaceLoop,
+    /// The pad's footprint, if any.
+    pub pad: Option<ConePad>,
+    /// The neck's end developed on its mid-surface: `(r·φ, length from the
+    /// cut to the flange's back)`, φ from 0 to 360° inclusive, the cut where
+    /// the neck meets the cone's inside (set-in) or outside (set-on).
+    pub saddle: Vec<DVec2>,
+}
+
+/// The index in `developments.rolled` of the concentric cone nozzle `index`
+/// of `resolved` is cut into, if its host is one.
+pub fn host_cone(
+    resolved: &ResolvedVessel,
+    developments: &Developments,
+    index: usize,
+) -> Option<usize> {
+    let host = resolved.nozzles[index].host;
+    developments.rolled.iter().position(|r| {
+        r.part == host && r.kind == RolledKind::Cone && r.flat_side.is_none() && !r.is_cylinder()
+    })
+}
+
+/// Develops the opening (and pad footprint) of nozzle `index` of
+/// `resolved` on concentric cone `rolled_index` of `developments`.
+///
+/// # Errors
+///
+/// A violation naming the nozzle when its pipe schedule is not listed or
+/// its axis, opening or pad misses the cone.
+pub fn cut_cone_nozzle(
+    vessel_index: usize,
+    resolved: &ResolvedVessel,
+    developments: &Developments,
+    shop: &Shop,
+    index: usize,
+    rolled_index: usize,
+) -> Result<ConeCut, RuleViolation> {
+    let nozzle = &resolved.nozzles[index];
+    let path = format!("vessels[{vessel_index}].nozzles[{index}]");
+    let cone = &developments.rolled[rolled_index];
+    let bad = |field: &str, value: String, rule: String| RuleViolation {
+        path: format!("{path}.{field}"),
+        entity: format!("{}/{}", resolved.tag, nozzle.mark),
+        field: field.into(),
+        value,
+        rule,
+    };
+    let g = &nozzle.geometry;
+    let dims = pipe(g.nps);
+    let wall = dims
+        .wall(g.schedule)
+        .map_err(|e| bad("schedule", g.schedule.label().into(), e.to_string()))?;
+    let od = dims.outside_diameter;
+    let cut_radius = match shop.attachment {
+        Attachment::SetIn => 0.5 * od + shop.bevel_allowance,
+        Attachment::SetOn => 0.5 * od - wall,
+    };
+    let misses = |what: &str| {
+        bad(
+            "elevation",
+            "-".into(),
+            format!(
+                "the {what} must lie wholly on cone {}/{} to be developed",
+                resolved.tag, cone.id
+            ),
+        )
+    };
+    let neck = NeckAxis::new(cone.frame, nozzle.frame);
+    let mid = ConeSurface::mid(cone);
+    let Some((centre, _)) = mid.crossing(&neck, 0.0, 0.0) else {
+        return Err(misses("nozzle axis"));
+    };
+    let theta = centre.y.atan2(centre.x);
+    let n = samples(cut_radius, shop.chord_tolerance);
+    let Some(hole) = mid.surface_loop(&neck, cut_radius, theta, n) else {
+        return Err(misses("opening"));
+    };
+    let pad = match nozzle.pad {
+        None => None,
+        Some((pad_od, pad_t)) => {
+            let n_pad = samples(0.5 * pad_od, shop.chord_tolerance);
+            let outside = ConeSurface::outside(cone);
+            let pad_mid = ConeSurface {
+                r0: outside.r0 + 0.5 * pad_t * outside.k.hypot(1.0),
+                ..outside
+            };
+            let developed = |rho: f64, n: usize| -> Option<Vec<DVec2>> {
+                let (c, _) = pad_mid.crossing(&neck, 0.0, 0.0)?;
+                let origin = develop_point(&pad_mid, theta, DVec2::new(theta, c.z));
+                let curve = pad_mid.surface_loop(&neck, rho, theta, n)?;
+                Some(
+                    curve
+                        .iter()
+                        .map(|&q| develop_point(&pad_mid, theta, q) - origin)
+                        .collect(),
+                )
+            };
+            let footprint = outside.surface_loop(&neck, 0.5 * pad_od, theta, n_pad);
+            let outline = developed(0.5 * pad_od, n_pad);
+            let pad_hole = developed(0.5 * od + shop.bevel_allowance, n);
+            let (Some(footprint), Some(outline), Some(hole)) = (footprint, outline, pad_hole)
+            else {
+                return Err(misses("pad"));
+            };
+            Some(ConePad {
+                od: pad_od,
+                thickness: pad_t,
+                footprint,
+                outline,
+                hole,
+            })
+        }
+    };
+    let outside = ConeSurface::outside(cone);
+    let meets = match shop.attachment {
+        Attachment::SetIn => ConeSurface {
+            r0: outside.r0 - cone.thickness * outside.k.hypot(1.0),
+            ..outside
+        },
+        Attachment::SetOn => outside,
+    };
+    let neck_mid = 0.5 * (od - wall);
+    let back = g.projection - g.flange_length().unwrap_or(0.0);
+    let saddle: Option<Vec<DVec2>> = (0..=n)
+        .map(|i| {
+            let phi = TAU * i as f64 / n as f64;
+            meets
+                .crossing(&neck, neck_mid, phi)
+                .map(|(_, s)| DVec2::new(neck_mid * phi, back - s))
+        })
+        .collect();
+    let Some(saddle) = saddle else {
+        return Err(misses("neck"));
+    };
+    Ok(ConeCut {
+        nozzle: index,
+        mark: nozzle.mark.clone(),
+        path,
+        rolled: rolled_index,
+        neck,
+        cut_radius,
+        centre: DVec2::new(theta, centre.z),
+        hole,
+        pad,
+        saddle,
+    })
+}
