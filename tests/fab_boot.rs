@@ -326,3 +326,38 @@ fn a_boot_no_plate_layout_can_hold_is_an_error_naming_it() {
         "{err}"
     );
 }
+
+#[test]
+fn a_boot_higher_than_the_widest_plate_is_a_deficiency_naming_its_length() {
+    let tall = |p: &FabPlan| {
+        p.seams
+            .deficiencies
+            .iter()
+            .filter(|d| d.entity == "V-101/B1")
+            .cloned()
+            .collect::<Vec<_>>()
+    };
+    // The drum's boot plate is about 952 mm high: it fits the default plates.
+    let p = drum(&Shop::default());
+    let high = p.boot_plates()[0].extent().1;
+    assert!(
+        high > 900.0 && high < Shop::default().max_plate_width,
+        "{high}"
+    );
+    assert!(tall(&p).is_empty(), "{:?}", tall(&p));
+    // With plates 900 mm wide the boot (one course) cannot be cut from one.
+    let shop = Shop {
+        max_plate_width: 900.0,
+        ..Shop::default()
+    };
+    let d = tall(&drum(&shop));
+    assert_eq!(d.len(), 1, "{d:?}");
+    assert_eq!(d[0].path, "vessels[0].parts[5].length");
+    assert_eq!(d[0].field, "length");
+    assert!(
+        (d[0].value.parse::<f64>().unwrap() - high).abs() < 0.1,
+        "{:?}",
+        d[0]
+    );
+    assert!(d[0].rule.contains("max_plate_width"), "{}", d[0].rule);
+}

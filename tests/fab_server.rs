@@ -59,3 +59,32 @@ fn plate_dxfs_are_served_beside_the_traveler_and_follow_an_edit() {
     let r = server.request("GET", "/plates.json", &[], b"");
     assert_eq!(r.status, 400, "{}", r.text());
 }
+
+#[test]
+fn boot_plates_and_head_blanks_are_served_with_the_plates() {
+    let design = design_copy("small-plant.json", "fab-boot-blanks");
+    let server = ServerProcess::start(&design, &[]);
+    let list = server.get_json("/plates.json?vessel=V-101");
+    let plates = list["plates"].as_array().unwrap();
+    let of_kind = |kind: &str| -> Vec<&serde_json::Value> {
+        plates.iter().filter(|p| p["kind"] == kind).collect()
+    };
+    let boots = of_kind("boot plate");
+    assert!(!boots.is_empty(), "V-101 has a boot: {list}");
+    assert_eq!(boots[0]["part"], "B1", "{list}");
+    let blanks = of_kind("head blank");
+    assert!(
+        blanks.iter().any(|b| b["part"] == "H1"),
+        "V-101's heads have blanks: {list}"
+    );
+    for piece in boots.iter().chain(&blanks) {
+        let file = piece["file"].as_str().unwrap();
+        let dxf = server.request("GET", &format!("/plates/{file}?vessel=V-101"), &[], b"");
+        assert_eq!(dxf.status, 200, "{file}: {}", dxf.text());
+        let text = dxf.text();
+        assert!(
+            text.contains("SECTION") && text.contains(piece["id"].as_str().unwrap()),
+            "{file} is a DXF naming its piece"
+        );
+    }
+}

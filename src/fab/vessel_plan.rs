@@ -21,7 +21,7 @@ use super::plates::{self, Plate};
 use super::seams::{self, Prior, SeamLayout};
 use super::shop::Shop;
 use crate::constraints::{ResolvedVessel, resolve_vessel};
-use crate::format::{Design, VesselDesign};
+use crate::format::{Design, RuleViolation, VesselDesign};
 
 /// The fabrication plan of one vessel.
 #[derive(Clone, Debug, PartialEq)]
@@ -343,8 +343,11 @@ pub fn plan_vessel(
         seams: &p.seams,
     });
     let tag = &resolved.tag;
-    let (seams, courses) = seams::lay_out_reusing(tag, &developments, &openings, shop, prior);
+    let (mut seams, courses) = seams::lay_out_reusing(tag, &developments, &openings, shop, prior);
     work.courses = courses;
+    seams
+        .deficiencies
+        .extend(tall_boots(tag, &developments, &openings, shop));
     if !seams.errors.is_empty() {
         return Err(FabError::Rules(seams.errors));
     }
@@ -372,4 +375,34 @@ pub fn plan_vessel(
         },
         work,
     ))
+}
+
+/// A boot is rolled as one course: a boot whose plate is higher than the
+/// shop's widest plate is a deficiency naming its length.
+fn tall_boots(
+    tag: &str,
+    developments: &Developments,
+    openings: &Openings,
+    shop: &Shop,
+) -> Vec<RuleViolation> {
+    developments
+        .boots
+        .iter()
+        .filter_map(|b| {
+            let cut = openings.boots.iter().find(|c| c.nozzle == b.part)?;
+            let high = cut.saddle.iter().fold(0.0f64, |m, p| m.max(p.y));
+            (high > shop.max_plate_width).then(|| RuleViolation {
+                path: format!("{}.length", b.path),
+                entity: format!("{tag}/{}", b.id),
+                field: "length".into(),
+                value: format!("{high:.1}"),
+                rule: format!(
+                    "the boot's plate is {high:.1} mm high, more than the shop's max_plate_width \
+                     of {} mm; a boot is rolled as one course, not split along its axis: \
+                     shorten the boot or give a wider max_plate_width",
+                    shop.max_plate_width
+                ),
+            })
+        })
+        .collect()
 }

@@ -18,7 +18,7 @@
 //! GET  /drawing.dxf?vessel=T  the same sheet as DXF (a download)
 //! GET  /calc.json            the calculation's deficiencies by part (`deficiencies`)
 //! GET  /traveler.html?vessel=T the vessel's shop traveler (`traveler`), also .csv
-//! GET  /plates.json?vessel=T    its plates; /plates/<id>.dxf?vessel=T one plate's DXF
+//! GET  /plates.json?vessel=T    its plates, boot plates and head blanks; /plates/<file>?vessel=T one's DXF
 //! GET  /ws                    the viewer stream (see `broadcast`)
 //! ```
 //!

@@ -1,10 +1,11 @@
 //! `GET /traveler.html?vessel=TAG` and `GET /traveler.csv?vessel=TAG`: the shop
 //! traveler of one vessel of the live design (`fab::process_plan` with the
 //! built-in shop rules), made on request from the session's current design;
-//! `GET /plates.json?vessel=TAG` lists its plates (id, DXF file, course,
-//! thickness, outline size) and `GET /plates/<plate id>.dxf?vessel=TAG`
-//! serves one plate's 1:1 mm cutting DXF (`fab::plate_dxf`), the same file
-//! `vesselcad fab` writes.
+//! `GET /plates.json?vessel=TAG` lists its plates (id, DXF file, kind, part,
+//! thickness, outline size): the courses', cones' and skirts' plates, the
+//! boots' plates and the head blanks; `GET /plates/<file>?vessel=TAG`
+//! serves one of them as the 1:1 mm DXF `vesselcad fab` writes
+//! (`fab::plate_dxf`, `fab::boot`, `fab::blank_dxf`).
 
 use axum::extract::{Query, State};
 use axum::http::{HeaderValue, header};
@@ -13,8 +14,11 @@ use serde::Deserialize;
 
 use super::error::ApiError;
 use super::state::AppState;
+use crate::fab::blank_dxf::{blank_drawing, blank_id};
+use crate::fab::boot::boot_drawing;
+use crate::fab::openings::FormedOpening;
 use crate::fab::traveler::{traveler_csv, traveler_html};
-use crate::fab::{ShopRules, plan_process};
+use crate::fab::{FabPlan, ShopRules, plan_process};
 
 /// The query of the traveler routes.
 #[derive(Deserialize)]
@@ -101,7 +105,7 @@ pub async fn plate_list(
     query: Result<Query<TravelerQuery>, axum::extract::rejection::QueryRejection>,
 ) -> Result<Response, ApiError> {
     let plan = fab_plan_of(&state, "/plates.json", query).await?;
-    let plates: Vec<_> = plan
+    let mut plates: Vec<_> = plan
         .plates
         .iter()
         .map(|p| {
@@ -109,6 +113,7 @@ pub async fn plate_list(
             serde_json::json!({
                 "id": p.id,
                 "file": p.file_name(),
+                "kind": "plate",
                 "part": p.part,
                 "course": p.course,
                 "thickness": p.thickness,
@@ -117,6 +122,30 @@ pub async fn plate_list(
             })
         })
         .collect();
+    plates.extend(plan.boot_plates().iter().map(|p| {
+        let (w, h) = p.extent();
+        serde_json::json!({
+            "id": p.id,
+            "file": p.file_name(),
+            "kind": "boot plate",
+            "part": p.part,
+            "thickness": p.thickness,
+            "size": [w, h],
+            "openings": [],
+        })
+    }));
+    plates.extend(plan.blanks().map(|b| {
+        let id = blank_id(&plan.tag, b);
+        serde_json::json!({
+            "file": format!("{id}.dxf"),
+            "id": id,
+            "kind": "head blank",
+            "part": b.id,
+            "thickness": b.thickness,
+            "size": [b.diameter, b.diameter],
+            "openings": formed_on(&plan, &b.id).iter().map(|f| f.mark.clone()).collect::<Vec<_>>(),
+        })
+    }));
     Ok(axum::Json(serde_json::json!({ "vessel": plan.tag, "plates": plates })).into_response())
 }
 
@@ -127,20 +156,7 @@ pub async fn plate_dxf(
     query: Result<Query<TravelerQuery>, axum::extract::rejection::QueryRejection>,
 ) -> Result<Response, ApiError> {
     let plan = fab_plan_of(&state, "/plates/<plate id>.dxf", query).await?;
-    let Some(plate) = plan.plates.iter().find(|p| p.file_name() == file) else {
-        let known: Vec<String> = plan.plates.iter().map(|p| p.file_name()).collect();
-        return Err(ApiError::NotFound(format!(
-            "/plates/{file}: vessel {} has the plates {}",
-            plan.tag,
-            known.join(", ")
-        )));
-    };
-    let course = &plan.seams.courses[plate.course_index];
-    let rolled = &plan.developments.rolled[course.rolled];
-    let mut bytes = Vec::new();
-    crate::fab::plate_dxf::plate_drawing(plate, &plan.grade, rolled, course)
-        .save(&mut bytes)
-        .map_err(|e| ApiError::Plan(format!("{file}: {e}")))?;
+    let bytes = plate_file(&plan, &file)?;
     let disposition = format!("attachment; filename=\"{}\"", file.replace('"', "_"));
     Ok((
         [
@@ -173,4 +189,50 @@ pub async fn traveler_table(
     query: Result<Query<TravelerQuery>, axum::extract::rejection::QueryRejection>,
 ) -> Result<Response, ApiError> {
     traveler(state, query, Format::Csv).await
+}
+
+/// The openings marked on the head blank of part `head`.
+fn formed_on<'a>(plan: &'a FabPlan, head: &str) -> Vec<&'a FormedOpening> {
+    plan.openings
+        .formed
+        .iter()
+        .filter(|f| f.host == head)
+        .collect()
+}
+
+/// The DXF named `file` of the vessel's plates, boot plates and head blanks.
+fn plate_file(plan: &FabPlan, file: &str) -> Result<Vec<u8>, ApiError> {
+    let drawing = if let Some(plate) = plan.plates.iter().find(|p| p.file_name() == file) {
+        let course = &plan.seams.courses[plate.course_index];
+        let rolled = &plan.developments.rolled[course.rolled];
+        crate::fab::plate_dxf::plate_drawing(plate, &plan.grade, rolled, course)
+    } else if let Some(plate) = plan.boot_plates().iter().find(|p| p.file_name() == file) {
+        boot_drawing(plate, &plan.grade)
+    } else if let Some(blank) = plan
+        .blanks()
+        .find(|b| format!("{}.dxf", blank_id(&plan.tag, b)) == file)
+    {
+        blank_drawing(&plan.tag, blank, &plan.grade, &formed_on(plan, &blank.id))
+    } else {
+        let known: Vec<String> = plan
+            .plates
+            .iter()
+            .map(|p| p.file_name())
+            .chain(plan.boot_plates().iter().map(|p| p.file_name()))
+            .chain(
+                plan.blanks()
+                    .map(|b| format!("{}.dxf", blank_id(&plan.tag, b))),
+            )
+            .collect();
+        return Err(ApiError::NotFound(format!(
+            "/plates/{file}: vessel {} has the plates {}",
+            plan.tag,
+            known.join(", ")
+        )));
+    };
+    let mut bytes = Vec::new();
+    drawing
+        .save(&mut bytes)
+        .map_err(|e| ApiError::Plan(format!("{file}: {e}")))?;
+    Ok(bytes)
 }
