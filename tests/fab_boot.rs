@@ -9,7 +9,6 @@
 mod common;
 
 use std::f64::consts::{PI, TAU};
-use std::process::Command;
 
 use common::examples::example;
 use glam::{DVec2, DVec3};
@@ -261,23 +260,7 @@ fn the_boot_has_its_welds_bom_lines_and_operations() {
 
 #[test]
 fn fab_writes_the_boot_plate_and_blank_dxf() {
-    let dir = tempfile::tempdir().unwrap();
-    let status = Command::new(env!("CARGO_BIN_EXE_vesselcad"))
-        .args([
-            "fab",
-            "examples/designs/horizontal-drum.json",
-            "--vessel",
-            "V-101",
-            "-o",
-        ])
-        .arg(dir.path())
-        .output()
-        .unwrap();
-    assert!(
-        status.status.success(),
-        "{}",
-        String::from_utf8_lossy(&status.stderr)
-    );
+    let dir = common::fab::fab_files("horizontal-drum", "V-101");
     let p = drum(&Shop::default());
     let plate = &p.boot_plates()[0];
     let drawing = dxf::Drawing::load_file(dir.path().join("V-101-B1-P1.dxf")).unwrap();

@@ -8,7 +8,6 @@
 mod common;
 
 use std::f64::consts::PI;
-use std::process::Command;
 
 use common::examples::{EXAMPLES, example};
 use glam::{DVec2, DVec3};
@@ -194,23 +193,7 @@ fn an_off_centre_opening_maps_back_onto_the_intersection() {
 
 #[test]
 fn the_blank_dxf_marks_the_opening_for_cutting_after_forming() {
-    let dir = tempfile::tempdir().unwrap();
-    let out = Command::new(env!("CARGO_BIN_EXE_vesselcad"))
-        .args([
-            "fab",
-            "examples/designs/horizontal-drum.json",
-            "--vessel",
-            "V-101",
-            "-o",
-        ])
-        .arg(dir.path())
-        .output()
-        .unwrap();
-    assert!(
-        out.status.success(),
-        "{}",
-        String::from_utf8_lossy(&out.stderr)
-    );
+    let dir = common::fab::fab_files("horizontal-drum", "V-101");
     let drawing = dxf::Drawing::load_file(dir.path().join("V-101-H1-BLANK.dxf")).unwrap();
     let polylines = |layer: &str| -> Vec<usize> {
         drawing

@@ -23,6 +23,7 @@ use std::f64::consts::TAU;
 
 use glam::{DVec2, DVec3};
 
+use super::cut::{NozzleCut, PadPiece};
 use super::develop::{Developments, Rolled, RolledKind};
 use super::neck_axis::{NeckAxis, SurfaceLoop, samples, theta_near};
 use super::shop::{Attachment, Shop};
@@ -130,52 +131,6 @@ pub fn develop_point(surface: &ConeSurface, theta_mid: f64, p: DVec2) -> DVec2 {
     DVec2::new(-rho * a.sin(), rho * a.cos())
 }
 
-/// A reinforcing pad on a cone: its footprint on the cone's outside, and the
-/// pad developed on its own mid-surface (the cone's outside moved out by
-/// half the pad's thickness, a cone of the same angle).
-#[derive(Clone, Debug, PartialEq)]
-pub struct ConePad {
-    /// Pad outside diameter, mm.
-    pub od: f64,
-    /// Thickness, mm.
-    pub thickness: f64,
-    /// Its footprint on the cone's outside, surface coordinates `(θ, z)`.
-    pub footprint: SurfaceLoop,
-    /// Developed outline on the pad's mid-surface, the nozzle axis at the
-    /// origin, the generator through it along +y, mm.
-    pub outline: Vec<DVec2>,
-    /// Developed hole for the neck (its outside plus the bevel allowance),
-    /// same frame, mm.
-    pub hole: Vec<DVec2>,
-}
-
-/// One nozzle's opening on a concentric cone.
-#[derive(Clone, Debug, PartialEq)]
-pub struct ConeCut {
-    /// Index of the nozzle in the resolved vessel.
-    pub nozzle: usize,
-    /// Mark.
-    pub mark: String,
-    /// JSON path, `vessels[0].nozzles[3]`.
-    pub path: String,
-    /// Index in [`Developments::rolled`] of its cone.
-    pub rolled: usize,
-    /// The axis in the cone's frame.
-    pub neck: NeckAxis,
-    /// Radius of the cutting cylinder, mm.
-    pub cut_radius: f64,
-    /// Where the axis meets the cone's mid-surface, `(θ, z)`.
-    pub centre: DVec2,
-    /// The opening on the cone's mid-surface, `(θ, z)`.
-    pub hole: SurfaceLoop,
-    /// The pad's footprint, if any.
-    pub pad: Option<ConePad>,
-    /// The neck's end developed on its mid-surface: `(r·φ, length from the
-    /// cut to the flange's back)`, φ from 0 to 360° inclusive, the cut where
-    /// the neck meets the cone's inside (set-in) or outside (set-on).
-    pub saddle: Vec<DVec2>,
-}
-
 /// The index in `developments.rolled` of the concentric cone nozzle `index`
 /// of `resolved` is cut into, if its host is one.
 pub fn host_cone(
@@ -203,7 +158,7 @@ pub fn cut_cone_nozzle(
     shop: &Shop,
     index: usize,
     rolled_index: usize,
-) -> Result<ConeCut, RuleViolation> {
+) -> Result<NozzleCut, RuleViolation> {
     let nozzle = &resolved.nozzles[index];
     let path = format!("vessels[{vessel_index}].nozzles[{index}]");
     let cone = &developments.rolled[rolled_index];
@@ -271,7 +226,7 @@ pub fn cut_cone_nozzle(
             else {
                 return Err(misses("pad"));
             };
-            Some(ConePad {
+            Some(PadPiece {
                 od: pad_od,
                 thickness: pad_t,
                 footprint,
@@ -301,7 +256,7 @@ pub fn cut_cone_nozzle(
     let Some(saddle) = saddle else {
         return Err(misses("neck"));
     };
-    Ok(ConeCut {
+    Ok(NozzleCut {
         nozzle: index,
         mark: nozzle.mark.clone(),
         path,

@@ -32,6 +32,7 @@ pub mod blank_dxf;
 pub mod bom;
 pub mod boot;
 pub mod cone_openings;
+pub mod cut;
 pub mod develop;
 pub mod error;
 pub mod head_map;

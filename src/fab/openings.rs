@@ -36,63 +36,14 @@ use std::f64::consts::TAU;
 
 use glam::DVec2;
 
-use super::cone_openings::{self, ConeCut};
+use super::cone_openings;
+pub use super::cut::{NozzleCut, PadPiece, polygon_area};
 use super::develop::{BootShell, Developments, RolledKind};
 pub use super::neck_axis::{NeckAxis, SurfaceLoop, samples, theta_near};
 use super::shop::{Attachment, Shop};
 use crate::constraints::ResolvedVessel;
 use crate::format::RuleViolation;
 use crate::parts::tables::pipe;
-
-/// A reinforcing pad developed as the region of the shell it covers.
-#[derive(Clone, Debug, PartialEq)]
-pub struct PadPiece {
-    /// Pad outside diameter, mm.
-    pub od: f64,
-    /// Thickness, mm.
-    pub thickness: f64,
-    /// Its footprint on the shell's outside, surface coordinates.
-    pub footprint: SurfaceLoop,
-    /// Developed outline on the pad's mid-surface, centred on the nozzle
-    /// axis, mm.
-    pub outline: Vec<DVec2>,
-    /// Developed hole for the neck, same frame, mm.
-    pub hole: Vec<DVec2>,
-}
-
-impl PadPiece {
-    /// Developed area (outline less hole, polygon areas), mm².
-    pub fn area(&self) -> f64 {
-        polygon_area(&self.outline).abs() - polygon_area(&self.hole).abs()
-    }
-}
-
-/// One nozzle's (or boot's) cuts on a cylindrical course.
-#[derive(Clone, Debug, PartialEq)]
-pub struct NozzleCut {
-    /// Index of the nozzle in the resolved vessel (a boot's: of its part).
-    pub nozzle: usize,
-    /// Mark (a boot's: its part id).
-    pub mark: String,
-    /// JSON path, `vessels[0].nozzles[3]` (a boot's `vessels[0].parts[5]`).
-    pub path: String,
-    /// Index in [`Developments::rolled`] of its course.
-    pub rolled: usize,
-    /// The axis in the course's frame.
-    pub neck: NeckAxis,
-    /// Radius of the cutting cylinder, mm.
-    pub cut_radius: f64,
-    /// Where the axis meets the course's mid-surface, `(θ, z)`.
-    pub centre: DVec2,
-    /// The opening on the course's mid-surface.
-    pub hole: SurfaceLoop,
-    /// The pad, if any.
-    pub pad: Option<PadPiece>,
-    /// The neck's end developed on its mid-surface: `(r·φ, length from the
-    /// cut to the flange's back)`, φ from 0 to 360° inclusive (a boot's:
-    /// to its head's tangent line).
-    pub saddle: Vec<DVec2>,
-}
 
 /// A nozzle whose opening is cut after forming.
 #[derive(Clone, Debug, PartialEq)]
@@ -133,18 +84,9 @@ pub struct Openings {
     pub formed: Vec<FormedOpening>,
     /// Openings on concentric cones, developed onto their plates, in nozzle
     /// order.
-    pub cones: Vec<ConeCut>,
+    pub cones: Vec<NozzleCut>,
     /// Boots cut into their courses, in part order.
     pub boots: Vec<NozzleCut>,
-}
-
-/// Signed area of a closed polygon (shoelace), mm².
-pub fn polygon_area(points: &[DVec2]) -> f64 {
-    let n = points.len();
-    (0..n)
-        .map(|i| points[i].perp_dot(points[(i + 1) % n]))
-        .sum::<f64>()
-        * 0.5
 }
 
 /// The loop where the cylinder of radius `rho` about `neck` meets the
@@ -173,7 +115,7 @@ pub enum NozzleOutcome {
     /// On a cylindrical course.
     Cut(Box<NozzleCut>),
     /// On a concentric cone, developed onto its plate.
-    Cone(Box<ConeCut>),
+    Cone(Box<NozzleCut>),
     /// On a head or an eccentric reducer.
     Formed(FormedOpening),
 }

@@ -16,7 +16,7 @@ use std::sync::Arc;
 
 use glam::DVec2;
 
-use super::cone_openings::{ConeCut, ConeSurface, develop_point};
+use super::cone_openings::{ConeSurface, develop_point};
 use super::develop::{Developments, Outline, Rolled};
 use super::openings::{NozzleCut, Openings};
 use super::seams::{Course, Prior, SeamLayout};
@@ -89,30 +89,31 @@ pub fn cuts_in<'a>(
     openings
         .all()
         .filter(|c| c.rolled == course.rolled)
-        .filter(|c| {
-            let rel = (c.centre.x - theta0).rem_euclid(TAU);
-            rel < course.pitch() && c.centre.y >= course.z.0 && c.centre.y < course.z.1
-        })
+        .filter(|c| axis_in_plate(c, course, theta0))
         .collect()
 }
 
+/// Whether `cut`'s nozzle axis falls in the plate of `course` that starts at
+/// seam angle `theta0`.
+fn axis_in_plate(cut: &NozzleCut, course: &Course, theta0: f64) -> bool {
+    let rel = (cut.centre.x - theta0).rem_euclid(TAU);
+    rel < course.pitch() && cut.centre.y >= course.z.0 && cut.centre.y < course.z.1
+}
+
 /// The cone openings whose nozzle axis falls in plate `k` of `course`.
-pub fn cone_cuts_in<'a>(course: &Course, k: usize, openings: &'a Openings) -> Vec<&'a ConeCut> {
+pub fn cone_cuts_in<'a>(course: &Course, k: usize, openings: &'a Openings) -> Vec<&'a NozzleCut> {
     let theta0 = course.seam(k);
     openings
         .cones
         .iter()
         .filter(|c| c.rolled == course.rolled)
-        .filter(|c| {
-            let rel = (c.centre.x - theta0).rem_euclid(TAU);
-            rel < course.pitch() && c.centre.y >= course.z.0 && c.centre.y < course.z.1
-        })
+        .filter(|c| axis_in_plate(c, course, theta0))
         .collect()
 }
 
 /// Cone opening `cut` developed onto the plate of `course` from seam angle
 /// `theta0`.
-fn cone_opening(cut: &ConeCut, rolled: &Rolled, course: &Course, theta0: f64) -> PlateOpening {
+fn cone_opening(cut: &NozzleCut, rolled: &Rolled, course: &Course, theta0: f64) -> PlateOpening {
     let surface = ConeSurface::mid(rolled);
     let mid = theta0 + 0.5 * course.pitch();
     // θ of the centre within the plate, the loop unwrapped about it.

@@ -30,7 +30,6 @@ use std::f64::consts::TAU;
 
 use glam::{DVec2, DVec3};
 
-use super::cone_openings::ConeCut;
 use super::develop::{Developments, Rolled, RolledKind};
 use super::openings::{NozzleCut, Openings};
 use super::shop::Shop;
@@ -151,23 +150,7 @@ fn keeps<'a>(tag: &str, openings: &'a Openings, rolled: usize) -> Vec<Keep<'a>> 
             z,
         });
     };
-    for cut in openings.all().filter(|c| c.rolled == rolled) {
-        push(
-            format!("{tag}/{}", cut.mark),
-            &cut.path,
-            cut.centre,
-            &cut.hole,
-        );
-        if let Some(pad) = &cut.pad {
-            push(
-                format!("{tag}/{} pad", cut.mark),
-                &cut.path,
-                cut.centre,
-                &pad.footprint,
-            );
-        }
-    }
-    for cut in openings.cones.iter().filter(|c| c.rolled == rolled) {
+    for cut in cuts_on(openings, rolled) {
         push(
             format!("{tag}/{}", cut.mark),
             &cut.path,
@@ -196,16 +179,11 @@ pub fn lay_out(
     lay_out_reusing(tag, developments, openings, shop, None).0
 }
 
-/// The cuts on rolled part `rolled`.
+/// The cuts on rolled part `rolled` (a course's or a cone's).
 fn cuts_on(openings: &Openings, rolled: usize) -> Vec<&NozzleCut> {
-    openings.all().filter(|c| c.rolled == rolled).collect()
-}
-
-/// The cone openings on rolled part `rolled`.
-fn cones_on(openings: &Openings, rolled: usize) -> Vec<&ConeCut> {
     openings
-        .cones
-        .iter()
+        .all()
+        .chain(&openings.cones)
         .filter(|c| c.rolled == rolled)
         .collect()
 }
@@ -259,8 +237,7 @@ pub fn lay_out_reusing(
             let old = p.seams.parts.iter().find(|o| o.rolled == ri)?;
             let same = p.developments.rolled.get(ri) == Some(rolled)
                 && old.below == lower
-                && cuts_on(p.openings, ri) == cuts_on(openings, ri)
-                && cones_on(p.openings, ri) == cones_on(openings, ri);
+                && cuts_on(p.openings, ri) == cuts_on(openings, ri);
             same.then(|| old.clone())
         });
         let part = kept.unwrap_or_else(|| {

@@ -117,7 +117,7 @@ impl FabPlan {
                 area: openings::polygon_area(&p.outline).abs(),
             });
         }
-        for cut in &self.openings.cuts {
+        for cut in self.openings.cuts.iter().chain(&self.openings.cones) {
             if let Some(pad) = &cut.pad {
                 let (lo, hi) = pad.outline.iter().fold(
                     (DVec2::splat(f64::INFINITY), DVec2::splat(f64::NEG_INFINITY)),
@@ -128,21 +128,6 @@ impl FabPlan {
                     thickness: pad.thickness,
                     size: hi - lo,
                     area: pad.area(),
-                });
-            }
-        }
-        for cut in &self.openings.cones {
-            if let Some(pad) = &cut.pad {
-                let (lo, hi) = pad.outline.iter().fold(
-                    (DVec2::splat(f64::INFINITY), DVec2::splat(f64::NEG_INFINITY)),
-                    |(lo, hi), p| (lo.min(*p), hi.max(*p)),
-                );
-                out.push(Piece {
-                    id: format!("{}-{}-PAD", self.tag, cut.mark),
-                    thickness: pad.thickness,
-                    size: hi - lo,
-                    area: openings::polygon_area(&pad.outline).abs()
-                        - openings::polygon_area(&pad.hole).abs(),
                 });
             }
         }

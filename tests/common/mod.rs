@@ -8,6 +8,7 @@
 pub mod eccentric;
 pub mod examples;
 pub mod exchange;
+pub mod fab;
 pub mod fem;
 pub mod full_build;
 pub mod glb;
