@@ -14,7 +14,8 @@ use super::vessel::{GRAVITY, minimum_thickness};
 use super::{Conditions, Formula, Liquid, Mdmt, Shape, Strength, mawp, required_thickness};
 use crate::constraints::PartGeometry;
 use crate::parts::ReducerAlignment;
-use crate::parts::heads::HeadKind;
+use crate::parts::Shell;
+use crate::parts::heads::{Head, HeadKind};
 
 /// One input of a calculation, for the report.
 #[derive(Clone, Debug, PartialEq, Serialize)]
@@ -418,26 +419,12 @@ fn tank_part(
 /// allowance (one third of a hemisphere's depth at each end), which can only
 /// lower the result; stiffening rings and cones are not taken.
 fn external_check(geometry: &PartGeometry, t: f64, c: &Conditions) -> Result<External, String> {
-    use super::external::{cylinder, ellipsoidal_ro, head};
+    use super::external::{cylinder, head};
     let (e, sy) = (c.modulus, c.yield_strength);
     match geometry {
-        PartGeometry::Shell(s) => cylinder(
-            s.outside_diameter,
-            t,
-            s.length + s.outside_diameter / 3.0,
-            e,
-            sy,
-        ),
-        PartGeometry::Head(h) => {
-            let ro = match h.kind {
-                HeadKind::Hemispherical => h.outside_diameter / 2.0,
-                HeadKind::Ellipsoidal { ratio } => ellipsoidal_ro(h.outside_diameter, ratio)?,
-                HeadKind::Torispherical { crown_radius, .. } => crown_radius,
-                _ => return Err("UG-33: only hemispherical, 2:1 ellipsoidal and torispherical heads are computed".into()),
-            };
-            head(ro, t, e, sy)
-        }
-        _ => Err("UG-28/UG-33: reducers and cones under external pressure are not computed".into()),
+        PartGeometry::Shell(s) => cylinder(s.outside_diameter, t, unsupported_length(s), e, sy),
+        PartGeometry::Head(h) => head(external_head_radius(h)?, t, e, sy),
+        _ => Err(NOT_EXTERNAL.into()),
     }
 }
 
@@ -445,32 +432,40 @@ fn external_check(geometry: &PartGeometry, t: f64, c: &Conditions) -> Result<Ext
 /// `c`, mm: UG-28 inverted for a shell (the unsupported length of
 /// `external_check`), UG-33 for the heads it computes.
 fn external_required(geometry: &PartGeometry, c: &Conditions) -> Result<f64, String> {
-    use super::external::{ellipsoidal_ro, required_cylinder, required_head};
+    use super::external::{required_cylinder, required_head};
     let (e, sy, p) = (c.modulus, c.yield_strength, c.external_pressure);
     match geometry {
-        PartGeometry::Shell(s) => required_cylinder(
-            s.outside_diameter,
-            s.length + s.outside_diameter / 3.0,
-            e,
-            sy,
-            p,
-        ),
-        PartGeometry::Head(h) => {
-            let ro = match h.kind {
-                HeadKind::Hemispherical => h.outside_diameter / 2.0,
-                HeadKind::Ellipsoidal { ratio } => ellipsoidal_ro(h.outside_diameter, ratio)?,
-                HeadKind::Torispherical { crown_radius, .. } => crown_radius,
-                _ => {
-                    return Err(
-                        "UG-33: only hemispherical, 2:1 ellipsoidal and torispherical \
-                                heads are computed"
-                            .into(),
-                    );
-                }
-            };
-            required_head(ro, e, sy, p)
+        PartGeometry::Shell(s) => {
+            required_cylinder(s.outside_diameter, unsupported_length(s), e, sy, p)
         }
-        _ => Err("UG-28/UG-33: reducers and cones under external pressure are not computed".into()),
+        PartGeometry::Head(h) => required_head(external_head_radius(h)?, e, sy, p),
+        _ => Err(NOT_EXTERNAL.into()),
+    }
+}
+
+/// What external pressure does not compute.
+const NOT_EXTERNAL: &str =
+    "UG-28/UG-33: reducers and cones under external pressure are not computed";
+
+/// A shell's unsupported length for UG-28: its length plus the heads'
+/// allowance (one third of a hemisphere's depth at each end).
+fn unsupported_length(s: &Shell) -> f64 {
+    s.length + s.outside_diameter / 3.0
+}
+
+/// A head's outside radius Ro for UG-33 (the crown radius of a torispherical
+/// head, the equivalent sphere of an ellipsoidal one).
+fn external_head_radius(h: &Head) -> Result<f64, String> {
+    match h.kind {
+        HeadKind::Hemispherical => Ok(h.outside_diameter / 2.0),
+        HeadKind::Ellipsoidal { ratio } => {
+            super::external::ellipsoidal_ro(h.outside_diameter, ratio)
+        }
+        HeadKind::Torispherical { crown_radius, .. } => Ok(crown_radius),
+        _ => Err(
+            "UG-33: only hemispherical, 2:1 ellipsoidal and torispherical heads are computed"
+                .into(),
+        ),
     }
 }
 
