@@ -243,6 +243,25 @@ fn a_lost_database_connection_refuses_the_edit_then_reconnects() {
     // does (the follower's LISTEN connection is left alone: it reconnects by
     // itself, and would otherwise race the session to find the loss).
     let mut admin = postgres::Client::connect(&url, postgres::NoTls).unwrap();
+    // The follower connects on its own thread: wait until it is listening, or
+    // its connection (not yet showing `LISTEN`) would be ended with the session's.
+    let listening = || {
+        let rows = admin_count(
+            &url,
+            "SELECT count(*) FROM pg_stat_activity \
+             WHERE application_name = $1 AND query LIKE 'LISTEN%'",
+            &app,
+        );
+        rows == 1
+    };
+    let start = std::time::Instant::now();
+    while !listening() {
+        assert!(
+            start.elapsed() < std::time::Duration::from_secs(20),
+            "the follower never listened"
+        );
+        std::thread::sleep(std::time::Duration::from_millis(50));
+    }
     let ended = admin
         .query(
             "SELECT pg_terminate_backend(pid) FROM pg_stat_activity \
@@ -269,6 +288,12 @@ fn a_lost_database_connection_refuses_the_edit_then_reconnects() {
     let mut store = vesselcad::store::Store::open(&t.location).unwrap();
     let stored = store.design_at("design", 2).unwrap();
     assert_eq!(stored.vessels[0].nozzles[0].projection, 1530.0);
+}
+
+/// Runs a `count(*)` query with one text parameter on a fresh connection.
+fn admin_count(url: &str, sql: &str, param: &str) -> i64 {
+    let mut c = postgres::Client::connect(url, postgres::NoTls).unwrap();
+    c.query_one(sql, &[&param]).unwrap().get(0)
 }
 
 #[test]
