@@ -7,7 +7,9 @@ use std::time::Instant;
 
 use clap::{Args, ValueEnum};
 use vesselcad::design::{DesignError, load};
-use vesselcad::exchange::{ExchangeError, ExchangeOptions, StepBlocks, export_iges, export_step};
+use vesselcad::exchange::{
+    ExchangeError, ExchangeOptions, IgesEntities, StepBlocks, export_iges_as, export_step,
+};
 
 use super::output::outln;
 
@@ -16,7 +18,7 @@ use super::output::outln;
 pub enum Format {
     /// ISO 10303-21, AP214.
     Step,
-    /// IGES 5.3, trimmed surfaces.
+    /// IGES 5.3: the B-rep (manifold solid entities), or trimmed surfaces.
     Iges,
 }
 
@@ -42,6 +44,10 @@ pub struct ExportArgs {
     /// closed envelope as a solid (its displacement).
     #[arg(long)]
     solids: bool,
+    /// IGES: write loose trimmed surfaces (144) instead of the B-rep's shells
+    /// and solids (514/186), for receivers that do not read the B-rep.
+    #[arg(long)]
+    iges_trimmed: bool,
 }
 
 /// The format named by a file's extension.
@@ -93,7 +99,14 @@ pub fn run(args: ExportArgs) -> ExitCode {
             &name,
             &mut StepBlocks::default(),
         ),
-        Format::Iges => export_iges(&design, &args.vessels, &options, &name),
+        Format::Iges => {
+            let entities = if args.iges_trimmed {
+                IgesEntities::Trimmed
+            } else {
+                IgesEntities::Brep
+            };
+            export_iges_as(&design, &args.vessels, &options, entities, &name)
+        }
     };
     let text = match text {
         Ok(text) => text,

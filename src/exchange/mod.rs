@@ -9,15 +9,18 @@
 //! assembly placing each vessel). [`export_step`] runs it all; [`StepBlocks`]
 //! keeps each vessel's block by the content of its design so that an export
 //! after an edit writes only the vessels that changed. [`export_iges`] writes
-//! the same B-rep as IGES trimmed surfaces (`iges_model` on the record layout
-//! of `iges`).
+//! the same B-rep as IGES 5.3 (`iges_model` on the record layout of `iges`):
+//! manifold solid B-rep entities by default, trimmed surfaces on request.
 
 mod blocks;
 mod brep;
 mod error;
 mod fit;
 mod iges;
+mod iges_brep;
+mod iges_entities;
 mod iges_model;
+mod iges_trimmed;
 mod loops;
 mod measure;
 mod notch;
@@ -29,7 +32,7 @@ mod topology;
 pub use blocks::{ExchangeOptions, StepBlocks, export_step};
 pub use brep::{Edge, EdgeCurve, Face, OrientedEdge, Port, Shell, VesselBrep};
 pub use error::ExchangeError;
-pub use iges_model::{export_iges, write_iges};
+pub use iges_model::{IgesEntities, export_iges, export_iges_as, write_iges};
 pub use measure::{FaceMeasures, ORDER, face_measures, face_measures_with};
 pub use source::{CutSource, NodeKind, NodeSource, VesselSource, vessel_sources};
 pub use step::{LOCAL_BASE, PlacedBlock, StepBlock, rebase, vessel_block, write_step};
