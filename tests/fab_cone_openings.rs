@@ -162,6 +162,28 @@ fn a_cone_opening_rolls_back_onto_its_cylinder_and_the_mid_surface() {
         "pad area {area} vs π·R² {disc}"
     );
     assert!(ring(&pad.hole) > PI * rho * rho * (1.0 - 1e-3));
+    // Rolled as a cone about its apex: the developed apex is the slant
+    // distance from the pad cone's apex to where the axis meets it (found
+    // by bisection along the axis from the centre), along -y.
+    let pad_mid = |z: f64| LARGE + 6.0 * k.hypot(1.0) + k * z;
+    let signed = |x: DVec3| x.truncate().length() - pad_mid(x.z);
+    let (mut lo, mut hi) = (0.0, 100.0);
+    assert!(signed(c) < 0.0 && signed(c + hi * d) > 0.0);
+    for _ in 0..100 {
+        let s = 0.5 * (lo + hi);
+        if signed(c + s * d) > 0.0 {
+            hi = s;
+        } else {
+            lo = s;
+        }
+    }
+    let meets = c + lo * d;
+    let apex = pad.apex.expect("a cone pad is rolled about its apex");
+    assert!(
+        (apex.length() - pad_mid(meets.z) / sin).abs() < 1e-6,
+        "{apex}"
+    );
+    assert!(apex.x.abs() < 1e-6 && apex.y < 0.0, "along -y: {apex}");
     let piece = p
         .pieces()
         .into_iter()
@@ -203,6 +225,7 @@ fn a_neck_normal_to_a_cone_develops_to_about_pi_r_squared() {
         r0: 994.0,
         z0: 0.0,
         k,
+        lean: DVec2::ZERO,
     };
     let (theta, z) = (0.3_f64, 450.0);
     let r = cone.radius(z);
@@ -300,6 +323,51 @@ fn the_cone_plate_dxf_carries_the_opening() {
     for q in &opening.contour {
         assert!(q.length() > inner && q.length() < outer);
         assert!((-q.x).atan2(q.y).abs() < 0.5 * angle);
+    }
+}
+
+#[test]
+fn the_cone_plates_carry_the_vessel_quarter_lines_on_their_generators() {
+    let p = vessel(&[N4], &Shop::default()).unwrap_or_else(|e| panic!("{e}"));
+    let (k, mut labels, mut quarters) = (taper(), Vec::new(), Vec::new());
+    let sin = k.abs() / k.hypot(1.0);
+    for plate in p.plates.iter().filter(|pl| pl.part == "R1") {
+        let course = &p.seams.courses[plate.course_index];
+        let rolled = &p.developments.rolled[course.rolled];
+        let drawing = plate_drawing(plate, &p.grade, rolled, course);
+        let mid = course.seam(plate.seam) + 0.5 * course.pitch();
+        for e in drawing.entities() {
+            match &e.specific {
+                dxf::entities::EntityType::Text(t) if t.value.ends_with('°') => {
+                    labels.push(t.value.clone());
+                }
+                dxf::entities::EntityType::Line(l) if e.common.layer == "MARK" => {
+                    // Rolled back: (θ, z) of each end.
+                    let roll = |x: f64, y: f64| {
+                        let theta = mid - k.signum() * (-x).atan2(y) / sin;
+                        (theta, (x.hypot(y) * sin - mid_radius(0.0)) / k)
+                    };
+                    let (a, b) = (roll(l.p1.x, l.p1.y), roll(l.p2.x, l.p2.y));
+                    if (a.1 - course.z.0).abs() > 1e-6 || (b.1 - course.z.1).abs() > 1e-6 {
+                        continue;
+                    }
+                    assert!((a.0 - b.0).abs() < 1e-9, "a generator");
+                    let v = rolled
+                        .frame
+                        .transform_vector3(DVec3::new(a.0.cos(), a.0.sin(), 0.0));
+                    quarters.push(v.y.atan2(v.x).to_degrees().rem_euclid(360.0));
+                }
+                _ => {}
+            }
+        }
+    }
+    labels.sort();
+    assert_eq!(labels, ["0°", "180°", "270°", "90°"]);
+    quarters.sort_by(f64::total_cmp);
+    assert_eq!(quarters.len(), 4, "{quarters:?}");
+    for (q, want) in quarters.iter().zip([0.0, 90.0, 180.0, 270.0]) {
+        let gap = (q - want).rem_euclid(360.0);
+        assert!(gap.min(360.0 - gap) < 1e-6, "{quarters:?}");
     }
 }
 

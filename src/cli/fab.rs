@@ -21,8 +21,8 @@ use vesselcad::fab::plate_dxf::write_plate;
 use vesselcad::fab::process_files::write_process_files;
 use vesselcad::fab::template_dxf::write_templates;
 use vesselcad::fab::{
-    BLANK_RULE, FabError, FabPlan, Nesting, NozzleCut, Outline, PlanError, ProcessPlan, Shop,
-    ShopRules, plan, process_plan,
+    BLANK_RULE, FabError, FabPlan, Nesting, Outline, PlanError, ProcessPlan, Shop, ShopRules, plan,
+    process_plan,
 };
 
 use super::output::outln;
@@ -132,21 +132,9 @@ pub fn run(args: FabArgs) -> ExitCode {
         }
     }
     for c in &plan.openings.cones {
-        // The neck template only: a cone pad is nested, not drawn.
-        let neck = NozzleCut {
-            nozzle: c.nozzle,
-            mark: c.mark.clone(),
-            path: c.path.clone(),
-            rolled: c.rolled,
-            neck: c.neck,
-            cut_radius: c.cut_radius,
-            centre: c.centre,
-            hole: c.hole.clone(),
-            pad: None,
-            saddle: c.saddle.clone(),
-        };
+        // A cone pad is rolled about its apex, not to a shell radius.
         let shell = plan.developments.rolled[c.rolled].outside_at(c.centre.y);
-        match write_templates(&args.output, &plan.tag, &neck, &plan.grade, shell) {
+        match write_templates(&args.output, &plan.tag, c, &plan.grade, shell) {
             Ok(w) => templates += w.len(),
             Err(e) => return fail(&e),
         }
@@ -317,24 +305,18 @@ fn developments(plan: &FabPlan) -> Vec<String> {
             .iter()
             .find(|p| p.openings.iter().any(|o| o.mark == c.mark))
             .map_or("-", |p| p.id.as_str());
+        let rolled = &plan.developments.rolled[c.rolled];
+        let kind = if rolled.flat_side.is_some() {
+            "eccentric reducer (oblique cone)"
+        } else {
+            "cone"
+        };
         out.push(format!(
-            "  {:<6} opening on {}: developed on cone plate {plate}",
-            c.mark, plan.developments.rolled[c.rolled].id
+            "  {:<6} opening on {}: developed on {kind} plate {plate}",
+            c.mark, rolled.id
         ));
     }
     for f in &plan.openings.formed {
-        let eccentric = plan
-            .developments
-            .rolled
-            .iter()
-            .any(|r| r.id == f.host && r.flat_side.is_some());
-        if eccentric {
-            out.push(format!(
-                "  {:<6} opening on {}: listed, not developed (eccentric reducer: oblique cone), marked and cut after rolling",
-                f.mark, f.host
-            ));
-            continue;
-        }
         let on_blank = if f.blank.is_some() {
             " (outline marked on the blank)"
         } else {

@@ -1,9 +1,13 @@
-//! Nozzle openings on concentric cones, developed onto the cone's plates.
+//! Nozzle openings on cones — concentric ones and eccentric reducers'
+//! oblique ones — developed onto the cone's plates.
 //!
-//! A concentric cone's mid-surface is the surface `ρ(z) = r₀ + k·(z − z₀)`
-//! about the part's +Z ([`ConeSurface`]). For every angle φ about the neck
-//! axis, the line of the cutting cylinder (radius ρ_c) at φ meets that cone
-//! where `|a_xy + s·b_xy|² = (ρ(a_z) + k·b_z·s)²`, a quadratic in the
+//! A cone's mid-surface is the surface of circles of radius `ρ(z) = r₀ +
+//! k·(z − z₀)` about the centres `c(z) = l·(z − z₀)` ([`ConeSurface`]; `l`
+//! is zero on a concentric cone, and on an eccentric reducer moves the
+//! centres towards the flat side as the radius shrinks). For every angle φ
+//! about the neck axis, the line `a + s·b` of the cutting cylinder (radius
+//! ρ_c) at φ meets that cone where `|a_xy − c(a_z) + s·(b_xy − l·b_z)|² =
+//! (ρ(a_z) + k·b_z·s)²`, a quadratic in the
 //! distance `s` along the neck axis: solved exactly, the outer crossing (the
 //! larger root on the cone's own nappe, as [`NeckAxis::crossing`]
 //! takes on a course) is the point of the opening. The cutting cylinder is
@@ -17,7 +21,11 @@
 //! `ρ(z)/sin α`, sector angle `(θ − θ_mid)·sin α` from the plate's bisector
 //! (laid along +y, apex at the origin), seen from outside ([`develop_point`]).
 //! The map is an isometry, so the developed opening is the exact curve
-//! unrolled. Openings on eccentric reducers (oblique cones) stay listed.
+//! unrolled. On an eccentric reducer a point is `(φ, z)`, φ about its
+//! circle's centre, and develops by the oblique plate's own development
+//! ([`super::oblique_openings`]); its pad's mid-surface, and the wall's
+//! inside the neck meets, are offset in the planes of the circles as the
+//! reducer's mid-surface is ([`super::oblique`]).
 
 use std::f64::consts::TAU;
 
@@ -26,12 +34,16 @@ use glam::{DVec2, DVec3};
 use super::cut::{NozzleCut, PadPiece};
 use super::develop::{Developments, Rolled, RolledKind};
 use super::neck_axis::{NeckAxis, SurfaceLoop, samples, theta_near};
+use super::oblique_openings::develop_about;
 use super::shop::{Attachment, Shop};
 use crate::constraints::ResolvedVessel;
 use crate::format::RuleViolation;
 use crate::parts::tables::pipe;
 
-/// A cone about local +Z: radius `r0 + k·(z − z0)`.
+/// A cone of circles in the planes of constant local z: radius `r0 + k·(z −
+/// z0)` about the centre `lean·(z − z0)` — about local +Z for a concentric
+/// cone (`lean` zero), leaning towards the flat side for an eccentric
+/// reducer's oblique cone.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct ConeSurface {
     /// Radius at `z0`, mm.
@@ -40,6 +52,9 @@ pub struct ConeSurface {
     pub z0: f64,
     /// dr/dz.
     pub k: f64,
+    /// How far the circles' centres move (part-local x, y) per mm of
+    /// height from the axis at `z0`.
+    pub lean: DVec2,
 }
 
 impl ConeSurface {
@@ -49,6 +64,7 @@ impl ConeSurface {
             r0: rolled.radius.0,
             z0: rolled.z.0,
             k: rolled.taper(),
+            lean: Self::lean_of(rolled),
         }
     }
 
@@ -58,6 +74,33 @@ impl ConeSurface {
             r0: rolled.outside.0,
             z0: rolled.z.0,
             k: (rolled.outside.1 - rolled.outside.0) / (rolled.z.1 - rolled.z.0),
+            lean: Self::lean_of(rolled),
+        }
+    }
+
+    /// The lean of a rolled cone's circles: an eccentric reducer's centres
+    /// move towards its flat side by as much as the radius shrinks
+    /// ([`Rolled::centre_at`]), on the axis at its large end (`z.0 = 0`).
+    fn lean_of(rolled: &Rolled) -> DVec2 {
+        match rolled.flat_side {
+            Some(f) => DVec2::from_angle(f) * -rolled.taper(),
+            None => DVec2::ZERO,
+        }
+    }
+
+    /// The surface `d` mm outside this one (inside for negative `d`): the
+    /// offset measured along the normal on a surface of revolution, and in
+    /// the planes of constant z on an oblique cone, as its mid-surface is
+    /// ([`super::oblique`]).
+    pub fn offset(&self, d: f64) -> Self {
+        let dr = if self.lean == DVec2::ZERO {
+            d * self.k.hypot(1.0)
+        } else {
+            d
+        };
+        ConeSurface {
+            r0: self.r0 + dr,
+            ..*self
         }
     }
 
@@ -66,17 +109,31 @@ impl ConeSurface {
         self.r0 + self.k * (z - self.z0)
     }
 
+    /// The centre of the circle at height `z`, part-local x, y.
+    pub fn centre(&self, z: f64) -> DVec2 {
+        self.lean * (z - self.z0)
+    }
+
+    /// The angle of `p` about the centre of its circle, unwrapped to
+    /// within π of `about`.
+    pub fn angle_near(&self, p: DVec3, about: f64) -> f64 {
+        theta_near(p - self.centre(p.z).extend(0.0), about)
+    }
+
     /// The point at angle `phi` of the cylinder of radius `rho` about `neck`
     /// that lies on the cone (the larger root on the cone's own nappe), and
     /// its distance along the axis; `None` where that line misses the cone.
     pub fn crossing(&self, neck: &NeckAxis, rho: f64, phi: f64) -> Option<(DVec3, f64)> {
         let a = neck.origin + rho * (phi.cos() * neck.e1 + phi.sin() * neck.e2);
         let b = neck.axis;
+        // From the centre of the circle at each point's height: `u + s·v`.
+        let u = a.truncate() - self.lean * (a.z - self.z0);
+        let v = b.truncate() - self.lean * b.z;
         let c = self.radius(a.z);
         let kb = self.k * b.z;
-        let qa = b.x * b.x + b.y * b.y - kb * kb;
-        let qb = 2.0 * (a.x * b.x + a.y * b.y - c * kb);
-        let qc = a.x * a.x + a.y * a.y - c * c;
+        let qa = v.length_squared() - kb * kb;
+        let qb = 2.0 * (u.dot(v) - c * kb);
+        let qc = u.length_squared() - c * c;
         let roots: Vec<f64> = if qa.abs() <= 1e-14 {
             // The line runs along a generator's direction: one crossing.
             if qb == 0.0 { vec![] } else { vec![-qc / qb] }
@@ -114,7 +171,7 @@ impl ConeSurface {
             .map(|i| {
                 let phi = TAU * i as f64 / n as f64;
                 self.crossing(neck, rho, phi)
-                    .map(|(p, _)| DVec2::new(theta_near(p, centre_theta), p.z))
+                    .map(|(p, _)| DVec2::new(self.angle_near(p, centre_theta), p.z))
             })
             .collect()
     }
@@ -131,21 +188,24 @@ pub fn develop_point(surface: &ConeSurface, theta_mid: f64, p: DVec2) -> DVec2 {
     DVec2::new(-rho * a.sin(), rho * a.cos())
 }
 
-/// The index in `developments.rolled` of the concentric cone nozzle `index`
-/// of `resolved` is cut into, if its host is one.
+/// The index in `developments.rolled` of the cone (concentric or an
+/// eccentric reducer's oblique one) nozzle `index` of `resolved` is cut
+/// into, if its host is one.
 pub fn host_cone(
     resolved: &ResolvedVessel,
     developments: &Developments,
     index: usize,
 ) -> Option<usize> {
     let host = resolved.nozzles[index].host;
-    developments.rolled.iter().position(|r| {
-        r.part == host && r.kind == RolledKind::Cone && r.flat_side.is_none() && !r.is_cylinder()
-    })
+    developments
+        .rolled
+        .iter()
+        .position(|r| r.part == host && r.kind == RolledKind::Cone && !r.is_cylinder())
 }
 
 /// Develops the opening (and pad footprint) of nozzle `index` of
-/// `resolved` on concentric cone `rolled_index` of `developments`.
+/// `resolved` on cone `rolled_index` of `developments` (concentric or
+/// oblique).
 ///
 /// # Errors
 ///
@@ -194,7 +254,7 @@ pub fn cut_cone_nozzle(
     let Some((centre, _)) = mid.crossing(&neck, 0.0, 0.0) else {
         return Err(misses("nozzle axis"));
     };
-    let theta = centre.y.atan2(centre.x);
+    let theta = mid.angle_near(centre, 0.0);
     let n = samples(cut_radius, shop.chord_tolerance);
     let Some(hole) = mid.surface_loop(&neck, cut_radius, theta, n) else {
         return Err(misses("opening"));
@@ -204,25 +264,32 @@ pub fn cut_cone_nozzle(
         Some((pad_od, pad_t)) => {
             let n_pad = samples(0.5 * pad_od, shop.chord_tolerance);
             let outside = ConeSurface::outside(cone);
-            let pad_mid = ConeSurface {
-                r0: outside.r0 + 0.5 * pad_t * outside.k.hypot(1.0),
-                ..outside
-            };
-            let developed = |rho: f64, n: usize| -> Option<Vec<DVec2>> {
+            let pad_mid = outside.offset(0.5 * pad_t);
+            // The developed apex and loop of radius `rho` on the pad's own
+            // mid-surface, centred on the nozzle axis.
+            let developed = |rho: f64, n: usize| -> Option<(DVec2, Vec<DVec2>)> {
                 let (c, _) = pad_mid.crossing(&neck, 0.0, 0.0)?;
-                let origin = develop_point(&pad_mid, theta, DVec2::new(theta, c.z));
                 let curve = pad_mid.surface_loop(&neck, rho, theta, n)?;
-                Some(
+                if let Some(mid) = cone.oblique() {
+                    // On its own oblique cone, as the reducer's wall.
+                    let own = mid.offset(pad_mid.r0 - mid.large);
+                    let c = DVec2::new(pad_mid.angle_near(c, theta), c.z);
+                    return Some(develop_about(&own, c, &curve));
+                }
+                let origin = develop_point(&pad_mid, theta, DVec2::new(theta, c.z));
+                Some((
+                    -origin,
                     curve
                         .iter()
                         .map(|&q| develop_point(&pad_mid, theta, q) - origin)
                         .collect(),
-                )
+                ))
             };
             let footprint = outside.surface_loop(&neck, 0.5 * pad_od, theta, n_pad);
             let outline = developed(0.5 * pad_od, n_pad);
             let pad_hole = developed(0.5 * od + shop.bevel_allowance, n);
-            let (Some(footprint), Some(outline), Some(hole)) = (footprint, outline, pad_hole)
+            let (Some(footprint), Some((apex, outline)), Some((_, hole))) =
+                (footprint, outline, pad_hole)
             else {
                 return Err(misses("pad"));
             };
@@ -232,15 +299,13 @@ pub fn cut_cone_nozzle(
                 footprint,
                 outline,
                 hole,
+                apex: Some(apex),
             })
         }
     };
     let outside = ConeSurface::outside(cone);
     let meets = match shop.attachment {
-        Attachment::SetIn => ConeSurface {
-            r0: outside.r0 - cone.thickness * outside.k.hypot(1.0),
-            ..outside
-        },
+        Attachment::SetIn => outside.offset(-cone.thickness),
         Attachment::SetOn => outside,
     };
     let neck_mid = 0.5 * (od - wall);

@@ -22,6 +22,10 @@ pub struct PadPiece {
     pub outline: Vec<DVec2>,
     /// Developed hole for the neck, same frame, mm.
     pub hole: Vec<DVec2>,
+    /// On a cone, the developed apex of the pad's own cone in the same
+    /// frame: the pad is rolled as a cone about it. `None` on a course (the
+    /// pad is rolled as a cylinder).
+    pub apex: Option<DVec2>,
 }
 
 impl PadPiece {
@@ -32,8 +36,9 @@ impl PadPiece {
 }
 
 /// One nozzle's (or boot's) cuts on a cylindrical course, or a nozzle's on a
-/// concentric cone (then `(θ, z)` are on the cone's mid-surface and the pad is
-/// developed on its own cone: [`super::cone_openings`]).
+/// cone (then `(θ, z)` are on the cone's mid-surface, θ about the centre of
+/// the circle at `z` on an eccentric reducer, and the pad is developed on its
+/// own cone: [`super::cone_openings`]).
 #[derive(Clone, Debug, PartialEq)]
 pub struct NozzleCut {
     /// Index of the nozzle in the resolved vessel (a boot's: of its part).

@@ -40,6 +40,7 @@ pub mod levels;
 pub mod neck_axis;
 pub mod nest;
 pub mod oblique;
+pub mod oblique_openings;
 pub mod openings;
 pub mod operations;
 pub mod plan_error;

@@ -79,6 +79,16 @@ impl ObliqueCone {
         }
     }
 
+    /// The oblique cone `d` mm outside this one, measured in the planes of
+    /// its circles (its circles' centres stay where they are).
+    pub fn offset(&self, d: f64) -> Self {
+        ObliqueCone {
+            large: self.large + d,
+            small: self.small + d,
+            ..*self
+        }
+    }
+
     /// The flat side's unit direction.
     fn flat(&self) -> DVec3 {
         DVec3::new(self.flat_side.cos(), self.flat_side.sin(), 0.0)

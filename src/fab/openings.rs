@@ -26,11 +26,10 @@
 //!   ([`cut_boot`]): its opening in the course's plate, and its host end
 //!   developed on its own mid-surface, measured from its head's tangent line.
 //!
-//! Openings on concentric cones are developed onto the cone's plates the
-//! same way, on the cone's mid-surface ([`super::cone_openings`]); openings
-//! on heads are marked on the head's blank and cut after forming
-//! ([`super::head_map`]); openings on eccentric reducers (oblique cones)
-//! are listed, not developed.
+//! Openings on cones, concentric or eccentric reducers' oblique ones, are
+//! developed onto the cone's plates the same way, on the cone's
+//! mid-surface ([`super::cone_openings`]); openings on heads are marked on
+//! the head's blank and cut after forming ([`super::head_map`]).
 
 use std::f64::consts::TAU;
 
@@ -54,7 +53,7 @@ pub struct FormedOpening {
     pub host: String,
     /// Its opening (and pad) mapped onto the head's blank (by
     /// [`super::vessel_plan::plan_vessel`] with `head_map::blank_mark`),
-    /// `None` on an eccentric reducer or a head without blank.
+    /// `None` on a head without blank.
     pub blank: Option<BlankMark>,
 }
 
@@ -80,10 +79,10 @@ pub struct BlankMark {
 pub struct Openings {
     /// Cuts on cylindrical courses, in nozzle order.
     pub cuts: Vec<NozzleCut>,
-    /// Openings on heads and eccentric reducers, cut after forming.
+    /// Openings on heads, cut after forming.
     pub formed: Vec<FormedOpening>,
-    /// Openings on concentric cones, developed onto their plates, in nozzle
-    /// order.
+    /// Openings on cones (concentric, and eccentric reducers' oblique
+    /// ones), developed onto their plates, in nozzle order.
     pub cones: Vec<NozzleCut>,
     /// Boots cut into their courses, in part order.
     pub boots: Vec<NozzleCut>,
@@ -114,9 +113,9 @@ pub fn surface_loop(
 pub enum NozzleOutcome {
     /// On a cylindrical course.
     Cut(Box<NozzleCut>),
-    /// On a concentric cone, developed onto its plate.
+    /// On a cone (concentric or oblique), developed onto its plate.
     Cone(Box<NozzleCut>),
-    /// On a head or an eccentric reducer.
+    /// On a head.
     Formed(FormedOpening),
 }
 
@@ -280,6 +279,7 @@ pub fn cut_nozzle(
                     footprint,
                     outline,
                     hole,
+                    apex: None,
                 }),
                 _ => return Err(misses("pad")),
             }

@@ -3,7 +3,8 @@
 //! a cone plate's arcs as exact bulges, an eccentric reducer's developed
 //! curves as chords within [`super::oblique::OUTLINE_SAG`]), `MARK` the marking lines (nozzle
 //! centrelines, the vessel's 0°/90°/180°/270° orientation lines that cross
-//! the plate), `TEXT` the plate id, grade, thickness and course.
+//! the plate: along the axis on a course, the developed generator on a
+//! cone), `TEXT` the plate id, grade, thickness and course.
 
 use std::f64::consts::{FRAC_PI_2, TAU};
 use std::path::Path;
@@ -14,6 +15,7 @@ use dxf::tables::Layer;
 use dxf::{Color, Drawing, LwPolylineVertex, Point};
 use glam::{DVec2, DVec3};
 
+use super::cone_openings::{ConeSurface, develop_point};
 use super::develop::{Outline, Rolled};
 use super::error::FabError;
 use super::plates::Plate;
@@ -106,28 +108,40 @@ pub fn plate_drawing(plate: &Plate, grade: &str, rolled: &Rolled, course: &Cours
         d.add_entity(entity("MARK", line(c - DVec2::Y * r.y, c + DVec2::Y * r.y)));
         text(&mut d, c + DVec2::new(r.x * 0.2, r.y * 0.6), 25.0, &o.mark);
     }
-    if let Outline::Rectangle { .. } = plate.outline {
-        // The vessel's orientation lines that cross the plate.
-        let theta0 = course.seam(plate.seam);
-        let r = rolled.radius_at(course.z.0);
-        for quarter in 0..4 {
-            let want = quarter as f64 * FRAC_PI_2;
-            let local = rolled.frame.matrix3.inverse() * DVec3::new(want.cos(), want.sin(), 0.0);
-            let rel = (local.y.atan2(local.x) - theta0).rem_euclid(TAU);
-            if rel < course.pitch() {
-                let x = r * rel;
-                d.add_entity(entity(
-                    "MARK",
-                    line(DVec2::new(x, 0.0), DVec2::new(x, height)),
-                ));
-                text(
-                    &mut d,
-                    DVec2::new(x + 10.0, 0.5 * height),
-                    25.0,
-                    &format!("{}°", quarter * 90),
-                );
-            }
+    // The vessel's orientation lines that cross the plate: on a course a
+    // line along the axis, on a cone the generator developed.
+    let theta0 = course.seam(plate.seam);
+    for quarter in 0..4 {
+        let want = f64::from(quarter) * FRAC_PI_2;
+        let local = rolled.frame.matrix3.inverse() * DVec3::new(want.cos(), want.sin(), 0.0);
+        let rel = (local.y.atan2(local.x) - theta0).rem_euclid(TAU);
+        if rel >= course.pitch() {
+            continue;
         }
+        let (a, b) = match plate.outline {
+            Outline::Rectangle { .. } => {
+                let x = rolled.radius_at(course.z.0) * rel;
+                (DVec2::new(x, 0.0), DVec2::new(x, height))
+            }
+            Outline::Sector { .. } => {
+                let surface = ConeSurface::mid(rolled);
+                let mid = theta0 + 0.5 * course.pitch();
+                let at = |z: f64| develop_point(&surface, mid, DVec2::new(theta0 + rel, z));
+                (at(course.z.0), at(course.z.1))
+            }
+            Outline::Oblique(o) => (
+                o.develop(theta0 + rel, course.z.0),
+                o.develop(theta0 + rel, course.z.1),
+            ),
+        };
+        d.add_entity(entity("MARK", line(a, b)));
+        let across = -(b - a).perp().normalize_or_zero();
+        text(
+            &mut d,
+            0.5 * (a + b) + across * 10.0,
+            25.0,
+            &format!("{}°", quarter * 90),
+        );
     }
     let label = DVec2::new(0.05 * width, 0.15 * height);
     let size = (0.04 * height).clamp(10.0, 80.0);

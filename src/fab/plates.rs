@@ -7,8 +7,9 @@
 //! about the part's axis). A cone's plate is an annular sector laid with its
 //! bisector along +y about the apex (an eccentric reducer's, the region
 //! between its developed curves, laid alike); a concentric cone's plate
-//! carries its openings developed by [`super::cone_openings::develop_point`]
-//! (an eccentric reducer's carries none: they are listed).
+//! carries its openings developed by [`super::cone_openings::develop_point`],
+//! an eccentric reducer's by its own development
+//! ([`super::oblique_openings::develop_loop`]).
 
 use std::collections::BTreeMap;
 use std::f64::consts::{PI, TAU};
@@ -18,6 +19,7 @@ use glam::DVec2;
 
 use super::cone_openings::{ConeSurface, develop_point};
 use super::develop::{Developments, Outline, Rolled};
+use super::oblique_openings::develop_loop;
 use super::openings::{NozzleCut, Openings};
 use super::seams::{Course, Prior, SeamLayout};
 
@@ -114,6 +116,17 @@ pub fn cone_cuts_in<'a>(course: &Course, k: usize, openings: &'a Openings) -> Ve
 /// Cone opening `cut` developed onto the plate of `course` from seam angle
 /// `theta0`.
 fn cone_opening(cut: &NozzleCut, rolled: &Rolled, course: &Course, theta0: f64) -> PlateOpening {
+    let reach = cut.pad.as_ref().map_or(cut.cut_radius, |p| 0.5 * p.od) + 50.0;
+    if let Outline::Oblique(plate) = rolled.outline(theta0, course.pitch(), course.z.0, course.z.1)
+    {
+        let (centre, contour) = develop_loop(&plate, cut.centre, &cut.hole);
+        return PlateOpening {
+            mark: cut.mark.clone(),
+            contour,
+            centre,
+            reach: DVec2::splat(reach),
+        };
+    }
     let surface = ConeSurface::mid(rolled);
     let mid = theta0 + 0.5 * course.pitch();
     // θ of the centre within the plate, the loop unwrapped about it.
@@ -122,7 +135,6 @@ fn cone_opening(cut: &NozzleCut, rolled: &Rolled, course: &Course, theta0: f64) 
         let t = centre_theta + (p.x - cut.centre.x + PI).rem_euclid(TAU) - PI;
         develop_point(&surface, mid, DVec2::new(t, p.y))
     };
-    let reach = cut.pad.as_ref().map_or(cut.cut_radius, |p| 0.5 * p.od) + 50.0;
     PlateOpening {
         mark: cut.mark.clone(),
         contour: cut.hole.iter().map(|&p| map(p)).collect(),

@@ -5,6 +5,11 @@
 //!   developed on the pad's mid-surface ([`super::openings`]: `x` along the
 //!   shell's circumference, `y` along its axis, the nozzle axis at the
 //!   origin), the nozzle centrelines marked; rolled to the radius printed.
+//!   A pad on a cone (concentric or an eccentric reducer's oblique one,
+//!   [`super::cone_openings`]) is developed on its own conical mid-surface,
+//!   `y` along the generator through the nozzle axis: it is rolled as a
+//!   cone about its apex, whose developed point is printed and marked
+//!   (`MARK`, the generator from the axis towards it).
 //! - **Neck template** (`V-101-N1-NECK.dxf`): the saddle cut of the neck as
 //!   a wrap-around template developed on the neck's mid-surface: `x = r·φ`
 //!   about the neck, `y` the length from the cut to the flange's back (the
@@ -35,7 +40,8 @@ pub fn neck_file_name(tag: &str, cut: &NozzleCut) -> String {
 }
 
 /// The pad's drawing, or `None` when the nozzle has no pad. `grade` is the
-/// material, `shell_outside` the outside radius of the course it sits on.
+/// material, `shell_outside` the outside radius of the course it sits on
+/// (unused for a pad on a cone, rolled about its apex).
 pub fn pad_drawing(tag: &str, cut: &NozzleCut, grade: &str, shell_outside: f64) -> Option<Drawing> {
     let pad = cut.pad.as_ref()?;
     let mut d = new_drawing();
@@ -55,15 +61,29 @@ pub fn pad_drawing(tag: &str, cut: &NozzleCut, grade: &str, shell_outside: f64) 
     let size = (0.05 * pad.od).clamp(8.0, 40.0);
     let at = DVec2::new(-0.3 * pad.od, 0.5 * pad.od + 2.0 * size);
     text(&mut d, at, size, &format!("{tag}-{}-PAD", cut.mark));
+    let rolling = match pad.apex {
+        None => format!(
+            "roll to R {:.1} (mid)  y along the shell axis",
+            shell_outside + 0.5 * pad.thickness
+        ),
+        Some(apex) => {
+            // The generator through the axis, from the pad's edge towards
+            // the apex.
+            let towards = apex.normalize_or_zero();
+            d.add_entity(entity("MARK", line(DVec2::ZERO, towards * reach)));
+            format!(
+                "roll as a cone (mid) about its apex at x {:.1}, y {:.1} ({:.1} from the axis)  y along the generator",
+                apex.x,
+                apex.y,
+                apex.length()
+            )
+        }
+    };
     text(
         &mut d,
         at + DVec2::Y * 1.5 * size,
         size,
-        &format!(
-            "{grade}  t = {} mm  roll to R {:.1} (mid)  y along the shell axis",
-            pad.thickness,
-            shell_outside + 0.5 * pad.thickness
-        ),
+        &format!("{grade}  t = {} mm  {rolling}", pad.thickness),
     );
     Some(d)
 }

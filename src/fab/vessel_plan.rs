@@ -258,7 +258,7 @@ pub fn plan_vessel(
                     .iter()
                     .find(|c| c.nozzle == i)
                     .map(|c| openings::NozzleOutcome::Cut(Box::new(c.clone()))),
-                // On a head or an eccentric reducer: kept with the host and its blank.
+                // On a head: kept with the host and its blank.
                 None => {
                     let host = nozzle.host;
                     let blank = |d: &Developments| d.heads.iter().find(|h| h.part == host).cloned();
