@@ -7,15 +7,24 @@
 //!
 //! Shipped: Table 2-1.1 (Group 1.1: A105, A350 LF2, A216 WCB, A515-70, A516-70)
 //! of ASME B16.5-2009/-2013 in bar, the same values B16.34-2013 Table 2-1.1 lists
-//! for the standard class; Table 2-2.1 (Group 2.1: A182 F304, A240 304) from −29
-//! to 300 °C as a public data file reproduces it ([`SOURCE`]); and Tables 2-2.2 (Group 2.2: A182 F316, A240 316) and
-//! 2-2.3 (Group 2.3: A182 F304L/F316L, A240 304L/316L) of the same edition from
-//! −29 to 300 °C, the rows published alike by flange makers and by public
-//! engineering tables (cross-read against a public data file citing them; the
-//! 38 °C values are the well-known 275/720/1440/2160 psi of 316 and 230/600/1200/
-//! 1800 psi of 316L). Above 300 °C those three groups and every other group
-//! (1.2, …) are not shipped: their flanges are reported as not rated, never
-//! guessed.
+//! for the standard class; Table 2-1.2 (Group 1.2: A216 WCC, A352 LCC/LC2/LC3,
+//! A350 LF6 Cl. 2, A203 B/E) from −29 to 250 °C, the standard-class rows a valve
+//! maker publishes from B16.34 (identical to B16.5's for the standard class),
+//! cross-checked against B16.5-2003 Annex F Table F2-1.2 in psi (within 1.1 % at
+//! 100, 200, 300 and 400 °F, the psi and bar tables being rounded separately);
+//! Table 2-2.1 (Group 2.1: A182 F304, A240 304) from −29 to 300 °C as a public
+//! data file reproduces it ([`SOURCE`]); and Tables 2-2.2 (Group 2.2: A182 F316,
+//! A240 316) and 2-2.3 (Group 2.3: A182 F304L/F316L, A240 304L/316L) of the same
+//! edition from −29 to 300 °C, the rows published alike by flange makers and by
+//! public engineering tables (the 38 °C values are the well-known 275/720/1440/2160
+//! psi of 316 and 230/600/1200/1800 psi of 316L). Both are checked against two
+//! public copies on GitHub: a TypeScript B16.5 rating table (Groups 2.2 and 2.3,
+//! every shipped value equal) and, independently, a Python valve-sizing module's
+//! B16.34 CF8M rows (Group 2.2 at −29, 38 and 100 to 300 °C, equal). Above 300 °C
+//! those three groups and every other group (1.3, …) are not shipped: their
+//! flanges are reported as not rated, never guessed. Group 1.2 above 250 °C is not shipped either: the public bar rows
+//! found stop there (the psi rows go on to 900 °F, but B16.5 rates in bar
+//! separately and a conversion is not its table).
 
 use serde::Serialize;
 
@@ -48,6 +57,17 @@ const GROUP_1_1: [[f64; 17]; 4] = [
     ],
 ];
 
+/// Group 1.2 working pressures, bar, Class 150, 300, 600, 900, at the first seven
+/// [`TEMPERATURES`] (−29 to 250 °C): B16.34-2013 Table 2-1.2, standard class, as
+/// published by reliaballvalve.com ("Valve Body Materials (ASME B16.34)
+/// Pressure/temperature Ratings"), the same rows as B16.5 Table 2-1.2.
+const GROUP_1_2: [[f64; 7]; 4] = [
+    [19.8, 19.8, 19.5, 17.7, 15.8, 13.8, 12.1],
+    [51.7, 51.7, 51.7, 51.5, 50.2, 48.6, 46.3],
+    [103.4, 103.4, 103.4, 103.0, 100.3, 97.2, 92.7],
+    [155.1, 155.1, 155.1, 154.6, 150.5, 145.8, 139.0],
+];
+
 /// Group 2.1 (304) working pressures, bar, Class 150, 300, 600, 900, at the first
 /// eight [`TEMPERATURES`] (−29 to 300 °C): B16.5 Table 2-2.1 as a public data file
 /// reproduces it (see [`SOURCE`]).
@@ -76,13 +96,15 @@ const GROUP_2_3: [[f64; 8]; 4] = [
 ];
 
 /// Where the shipped ratings come from.
-pub const SOURCE: &str = "ASME B16.5-2009/-2013 Tables 2-1.1 (Group 1.1, −29 to 538 °C), 2-2.1, \
-    2-2.2 and 2-2.3 (Groups 2.1, 2.2 and 2.3, −29 to 300 °C), standard class, bar; Table 2-1.1 \
-    identical to ASME B16.34-2013 Table 2-1.1 as published by valve makers; Table 2-2.1 as a \
-    public flange-rating data file on GitHub reproduces it (a TypeScript table stating \
-    B16.5-2020 Table 2-2.1, whose Group 1.1 rows equal the Table 2-1.1 shipped here; the \
-    same file gives Group 1.2 the Group 1.1 values, which B16.5 does not, so 1.2 is not \
-    taken from it)";
+pub const SOURCE: &str = "ASME B16.5-2009/-2013 Tables 2-1.1 (Group 1.1, −29 to 538 °C), \
+    2-1.2 (Group 1.2, −29 to 250 °C), 2-2.1, 2-2.2 and 2-2.3 (Groups 2.1, 2.2 and 2.3, −29 \
+    to 300 °C), standard class, bar; Table 2-1.1 identical to ASME B16.34-2013 Table 2-1.1 \
+    as published by valve makers; Table 2-1.2 as reliaballvalve.com publishes B16.34-2013 \
+    Table 2-1.2 (standard class, bar), cross-checked against B16.5-2003 Annex F Table \
+    F2-1.2 (psi); Table 2-2.1 as a public flange-rating data file on GitHub reproduces it \
+    (a TypeScript table stating B16.5-2020 Table 2-2.1, whose Group 1.1 rows equal the \
+    Table 2-1.1 shipped here; the same file gives Group 1.2 the Group 1.1 values, which \
+    B16.5 does not, so 1.2 is not taken from it)";
 
 /// The class's number, e.g. 150.
 pub fn class_number(class: FlangeClass) -> u32 {
@@ -96,7 +118,7 @@ pub fn class_number(class: FlangeClass) -> u32 {
 
 /// The B16.5 rating of a flange of `class` in material `group` (e.g. `"1.1"`) at
 /// `temperature` °C, MPa gauge; an error for a group whose table is not shipped
-/// or a temperature outside −29 to 538 °C.
+/// or a temperature outside the shipped rows of its table.
 pub fn rating(group: &str, class: FlangeClass, temperature: f64) -> Result<f64, CalcError> {
     let k = match class {
         FlangeClass::C150 => 0,
@@ -106,6 +128,7 @@ pub fn rating(group: &str, class: FlangeClass, temperature: f64) -> Result<f64, 
     };
     let (row, table): (&[f64], &str) = match group {
         "1.1" => (&GROUP_1_1[k], "Table 2-1.1"),
+        "1.2" => (&GROUP_1_2[k], "Table 2-1.2"),
         "2.1" => (&GROUP_2_1[k], "Table 2-2.1"),
         "2.2" => (&GROUP_2_2[k], "Table 2-2.2"),
         "2.3" => (&GROUP_2_3[k], "Table 2-2.3"),
@@ -114,8 +137,8 @@ pub fn rating(group: &str, class: FlangeClass, temperature: f64) -> Result<f64, 
                 entity: format!("B16.5 group {group}"),
                 field: "group".into(),
                 value: f64::NAN,
-                rule: "only the Group 1.1, 2.1, 2.2 and 2.3 rating tables (Tables 2-1.1, \
-                       2-2.1, 2-2.2, 2-2.3) are shipped"
+                rule: "only the Group 1.1, 1.2, 2.1, 2.2 and 2.3 rating tables (Tables \
+                       2-1.1, 2-1.2, 2-2.1, 2-2.2, 2-2.3) are shipped"
                     .into(),
             });
         }

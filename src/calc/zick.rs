@@ -30,6 +30,9 @@
 //! α = 0.95·β, Δ = π/6 + 5θ/12), not values read off his table; at θ = 120° they give
 //! his table's K1 = 0.107 (Megyesy's π·K1 = 0.335), K2 = 1.171, K3 = 0.880,
 //! K4 = 0.401, K5 = 0.760, K6 = 0.053 (tested).
+//! The same closed forms are ASME VIII-2 Table 4.15.1's (K1, K1*, K2–K6); checked
+//! against a public Python implementation of Div 2 §4.15, they agree to 1e-16
+//! at every contact angle from 120° to 180°.
 
 use std::f64::consts::PI;
 
