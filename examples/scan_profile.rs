@@ -127,7 +127,7 @@ fn main() {
             .map(|(i, data)| {
                 let s = &env.surfaces[i];
                 (env.parts[s.part].role.is_envelope() && data.len() >= 16).then(|| {
-                    fit_patch(&s.patch.surface, data, &FitOptions::DEFAULT, &s.patch.name)
+                    fit_patch(&s.patch.surface, data, &FitOptions::DEFAULT, s.patch.name)
                         .expect("fits")
                 })
             })
