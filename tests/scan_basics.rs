@@ -296,3 +296,43 @@ fn without_smoothing_a_basis_function_without_data_is_refused() {
     let fit = fit_patch(&s.patch.surface, &samples, &FitOptions::DEFAULT, "S1").unwrap();
     assert!(fit.unsupported > 0);
 }
+
+/// The normal equations are summed per rayon split: the fit on one thread and
+/// on two agrees to 1e-9 relative (control points and residuals).
+#[test]
+fn the_fit_does_not_depend_on_the_thread_count() {
+    let env = envelope(DRUM);
+    let scan = simulate(&env, &options(2000.0, 1.0)).unwrap();
+    let index = env
+        .surfaces
+        .iter()
+        .position(|s| env.parts[s.part].id == "S1")
+        .unwrap();
+    let s = &env.surfaces[index];
+    let samples = samples_of(&env, &scan.points, index);
+    assert!(samples.len() > 30_000, "{}", samples.len());
+    let fit = |threads: usize| {
+        rayon::ThreadPoolBuilder::new()
+            .num_threads(threads)
+            .build()
+            .unwrap()
+            .install(|| fit_patch(&s.patch.surface, &samples, &FitOptions::DEFAULT, "S1").unwrap())
+    };
+    let (one, two) = (fit(1), fit(2));
+    assert_eq!(one.net, two.net);
+    assert!(
+        (one.rms - two.rms).abs() <= 1e-9 * one.rms,
+        "{} {}",
+        one.rms,
+        two.rms
+    );
+    let size = env.parts[s.part].diameter;
+    for (a, b) in one
+        .surface
+        .control_points()
+        .iter()
+        .zip(two.surface.control_points().iter())
+    {
+        assert!((*a - *b).length() <= 1e-9 * size, "{a} {b}");
+    }
+}

@@ -24,6 +24,7 @@ use serde::Serialize;
 use super::band::{least_squares, solve_dense};
 use super::envelope::{Envelope, Role};
 use super::fit::{PatchFit, deviation_at};
+use super::local::{LOCAL_RULE, areas, cell, confirmed, harmonic, revolution_areas};
 use super::profile::u_of_angle;
 use super::project::Foot;
 use super::settlement::{Settlement, settlement};
@@ -108,7 +109,7 @@ fn median(mut xs: Vec<f64>) -> f64 {
 }
 
 /// The translation t that best explains normal deviations d ≈ n·t.
-fn best_shift(samples: &[(Foot, f64)]) -> DVec3 {
+pub(super) fn best_shift(samples: &[(Foot, f64)]) -> DVec3 {
     let mut a = vec![vec![0.0; 3]; 3];
     let mut b = vec![0.0; 3];
     for (f, d) in samples {
@@ -128,7 +129,11 @@ fn best_shift(samples: &[(Foot, f64)]) -> DVec3 {
 }
 
 /// Harmonics 0–2 of one section, trimmed: (coefficients, residuals).
-fn section_harmonics(angles: &[f64], values: &[f64], covered: &[bool]) -> ([f64; 5], Vec<f64>) {
+pub(super) fn section_harmonics(
+    angles: &[f64],
+    values: &[f64],
+    covered: &[bool],
+) -> ([f64; 5], Vec<f64>) {
     let rows: Vec<[f64; 5]> = angles
         .iter()
         .map(|&t| [1.0, t.cos(), t.sin(), (2.0 * t).cos(), (2.0 * t).sin()])
@@ -238,7 +243,23 @@ pub fn check(
                         });
                     }
                 }
+                revolution_areas(
+                    envelope,
+                    index,
+                    fit,
+                    feet,
+                    options.dent_threshold,
+                    &mut checks,
+                );
             }
+            Role::Cone => revolution_areas(
+                envelope,
+                index,
+                fit,
+                feet,
+                options.dent_threshold,
+                &mut checks,
+            ),
             _ => {}
         }
     }
@@ -400,6 +421,7 @@ fn course_checks(
         }
     }
     let mut residual = vec![vec![0.0; nt]; nz + 1];
+    let mut background = vec![[0.0; 5]; nz + 1];
     let mut worst = (0.0, 0.0, 0.0);
     for (iz, row) in residual.iter_mut().enumerate() {
         let v = v0 + (v1 - v0) * iz as f64 / nz as f64;
@@ -408,6 +430,7 @@ fn course_checks(
             .map(|&t| deviation_at(design, &fit.surface, u_of_angle(t), v))
             .collect();
         let (c, res) = section_harmonics(&angles, &values, &covered[iz]);
+        background[iz] = c;
         *row = res
             .iter()
             .zip(&covered[iz])
@@ -444,136 +467,118 @@ fn course_checks(
             rule: "ASME VIII-1 UG-80(a): D_max − D_min ≤ 1 % of D at any cross-section",
         });
     }
-    // Local areas: 4-connected cells past the threshold, wrapping around.
+    // Local areas: 4-connected cells past the threshold, wrapping around; a
+    // dent or bulge only where the points confirm it.
     let threshold = options.dent_threshold;
-    let mut seen = vec![vec![false; nt]; nz + 1];
     let step_arc = TAU * r / nt as f64;
     let board = (0.5 * BOARD / step_arc).round() as usize;
-    for iz in 0..=nz {
-        for it in 0..nt {
-            if seen[iz][it] || residual[iz][it].abs() <= threshold {
-                continue;
+    let found = areas(&residual, threshold);
+    let points = raw.iter().map(|&(t, v, deviation)| {
+        let (iz, it) = cell(t, (v - v0) / (v1 - v0), nz + 1, nt);
+        (iz, it, deviation - harmonic(&background[iz], t))
+    });
+    let supported = confirmed(&found, nz + 1, nt, points, fit.rms);
+    for (area, supported) in found.into_iter().zip(supported) {
+        let (cells, sign) = (area.cells, area.sign);
+        let (zmin, zmax) = cells
+            .iter()
+            .fold((usize::MAX, 0), |m, c| (m.0.min(c.0), m.1.max(c.0)));
+        let mut columns: Vec<usize> = cells.iter().map(|c| c.1).collect();
+        columns.sort_unstable();
+        columns.dedup();
+        let z_extent = (zmax - zmin) as f64 * length / nz as f64;
+        let arc_extent = columns.len() as f64 * step_arc;
+        let place = |iz: usize, it: usize| {
+            let v = v0 + (v1 - v0) * iz as f64 / nz as f64;
+            s.frame
+                .transform_point3(design.point(u_of_angle(angles[it]), v))
+        };
+        if sign > 0.0 && z_extent >= (2.0 * arc_extent).max(500.0) && arc_extent <= BOARD {
+            // A ridge along a long seam: peaking by the sweep board.
+            let mut readings = Vec::new();
+            let mut at = Vec::new();
+            for a in zmin..=zmax {
+                let row = &residual[a];
+                let best = cells
+                    .iter()
+                    .filter(|c| c.0 == a)
+                    .map(|&(_, b)| {
+                        let left = row[(b + nt - board % nt) % nt];
+                        let right = row[(b + board) % nt];
+                        (row[b] - 0.5 * (left + right), b)
+                    })
+                    .max_by(|x, y| x.0.total_cmp(&y.0));
+                if let Some((value, b)) = best {
+                    readings.push(value);
+                    at.push(b as f64);
+                }
             }
-            let sign = residual[iz][it].signum();
-            let mut stack = vec![(iz, it)];
-            seen[iz][it] = true;
-            let mut cells = Vec::new();
-            while let Some((a, b)) = stack.pop() {
-                cells.push((a, b));
-                let mut next = vec![(a, (b + 1) % nt), (a, (b + nt - 1) % nt)];
-                if a > 0 {
-                    next.push((a - 1, b));
-                }
-                if a < nz {
-                    next.push((a + 1, b));
-                }
-                for (x, y) in next {
-                    if !seen[x][y] && residual[x][y] * sign > threshold {
-                        seen[x][y] = true;
-                        stack.push((x, y));
-                    }
-                }
-            }
-            if cells.len() < 3 {
-                continue;
-            }
-            let (zmin, zmax) = cells
-                .iter()
-                .fold((usize::MAX, 0), |m, c| (m.0.min(c.0), m.1.max(c.0)));
-            let mut columns: Vec<usize> = cells.iter().map(|c| c.1).collect();
-            columns.sort_unstable();
-            columns.dedup();
-            let z_extent = (zmax - zmin) as f64 * length / nz as f64;
-            let arc_extent = columns.len() as f64 * step_arc;
-            let place = |iz: usize, it: usize| {
-                let v = v0 + (v1 - v0) * iz as f64 / nz as f64;
-                s.frame
-                    .transform_point3(design.point(u_of_angle(angles[it]), v))
-            };
-            if sign > 0.0 && z_extent >= (2.0 * arc_extent).max(500.0) && arc_extent <= BOARD {
-                // A ridge along a long seam: peaking by the sweep board.
-                let mut readings = Vec::new();
-                let mut at = Vec::new();
-                for a in zmin..=zmax {
-                    let row = &residual[a];
-                    let best = cells
-                        .iter()
-                        .filter(|c| c.0 == a)
-                        .map(|&(_, b)| {
-                            let left = row[(b + nt - board % nt) % nt];
-                            let right = row[(b + board) % nt];
-                            (row[b] - 0.5 * (left + right), b)
-                        })
-                        .max_by(|x, y| x.0.total_cmp(&y.0));
-                    if let Some((value, b)) = best {
-                        readings.push(value);
-                        at.push(b as f64);
-                    }
-                }
-                let column = median(at) as usize;
-                // The board on the points themselves where there are enough:
-                // the fit rounds a ridge's crest within the noise.
-                let band = (
-                    v0 + (v1 - v0) * zmin as f64 / nz as f64,
-                    v0 + (v1 - v0) * zmax as f64 / nz as f64,
-                );
-                let value = board_on_points(&raw, r, angles[column], band)
-                    .unwrap_or_else(|| median(readings));
-                let mid = place((zmin + zmax) / 2, column);
-                // A ridge split in pieces along its seam is one seam: keep the
-                // longest piece's reading.
-                let same_seam = checks.findings.iter_mut().find(|f| {
-                    f.kind == "peaking"
-                        && f.part == part.id
-                        && super::defects::wrap(
-                            (f.orientation - envelope.orientation_of(mid)).to_radians(),
-                        )
-                        .abs()
-                            * r
-                            < BOARD / 2.0
-                });
-                if let Some(f) = same_seam {
-                    if f.extent.unwrap_or(0.0) < z_extent {
-                        f.size = value;
-                        f.elevation = mid.z;
-                        f.orientation = envelope.orientation_of(mid);
-                    }
-                    f.extent = Some(f.extent.unwrap_or(0.0) + z_extent);
-                    continue;
-                }
-                checks.findings.push(Finding {
-                    kind: "peaking",
-                    part: part.id.clone(),
-                    size: value,
-                    unit: "mm",
-                    elevation: mid.z,
-                    orientation: envelope.orientation_of(mid),
-                    extent: Some(z_extent),
-                    limit: tank.then_some(13.0),
-                    exceeds: tank && value > 13.0,
-                    rule: "peaking at a long seam with a 900 mm sweep board (API 650 §7.5.4: ≤ 13 mm)",
-                });
-                continue;
-            }
-            let extreme = cells
-                .iter()
-                .copied()
-                .max_by(|x, y| (residual[x.0][x.1] * sign).total_cmp(&(residual[y.0][y.1] * sign)))
-                .unwrap_or((iz, it));
-            let at = place(extreme.0, extreme.1);
-            checks.findings.push(Finding {
-                kind: if sign < 0.0 { "dent" } else { "bulge" },
-                part: part.id.clone(),
-                size: residual[extreme.0][extreme.1].abs(),
-                unit: "mm",
-                elevation: at.z,
-                orientation: envelope.orientation_of(at),
-                extent: Some(z_extent.max(arc_extent)),
-                limit: None,
-                exceeds: false,
-                rule: "local deviation from the section's best-fit shape past the dent threshold",
+            let column = median(at) as usize;
+            // The board on the points themselves where there are enough:
+            // the fit rounds a ridge's crest within the noise.
+            let band = (
+                v0 + (v1 - v0) * zmin as f64 / nz as f64,
+                v0 + (v1 - v0) * zmax as f64 / nz as f64,
+            );
+            let value =
+                board_on_points(&raw, r, angles[column], band).unwrap_or_else(|| median(readings));
+            let mid = place((zmin + zmax) / 2, column);
+            // A ridge split in pieces along its seam is one seam: keep the
+            // longest piece's reading.
+            let same_seam = checks.findings.iter_mut().find(|f| {
+                f.kind == "peaking"
+                    && f.part == part.id
+                    && super::defects::wrap(
+                        (f.orientation - envelope.orientation_of(mid)).to_radians(),
+                    )
+                    .abs()
+                        * r
+                        < BOARD / 2.0
             });
+            if let Some(f) = same_seam {
+                if f.extent.unwrap_or(0.0) < z_extent {
+                    f.size = value;
+                    f.elevation = mid.z;
+                    f.orientation = envelope.orientation_of(mid);
+                }
+                f.extent = Some(f.extent.unwrap_or(0.0) + z_extent);
+                continue;
+            }
+            checks.findings.push(Finding {
+                kind: "peaking",
+                part: part.id.clone(),
+                size: value,
+                unit: "mm",
+                elevation: mid.z,
+                orientation: envelope.orientation_of(mid),
+                extent: Some(z_extent),
+                limit: tank.then_some(13.0),
+                exceeds: tank && value > 13.0,
+                rule: "peaking at a long seam with a 900 mm sweep board (API 650 §7.5.4: ≤ 13 mm)",
+            });
+            continue;
         }
+        if !supported {
+            continue;
+        }
+        let extreme = cells
+            .iter()
+            .copied()
+            .max_by(|x, y| (residual[x.0][x.1] * sign).total_cmp(&(residual[y.0][y.1] * sign)))
+            .unwrap_or(cells[0]);
+        let at = place(extreme.0, extreme.1);
+        checks.findings.push(Finding {
+            kind: if sign < 0.0 { "dent" } else { "bulge" },
+            part: part.id.clone(),
+            size: residual[extreme.0][extreme.1].abs(),
+            unit: "mm",
+            elevation: at.z,
+            orientation: envelope.orientation_of(at),
+            extent: Some(z_extent.max(arc_extent)),
+            limit: None,
+            exceeds: false,
+            rule: LOCAL_RULE,
+        });
     }
 }
 

@@ -232,12 +232,19 @@ fn solve(
     let size = nu * nv;
     let index = |i: usize, j: usize| j * nu + i;
     let width = (q * nu + p).max(2 * nu);
+    // One accumulator per rayon split (a few per thread), not per chunk: the
+    // band is n·w entries, which zeroing and merging per 4096 samples made
+    // the bulk of the work.
+    let zeros = || {
+        (
+            Band::zeros(size, width),
+            vec![vec![0.0; size]; 3],
+            vec![0.0; size],
+        )
+    };
     let (matrix, rhs, support) = samples
         .par_chunks(4096)
-        .map(|chunk| {
-            let mut m = Band::zeros(size, width);
-            let mut r = vec![vec![0.0; size]; 3];
-            let mut support = vec![0.0; size];
+        .fold(zeros, |(mut m, mut r, mut support), chunk| {
             let mut basis = Vec::with_capacity(MAX_ORDER * MAX_ORDER);
             for s in chunk {
                 rational_basis(base, s.u, s.v, &mut basis);
@@ -257,27 +264,18 @@ fn solve(
             }
             (m, r, support)
         })
-        .reduce(
-            || {
-                (
-                    Band::zeros(size, width),
-                    vec![vec![0.0; size]; 3],
-                    vec![0.0; size],
-                )
-            },
-            |mut a, b| {
-                a.0.add_all(&b.0);
-                for c in 0..3 {
-                    for (x, y) in a.1[c].iter_mut().zip(&b.1[c]) {
-                        *x += y;
-                    }
-                }
-                for (x, y) in a.2.iter_mut().zip(&b.2) {
+        .reduce(zeros, |mut a, b| {
+            a.0.add_all(&b.0);
+            for c in 0..3 {
+                for (x, y) in a.1[c].iter_mut().zip(&b.1[c]) {
                     *x += y;
                 }
-                (a.0, a.1, a.2)
-            },
-        );
+            }
+            for (x, y) in a.2.iter_mut().zip(&b.2) {
+                *x += y;
+            }
+            a
+        });
     let mut matrix = matrix;
     let mut rhs = rhs;
     let unsupported = support.iter().filter(|&&s| s <= 0.0).count();

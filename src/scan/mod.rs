@@ -18,6 +18,7 @@ mod envelope;
 mod error;
 mod features;
 mod las_file;
+mod local;
 mod profile;
 mod project;
 mod random;

@@ -29,6 +29,10 @@ const MAX_STEPS: usize = 30;
 pub struct Profile {
     curve: NurbsCurve,
     samples: Vec<(f64, DVec2)>,
+    /// The meridian's ends (radius, height) when it is a straight segment
+    /// linear in v (a course or a concentric cone: degree 1, two control
+    /// points): its closest point is then closed form.
+    line: Option<(DVec2, DVec2)>,
 }
 
 /// The closest point of a surface of revolution, in its local frame.
@@ -88,12 +92,29 @@ impl Profile {
         }
         let c = curve.point(v1);
         samples.push((v1, DVec2::new(c.x, c.z)));
-        Some(Self { curve, samples })
+        let h = curve.homogeneous_points();
+        let line = (curve.degree() == 1 && h.len() == 2 && h[0].w == h[1].w).then(|| {
+            let (a, b) = (curve.point(v0), curve.point(v1));
+            (DVec2::new(a.x, a.z), DVec2::new(b.x, b.z))
+        });
+        Some(Self {
+            curve,
+            samples,
+            line,
+        })
     }
 
     /// The closest point of the patch to `p` (local frame).
     pub fn project(&self, p: DVec3) -> LocalFoot {
         let r = DVec2::new(p.x, p.y).length();
+        match self.line {
+            Some(line) => self.project_on_line(p, r, line),
+            None => self.project_by_newton(p, r),
+        }
+    }
+
+    /// Newton on the meridian from the nearest sample.
+    fn project_by_newton(&self, p: DVec3, r: f64) -> LocalFoot {
         let q = DVec3::new(r, 0.0, p.z);
         let start = self
             .samples
@@ -126,14 +147,35 @@ impl Profile {
         }
         let d = self.curve.derivatives(v);
         let tangent = DVec2::new(d.first.x, d.first.z);
+        self.foot(p, r, v, DVec2::new(d.point.x, d.point.z), tangent)
+    }
+
+    /// [`project`](Self::project) on a straight meridian from `a` to `b`
+    /// (radius, height), linear in v: the foot's v in closed form.
+    fn project_on_line(&self, p: DVec3, r: f64, (a, b): (DVec2, DVec2)) -> LocalFoot {
+        let (v0, v1) = self.curve.domain();
+        let q = DVec2::new(r, p.z);
+        let axis = b - a;
+        let t = ((q - a).dot(axis) / axis.length_squared()).clamp(0.0, 1.0);
+        // The ends exactly, as Newton's clamp gives them (`inside` compares).
+        let v = if t >= 1.0 { v1 } else { v0 + (v1 - v0) * t };
+        let foot = a + axis * t;
+        let tangent = axis * (1.0 / (v1 - v0));
+        self.foot(p, r, v, foot, tangent)
+    }
+
+    /// The local foot at meridian parameter `v` (point `at`, tangent `tangent`
+    /// in radius and height) of the query `p` at radius `r`.
+    fn foot(&self, p: DVec3, r: f64, v: f64, at: DVec2, tangent: DVec2) -> LocalFoot {
+        let (v0, v1) = self.curve.domain();
         let normal2 = DVec2::new(tangent.y, -tangent.x).normalize_or_zero();
-        let offset = DVec2::new(r - d.point.x, p.z - d.point.z);
+        let offset = DVec2::new(r - at.x, p.z - at.y);
         let along = offset.dot(tangent.normalize_or_zero());
-        let scale = 1e-9 * (1.0 + d.point.length());
+        let scale = 1e-9 * (1.0 + at.length());
         let inside = !((v <= v0 && along < -scale) || (v >= v1 && along > scale));
         let theta = if r > 0.0 { p.y.atan2(p.x) } else { 0.0 };
         let (sn, cs) = theta.sin_cos();
-        let point = DVec3::new(d.point.x * cs, d.point.x * sn, d.point.z);
+        let point = DVec3::new(at.x * cs, at.x * sn, at.y);
         let normal = DVec3::new(normal2.x * cs, normal2.x * sn, normal2.y);
         let deviation = if inside {
             offset.dot(normal2)
@@ -185,6 +227,54 @@ pub fn u_of_angle(theta: f64) -> f64 {
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    /// The closed form on a course and a cone agrees with Newton on the same
+    /// meridian to 1e-9 relative, inside, beyond either end and on the axis.
+    #[test]
+    fn a_straight_meridian_projects_as_newton_does() {
+        use crate::parts::{Reducer, ReducerAlignment, Shell};
+        let course = Shell {
+            outside_diameter: 2000.0,
+            length: 3000.0,
+        }
+        .patches()
+        .unwrap();
+        let cone = Reducer {
+            large_diameter: 2000.0,
+            small_diameter: 1400.0,
+            length: 900.0,
+            alignment: ReducerAlignment::Concentric,
+        }
+        .patches()
+        .unwrap();
+        let mut checked = 0;
+        for patch in course.iter().chain(&cone) {
+            let Some(profile) = Profile::of_patch(patch) else {
+                continue;
+            };
+            assert!(profile.line.is_some(), "{} is straight", patch.name);
+            for i in 0..200 {
+                let t = i as f64 * 0.731;
+                let rho = 300.0 * (i % 9) as f64;
+                let p = DVec3::new(rho * t.cos(), rho * t.sin(), -400.0 + 19.0 * i as f64);
+                let r = DVec2::new(p.x, p.y).length();
+                let fast = profile.project(p);
+                let slow = profile.project_by_newton(p, r);
+                let scale = 1.0 + p.length();
+                assert!((fast.v - slow.v).abs() <= 1e-9, "{p} {fast:?} {slow:?}");
+                assert!((fast.point - slow.point).length() <= 1e-9 * scale, "{p}");
+                assert!(
+                    (fast.deviation - slow.deviation).abs() <= 1e-9 * scale,
+                    "{p}"
+                );
+                assert!((fast.normal - slow.normal).length() <= 1e-9, "{p}");
+                assert_eq!(fast.inside, slow.inside, "{p}");
+                assert_eq!(fast.u, slow.u);
+                checked += 1;
+            }
+        }
+        assert_eq!(checked, 400, "a course and a cone patch");
+    }
 
     #[test]
     fn angle_and_u_are_inverse() {

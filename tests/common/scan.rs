@@ -57,3 +57,25 @@ pub fn envelope(text: &str) -> Envelope {
     let tag = d.vessels[0].tag.clone();
     Envelope::of_design(&d, &tag).expect("envelope builds")
 }
+
+/// A vertical drum D = 2000 mm (S1, 3 m) reduced by the cone R1 (900 mm long)
+/// to D = 1400 mm (S2, 2 m), ellipsoidal heads, nozzles around both courses.
+pub const CONED: &str = r#"{
+  "format": "vesselcad/1", "units": "mm",
+  "vessels": [{
+    "tag": "V-2", "kind": "vertical",
+    "placement": { "position": [0, 0, 0], "rotation": 0 },
+    "design": { "pressure": 350, "temperature": 100, "corrosion_allowance": 3, "material": "SA-516-70" },
+    "parts": [
+      { "head": { "id": "H1", "shape": "ellipsoidal", "straight_flange": 50, "thickness": 12 } },
+      { "shell": { "id": "S1", "od": 2000, "length": 3000, "thickness": 12 } },
+      { "reducer": { "id": "R1", "length": 900, "thickness": 12 } },
+      { "shell": { "id": "S2", "od": 1400, "length": 2000, "thickness": 10 } },
+      { "head": { "id": "H2", "shape": "ellipsoidal", "straight_flange": 50, "thickness": 10 } }
+    ],
+    "nozzles": [
+      { "mark": "N1", "service": "inlet", "size": 6, "rating": 150, "facing": "RF", "host": "S2", "orientation": 30, "elevation": 5000, "projection": 1100 },
+      { "mark": "N2", "service": "outlet", "size": 6, "rating": 150, "facing": "RF", "host": "S1", "orientation": 160, "elevation": 800, "projection": 1300 }
+    ]
+  }]
+}"#;
