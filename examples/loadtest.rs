@@ -14,7 +14,9 @@
 //! Viewers connect as the viewer page does, to `/ws?progressive=1` (a hello of
 //! every vessel's box, no GLB; they fetch no vessel GLB themselves); `--full`
 //! connects them to `/ws`, whose hello and resyncs carry the whole model's GLB
-//! (at 1,000 vessels that is every viewer receiving the whole plant).
+//! or, past the server's `--whole-glb-limit` (16 MiB), a GLB of boxes followed
+//! by each vessel's GLB (at 1,000 vessels every viewer receives the whole
+//! plant, one vessel a message).
 //!
 //! `--plant N` serves the generated plant of `vesselcad plant generate --vessels
 //! N --seed 1` instead of a design file.

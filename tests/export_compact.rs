@@ -347,3 +347,52 @@ fn three_js_loads_every_option_in_chromium() {
         }
     }
 }
+
+/// Compressed byte normals go through meshopt's `OCTAHEDRAL` filter and decode
+/// (as three.js's decoder does) to unit normals within 2° of the quantized,
+/// uncompressed file's at the same positions. Without the filter the example
+/// drum's normals took 17.3 KB of its 75.7 KB compact file merged per vessel.
+#[test]
+fn compressed_normals_are_octahedral_and_decode_within_two_degrees() {
+    let (_, scene) = plant();
+    let compact = GlbOptions::compact(TOLERANCE);
+    let packed = Glb::parse(&write_glb_with(scene, &compact).unwrap());
+    let plain = Glb::parse(
+        &write_glb_with(
+            scene,
+            &GlbOptions {
+                compress: Compression::None,
+                ..compact
+            },
+        )
+        .unwrap(),
+    );
+    let views = packed.json["bufferViews"].as_array().unwrap();
+    let filtered: Vec<&Value> = views
+        .iter()
+        .map(|v| &v["extensions"]["EXT_meshopt_compression"])
+        .filter(|e| e["filter"] == "OCTAHEDRAL")
+        .collect();
+    assert_eq!(filtered.len(), 1, "one normal view, filtered");
+    assert_eq!(filtered[0]["byteStride"], 4);
+    let key = |p: DVec3| p.to_array().map(|c| (c * 1e4).round() as i64);
+    let mut checked = 0;
+    let meshes = packed.json["meshes"].as_array().unwrap().len();
+    for mesh in 0..meshes {
+        let (got, reference) = (packed.primitive(mesh), plain.primitive(mesh));
+        let mut at = std::collections::HashMap::new();
+        for (p, n) in reference.positions.iter().zip(&reference.normals) {
+            at.entry(key(*p)).or_insert_with(Vec::new).push(*n);
+        }
+        for (p, n) in got.positions.iter().zip(&got.normals) {
+            assert!((n.length() - 1.0).abs() < 0.02, "|n| = {}", n.length());
+            let best = at[&key(*p)]
+                .iter()
+                .map(|r| n.normalize().angle_between(r.normalize()).to_degrees())
+                .fold(f64::INFINITY, f64::min);
+            assert!(best <= 2.0, "mesh {mesh}: {best}°");
+            checked += 1;
+        }
+    }
+    assert!(checked > 10_000, "{checked} normals");
+}

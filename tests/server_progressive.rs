@@ -323,3 +323,168 @@ fn the_session_model_keeps_no_drawing_views() {
     assert_eq!(session.vessel_tags().len(), 4);
     assert!(session.model().mesh_bytes() > 0);
 }
+
+/// A plain `/ws` viewer of a plant whose whole GLB passes the server's limit
+/// (`--whole-glb-limit`, 16 MiB by default; 100 kB here for a 12-vessel plant
+/// at 2 mm): a coarse whole of boxes first, then each vessel in its own
+/// message — none near the whole plant's size — then deltas; what it puts
+/// together is the whole model of `/model.glb`. Before, its hello carried the
+/// whole plant in one message (at 1,000 vessels, longer than the send timeout:
+/// dropped).
+#[test]
+fn a_plain_viewer_of_a_large_plant_gets_boxes_then_each_vessel() {
+    let dir = tempfile::Builder::new()
+        .prefix("vesselcad-pushed-")
+        .tempdir()
+        .unwrap();
+    let path = dir.path().join("plant.json");
+    let plant = vesselcad::plant::generate_plant(12, 1).unwrap();
+    vesselcad::design::save(&plant, &path).unwrap();
+    let tags: Vec<String> = plant.vessels.iter().map(|v| v.tag.clone()).collect();
+    let server = ServerProcess::start(&path, &["--whole-glb-limit", "100000"]);
+    let whole = server.request("GET", "/model.glb", &[], b"");
+    assert_eq!(whole.status, 200);
+    let whole_bytes = whole.body.len();
+    assert!(whole_bytes > 1_000_000, "the plant is {whole_bytes} bytes");
+    let whole = nodes(&whole.body);
+    let runtime = tokio::runtime::Builder::new_current_thread()
+        .enable_all()
+        .build()
+        .unwrap();
+    runtime.block_on(async {
+        let url = format!("ws://{}/ws", server.address);
+        let (mut ws, _) = tokio_tungstenite::connect_async(url).await.unwrap();
+        let mut next_pair = async || -> (Value, Vec<u8>) {
+            let mut header = None;
+            loop {
+                match tokio::time::timeout(TIMEOUT, ws.next()).await {
+                    Ok(Some(Ok(Message::Text(t)))) => {
+                        header = Some(serde_json::from_str::<Value>(&t).unwrap());
+                    }
+                    Ok(Some(Ok(Message::Binary(b)))) => {
+                        return (header.expect("a GLB without its header"), b.to_vec());
+                    }
+                    Ok(Some(Ok(_))) => {}
+                    other => panic!("expected a message, got {other:?}"),
+                }
+            }
+        };
+        let (hello, coarse) = next_pair().await;
+        assert_eq!(hello["type"], "hello");
+        assert_eq!(hello["revision"], 0);
+        assert_eq!(hello["pushed"], tags.len(), "{}", hello["pushed"]);
+        let mut ids: Vec<String> = serde_json::from_value(hello["ids"].clone()).unwrap();
+        ids.sort();
+        assert_eq!(ids, whole.keys().cloned().collect::<Vec<_>>());
+        // The coarse whole: a box under each vessel's node, nothing else.
+        let mut model = nodes(&coarse);
+        let boxes: Vec<String> = tags.iter().map(|t| format!("{t}/box")).collect();
+        assert_eq!(
+            model
+                .keys()
+                .filter(|id| id.contains('/'))
+                .cloned()
+                .collect::<Vec<_>>(),
+            {
+                let mut b = boxes.clone();
+                b.sort();
+                b
+            }
+        );
+        assert!(coarse.len() < 50_000, "boxes in {} bytes", coarse.len());
+        outward_boxes(&coarse, tags.len());
+        let mut largest = 0;
+        for (k, tag) in tags.iter().enumerate() {
+            let (header, glb) = next_pair().await;
+            assert_eq!(header["type"], "vessel", "{header}");
+            assert_eq!(header["revision"], 0);
+            assert_eq!(header["tag"], tag.as_str());
+            assert_eq!(header["index"], k);
+            largest = largest.max(glb.len());
+            model.retain(|id, _| id != tag && !id.starts_with(&format!("{tag}/")));
+            model.extend(nodes(&glb));
+        }
+        assert_eq!(model, whole, "the vessels put together are the whole model");
+        assert!(
+            largest * 4 < whole_bytes,
+            "largest message {largest} of {whole_bytes} bytes"
+        );
+        // Then the deltas, as before.
+        let path = "/vessels/3/nozzles/0/projection";
+        let projection = server
+            .get_json("/design.json")
+            .pointer(path)
+            .unwrap()
+            .as_f64()
+            .unwrap();
+        let answer = server.edit(&json!([
+            { "op": "replace", "path": path, "value": projection + 20.0 }
+        ]));
+        assert_eq!(answer.status, 200, "{}", answer.text());
+        let (delta, _) = next_pair().await;
+        assert_eq!(delta["type"], "delta");
+        assert_eq!(delta["revision"], 1);
+        assert_eq!(delta["changed"], answer.json()["changed"]);
+    });
+    // The default limit keeps the whole GLB in a plain hello of this plant (the
+    // journal replays the edit).
+    drop(server);
+    let server = ServerProcess::start(&path, &[]);
+    let whole_bytes = server.request("GET", "/model.glb", &[], b"").body.len();
+    runtime.block_on(async {
+        let url = format!("ws://{}/ws", server.address);
+        let (mut ws, _) = tokio_tungstenite::connect_async(url).await.unwrap();
+        let hello = match tokio::time::timeout(TIMEOUT, ws.next()).await {
+            Ok(Some(Ok(Message::Text(t)))) => serde_json::from_str::<Value>(&t).unwrap(),
+            other => panic!("expected a text hello, got {other:?}"),
+        };
+        assert!(hello.get("pushed").is_none(), "{}", hello["pushed"]);
+        match tokio::time::timeout(TIMEOUT, ws.next()).await {
+            Ok(Some(Ok(Message::Binary(b)))) => assert_eq!(b.len(), whole_bytes),
+            other => panic!("expected the whole GLB, got {other:?}"),
+        }
+    });
+}
+
+/// Each box of a coarse GLB is 12 triangles wound counter-clockwise about
+/// their vertices' outward normals.
+fn outward_boxes(glb: &[u8], count: usize) {
+    let gltf = Gltf::from_slice(glb).expect("a valid GLB");
+    let mut boxes = 0;
+    for mesh in gltf.meshes() {
+        for primitive in mesh.primitives() {
+            let reader = primitive.reader(|_| gltf.blob.as_deref());
+            let p: Vec<[f32; 3]> = reader.read_positions().unwrap().collect();
+            let n: Vec<[f32; 3]> = reader.read_normals().unwrap().collect();
+            let i: Vec<u32> = reader.read_indices().unwrap().into_u32().collect();
+            assert_eq!(i.len(), 36);
+            let v = |k: u32| glam::Vec3::from(p[k as usize]);
+            for t in i.chunks(3) {
+                let face = (v(t[1]) - v(t[0])).cross(v(t[2]) - v(t[0]));
+                for &k in t {
+                    assert!(face.dot(glam::Vec3::from(n[k as usize])) > 0.0, "{t:?}");
+                }
+            }
+            boxes += 1;
+        }
+    }
+    assert_eq!(boxes, count);
+}
+
+/// The estimate that decides whether a hello is pushed is near the GLB
+/// written.
+#[test]
+fn the_whole_glb_estimate_is_near_its_size() {
+    let design = design_copy("small-plant.json", "estimate");
+    let mut session = vesselcad::server::session::Session::open(
+        &design,
+        vesselcad::mesh::TessellationOptions::chord(1.0),
+    )
+    .unwrap();
+    let estimate = session.full_model().estimated_glb_bytes() as f64;
+    let written = session.snapshot().glb.len() as f64;
+    assert!(
+        (0.8..1.25).contains(&(estimate / written)),
+        "estimated {estimate} bytes, written {written}"
+    );
+}

@@ -13,7 +13,9 @@ use vesselcad::mesh::{
     DEFAULT_VERTEX_BUDGET, MAX_VERTEX_BUDGET, MIN_VERTEX_BUDGET, TessellationOptions,
 };
 use vesselcad::model::ModelError;
-use vesselcad::server::{self, ServeError, ServeOptions, VIEWER_SEND_TIMEOUT, limits};
+use vesselcad::server::{
+    self, ServeError, ServeOptions, VIEWER_SEND_TIMEOUT, WHOLE_GLB_LIMIT, limits,
+};
 
 /// Arguments of `vesselcad serve`.
 #[derive(Args, Debug)]
@@ -46,6 +48,11 @@ pub struct ServeArgs {
     /// dropped (a viewer that only falls behind is resynced, not dropped).
     #[arg(long, default_value_t = VIEWER_SEND_TIMEOUT.as_secs_f64(), value_parser = parse_timeout, allow_negative_numbers = true)]
     pub viewer_timeout: f64,
+    /// Largest whole-model GLB (bytes, estimated) a plain `/ws` viewer gets in
+    /// its hello; above it the viewer gets each vessel's box first, then the
+    /// vessels one message each.
+    #[arg(long, value_name = "BYTES", default_value_t = WHOLE_GLB_LIMIT)]
+    pub whole_glb_limit: u64,
     /// Connections served at once; more wait until one closes.
     #[arg(long, default_value_t = limits::MAX_CONNECTIONS as u16, value_parser = clap::value_parser!(u16).range(1..))]
     pub max_connections: u16,
@@ -95,6 +102,7 @@ pub fn run(args: ServeArgs) -> ExitCode {
         tessellation: TessellationOptions::chord(args.tolerance)
             .with_max_vertices(args.max_vertices as usize),
         viewer_timeout: Duration::from_secs_f64(args.viewer_timeout),
+        whole_glb_limit: args.whole_glb_limit,
         save_on_exit: args.save_on_exit,
         max_connections: usize::from(args.max_connections),
         idle_timeout: Duration::from_secs_f64(args.idle_timeout),

@@ -13,7 +13,7 @@
 //! views and a second buffer, without data, the uncompressed layout the views
 //! and accessors describe.
 
-use glam::DVec3;
+use glam::{DVec3, Vec3};
 use gltf_json as json;
 use json::accessor::{ComponentType, GenericComponentType, Type};
 use json::buffer::{Stride, Target};
@@ -316,17 +316,18 @@ impl<'a> MeshBuffers<'a> {
                 root.accessors[a].buffer_view = Some(view);
             }
             if let Some(Some(bytes)) = encoded.get(k) {
-                out.view_extensions.push((
-                    view.value(),
-                    serde_json::json!({
-                        "buffer": bin_buffer.value(),
-                        "byteOffset": out.bin.len(),
-                        "byteLength": bytes.len(),
-                        "byteStride": stream.stride(),
-                        "mode": if stream.is_index() { "TRIANGLES" } else { "ATTRIBUTES" },
-                        "count": length / stream.stride(),
-                    }),
-                ));
+                let mut extension = serde_json::json!({
+                    "buffer": bin_buffer.value(),
+                    "byteOffset": out.bin.len(),
+                    "byteLength": bytes.len(),
+                    "byteStride": stream.stride(),
+                    "mode": if stream.is_index() { "TRIANGLES" } else { "ATTRIBUTES" },
+                    "count": length / stream.stride(),
+                });
+                if stream == Stream::NormalsI8 {
+                    extension["filter"] = serde_json::json!("OCTAHEDRAL");
+                }
+                out.view_extensions.push((view.value(), extension));
                 out.bin.extend_from_slice(bytes);
                 out.bin.resize(padded4(out.bin.len()), 0);
             } else if !self.layout_only {
@@ -343,7 +344,10 @@ impl<'a> MeshBuffers<'a> {
 
 /// A stream's bytes in meshoptimizer's encoding: the vertex codec (version 0,
 /// the one `EXT_meshopt_compression` specifies) for attributes, the triangle
-/// codec for indices.
+/// codec for indices. Byte normals go through the `OCTAHEDRAL` filter first
+/// (two 8-bit octahedral coordinates and a constant, which the decoder turns
+/// back into normalized bytes): on the example drum merged per vessel its
+/// normals took 17.3 KB as `x, y, z` bytes.
 fn encode_view(stream: Stream, bytes: &[u8]) -> Vec<u8> {
     fn vertices<const N: usize>(bytes: &[u8]) -> Vec<u8> {
         let elements: Vec<[u8; N]> = bytes
@@ -356,7 +360,24 @@ fn encode_view(stream: Stream, bytes: &[u8]) -> Vec<u8> {
     match stream {
         Stream::PositionsF32 | Stream::NormalsF32 => vertices::<12>(bytes),
         Stream::PositionsU16 => vertices::<8>(bytes),
-        Stream::NormalsI8 | Stream::Instances => vertices::<4>(bytes),
+        Stream::NormalsI8 => {
+            let unit: Vec<[f32; 4]> = bytes
+                .chunks_exact(4)
+                .map(|c| {
+                    let n = Vec3::new(
+                        f32::from(c[0] as i8),
+                        f32::from(c[1] as i8),
+                        f32::from(c[2] as i8),
+                    )
+                    .normalize_or(Vec3::Z);
+                    [n.x, n.y, n.z, 0.0]
+                })
+                .collect();
+            let oct = meshopt::encode_filter_oct::<i8>(&unit, 8);
+            let oct: Vec<u8> = oct.iter().flatten().map(|&c| c as u8).collect();
+            vertices::<4>(&oct)
+        }
+        Stream::Instances => vertices::<4>(bytes),
         Stream::Indices32 | Stream::Indices16 => {
             let indices: Vec<u32> = if stream == Stream::Indices16 {
                 bytes

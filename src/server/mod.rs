@@ -33,6 +33,7 @@ pub mod state;
 pub mod store_link;
 pub mod traveler;
 pub mod undo;
+pub mod viewer;
 
 use std::net::{IpAddr, Ipv4Addr, SocketAddr};
 use std::path::PathBuf;
@@ -42,6 +43,7 @@ use std::time::Duration;
 pub use broadcast::{MAX_VIEWER_MESSAGE, VIEWER_QUEUE, VIEWER_SEND_TIMEOUT};
 pub use error::{ApiError, ServeError};
 pub use routes::MAX_BODY;
+pub use viewer::WHOLE_GLB_LIMIT;
 
 use crate::mesh::TessellationOptions;
 use broadcast::Hub;
@@ -67,6 +69,10 @@ pub struct ServeOptions {
     /// How long a viewer's socket may take to accept one message before the
     /// viewer is dropped ([`VIEWER_SEND_TIMEOUT`] by default).
     pub viewer_timeout: Duration,
+    /// The largest whole-model GLB, bytes (estimated), a plain `/ws` viewer
+    /// gets in its hello; above it the plant is pushed to it vessel by vessel
+    /// after a coarse whole ([`viewer`]; [`WHOLE_GLB_LIMIT`] by default).
+    pub whole_glb_limit: u64,
     /// Connections served at once ([`limits::MAX_CONNECTIONS`] by default).
     pub max_connections: usize,
     /// How long a connection may move no byte before it is closed
@@ -91,6 +97,7 @@ impl ServeOptions {
             token: None,
             tessellation: TessellationOptions::DEFAULT,
             viewer_timeout: VIEWER_SEND_TIMEOUT,
+            whole_glb_limit: WHOLE_GLB_LIMIT,
             save_on_exit: false,
             max_connections: limits::MAX_CONNECTIONS,
             idle_timeout: limits::IDLE_TIMEOUT,
@@ -148,6 +155,7 @@ pub async fn start(options: ServeOptions) -> Result<Server, ServeError> {
         shutdown: watching.clone(),
         viewer_timeout: options.viewer_timeout,
         viewer_ping: limits::ping_interval(options.idle_timeout),
+        whole_glb_limit: options.whole_glb_limit,
     };
     if let Some(url) = options
         .store

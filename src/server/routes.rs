@@ -19,7 +19,7 @@
 //! GET  /calc.json            the calculation's deficiencies by part (`deficiencies`)
 //! GET  /traveler.html?vessel=T the vessel's shop traveler (`traveler`), also .csv
 //! GET  /plates.json?vessel=T    its plates, boot plates and head blanks; /plates/<file>?vessel=T one's DXF
-//! GET  /ws                    the viewer stream (see `broadcast`)
+//! GET  /ws                    the viewer stream (see `viewer`)
 //! ```
 //!
 //! Every request first passes [`guard`] (loopback `Host` names, same-origin
@@ -44,11 +44,12 @@ use serde::Deserialize;
 use serde_json::json;
 
 use super::assets::{self, Asset};
-use super::broadcast::{MAX_VIEWER_MESSAGE, Ticket, Update, VIEWER_READ_BUFFER, run_viewer};
+use super::broadcast::{MAX_VIEWER_MESSAGE, Ticket, Update, VIEWER_READ_BUFFER};
 use super::error::ApiError;
 use super::guard::guard;
 use super::session::{Accepted, SheetFormat};
 use super::state::AppState;
+use super::viewer::run_viewer;
 
 /// Largest request body (an edit), bytes: 1 MiB.
 pub const MAX_BODY: usize = 1 << 20;
@@ -445,7 +446,17 @@ async fn viewer_socket(
                         return Some(state.with_session(|s, _| s.outline()).await);
                     }
                     let full = state.with_session(|s, _| s.full_model()).await;
-                    Some(AppState::unlocked(move || full.snapshot()).await)
+                    let limit = state.whole_glb_limit;
+                    Some(
+                        AppState::unlocked(move || {
+                            if full.estimated_glb_bytes() > limit {
+                                full.pushed()
+                            } else {
+                                full.snapshot()
+                            }
+                        })
+                        .await,
+                    )
                 }
             };
             let timeout = state.viewer_timeout;

@@ -32,7 +32,7 @@ use super::error::ApiError;
 use super::flush::Pending;
 use super::journal::{fingerprint, write_atomically};
 use super::persist::{PersistError, Persistence, Record};
-use super::progressive::{Bounds, bounds_json, vessel_bounds};
+use super::progressive::{Bounds, bounds_json, coarse_scene, estimated_glb_bytes, vessel_bounds};
 use super::scoped;
 use crate::design::units::to_inches;
 use crate::design::{self, Design, Units, to_canonical_json};
@@ -111,6 +111,10 @@ pub struct Snapshot {
     /// A progressive snapshot's vessels: `[{"tag", "min", "max"}, …]` (glTF
     /// frame, m), sent instead of the GLB.
     pub outline: Option<Value>,
+    /// A pushed snapshot: `glb` is the coarse whole (each vessel's box,
+    /// [`super::progressive::coarse_scene`]) and this model's vessels follow
+    /// it one message each ([`FullModel::vessel_glb`]).
+    pub pushed: Option<Arc<FullModel>>,
 }
 
 /// One vessel's GLB as `GET /vessel.glb` serves it.
@@ -132,9 +136,81 @@ pub struct FullModel {
     ids: Vec<String>,
     scene: Scene,
     glb: OnceLock<Bytes>,
+    /// The coarse whole of a pushed snapshot, once written.
+    coarse: OnceLock<Bytes>,
+    /// Each vessel's GLB of a pushed snapshot, once written (viewers
+    /// connecting at one revision share them).
+    vessel_glbs: Box<[OnceLock<Bytes>]>,
 }
 
 impl FullModel {
+    fn new(revision: u64, scene: Scene) -> FullModel {
+        FullModel {
+            revision,
+            ids: scene_ids(&scene),
+            vessel_glbs: scene.vessels.iter().map(|_| OnceLock::new()).collect(),
+            scene,
+            glb: OnceLock::new(),
+            coarse: OnceLock::new(),
+        }
+    }
+
+    /// The revision it shows.
+    pub fn revision(&self) -> u64 {
+        self.revision
+    }
+
+    /// About how many bytes its whole GLB takes (without writing it).
+    pub fn estimated_glb_bytes(&self) -> u64 {
+        estimated_glb_bytes(&self.scene)
+    }
+
+    /// The pushed snapshot: every stable id and the coarse whole (each
+    /// vessel's box), its vessels to follow one by one; the first call writes
+    /// the coarse GLB.
+    pub fn pushed(self: &Arc<Self>) -> Snapshot {
+        let coarse = self.coarse.get_or_init(|| {
+            Bytes::from(write_glb(&coarse_scene(&self.scene)).unwrap_or_else(|e| {
+                eprintln!("vesselcad serve: cannot write the plant's boxes: {e}");
+                Vec::new()
+            }))
+        });
+        Snapshot {
+            revision: self.revision,
+            ids: self.ids.clone(),
+            glb: coarse.clone(),
+            outline: None,
+            pushed: Some(self.clone()),
+        }
+    }
+
+    /// Its vessels' tags, in design order.
+    pub fn vessel_tags(&self) -> impl ExactSizeIterator<Item = &str> {
+        self.scene.vessels.iter().map(|v| v.tag.as_str())
+    }
+
+    /// Vessel `k`'s node tree as GLB, as `/vessel.glb` serves it at this
+    /// revision (written on first call; empty for `k` out of range).
+    pub fn vessel_glb(&self, k: usize) -> Bytes {
+        let (Some(vessel), Some(slot)) = (self.scene.vessels.get(k), self.vessel_glbs.get(k))
+        else {
+            return Bytes::new();
+        };
+        slot.get_or_init(|| {
+            let scene = Scene {
+                vessels: vec![vessel.clone()],
+            };
+            Bytes::from(write_glb(&scene).unwrap_or_else(|e| {
+                eprintln!(
+                    "vesselcad serve: cannot write the GLB of {}: {e}",
+                    vessel.tag
+                );
+                Vec::new()
+            }))
+        })
+        .clone()
+    }
+
     /// The snapshot; the first call writes the GLB (others wait for it, so
     /// viewers connecting together share one writing).
     pub fn snapshot(&self) -> Snapshot {
@@ -149,6 +225,7 @@ impl FullModel {
             ids: self.ids.clone(),
             glb: glb.clone(),
             outline: None,
+            pushed: None,
         }
     }
 }
@@ -462,13 +539,7 @@ impl Session {
         if let Some(full) = &self.full {
             return full.clone();
         }
-        let scene = self.model.scene();
-        let full = Arc::new(FullModel {
-            revision: self.revision,
-            ids: scene_ids(&scene),
-            scene,
-            glb: OnceLock::new(),
-        });
+        let full = Arc::new(FullModel::new(self.revision, self.model.scene()));
         self.full = Some(full.clone());
         full
     }
@@ -499,6 +570,7 @@ impl Session {
             ids,
             glb: Bytes::new(),
             outline: Some(bounds_json(&boxes)),
+            pushed: None,
         }
     }
 

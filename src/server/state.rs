@@ -30,6 +30,9 @@ pub struct AppState {
     pub viewer_timeout: Duration,
     /// How often viewers are pinged (so a quiet viewer is not idle).
     pub viewer_ping: Duration,
+    /// Above this many bytes of whole-model GLB (estimated), a plain viewer's
+    /// hello is pushed vessel by vessel (see [`super::viewer`]).
+    pub whole_glb_limit: u64,
 }
 
 impl AppState {

@@ -50,6 +50,16 @@ impl Glb {
                 let count = ext["count"].as_u64().unwrap() as usize;
                 let data = &bin[at..at + len];
                 let decoded: Vec<u8> = match (ext["mode"].as_str().unwrap(), stride) {
+                    ("ATTRIBUTES", 4) if ext["filter"] == "OCTAHEDRAL" => {
+                        let mut oct: Vec<[i8; 4]> =
+                            meshopt::decode_vertex_buffer::<[u8; 4]>(data, count)
+                                .unwrap()
+                                .iter()
+                                .map(|v| v.map(|c| c as i8))
+                                .collect();
+                        meshopt::decode_filter_oct(&mut oct);
+                        oct.iter().flatten().map(|&c| c as u8).collect()
+                    }
                     ("ATTRIBUTES", 4) => {
                         flat(meshopt::decode_vertex_buffer::<[u8; 4]>(data, count))
                     }
