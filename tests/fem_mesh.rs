@@ -36,6 +36,17 @@ fn example_designs_mesh_conforming_and_well_shaped() {
             // column and 1.61 on the drum); the tank's N4 is cut short by
             // the bottom (1.75).
             if tag == "C-201" {
+                // Its skirt is a shell part hanging from the envelope.
+                let skirt = mesh.parts.iter().position(|p| p.id == "SK");
+                assert!(
+                    skirt.is_some_and(|k| mesh.structural.contains(&k)),
+                    "{name} {tag}: skirt not meshed: {:?}",
+                    mesh.notes
+                );
+                assert!(
+                    common::fem::branch_edges(&mesh) >= 16,
+                    "{name} {tag}: the skirt branches off no ring"
+                );
                 let q = vesselcad::fem::quality::quality(&mesh);
                 assert!(
                     q.max_size_ratio <= common::fem::GRADING,

@@ -11,9 +11,11 @@
 //! - `test`: the UG-99(b) hydrotest pressure at the top (from [`crate::calc`]),
 //!   the vessel full of water, gravity; supported where the vessel rests.
 //!
-//! Where a vessel rests: a skirt's top ring (the envelope's ring nearest the
-//! skirt's top: axial displacement held all round, plus two nodes across the
-//! axis against sliding and turning), or each saddle's contact arc (vertical
+//! Where a vessel rests: a skirt's base ring when the skirt is meshed
+//! ([`super::skirt`]: x, y and z held on its corner and mid-side nodes; the
+//! skirt carries no pressure), else its top ring (the envelope's ring nearest
+//! the skirt's top: axial displacement held all round, plus two nodes across
+//! the axis against sliding and turning), or each saddle's contact arc (vertical
 //! displacement held on the nodes of the saddle's ring within its contact
 //! angle, the first saddle also held along and across the axis at its lowest
 //! node, the second across it). Legs and lugs are not modelled yet: such a
@@ -184,6 +186,33 @@ fn resting(mesh: &FeMesh, resolved: &ResolvedVessel) -> (Vec<Support>, String) {
         )
     };
     for part in &resolved.parts {
+        if let PartGeometry::Skirt(_) = &part.geometry
+            && let Some(k) = mesh.parts.iter().position(|p| p.id == part.id)
+            && mesh.structural.contains(&k)
+        {
+            // The skirt is meshed: its base ring (corner and mid-side nodes)
+            // stands on the foundation.
+            let nodes = mesh.part_nodes(k);
+            let low = nodes
+                .iter()
+                .map(|&n| axial(mesh, mesh.nodes[n]))
+                .fold(f64::INFINITY, f64::min);
+            let out = nodes
+                .into_iter()
+                .filter(|&n| (axial(mesh, mesh.nodes[n]) - low).abs() < 1e-3)
+                .map(|n| Support {
+                    node: n,
+                    dofs: vec![1, 2, 3],
+                })
+                .collect();
+            return (
+                out,
+                format!(
+                    "skirt {}: meshed as a shell, its base held in x, y and z",
+                    part.id
+                ),
+            );
+        }
         if let PartGeometry::Skirt(s) = &part.geometry {
             let top = part
                 .frame
@@ -353,12 +382,16 @@ pub fn conditions(
             .and_then(|t| m.allowable_stress(t).ok())
     });
     let density = metal_density(&design.design) * 1e-12;
-    let top = mesh
-        .nodes
-        .iter()
-        .map(|p| p.z)
-        .fold(f64::NEG_INFINITY, f64::max);
-    let bottom = mesh.nodes.iter().map(|p| p.z).fold(f64::INFINITY, f64::min);
+    // The pressure envelope's extent (a skirt reaches below it).
+    let envelope = |e: &super::Element| !mesh.structural.contains(&e.part);
+    let zs = || {
+        mesh.elements
+            .iter()
+            .filter(|e| envelope(e))
+            .flat_map(|e| e.nodes.iter().map(|&n| mesh.nodes[n].z))
+    };
+    let top = zs().fold(f64::NEG_INFINITY, f64::max);
+    let bottom = zs().fold(f64::INFINITY, f64::min);
     let (p_top, liquid): (f64, Option<(f64, f64)>) = match case {
         LoadCase::Design => (pressure_kpa * 1e-3, None),
         LoadCase::Operating => {
@@ -393,6 +426,9 @@ pub fn conditions(
         .elements
         .iter()
         .map(|e| {
+            if !envelope(e) {
+                return 0.0;
+            }
             let c = e.nodes[..e.kind.corners()]
                 .iter()
                 .map(|&n| mesh.nodes[n])

@@ -111,6 +111,16 @@ pub fn build_envelope(
     let mut notes = Vec::new();
     let centre_necks =
         super::head_nozzle::join(resolved, &mut chain, &mut parts, &design.tag, &mut notes);
+    let mut skirt = super::skirt::find(resolved);
+    if let Some(s) = &skirt
+        && !super::skirt::split_at(&mut chain, s.top)
+    {
+        notes.push(format!(
+            "skirt {} left out: the envelope has no ring at its top (z {} mm)",
+            s.id, s.top
+        ));
+        skirt = None;
+    }
     let r_max = chain
         .iter()
         .map(|s| s.rz(s.s0).x.max(s.rz(s.s1).x))
@@ -237,6 +247,9 @@ pub fn build_envelope(
         };
         b.mesh.necks.push(neck.end(ring, mids));
     }
+    if let Some(s) = &skirt {
+        skirt_shell(&mut b, s, &mer, &rings, size, &design.tag);
+    }
     let sites: Vec<_> = holes
         .iter()
         .filter_map(|h| h.pad_site())
@@ -257,4 +270,48 @@ pub fn build_envelope(
         frame.transform_vector3(DVec3::Z).normalize(),
     );
     Ok(b.mesh)
+}
+
+/// Hangs skirt `s` from the ring of `mer` at its top (the widest ring at that
+/// height), its base an open boundary and the part structural.
+fn skirt_shell(
+    b: &mut Builder,
+    s: &super::skirt::SkirtShell,
+    mer: &meridian::Meridian,
+    rings: &[Vec<usize>],
+    size: f64,
+    tag: &str,
+) {
+    let tol = 1e-6 * s.top.abs().max(1.0);
+    let at = |i: usize| {
+        let (seg, p) = mer.stations[i];
+        mer.segments[seg].rz(p)
+    };
+    let Some(i) = (0..mer.stations.len())
+        .filter(|&i| (at(i).y - s.top).abs() <= tol)
+        .max_by(|&x, &y| at(x).x.total_cmp(&at(y).x))
+    else {
+        b.mesh.notes.push(format!(
+            "skirt {} left out: the envelope has no ring at its top (z {} mm)",
+            s.id, s.top
+        ));
+        return;
+    };
+    let nodes = &b.mesh.nodes;
+    let first = [i.checked_sub(1), (i + 1 < rings.len()).then_some(i + 1)]
+        .into_iter()
+        .flatten()
+        .map(|j| nodes[rings[i][0]].distance(nodes[rings[j][0]]))
+        .fold(size, f64::min);
+    let (seg, _) = mer.stations[i];
+    let c = mer.segments[seg].centre.at(s.top);
+    let top = super::skirt::TopRing {
+        nodes: rings[i].clone(),
+        centre: DVec3::new(c.x, c.y, s.top),
+        radius: at(i).x,
+        first,
+    };
+    let (part, base) = super::skirt::mesh(b, s, &top, size, tag);
+    b.mesh.structural.push(part);
+    b.mesh.boundary.extend(base);
 }

@@ -14,6 +14,8 @@
 //! stresses per part, and [`glb`] draws the deformed shape with von Mises
 //! colours; [`quality`] measures the mesh and [`quality_table`] reports it. Nozzles: [`window`] and [`nozzle`]
 //! on cylindrical courses (radial or not), [`head_nozzle`] on a head's centre.
+//! Supports: a vertical vessel's [`skirt`] is a shell part hanging from the
+//! envelope's ring at its top, held at its base.
 
 pub mod builder;
 pub mod cap;
@@ -31,6 +33,7 @@ pub mod nozzle;
 pub mod quality;
 pub mod quality_table;
 pub mod results;
+pub mod skirt;
 pub mod vtu;
 pub mod window;
 pub mod zones;
@@ -113,6 +116,9 @@ pub struct FeMesh {
     pub necks: Vec<NeckEnd>,
     /// What the mesh leaves out of the design, and why.
     pub notes: Vec<String>,
+    /// Parts outside the pressure envelope (a skirt): no pressure acts on
+    /// them and they bound no liquid.
+    pub structural: Vec<usize>,
 }
 
 /// The open end of a nozzle neck (the flange's back), where the closed
