@@ -613,36 +613,34 @@ pub fn rebase(out: &mut String, block: &str, offset: usize) {
         return;
     }
     let bytes = block.as_bytes();
-    let mut i = 0;
     let mut copied = 0;
     let mut quoted = false;
-    while i < bytes.len() {
-        match bytes[i] {
-            b'\'' => quoted = !quoted,
-            b'#' if !quoted => {
-                let start = i + 1;
-                let mut end = start;
-                let mut id = Some(0usize);
-                while end < bytes.len() && bytes[end].is_ascii_digit() {
-                    id = id
-                        .and_then(|n| n.checked_mul(10))
-                        .and_then(|n| n.checked_add(usize::from(bytes[end] - b'0')));
-                    end += 1;
-                }
-                let moved = id
-                    .filter(|&n| n >= LOCAL_BASE)
-                    .and_then(|n| n.checked_add(offset));
-                if let (true, Some(moved)) = (end > start, moved) {
-                    out.push_str(&block[copied..start]);
-                    decimal(out, moved);
-                    copied = end;
-                }
-                i = end;
-                continue;
-            }
-            _ => {}
+    // Only quotes and `#` matter; the digits after a `#` are neither.
+    for i in memchr::memchr2_iter(b'#', b'\'', bytes) {
+        if bytes[i] == b'\'' {
+            quoted = !quoted;
+            continue;
         }
-        i += 1;
+        if quoted {
+            continue;
+        }
+        let start = i + 1;
+        let mut end = start;
+        let mut id = Some(0usize);
+        while end < bytes.len() && bytes[end].is_ascii_digit() {
+            id = id
+                .and_then(|n| n.checked_mul(10))
+                .and_then(|n| n.checked_add(usize::from(bytes[end] - b'0')));
+            end += 1;
+        }
+        let moved = id
+            .filter(|&n| n >= LOCAL_BASE)
+            .and_then(|n| n.checked_add(offset));
+        if let (true, Some(moved)) = (end > start, moved) {
+            out.push_str(&block[copied..start]);
+            decimal(out, moved);
+            copied = end;
+        }
     }
     out.push_str(&block[copied..]);
 }
@@ -767,4 +765,23 @@ pub fn write_step(name: &str, vessels: &[PlacedBlock]) -> String {
     w.end();
     w.out.push_str("ENDSEC;\nEND-ISO-10303-21;\n");
     w.out
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn rebase_moves_local_ids_outside_strings_only() {
+        let block = "#100=PRODUCT('V-1 #101 it''s #102','',(#3));\n#101=X(#100,#14,#99,#);\n#1000=Y('#5',#1000);";
+        let mut out = String::new();
+        rebase(&mut out, block, 7);
+        assert_eq!(
+            out,
+            "#107=PRODUCT('V-1 #101 it''s #102','',(#3));\n#108=X(#107,#14,#99,#);\n#1007=Y('#5',#1007);"
+        );
+        let mut same = String::new();
+        rebase(&mut same, block, 0);
+        assert_eq!(same, block);
+    }
 }

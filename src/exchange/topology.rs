@@ -44,8 +44,8 @@ use super::fit::fit_loops;
 use super::loops::{Builder, Hole, LoopEdges, Loops, NotchUse, SeamHole, seam_index};
 use super::notch::notched_loop;
 use super::seam::{on_pad_cylinder, uv_with_inserted, with_seam_samples};
-use super::source::{NodeKind, VesselSource};
-use crate::mesh::{Cut, HostTrim, closed_in_u};
+use super::source::{CutSource, NodeKind, VesselSource};
+use crate::mesh::{Cut, HostTrim, PadCut, closed_in_u};
 use crate::nurbs::builders::{line, revolve};
 use crate::nurbs::intersect::IntersectionLoop;
 use crate::nurbs::{NurbsSurface, Side};
@@ -410,14 +410,10 @@ pub fn vessel_brep_with(
             // The pad's loop with the samples added on its host's seam, (u, v)
             // on the pad's surface.
             let outer_uv = match seam_cut.and_then(|c| pad_seam_loops[c].as_ref()) {
-                Some(with_seam) => uv_with_inserted(
-                    &pad.outer,
-                    &pad.outer.host_uv,
-                    with_seam,
-                    &surface,
-                    &source.nodes[cut.host].frame,
-                )
-                .map_err(fail)?,
+                Some(with_seam) => {
+                    pad_outer_uv(cut, pad, with_seam, &surface, &source.nodes[cut.host].frame)
+                        .map_err(fail)?
+                }
                 None => pad.outer.host_uv.clone(),
             };
             let (surface, (outer, holes)) = builder
@@ -511,6 +507,29 @@ pub fn vessel_brep_with(
     })
 }
 
+/// The (u, v) on the pad's `surface` (vessel frame; `to_surface` maps the
+/// host's frame there) of each sample of `with_seam`: the pad's loop in its
+/// host's frame (`cut.cut.pad`) with samples added on the host's seam. The
+/// loop's own samples keep their (u, v) on the pad's patch (`pad.outer`, one
+/// per sample, in the same order: a straight course's pad loop is the
+/// canonical loop `cut.cut.pad` was placed from); only the added samples are
+/// projected. Matching `with_seam` against `pad.outer` itself, whose points
+/// are the canonical loop's, matched no sample in a straight course and
+/// projected every one (a global closest-point search each).
+fn pad_outer_uv(
+    cut: &CutSource,
+    pad: &PadCut,
+    with_seam: &IntersectionLoop,
+    surface: &NurbsSurface,
+    to_surface: &glam::DAffine3,
+) -> Result<Vec<DVec2>, String> {
+    let original = match &cut.cut.pad {
+        Some(placed) if placed.points.len() == pad.outer.host_uv.len() => placed,
+        _ => &pad.outer,
+    };
+    uv_with_inserted(original, &pad.outer.host_uv, with_seam, surface, to_surface)
+}
+
 /// Where the neck's loop of an opening across the seam between two host
 /// patches lies, when it lies in one of them: that patch's index and the
 /// loop's (u, v) on it (the cut gives them on the patches joined in v).
@@ -565,4 +584,65 @@ fn pad_piece(
         None => Vec::new(),
     };
     Ok((outer, holes))
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::exchange::vessel_sources;
+    use crate::plant::generate_plant;
+
+    /// Every pad loop of a generated plant across its course's seam keeps
+    /// the pad cut's own (u, v) bit for bit at each of its samples; only the
+    /// samples added on the seam are projected onto the pad.
+    #[test]
+    fn a_pad_across_a_seam_projects_only_its_seam_samples() {
+        let design = generate_plant(5, 1).expect("plant");
+        let (mut pads, mut kept) = (0, 0);
+        for source in vessel_sources(&design, &[], 1e-3).expect("sources") {
+            for cut in &source.cuts {
+                let (Some(pad), Some(pad_loop), Some(od)) = (&cut.pad, &cut.cut.pad, cut.pad_od)
+                else {
+                    continue;
+                };
+                let [(k, HostTrim::Hole)] = cut.cut.hosts.as_slice() else {
+                    continue;
+                };
+                let host_frame = source.nodes[cut.host].frame;
+                let host = &source.nodes[cut.host].patches[*k].surface;
+                if !closed_in_u(host) {
+                    continue;
+                }
+                let nozzle_in_host = host_frame.inverse() * source.nodes[cut.neck].frame;
+                let (with_seam, seam) = on_pad_cylinder(pad_loop, 0.5 * od, &nozzle_in_host)
+                    .and_then(|(cylinder, on)| with_seam_samples(&on, &cylinder, host))
+                    .expect("seam samples");
+                if seam.is_empty() {
+                    continue;
+                }
+                let surface = pad
+                    .patch
+                    .surface
+                    .transformed(&source.nodes[cut.neck].frame)
+                    .expect("pad surface");
+                let uv = pad_outer_uv(cut, pad, &with_seam, &surface, &host_frame).expect("uv");
+                assert_eq!(uv.len(), with_seam.points.len());
+                let mut j = 0;
+                for (i, p) in with_seam.points.iter().enumerate() {
+                    if j < pad_loop.points.len() && pad_loop.points[j] == *p {
+                        assert_eq!(
+                            uv[i], pad.outer.host_uv[j],
+                            "{}: sample {j}",
+                            source.nodes[cut.neck].id
+                        );
+                        j += 1;
+                    }
+                }
+                assert_eq!(j, pad_loop.points.len(), "{}", source.nodes[cut.neck].id);
+                pads += 1;
+                kept += j;
+            }
+        }
+        assert!(pads > 0 && kept > 0, "no pad across a seam in the plant");
+    }
 }
