@@ -20,6 +20,7 @@ pub mod stores;
 pub mod supports;
 pub mod triangle;
 pub mod unbuildable;
+pub mod watertight;
 
 use glam::DVec3;
 use vesselcad::nurbs::NurbsSurface;
