@@ -268,7 +268,7 @@ fn raise(
     let within = |phi: f64| {
         let row = Row::uniform(phi, count, shifted);
         let upper = row.points(bound.r);
-        zip_within(bound, lower, &upper).then_some((row, upper))
+        zip_within(bound, (current, lower), (&row, &upper)).then_some((row, upper))
     };
     let (mut ok, mut bad) = (0.0f64, current.phi);
     let mut found = within(current.phi * (1.0 - 1e-6))?;
@@ -288,8 +288,19 @@ fn raise(
 
 /// Whether every triangle of the zip of `a` and `b` (each seam to seam, by the
 /// shorter diagonal as `structured::zip` takes it) holds `bound`.
-fn zip_within(bound: &Bound, a: &[DVec3], b: &[DVec3]) -> bool {
+///
+/// Both rows are uniform, so a turn by 2π/g (g the greatest common divisor of
+/// their counts) maps the pair onto itself away from the seam's extra
+/// vertices, and the zip's triangles (chosen by lengths alone) with it: only
+/// the triangles of the first such period and those near the seam are
+/// measured.
+fn zip_within(bound: &Bound, (ra, a): (&Row, &[DVec3]), (rb, b): (&Row, &[DVec3])) -> bool {
     let (na, nb) = (a.len() - 1, b.len() - 1);
+    let step = TAU / ra.count.min(rb.count) as f64;
+    let period = TAU / gcd(ra.count, rb.count) as f64;
+    // Triangles wholly inside (from, to) repeat one of the first period's.
+    let (from, to) = (period + 2.0 * step, TAU - 2.0 * step);
+    let repeats = |l: [f64; 3]| l.iter().all(|&x| x > from && x < to);
     let (mut i, mut j) = (0usize, 0usize);
     while i < na || j < nb {
         let advance_a = if i == na {
@@ -299,18 +310,32 @@ fn zip_within(bound: &Bound, a: &[DVec3], b: &[DVec3]) -> bool {
         } else {
             a[i + 1].distance_squared(b[j]) <= a[i].distance_squared(b[j + 1])
         };
-        let tri = if advance_a {
+        let (tri, l) = if advance_a {
             i += 1;
-            [a[i - 1], a[i], b[j]]
+            (
+                [a[i - 1], a[i], b[j]],
+                [ra.lams[i - 1], ra.lams[i], rb.lams[j]],
+            )
         } else {
             j += 1;
-            [a[i], b[j], b[j - 1]]
+            (
+                [a[i], b[j], b[j - 1]],
+                [ra.lams[i], rb.lams[j], rb.lams[j - 1]],
+            )
         };
-        if !bound.holds(tri) {
+        if !repeats(l) && !bound.holds(tri) {
             return false;
         }
     }
     true
+}
+
+/// The greatest common divisor of `a` and `b`.
+fn gcd(mut a: usize, mut b: usize) -> usize {
+    while b != 0 {
+        (a, b) = (b, a % b);
+    }
+    a.max(1)
 }
 
 /// The largest distance from the flat triangle `p` (vertices on the sphere of
