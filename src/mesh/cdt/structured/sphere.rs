@@ -65,6 +65,9 @@ pub(super) fn applies(info: &PatchInfo, region: &Region, options: &TessellationO
         && options.tolerance > 0.0
 }
 
+/// A row of the lattice: its v and its u values, seam to seam.
+type Parallel = (f64, Vec<f64>);
+
 /// The rows strictly between the ring and the pole as `(v, u values)`, v
 /// increasing, each running from `lo.x` to `hi.x`; `None` when the patch is not
 /// one [`applies`] takes, its sides are not a ring and a pole, or no row fits.
@@ -75,7 +78,7 @@ pub(super) fn rows(
     bottom: &Side,
     top: &Side,
     budget: usize,
-) -> Result<Option<Vec<(f64, Vec<f64>)>>, CdtError> {
+) -> Result<Option<Vec<Parallel>>, CdtError> {
     let Some(Analytic::Sphere { center, radius }) = info.analytic else {
         return Ok(None);
     };
