@@ -18,7 +18,6 @@ mod envelope;
 mod error;
 mod features;
 mod las_file;
-mod local;
 mod profile;
 mod project;
 mod random;

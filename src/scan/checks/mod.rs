@@ -16,6 +16,8 @@
 //! residual. A finding is reported when it is measurable (past its detection
 //! floor), and flagged when it exceeds its limit.
 
+mod local;
+
 use std::f64::consts::{PI, TAU};
 
 use glam::DVec3;
@@ -24,7 +26,7 @@ use serde::Serialize;
 use super::band::{least_squares, solve_dense};
 use super::envelope::{Envelope, Role};
 use super::fit::{PatchFit, deviation_at};
-use super::local::{LOCAL_RULE, areas, cell, confirmed, harmonic, revolution_areas};
+use local::{LOCAL_RULE, areas, cell, confirmed, harmonic, revolution_areas};
 use super::profile::u_of_angle;
 use super::project::Foot;
 use super::settlement::{Settlement, settlement};

@@ -16,11 +16,11 @@ use std::f64::consts::{PI, TAU};
 
 use glam::DVec3;
 
-use super::checks::{Checks, Finding, GRID, best_shift, section_harmonics};
-use super::envelope::Envelope;
-use super::fit::{PatchFit, deviation_at};
-use super::profile::{angle_of_u, u_of_angle};
-use super::project::Foot;
+use super::{Checks, Finding, GRID, best_shift, section_harmonics};
+use crate::scan::envelope::Envelope;
+use crate::scan::fit::{PatchFit, deviation_at};
+use crate::scan::profile::{angle_of_u, u_of_angle};
+use crate::scan::project::Foot;
 
 /// The rule of a dent or bulge finding.
 pub const LOCAL_RULE: &str =
