@@ -26,11 +26,11 @@ use serde::Serialize;
 use super::band::{least_squares, solve_dense};
 use super::envelope::{Envelope, Role};
 use super::fit::{PatchFit, deviation_at};
-use local::{LOCAL_RULE, areas, cell, confirmed, harmonic, revolution_areas};
 use super::profile::u_of_angle;
 use super::project::Foot;
 use super::settlement::{Settlement, settlement};
 use crate::design::VesselKind;
+use local::{LOCAL_RULE, areas, cell, confirmed, harmonic, revolution_areas};
 
 /// Grid step of the course checks, mm.
 pub const GRID: f64 = 50.0;
