@@ -31,7 +31,7 @@ use std::f64::consts::TAU;
 
 use glam::{DVec2, DVec3};
 
-use super::cut::{NozzleCut, PadPiece};
+use super::cut::{NozzleCut, PadPiece, saddle};
 use super::develop::{Developments, Rolled, RolledKind};
 use super::neck_axis::{NeckAxis, SurfaceLoop, samples, theta_near};
 use super::oblique_openings::develop_about;
@@ -235,10 +235,7 @@ pub fn cut_cone_nozzle(
         .wall(g.schedule)
         .map_err(|e| bad("schedule", g.schedule.label().into(), e.to_string()))?;
     let od = dims.outside_diameter;
-    let cut_radius = match shop.attachment {
-        Attachment::SetIn => 0.5 * od + shop.bevel_allowance,
-        Attachment::SetOn => 0.5 * od - wall,
-    };
+    let cut_radius = shop.cut_radius(od, wall);
     let misses = |what: &str| {
         bad(
             "elevation",
@@ -310,14 +307,9 @@ pub fn cut_cone_nozzle(
     };
     let neck_mid = 0.5 * (od - wall);
     let back = g.projection - g.flange_length().unwrap_or(0.0);
-    let saddle: Option<Vec<DVec2>> = (0..=n)
-        .map(|i| {
-            let phi = TAU * i as f64 / n as f64;
-            meets
-                .crossing(&neck, neck_mid, phi)
-                .map(|(_, s)| DVec2::new(neck_mid * phi, back - s))
-        })
-        .collect();
+    let saddle = saddle(n, neck_mid, back, |phi| {
+        meets.crossing(&neck, neck_mid, phi).map(|(_, s)| s)
+    });
     let Some(saddle) = saddle else {
         return Err(misses("neck"));
     };

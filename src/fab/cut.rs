@@ -65,6 +65,23 @@ pub struct NozzleCut {
     pub saddle: Vec<DVec2>,
 }
 
+/// A neck's end developed on its mid-surface radius `neck_mid` from `n + 1`
+/// angles φ round it: `(neck_mid·φ, back − s(φ))`, where `s(φ)` is how far
+/// along the neck its line at φ meets the host; `None` if one line misses.
+pub fn saddle(
+    n: usize,
+    neck_mid: f64,
+    back: f64,
+    s: impl Fn(f64) -> Option<f64>,
+) -> Option<Vec<DVec2>> {
+    (0..=n)
+        .map(|i| {
+            let phi = std::f64::consts::TAU * i as f64 / n as f64;
+            s(phi).map(|s| DVec2::new(neck_mid * phi, back - s))
+        })
+        .collect()
+}
+
 /// Signed area of a closed polygon (shoelace), mm².
 pub fn polygon_area(points: &[DVec2]) -> f64 {
     let n = points.len();

@@ -25,7 +25,7 @@ use glam::{DVec2, DVec3};
 
 use super::develop::{Developments, mid_head};
 use super::openings::{BlankMark, NeckAxis, samples};
-use super::shop::{Attachment, Shop};
+use super::shop::Shop;
 use crate::constraints::{PartGeometry, ResolvedVessel};
 use crate::nurbs::{GaussLegendre, NurbsCurve};
 use crate::parts::heads::Head;
@@ -332,10 +332,7 @@ pub fn blank_mark(
     let g = &nozzle.geometry;
     let dims = pipe(g.nps);
     let wall = dims.wall(g.schedule).ok()?;
-    let cut_radius = match shop.attachment {
-        Attachment::SetIn => 0.5 * dims.outside_diameter + shop.bevel_allowance,
-        Attachment::SetOn => 0.5 * dims.outside_diameter - wall,
-    };
+    let cut_radius = shop.cut_radius(dims.outside_diameter, wall);
     let neck = NeckAxis::new(host.frame, nozzle.frame);
     let mapped = |rho: f64| -> Option<Vec<DVec2>> {
         let n = samples(rho, shop.chord_tolerance);

@@ -36,6 +36,7 @@ use std::f64::consts::TAU;
 use glam::DVec2;
 
 use super::cone_openings;
+use super::cut::saddle;
 pub use super::cut::{NozzleCut, PadPiece, polygon_area};
 use super::develop::{BootShell, Developments, RolledKind};
 pub use super::neck_axis::{NeckAxis, SurfaceLoop, samples, theta_near};
@@ -228,10 +229,7 @@ pub fn cut_nozzle(
         Err(e) => return Err(bad("schedule", g.schedule.label().into(), e.to_string())),
     };
     let od = dims.outside_diameter;
-    let cut_radius = match shop.attachment {
-        Attachment::SetIn => 0.5 * od + shop.bevel_allowance,
-        Attachment::SetOn => 0.5 * od - wall,
-    };
+    let cut_radius = shop.cut_radius(od, wall);
     let neck = NeckAxis::new(course.frame, nozzle.frame);
     let r_mid = course.radius.0;
     let r_out = course.outside.0;
@@ -292,13 +290,9 @@ pub fn cut_nozzle(
     };
     let neck_mid = 0.5 * (od - wall);
     let back = g.projection - g.flange_length().unwrap_or(0.0);
-    let saddle: Option<Vec<DVec2>> = (0..=n)
-        .map(|i| {
-            let phi = TAU * i as f64 / n as f64;
-            neck.crossing(neck_mid, meets, phi)
-                .map(|(_, s)| DVec2::new(neck_mid * phi, back - s))
-        })
-        .collect();
+    let saddle = saddle(n, neck_mid, back, |phi| {
+        neck.crossing(neck_mid, meets, phi).map(|(_, s)| s)
+    });
     let Some(saddle) = saddle else {
         return Err(misses("neck"));
     };

@@ -101,6 +101,16 @@ impl Default for Shop {
 }
 
 impl Shop {
+    /// Radius of the cutting cylinder of a neck of outside diameter `od` and
+    /// wall `wall`: the neck's outside plus the bevel allowance (set-in) or
+    /// its bore (set-on), mm.
+    pub fn cut_radius(&self, od: f64, wall: f64) -> f64 {
+        match self.attachment {
+            Attachment::SetIn => 0.5 * od + self.bevel_allowance,
+            Attachment::SetOn => 0.5 * od - wall,
+        }
+    }
+
     /// The clearance of seams from openings and pads on a plate `thickness`
     /// mm thick.
     pub fn clearance_for(&self, thickness: f64) -> f64 {
