@@ -10,8 +10,8 @@ use std::time::Instant;
 use clap::{Args, ValueEnum};
 use vesselcad::design::{Design, load};
 use vesselcad::export::{
-    Compression, ExportError, GlbOptions, Granularity, Scene, merge_scene, quantization_budget,
-    stream_glb_with, stream_glb_with_to, write_glb_with, write_tiles,
+    Compression, ExportError, GlbOptions, Granularity, Scene, TilesWriter, merge_scene,
+    quantization_budget, stream_glb_with, stream_glb_with_to, write_glb_with, write_tiles,
 };
 use vesselcad::fab::scene_levels::annotate_scene;
 use vesselcad::fab::seam_glb::{add_seams, seam_lines};
@@ -38,6 +38,13 @@ pub struct BuildArgs {
     /// a `tileset.json` (plant frame, metres, Z-up).
     #[arg(long, conflicts_with = "output")]
     tiles: Option<PathBuf>,
+    /// With `--tiles`: levels of detail, their chordal tolerances in mm from
+    /// coarse to fine (e.g. `5,1,0.2`): each vessel is meshed at each and
+    /// written as one GLB per level, each finer level a `REPLACE` child tile
+    /// of the coarser one. Instead of `--tolerance`.
+    #[arg(long, value_delimiter = ',', num_args = 1.., requires = "tiles",
+          conflicts_with = "tolerance", allow_negative_numbers = true)]
+    lod: Vec<f64>,
     /// Chordal tolerance of the meshes, mm.
     #[arg(long, default_value_t = TessellationOptions::DEFAULT.tolerance, allow_negative_numbers = true)]
     tolerance: f64,
@@ -124,6 +131,7 @@ pub fn run(args: BuildArgs) -> ExitCode {
         instancing,
         granularity,
         tiles,
+        lod,
         fab,
     } = args;
     let output = output.unwrap_or_default();
@@ -155,37 +163,24 @@ pub fn run(args: BuildArgs) -> ExitCode {
         Ok(d) => d,
         Err(e) => return fail(&e),
     };
-    let mut model = match build_with_progress(
-        &d,
+    let meshing = |tolerance: f64, glb: &GlbOptions| {
         TessellationOptions::chord(glb.meshing_tolerance(tolerance))
             .with_max_stretch(max_stretch)
-            .with_max_vertices(max_vertices as usize),
-    ) {
-        Ok(m) => m,
-        Err(ModelError::Design(e)) => return fail(&e),
-        Err(ModelError::Geometry(failures)) => {
-            // Not a broken rule: what could not be built, by design path.
-            eprintln!(
-                "error: {}: the geometry cannot be built ({} failure(s)):",
-                design.display(),
-                failures.len()
-            );
-            for f in &failures {
-                eprintln!("error: {f}");
-            }
-            return ExitCode::from(2);
-        }
-        Err(e) => {
-            eprintln!("error: {}: {}", design.display(), model_error(&e));
-            return ExitCode::from(2);
-        }
+            .with_max_vertices(max_vertices as usize)
     };
-    if !model.errors().0.is_empty() {
-        for failure in &model.errors().0 {
-            eprintln!("error: {failure}");
-        }
-        return ExitCode::from(1);
+    if let (Some(dir), false) = (&tiles, lod.is_empty()) {
+        return write_lod_tiles(&d, &design, &lod, dir, |t| {
+            let glb = GlbOptions {
+                quantize: quantize.then(|| quantization_budget(t)),
+                ..glb
+            };
+            (glb, meshing(t, &glb), granularity.into())
+        });
     }
+    let mut model = match build_checked(&d, &design, meshing(tolerance, &glb)) {
+        Ok(m) => m,
+        Err(code) => return code,
+    };
     let mut scene = match Granularity::from(granularity) {
         Granularity::Patch => model.scene(),
         g => merge_scene(&model.scene(), g),
@@ -193,13 +188,7 @@ pub fn run(args: BuildArgs) -> ExitCode {
     if fab {
         return write_fab(&mut model, &mut scene, &glb, (tolerance, &output), start);
     }
-    let triangles: usize = scene
-        .vessels
-        .iter()
-        .flat_map(|v| &v.nodes)
-        .flat_map(|n| &n.patches)
-        .map(|p| p.mesh.triangle_count())
-        .sum();
+    let triangles = triangle_count(&scene);
     if let Some(dir) = tiles {
         return match write_tiles(&scene, &glb, tolerance, &dir) {
             Ok(files) => {
@@ -261,6 +250,110 @@ pub fn run(args: BuildArgs) -> ExitCode {
         outln!("{summary}");
     }
     ExitCode::SUCCESS
+}
+
+/// Builds `d` (read from `path`) with a progress bar, printing what cannot be
+/// built or what breaks a rule.
+///
+/// # Errors
+///
+/// The exit code to return: 2 when the design or its geometry cannot be built,
+/// 1 when the model reports errors.
+fn build_checked(d: &Design, path: &Path, options: TessellationOptions) -> Result<Model, ExitCode> {
+    let model = match build_with_progress(d, options) {
+        Ok(m) => m,
+        Err(ModelError::Design(e)) => return Err(fail(&e)),
+        Err(ModelError::Geometry(failures)) => {
+            // Not a broken rule: what could not be built, by design path.
+            eprintln!(
+                "error: {}: the geometry cannot be built ({} failure(s)):",
+                path.display(),
+                failures.len()
+            );
+            for f in &failures {
+                eprintln!("error: {f}");
+            }
+            return Err(ExitCode::from(2));
+        }
+        Err(e) => {
+            eprintln!("error: {}: {}", path.display(), model_error(&e));
+            return Err(ExitCode::from(2));
+        }
+    };
+    if !model.errors().0.is_empty() {
+        for failure in &model.errors().0 {
+            eprintln!("error: {failure}");
+        }
+        return Err(ExitCode::from(1));
+    }
+    Ok(model)
+}
+
+/// `build --tiles DIR --lod t0,t1,…`: the design built at each tolerance (coarse
+/// to fine), each level's vessels written and the model dropped before the
+/// next, then the tileset. `level(t)` gives the GLB options, the meshing
+/// options and the granularity of the level at tolerance `t`.
+fn write_lod_tiles(
+    d: &Design,
+    path: &Path,
+    tolerances: &[f64],
+    dir: &Path,
+    level: impl Fn(f64) -> (GlbOptions, TessellationOptions, Granularity),
+) -> ExitCode {
+    let start = Instant::now();
+    let mut writer = match TilesWriter::new(dir, tolerances) {
+        Ok(w) => w,
+        Err(e) => {
+            eprintln!("error: --lod: {e}");
+            return ExitCode::from(2);
+        }
+    };
+    let mut triangles = Vec::new();
+    while let Some(t) = writer.next_tolerance() {
+        let (glb, meshing, granularity) = level(t);
+        let model = match build_checked(d, path, meshing) {
+            Ok(m) => m,
+            Err(code) => return code,
+        };
+        let scene = match granularity {
+            Granularity::Patch => model.scene(),
+            g => merge_scene(&model.scene(), g),
+        };
+        drop(model);
+        triangles.push(format!("{} at {t} mm", triangle_count(&scene)));
+        if let Err(e) = writer.add_level(&scene, &glb) {
+            eprintln!("error: {e}");
+            return ExitCode::from(2);
+        }
+    }
+    match writer.finish() {
+        Ok(files) => {
+            outln!(
+                "{}: {} level(s), {} file(s), triangles {}, {:.0} ms",
+                dir.join(vesselcad::export::TILESET).display(),
+                tolerances.len(),
+                files.len() - 1,
+                triangles.join(", "),
+                start.elapsed().as_secs_f64() * 1e3
+            );
+            ExitCode::SUCCESS
+        }
+        Err(e) => {
+            eprintln!("error: {e}");
+            ExitCode::from(2)
+        }
+    }
+}
+
+/// The triangles of every patch of `scene`.
+fn triangle_count(scene: &Scene) -> usize {
+    scene
+        .vessels
+        .iter()
+        .flat_map(|v| &v.nodes)
+        .flat_map(|n| &n.patches)
+        .map(|p| p.mesh.triangle_count())
+        .sum()
 }
 
 /// `build --fab`: the process plans kept by the model, their levels on the

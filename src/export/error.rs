@@ -69,6 +69,13 @@ pub enum ExportError {
     /// The glTF JSON could not be serialized.
     #[error("cannot serialize glTF JSON: {0}")]
     Json(#[from] serde_json::Error),
+    /// The levels of detail of a tileset are not a run of tolerances from
+    /// coarse to fine, or a level's scene does not hold the same vessels.
+    #[error("levels of detail: {rule}")]
+    Levels {
+        /// What is wrong, naming the level and value.
+        rule: String,
+    },
     /// Writing the file failed.
     #[error("cannot write {}: {source}", path.display())]
     Io {

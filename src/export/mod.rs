@@ -12,6 +12,8 @@
 //!   same bytes straight from the meshes, without a second copy of them. Equal
 //!   meshes are written once; [`GlbOptions`] adds `KHR_mesh_quantization` and
 //!   `EXT_meshopt_compression` ([`write_glb_with`], [`stream_glb_with`]).
+//! - [`write_tiles`] / [`TilesWriter`] write 3D Tiles 1.1: a GLB per vessel and
+//!   level of detail (coarse to fine, `REPLACE` refinement) and a `tileset.json`.
 //! - [`write_delta_glb`] writes only the changed parts of a scene, keyed by their
 //!   stable ids, for live viewers.
 
@@ -46,4 +48,4 @@ pub use gltf_encoding::quantization_bound;
 pub use granularity::{Granularity, MERGED_PATCH, merge_scene};
 pub use openings::{Opening, SharedMarches, cut_opening, openings};
 pub use scene::{Scene, SceneNode, SceneNodeKind, ScenePatch, SceneVessel};
-pub use tiles::{TILESET, write_tiles};
+pub use tiles::{TILESET, TilesWriter, write_tiles};

@@ -2,7 +2,9 @@
 //! nothing beside it: the page, its script and style, and the three.js bundle
 //! (three.js r187 with GLTFLoader and OrbitControls, MIT, built from npm by
 //! `viewer/` with esbuild and committed with its licence header), and the
-//! design format's JSON Schema, from which the viewer types its editors.
+//! design format's JSON Schema, from which the viewer types its editors, and
+//! `tiles.js`, which shows a `build --tiles` tileset by level of detail in a
+//! three.js page of one's own.
 //!
 //! Files are looked up by exact name in a fixed table, never on the file system,
 //! so no request path (`..`, `%2e%2e`, absolute paths, symlinks) can reach a file
@@ -30,6 +32,13 @@ const STATIC: &[(&str, Asset)] = &[
         Asset {
             content_type: "text/javascript; charset=utf-8",
             bytes: include_bytes!("assets/viewer.js"),
+        },
+    ),
+    (
+        "tiles.js",
+        Asset {
+            content_type: "text/javascript; charset=utf-8",
+            bytes: include_bytes!("assets/tiles.js"),
         },
     ),
     (
