@@ -54,6 +54,27 @@ fn build_writes_a_glb() {
 }
 
 #[test]
+fn levels_of_detail_without_tiles_are_refused_not_ignored() {
+    let dir = tempfile::tempdir().unwrap();
+    let out = dir.path().join("drum.glb");
+    let o = vesselcad(&[
+        "build",
+        &example("horizontal-drum"),
+        "-o",
+        out.to_str().unwrap(),
+        "--lod",
+        "5,1",
+    ]);
+    assert_eq!(o.status.code(), Some(2));
+    let stderr = String::from_utf8_lossy(&o.stderr);
+    assert!(
+        stderr.contains("--lod") && stderr.contains("--tiles"),
+        "{stderr}"
+    );
+    assert!(!out.exists(), "nothing is written");
+}
+
+#[test]
 fn check_accepts_every_example() {
     for name in [
         "horizontal-drum",

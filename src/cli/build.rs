@@ -134,6 +134,13 @@ pub fn run(args: BuildArgs) -> ExitCode {
         lod,
         fab,
     } = args;
+    if tiles.is_none() && !lod.is_empty() {
+        eprintln!(
+            "error: --lod needs --tiles DIR: levels of detail are written as a 3D Tiles \
+             tileset, one GLB per vessel and level"
+        );
+        return ExitCode::from(2);
+    }
     let output = output.unwrap_or_default();
     let glb = GlbOptions {
         reuse: !no_reuse,
