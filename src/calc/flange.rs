@@ -22,9 +22,16 @@
 //! every shipped value equal) and, independently, a Python valve-sizing module's
 //! B16.34 CF8M rows (Group 2.2 at −29, 38 and 100 to 300 °C, equal). Above 300 °C
 //! those three groups and every other group (1.3, …) are not shipped: their
-//! flanges are reported as not rated, never guessed. Group 1.2 above 250 °C is not shipped either: the public bar rows
-//! found stop there (the psi rows go on to 900 °F, but B16.5 rates in bar
-//! separately and a conversion is not its table).
+//! flanges are reported as not rated, never guessed. Group 1.2 above 250 °C is
+//! not shipped either: the public bar rows found stop there (the psi rows go on to
+//! 900 °F, but B16.5 rates in bar separately and a conversion is not its table).
+//!
+//! Classes 1500 and 2500 of every shipped group are derived from its Class 300,
+//! 600 and 900 rows by B16.5 Annex B's proportionality of rating to class
+//! ([`DERIVATION`], [`rating_of_class`]), checked against the published Class
+//! 1500 and 2500 rows of Groups 1.1 and 2.2. They rate a flange by its class
+//! number; the modelled nozzle's [`FlangeClass`] stops at 900 because the flange
+//! dimension tables do.
 
 use serde::Serialize;
 
@@ -104,7 +111,8 @@ pub const SOURCE: &str = "ASME B16.5-2009/-2013 Tables 2-1.1 (Group 1.1, −29 t
     F2-1.2 (psi); Table 2-2.1 as a public flange-rating data file on GitHub reproduces it \
     (a TypeScript table stating B16.5-2020 Table 2-2.1, whose Group 1.1 rows equal the \
     Table 2-1.1 shipped here; the same file gives Group 1.2 the Group 1.1 values, which \
-    B16.5 does not, so 1.2 is not taken from it)";
+    B16.5 does not, so 1.2 is not taken from it); Classes 1500 and 2500 derived from \
+    the Class 300, 600 and 900 rows by Annex B (DERIVATION)";
 
 /// The class's number, e.g. 150.
 pub fn class_number(class: FlangeClass) -> u32 {
@@ -116,22 +124,40 @@ pub fn class_number(class: FlangeClass) -> u32 {
     }
 }
 
-/// The B16.5 rating of a flange of `class` in material `group` (e.g. `"1.1"`) at
-/// `temperature` °C, MPa gauge; an error for a group whose table is not shipped
-/// or a temperature outside the shipped rows of its table.
-pub fn rating(group: &str, class: FlangeClass, temperature: f64) -> Result<f64, CalcError> {
-    let k = match class {
-        FlangeClass::C150 => 0,
-        FlangeClass::C300 => 1,
-        FlangeClass::C600 => 2,
-        FlangeClass::C900 => 3,
-    };
-    let (row, table): (&[f64], &str) = match group {
-        "1.1" => (&GROUP_1_1[k], "Table 2-1.1"),
-        "1.2" => (&GROUP_1_2[k], "Table 2-1.2"),
-        "2.1" => (&GROUP_2_1[k], "Table 2-2.1"),
-        "2.2" => (&GROUP_2_2[k], "Table 2-2.2"),
-        "2.3" => (&GROUP_2_3[k], "Table 2-2.3"),
+/// The B16.5 standard classes this module rates: the four shipped as rows and
+/// the two derived from them ([`DERIVED_CLASSES`]).
+pub const CLASSES: [u32; 6] = [150, 300, 600, 900, 1500, 2500];
+
+/// Classes 1500 and 2500: not shipped as rows but derived from the Class 300,
+/// 600 and 900 rows by B16.5 Annex B (see [`DERIVATION`]).
+pub const DERIVED_CLASSES: [u32; 2] = [1500, 2500];
+
+/// How Classes 1500 and 2500 are rated.
+pub const DERIVATION: &str = "ASME B16.5 Annex B rates every standard class from \
+    Class 300 up as p = Pr S1 / 8750, limited by the ceiling pressure Pc, with Pr the \
+    class number and S1 and Pc the same for every class but for Pc's proportionality \
+    to Pr: each class's rating at a temperature is the class number times one value \
+    of that temperature, rounded to 0.1 bar in the table. Classes 1500 and 2500 are \
+    that value times 1500 and 2500, the value taken as the least one that every \
+    published Class 300, 600 and 900 entry of the row rounds from (the low end of the \
+    intersection of [(p - 0.05)/class, (p + 0.05)/class] over the three classes), so \
+    a derived rating is never above what the published rows allow; checked against \
+    the published Class 1500 and 2500 rows of Groups 1.1 (-29 to 538 C) and 2.2 \
+    (-29 to 300 C), every entry within 0.25 bar and none more than 0.05 bar below \
+    the derived value";
+
+/// The rows of `group` for Classes 150, 300, 600, 900 and its table's name;
+/// an error for a group whose table is not shipped.
+fn rows(group: &str) -> Result<([&'static [f64]; 4], &'static str), CalcError> {
+    fn four<const N: usize>(t: &'static [[f64; N]; 4]) -> [&'static [f64]; 4] {
+        [&t[0], &t[1], &t[2], &t[3]]
+    }
+    Ok(match group {
+        "1.1" => (four(&GROUP_1_1), "Table 2-1.1"),
+        "1.2" => (four(&GROUP_1_2), "Table 2-1.2"),
+        "2.1" => (four(&GROUP_2_1), "Table 2-2.1"),
+        "2.2" => (four(&GROUP_2_2), "Table 2-2.2"),
+        "2.3" => (four(&GROUP_2_3), "Table 2-2.3"),
         _ => {
             return Err(CalcError::Input {
                 entity: format!("B16.5 group {group}"),
@@ -142,23 +168,62 @@ pub fn rating(group: &str, class: FlangeClass, temperature: f64) -> Result<f64, 
                     .into(),
             });
         }
+    })
+}
+
+/// The rating in bar per unit of class number at the table's temperature index
+/// `i`: the least value every published Class 300, 600 and 900 entry rounds from
+/// (see [`DERIVATION`]).
+fn per_class(rows: &[&[f64]; 4], i: usize) -> f64 {
+    [(rows[1], 300.0), (rows[2], 600.0), (rows[3], 900.0)]
+        .iter()
+        .map(|(row, class)| (row[i] - 0.05) / class)
+        .fold(f64::NEG_INFINITY, f64::max)
+}
+
+/// The B16.5 rating of a flange of `class` in material `group` (e.g. `"1.1"`) at
+/// `temperature` °C, MPa gauge; an error for a group whose table is not shipped
+/// or a temperature outside the shipped rows of its table.
+pub fn rating(group: &str, class: FlangeClass, temperature: f64) -> Result<f64, CalcError> {
+    rating_of_class(group, class_number(class), temperature)
+}
+
+/// The B16.5 rating of a Class `class` flange (150, 300, 600, 900, 1500 or 2500)
+/// in material `group` at `temperature` °C, MPa gauge: Classes 150 to 900 from
+/// the shipped rows, 1500 and 2500 derived from them ([`DERIVATION`]); linear
+/// between the table's temperatures. An error for another class, a group whose
+/// table is not shipped, or a temperature outside its table's shipped rows.
+pub fn rating_of_class(group: &str, class: u32, temperature: f64) -> Result<f64, CalcError> {
+    let (rows, table) = rows(group)?;
+    let Some(k) = CLASSES.iter().position(|&c| c == class) else {
+        return Err(CalcError::Input {
+            entity: format!("B16.5 group {group}"),
+            field: "class".into(),
+            value: f64::from(class),
+            rule: "B16.5 standard classes are 150, 300, 600, 900, 1500 and 2500".into(),
+        });
     };
-    let temps = &TEMPERATURES[..row.len()];
-    let (first, last) = (temps[0], temps[temps.len() - 1]);
+    let n = rows[0].len();
+    let temps = &TEMPERATURES[..n];
+    let (first, last) = (temps[0], temps[n - 1]);
     if !(temperature.is_finite() && (first..=last).contains(&temperature)) {
         return Err(CalcError::Input {
-            entity: format!("B16.5 group {group} class {}", class_number(class)),
+            entity: format!("B16.5 group {group} class {class}"),
             field: "temperature".into(),
             value: temperature,
             rule: format!("{table} is shipped for {first} to {last} °C"),
         });
     }
+    let at = |i: usize| match rows.get(k) {
+        Some(row) => row[i],
+        None => f64::from(class) * per_class(&rows, i),
+    };
     let i = temps
         .windows(2)
         .position(|w| temperature <= w[1])
-        .unwrap_or(temps.len() - 2);
+        .unwrap_or(n - 2);
     let (t0, t1) = (temps[i], temps[i + 1]);
-    let bar = row[i] + (temperature - t0) / (t1 - t0) * (row[i + 1] - row[i]);
+    let bar = at(i) + (temperature - t0) / (t1 - t0) * (at(i + 1) - at(i));
     Ok(bar * 0.1)
 }
 

@@ -13,7 +13,8 @@
 //! ([`conditions`]), one pressure part ([`part_calc`]), UG-45 for a nozzle neck
 //! with UG-37 reinforcement ([`mod@reinforcement`]) and the B16.5 flange rating
 //! ([`flange`]) ([`nozzle_calc`]), the supports of a vessel (Zick's saddle
-//! stresses, [`saddles`]) and a whole vessel ([`calculate`]). The ECS system
+//! stresses, [`saddles`]), the UCS-66 MDMT ([`mdmt`], on the curves of [`ucs66`]) and a
+//! whole vessel ([`calculate`]). The ECS system
 //! `systems::update_calculations` keeps the same figures live as components.
 
 pub mod annular;
@@ -40,6 +41,7 @@ mod shape;
 pub mod shells;
 pub mod skirt;
 mod summary;
+pub mod ucs66;
 pub mod vessel;
 pub mod wind;
 pub mod zick;

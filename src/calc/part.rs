@@ -297,6 +297,11 @@ pub fn part_calc(
         },
     ];
     inputs.extend(shape_inputs(&shape.corroded(c.corrosion_allowance)));
+    let mdmt = c
+        .ucs66_curve
+        .as_deref()
+        .zip(thickness)
+        .map(|(curve, t)| super::mdmt::mdmt(curve, t, coincident_ratio(required.value, t, c)));
     Ok(Some(PartCalc {
         id: id.to_string(),
         kind: geometry.kind(),
@@ -312,11 +317,7 @@ pub fn part_calc(
         mawp_new_cold: mawp_cold,
         inputs,
         openings,
-        mdmt: c
-            .ucs66_curve
-            .as_deref()
-            .zip(thickness)
-            .map(|(curve, t)| super::mdmt::mdmt(curve, t)),
+        mdmt,
         external,
         external_required: (c.external_pressure > 0.0).then(|| external_required(geometry, c)),
         deficiency: match (deficiency, external_short) {
@@ -324,6 +325,17 @@ pub fn part_calc(
             (a, b) => a.or(b),
         },
     }))
+}
+
+/// UCS-66.1's coincident ratio Rts = tr E* / (tn − c) of a part of nominal wall
+/// `t` whose required thickness, corrosion allowance included, is `required`:
+/// tr the required thickness corroded (less the allowance), E* the joint
+/// efficiency but not less than 0.80, tn − c the nominal wall less the
+/// allowance; `None` when no wall is left after the allowance.
+fn coincident_ratio(required: f64, t: f64, c: &Conditions) -> Option<f64> {
+    let left = t - c.corrosion_allowance;
+    let tr = (required - c.corrosion_allowance).max(0.0);
+    (left > 0.0).then(|| tr * c.joint_efficiency.max(0.8) / left)
 }
 
 /// A storage tank's part under API 650: a shell course by the one-foot method
