@@ -8,8 +8,10 @@
 //! fastest run counts. Meshes are made to the tolerance less the quantization
 //! budget, as `vesselcad build --quantize` makes them. The last rows are the
 //! compact file (reuse + quantization + meshopt) of the scene merged per part,
-//! vessel and plant (`--granularity`; merging is not timed), and the part merge
-//! with instancing. An instanced node is one draw call.
+//! vessel and plant (`--granularity`; merging is not timed), the part merge
+//! with instancing, and the compact file without normals (`--normals flat`) per
+//! patch, part and vessel. An instanced node is one draw call; vertices written
+//! are the `POSITION` counts of the glTF meshes.
 
 use std::time::Instant;
 
@@ -64,8 +66,10 @@ fn main() {
         "{} vessel(s), {patches} patches, meshed at {meshing} mm for {tolerance} mm",
         scene.vessels.len()
     );
-    println!("| variant | bytes | JSON bytes | glTF meshes | draw calls | write MB/s |");
-    println!("|---|---|---|---|---|---|");
+    println!(
+        "| variant | bytes | JSON bytes | glTF meshes | draw calls | vertices written | write MB/s |"
+    );
+    println!("|---|---|---|---|---|---|---|");
     let q = Some(quantization_budget(tolerance));
     let variants = [
         (
@@ -102,6 +106,7 @@ fn main() {
                 quantize,
                 compress,
                 instancing,
+                ..GlbOptions::default()
             };
             (name, &scene, options)
         })
@@ -110,11 +115,28 @@ fn main() {
                 .iter()
                 .map(|(name, s)| (*name, s, GlbOptions::compact(tolerance))),
         )
-        .chain(std::iter::once((
-            "compact + instancing, --granularity part",
-            &merged[0].1,
-            GlbOptions::compact(tolerance).instanced(),
-        )));
+        .chain([
+            (
+                "compact + instancing, --granularity part",
+                &merged[0].1,
+                GlbOptions::compact(tolerance).instanced(),
+            ),
+            (
+                "compact, --normals flat",
+                &scene,
+                GlbOptions::compact(tolerance).flat(),
+            ),
+            (
+                "compact, --normals flat, --granularity part",
+                &merged[0].1,
+                GlbOptions::compact(tolerance).flat(),
+            ),
+            (
+                "compact, --normals flat, --granularity vessel",
+                &merged[1].1,
+                GlbOptions::compact(tolerance).flat(),
+            ),
+        ]);
     for (name, scene, options) in rows {
         let mut best = f64::INFINITY;
         let mut bytes = Vec::new();
@@ -129,8 +151,15 @@ fn main() {
         let draws = json["nodes"]
             .as_array()
             .map_or(0, |n| n.iter().filter(|n| n["mesh"].is_u64()).count());
+        let vertices: u64 = json["meshes"].as_array().map_or(0, |m| {
+            m.iter()
+                .flat_map(|m| m["primitives"].as_array().into_iter().flatten())
+                .filter_map(|p| p["attributes"]["POSITION"].as_u64())
+                .filter_map(|a| json["accessors"][a as usize]["count"].as_u64())
+                .sum()
+        });
         println!(
-            "| {name} | {} | {json_len} | {meshes} | {draws} | {:.0} |",
+            "| {name} | {} | {json_len} | {meshes} | {draws} | {vertices} | {:.0} |",
             bytes.len(),
             bytes.len() as f64 / best / 1e6
         );

@@ -27,7 +27,7 @@ use vesselcad::model::Model;
 const TOLERANCE: f64 = 1.0;
 
 /// Every variant of the writer, by name.
-fn variants() -> [(&'static str, GlbOptions); 5] {
+fn variants() -> [(&'static str, GlbOptions); 6] {
     let plain = GlbOptions {
         reuse: false,
         ..GlbOptions::default()
@@ -46,6 +46,7 @@ fn variants() -> [(&'static str, GlbOptions); 5] {
         ("quantized", quantized),
         ("meshopt", meshopt),
         ("compact", GlbOptions::compact(TOLERANCE)),
+        ("flat", GlbOptions::compact(TOLERANCE).flat()),
     ]
 }
 
@@ -332,6 +333,9 @@ fn three_js_loads_every_option_in_chromium() {
             })
         );
         assert_eq!(got["meshes"], count, "{name}: {got}");
+        // Without normals three.js shades flat, as the glTF specification asks.
+        let flat = if *name == "flat" { count } else { 0 };
+        assert_eq!(got["flat"], flat, "{name}: {got}");
         assert_eq!(got["triangles"], triangles, "{name}: {got}");
         assert_eq!(got["names"], reference["names"], "{name}");
         assert_eq!(got["vessel"]["id"], scene.vessels[0].tag.as_str(), "{name}");

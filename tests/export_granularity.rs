@@ -211,6 +211,53 @@ fn merged_compact_files_hold_the_chordal_tolerance_against_the_exact_surfaces() 
     }
 }
 
+/// A compact file writes a vertex once: the vertices merged patches share
+/// along their boundaries (and a periodic patch's seam) are welded, so no mesh
+/// of a merged compact file holds two vertices with the same position and
+/// normal, and each writes fewer vertices than its patches hold. Triangles keep
+/// their count (checked above and in Chromium).
+#[test]
+fn merged_compact_files_write_each_shared_vertex_once() {
+    let (_, scene) = plant();
+    for (name, granularity) in MERGED {
+        let merged = merge_scene(scene, granularity);
+        let glb = Glb::parse(&write_glb_with(&merged, &GlbOptions::compact(TOLERANCE)).unwrap());
+        let held: usize = merged
+            .vessels
+            .iter()
+            .flat_map(|v| &v.nodes)
+            .flat_map(|n| &n.patches)
+            .map(|p| p.mesh.vertex_count())
+            .sum();
+        let mut written = 0;
+        for mesh in 0..glb.json["meshes"].as_array().unwrap().len() {
+            let p = glb.primitive(mesh);
+            let mut seen = std::collections::HashSet::new();
+            let twice = p
+                .positions
+                .iter()
+                .zip(&p.normals)
+                .filter(|(q, n)| {
+                    !seen.insert((
+                        q.to_array().map(f64::to_bits),
+                        n.to_array().map(f64::to_bits),
+                    ))
+                })
+                .count();
+            assert_eq!(
+                twice, 0,
+                "{name}: mesh {mesh} writes {twice} vertices twice"
+            );
+            written += p.positions.len();
+        }
+        println!("{name}: {written} vertices written of {held} held");
+        assert!(
+            written < held,
+            "{name}: {written} vertices written of {held}"
+        );
+    }
+}
+
 #[test]
 fn khronos_validator_finds_no_errors_and_no_warnings_on_merged_files() {
     let (_, scene) = plant();

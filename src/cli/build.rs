@@ -10,7 +10,7 @@ use std::time::Instant;
 use clap::{Args, ValueEnum};
 use vesselcad::design::{Design, load};
 use vesselcad::export::{
-    Compression, ExportError, GlbOptions, Granularity, Scene, TilesWriter, merge_scene,
+    Compression, ExportError, GlbOptions, Granularity, Normals, Scene, TilesWriter, merge_scene,
     quantization_budget, stream_glb_with, stream_glb_with_to, write_glb_with, write_tiles,
 };
 use vesselcad::fab::scene_levels::annotate_scene;
@@ -66,6 +66,11 @@ pub struct BuildArgs {
     /// Compress the buffer: `meshopt` (`EXT_meshopt_compression`).
     #[arg(long, value_enum)]
     compress: Option<CompressArg>,
+    /// Vertex normals: `smooth` (default: a unit normal per vertex, smooth
+    /// shading) or `flat` (none written; viewers compute flat normals, so
+    /// curved surfaces show their facets — the smallest file).
+    #[arg(long, value_enum, default_value = "smooth")]
+    normals: NormalsArg,
     /// Write every patch's mesh on its own, even where patches share one.
     #[arg(long)]
     no_reuse: bool,
@@ -110,6 +115,15 @@ impl From<GranularityArg> for Granularity {
     }
 }
 
+/// Vertex normals of `--normals`.
+#[derive(Clone, Copy, ValueEnum)]
+enum NormalsArg {
+    /// A unit normal per vertex.
+    Smooth,
+    /// None: the viewer shades flat.
+    Flat,
+}
+
 /// Compressions of `--compress`.
 #[derive(Clone, Copy, ValueEnum)]
 enum CompressArg {
@@ -127,6 +141,7 @@ pub fn run(args: BuildArgs) -> ExitCode {
         max_vertices,
         quantize,
         compress,
+        normals,
         no_reuse,
         instancing,
         granularity,
@@ -150,6 +165,10 @@ pub fn run(args: BuildArgs) -> ExitCode {
             None => Compression::None,
         },
         instancing,
+        normals: match normals {
+            NormalsArg::Smooth => Normals::Smooth,
+            NormalsArg::Flat => Normals::Flat,
+        },
     };
     let start = Instant::now();
     let to_stdout = output.as_os_str() == "-";

@@ -25,6 +25,20 @@ pub enum Compression {
     Meshopt,
 }
 
+/// Whether a file writes vertex normals.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+pub enum Normals {
+    /// A unit normal per vertex, as the mesher made it (the exact surface's):
+    /// smooth shading across patches, sharp at creases.
+    #[default]
+    Smooth,
+    /// No `NORMAL` attribute: the glTF specification has the viewer compute
+    /// flat normals (three.js shades the mesh with `flatShading`), so curved
+    /// surfaces show their facets. The smallest file; for viewers that
+    /// compute their own normals.
+    Flat,
+}
+
 /// What the glTF writer does to make a file small.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct GlbOptions {
@@ -46,6 +60,9 @@ pub struct GlbOptions {
     /// under its part) are what every viewer reads and what the live viewer
     /// picks and replaces by id.
     pub instancing: bool,
+    /// Vertex normals written or left to the viewer ([`Normals::Smooth`] by
+    /// default, and in [`GlbOptions::compact`]).
+    pub normals: Normals,
 }
 
 impl Default for GlbOptions {
@@ -55,6 +72,7 @@ impl Default for GlbOptions {
             quantize: None,
             compress: Compression::None,
             instancing: false,
+            normals: Normals::Smooth,
         }
     }
 }
@@ -68,6 +86,15 @@ impl GlbOptions {
             quantize: Some(quantization_budget(tolerance)),
             compress: Compression::Meshopt,
             instancing: false,
+            normals: Normals::Smooth,
+        }
+    }
+
+    /// These options without vertex normals ([`Normals::Flat`]).
+    pub fn flat(self) -> Self {
+        Self {
+            normals: Normals::Flat,
+            ..self
         }
     }
 

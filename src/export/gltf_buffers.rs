@@ -30,8 +30,8 @@ use crate::mesh::PackedMesh;
 pub(super) struct PrimitiveAccessors {
     /// `POSITION` accessor.
     pub positions: json::Index<json::Accessor>,
-    /// `NORMAL` accessor.
-    pub normals: json::Index<json::Accessor>,
+    /// `NORMAL` accessor, when normals are written.
+    pub normals: Option<json::Index<json::Accessor>>,
     /// Triangle index accessor.
     pub indices: json::Index<json::Accessor>,
 }
@@ -136,10 +136,12 @@ impl<'a> MeshBuffers<'a> {
             hi = hi.max(p);
         }
         let encoding = Encoding::of(mesh, (lo, hi), &self.options);
-        let count = mesh.vertex_count();
+        let count = encoding.vertex_count(mesh);
+        let index_count = encoding.index_count(mesh);
         let streams = encoding.streams();
-        let offsets = streams.map(|s| self.lengths[s.slot()]);
-        for (stream, n) in streams.into_iter().zip([count, count, mesh.index_count()]) {
+        let offsets = streams.map(|s| s.map_or(0, |s| self.lengths[s.slot()]));
+        for (stream, n) in streams.into_iter().zip([count, count, index_count]) {
+            let Some(stream) = stream else { continue };
             self.lengths[stream.slot()] += stream.stride() * n;
             if !self.layout_only {
                 encoding.write(stream, mesh, &mut self.streams[stream.slot()]);
@@ -148,7 +150,6 @@ impl<'a> MeshBuffers<'a> {
         // Every element is 2 or 4 bytes aligned within its stream, and every
         // stream's view starts on a multiple of 4: accessors stay aligned.
         let (lo, hi) = encoding.position_bounds((lo, hi));
-        let quantized = encoding.quantized.is_some();
         let [ps, ns, is] = streams;
         let positions = root.push(json::Accessor {
             min: Some(Value::from(lo.to_vec())),
@@ -157,7 +158,7 @@ impl<'a> MeshBuffers<'a> {
                 offsets[0],
                 count,
                 Type::Vec3,
-                if quantized {
+                if ps == Some(Stream::PositionsU16) {
                     ComponentType::U16
                 } else {
                     ComponentType::F32
@@ -165,30 +166,34 @@ impl<'a> MeshBuffers<'a> {
                 false,
             )
         });
-        let normals = root.push(accessor(
-            offsets[1],
-            count,
-            Type::Vec3,
-            if ns == Stream::NormalsI8 {
-                ComponentType::I8
-            } else {
-                ComponentType::F32
-            },
-            ns == Stream::NormalsI8,
-        ));
+        let normals = ns.map(|ns| {
+            root.push(accessor(
+                offsets[1],
+                count,
+                Type::Vec3,
+                if ns == Stream::NormalsI8 {
+                    ComponentType::I8
+                } else {
+                    ComponentType::F32
+                },
+                ns == Stream::NormalsI8,
+            ))
+        });
         let indices = root.push(accessor(
             offsets[2],
-            mesh.index_count(),
+            index_count,
             Type::Scalar,
-            if is == Stream::Indices16 {
+            if is == Some(Stream::Indices16) {
                 ComponentType::U16
             } else {
                 ComponentType::U32
             },
             false,
         ));
-        for (stream, a) in [(ps, positions), (ns, normals), (is, indices)] {
-            self.accessors[stream.slot()].push(a.value());
+        for (stream, a) in [(ps, Some(positions)), (ns, normals), (is, Some(indices))] {
+            if let (Some(stream), Some(a)) = (stream, a) {
+                self.accessors[stream.slot()].push(a.value());
+            }
         }
         let dequantization = encoding.dequantization();
         self.meshes.push((mesh, encoding));

@@ -179,6 +179,7 @@ pub(super) fn document_with<'a>(
     let quantized = meshes.iter().any(|(_, e)| {
         e.streams()
             .iter()
+            .flatten()
             .any(|s| matches!(s, Stream::PositionsU16 | Stream::NormalsI8))
     });
     let buffers = writer.buffers.finish(&mut root)?;
@@ -301,10 +302,11 @@ impl<'a> MeshWriter<'a> {
                 let a = written.accessors;
                 let primitive = json::mesh::Primitive {
                     attributes: [
-                        (Checked::Valid(Semantic::Positions), a.positions),
-                        (Checked::Valid(Semantic::Normals), a.normals),
+                        Some((Checked::Valid(Semantic::Positions), a.positions)),
+                        a.normals.map(|n| (Checked::Valid(Semantic::Normals), n)),
                     ]
                     .into_iter()
+                    .flatten()
                     .collect(),
                     extensions: None,
                     extras: None,

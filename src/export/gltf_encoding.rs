@@ -10,14 +10,14 @@
 //! budget, from an origin that is a whole number of steps — the patch node's
 //! translation and uniform scale, both exact in `f32`, so decoding adds no
 //! rounding — and normals as normalized bytes; a mesh wider than 65 535 steps
-//! keeps `f32` positions. Compact files use
-//! `u16` indices where they fit. For meshopt compression the triangles are put in
-//! vertex-cache order and the vertices in first-use order (meshoptimizer's
-//! `optimizeVertexCache` and `optimizeVertexFetchRemap`), which compresses better.
+//! keeps `f32` positions. Compact files write vertices that would be written
+//! the same once (`gltf_welding`), in meshopt's vertex-cache and fetch order when
+//! compressed, and use `u16` indices where they fit.
 
 use glam::{DVec3, Vec3};
 
-use super::glb_options::{Compression, GlbOptions};
+use super::glb_options::{Compression, GlbOptions, Normals};
+use super::gltf_welding::{WrittenVertices, weld};
 use crate::mesh::PackedMesh;
 
 /// Millimetres → metres.
@@ -111,13 +111,15 @@ impl Stream {
 pub(super) struct Encoding {
     /// Positions quantized: origin, in steps, and the step, metres.
     pub quantized: Option<(DVec3, f64)>,
+    /// Normals written.
+    pub normals: bool,
     /// Normals as bytes.
     pub byte_normals: bool,
     /// Indices as `u16`.
     pub small_indices: bool,
-    /// Vertex and triangle order for compression: the old index of each new
-    /// vertex, and the new indices.
-    pub reorder: Option<(Vec<u32>, Vec<u32>)>,
+    /// The vertices written (welded, and in compression order with meshopt)
+    /// and the triangles over them, in a compact file; `None`: the mesh's own.
+    pub vertices: Option<WrittenVertices>,
 }
 
 impl Encoding {
@@ -125,61 +127,79 @@ impl Encoding {
     /// `options`.
     /// `bounds` are the mesh's (min, max), mm.
     pub fn of(mesh: &PackedMesh, bounds: (DVec3, DVec3), options: &GlbOptions) -> Self {
-        let compact = options.is_compact();
-        let count = mesh.vertex_count();
         let quantized = options
             .quantize
             .and_then(|bound| quantization(bounds, bound));
-        let reorder = (options.compress == Compression::Meshopt).then(|| {
-            let indices: Vec<u32> = mesh.indices().collect();
-            let indices = meshopt::optimize_vertex_cache(&indices, count);
-            let remap = meshopt::optimize_vertex_fetch_remap(&indices, count);
-            // Unused vertices (none in a mesher's output) go last, in order.
-            let mut next = remap.iter().filter(|&&r| r != u32::MAX).count() as u32;
-            let remap: Vec<u32> = remap
-                .into_iter()
-                .map(|r| {
-                    if r == u32::MAX {
-                        next += 1;
-                        next - 1
-                    } else {
-                        r
-                    }
-                })
-                .collect();
-            let mut old_of_new = vec![0u32; count];
-            for (old, &new) in remap.iter().enumerate() {
-                old_of_new[new as usize] = old as u32;
-            }
-            let indices = indices.into_iter().map(|i| remap[i as usize]).collect();
-            (old_of_new, indices)
-        });
-        Self {
+        let mut encoding = Self {
             quantized,
+            normals: options.normals == Normals::Smooth,
             byte_normals: options.quantize.is_some(),
-            small_indices: compact && count <= 1 << 16,
-            reorder,
+            small_indices: false,
+            vertices: None,
+        };
+        if options.is_compact() {
+            let oct = mesh.oct_normals();
+            let (normals, byte_normals) = (encoding.normals, encoding.byte_normals);
+            let welded = weld(mesh, |v| {
+                let p = mesh.position(v);
+                let position = match quantized {
+                    Some(grid) => quantize(grid, p).map(u32::from),
+                    None => metres(p).to_array().map(f32::to_bits),
+                };
+                let normal = if !normals {
+                    0
+                } else if byte_normals {
+                    let [x, y, z] = byte_normal(unit_normal(oct[v].decode()).unwrap_or(Vec3::Z));
+                    u32::from_le_bytes([x as u8, y as u8, z as u8, 0])
+                } else {
+                    let [a, b] = oct[v].0;
+                    (u32::from(a as u16) << 16) | u32::from(b as u16)
+                };
+                (position, normal)
+            });
+            encoding.vertices = Some(if options.compress == Compression::Meshopt {
+                welded.cache_ordered()
+            } else {
+                welded
+            });
+            encoding.small_indices = encoding.vertex_count(mesh) <= 1 << 16;
         }
+        encoding
     }
 
-    /// The streams of positions, normals and indices.
-    pub fn streams(&self) -> [Stream; 3] {
+    /// Number of vertices written.
+    pub fn vertex_count(&self, mesh: &PackedMesh) -> usize {
+        self.vertices
+            .as_ref()
+            .map_or(mesh.vertex_count(), |w| w.kept.len())
+    }
+
+    /// Number of triangle indices written.
+    pub fn index_count(&self, mesh: &PackedMesh) -> usize {
+        self.vertices
+            .as_ref()
+            .map_or(mesh.index_count(), |w| w.indices.len())
+    }
+
+    /// The streams of positions, normals (`None` when not written) and
+    /// indices.
+    pub fn streams(&self) -> [Option<Stream>; 3] {
         [
-            if self.quantized.is_some() {
+            Some(if self.quantized.is_some() {
                 Stream::PositionsU16
             } else {
                 Stream::PositionsF32
-            },
-            if self.byte_normals {
+            }),
+            self.normals.then_some(if self.byte_normals {
                 Stream::NormalsI8
             } else {
                 Stream::NormalsF32
-            },
-            if self.small_indices {
+            }),
+            Some(if self.small_indices {
                 Stream::Indices16
             } else {
                 Stream::Indices32
-            },
+            }),
         ]
     }
 
@@ -190,20 +210,9 @@ impl Encoding {
             .map(|(origin, step)| ((origin * step).as_vec3().to_array(), step as f32))
     }
 
-    /// The old vertex index of each written vertex.
-    fn vertex_order(&self, count: usize) -> Box<dyn Iterator<Item = usize> + '_> {
-        match &self.reorder {
-            Some((order, _)) => Box::new(order.iter().map(|&i| i as usize)),
-            None => Box::new(0..count),
-        }
-    }
-
     /// The quantized position of `p` (mm).
     fn quantize(&self, p: DVec3) -> [u16; 3] {
-        let (origin, step) = self.quantized.unwrap_or((DVec3::ZERO, 1.0));
-        let q = (p * MM_TO_M / step - origin).round();
-        q.to_array()
-            .map(|c| c.clamp(0.0, f64::from(u16::MAX)) as u16)
+        quantize(self.quantized.unwrap_or((DVec3::ZERO, 1.0)), p)
     }
 
     /// The bounds of the written positions in the accessor's own numbers, from
@@ -224,36 +233,44 @@ impl Encoding {
     /// Appends the bytes of `mesh` in `stream` (nothing for a stream it does
     /// not use). The mesh was checked: every normal decodes.
     pub fn write(&self, stream: Stream, mesh: &PackedMesh, out: &mut Vec<u8>) {
-        let [positions, normals, indices] = self.streams();
-        let count = mesh.vertex_count();
-        if stream == positions {
-            for v in self.vertex_order(count) {
-                let p = mesh.position(v);
-                if self.quantized.is_some() {
-                    for c in self.quantize(p) {
-                        out.extend_from_slice(&c.to_le_bytes());
-                    }
-                    out.extend_from_slice(&[0, 0]);
-                } else {
-                    for c in metres(p).to_array() {
-                        out.extend_from_slice(&c.to_le_bytes());
-                    }
+        let [positions, normals, indices] = self.streams().map(|s| s == Some(stream));
+        let count = self.vertex_count(mesh);
+        let kept = self.vertices.as_ref().map(|w| &w.kept[..]);
+        let old = |k: usize| kept.map_or(k, |kept| kept[k] as usize);
+        if positions {
+            out.reserve(count * stream.stride());
+            if let Some(grid) = self.quantized {
+                for k in 0..count {
+                    let [x, y, z] = quantize(grid, mesh.position(old(k))).map(u16::to_le_bytes);
+                    out.extend_from_slice(&[x[0], x[1], y[0], y[1], z[0], z[1], 0, 0]);
+                }
+            } else {
+                for k in 0..count {
+                    let [x, y, z] = metres(mesh.position(old(k)))
+                        .to_array()
+                        .map(f32::to_le_bytes);
+                    out.extend_from_slice(&x);
+                    out.extend_from_slice(&y);
+                    out.extend_from_slice(&z);
                 }
             }
-        } else if stream == normals {
+        } else if normals {
+            out.reserve(count * stream.stride());
             let oct = mesh.oct_normals();
-            for v in self.vertex_order(count) {
-                let n = unit_normal(oct[v].decode()).unwrap_or(Vec3::Z);
+            for k in 0..count {
+                let n = unit_normal(oct[old(k)].decode()).unwrap_or(Vec3::Z);
                 if self.byte_normals {
-                    out.extend_from_slice(&byte_normal(n).map(|c| c as u8));
-                    out.push(0);
+                    let [x, y, z] = byte_normal(n).map(|c| c as u8);
+                    out.extend_from_slice(&[x, y, z, 0]);
                 } else {
                     for c in n.to_array() {
                         out.extend_from_slice(&c.to_le_bytes());
                     }
                 }
             }
-        } else if stream == indices {
+        } else if indices {
+            let written = self.index_count(mesh);
+            out.reserve(written * stream.stride());
             let mut put = |i: u32| {
                 if self.small_indices {
                     out.extend_from_slice(&(i as u16).to_le_bytes());
@@ -261,12 +278,30 @@ impl Encoding {
                     out.extend_from_slice(&i.to_le_bytes());
                 }
             };
-            match &self.reorder {
-                Some((_, reordered)) => reordered.iter().for_each(|&i| put(i)),
+            match &self.vertices {
+                Some(w) => w.indices.iter().for_each(|&i| put(i)),
                 None => mesh.indices().for_each(put),
             }
         }
     }
+}
+
+/// The position `p` (mm) on the grid `(origin, step)` (origin in steps, step
+/// in metres), clamped to 16 bits.
+fn quantize((origin, step): (DVec3, f64), p: DVec3) -> [u16; 3] {
+    let q = p * (MM_TO_M / step) - origin;
+    q.to_array()
+        .map(|c| round_half_away(c).clamp(0.0, f64::from(u16::MAX)) as u16)
+}
+
+/// `x.round()` (half away from zero) for |x| < 2⁶², without the library
+/// call `f64::round` is on CPUs without SSE4.1: the truncation is the
+/// hardware's conversion, and `x − trunc(x)` is exact.
+#[inline]
+fn round_half_away(x: f64) -> f64 {
+    let t = x as i64 as f64;
+    let d = x - t;
+    t + f64::from(u8::from(d >= 0.5)) - f64::from(u8::from(d <= -0.5))
 }
 
 /// The origin (in steps) and step (m) quantizing a mesh of bounds `(lo, hi)`
@@ -311,18 +346,30 @@ pub fn quantization_bound(step: f64) -> f64 {
 
 /// A unit normal as three normalized bytes: of the roundings of its components
 /// up or down, the one whose length is nearest 1 (then nearest the normal), so
-/// that the decoded vector is a unit vector to within 8-bit precision.
+/// that the decoded vector is a unit vector to within 8-bit precision. The
+/// error of a candidate `c` is `| |c|/127 − 1 | + ¼ |c/|c| − n|`, the second
+/// term from `|c/|c| − n|² = 2 − 2 c·n/|c|` for a unit `n`: two square roots
+/// and a division per candidate.
 fn byte_normal(n: Vec3) -> [i8; 3] {
     let scaled = n * 127.0;
-    let floor = scaled.floor();
+    // `floor` by truncation (|scaled| ≤ 127): no library call without SSE4.1.
+    let floor = scaled.to_array().map(|x| {
+        let t = x as i32 as f32;
+        t - f32::from(u8::from(x < t))
+    });
     let mut best = ([0i8; 3], f32::INFINITY);
     for bits in 0..8u32 {
         let mut c = [0.0f32; 3];
         for (k, c) in c.iter_mut().enumerate() {
             *c = (floor[k] + ((bits >> k) & 1) as f32).clamp(-127.0, 127.0);
         }
-        let v = Vec3::from(c) / 127.0;
-        let error = (v.length() - 1.0).abs() + 0.25 * (v.normalize_or_zero() - n).length();
+        let c3 = Vec3::from(c);
+        let length = c3.length();
+        if length == 0.0 {
+            continue;
+        }
+        let along = c3.dot(n) / length;
+        let error = (length / 127.0 - 1.0).abs() + 0.25 * (2.0 - 2.0 * along).max(0.0).sqrt();
         if error < best.1 {
             best = (c.map(|x| x as i8), error);
         }

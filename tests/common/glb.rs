@@ -15,7 +15,8 @@ pub struct Glb {
     views: Vec<Vec<u8>>,
 }
 
-/// One primitive's data: positions and normals in the mesh's own numbers
+/// One primitive's data: positions and normals (none for a file without
+/// them) in the mesh's own numbers
 /// (dequantized only by the accessor's normalization), and indices.
 pub struct Primitive {
     pub positions: Vec<DVec3>,
@@ -155,7 +156,11 @@ impl Glb {
         };
         Primitive {
             positions: vec3(&p["attributes"]["POSITION"]),
-            normals: vec3(&p["attributes"]["NORMAL"]),
+            normals: if p["attributes"]["NORMAL"].is_null() {
+                Vec::new()
+            } else {
+                vec3(&p["attributes"]["NORMAL"])
+            },
             indices: self
                 .accessor(p["indices"].as_u64().unwrap() as usize)
                 .into_iter()

@@ -7,7 +7,7 @@
 // Usage: node load-glb-test.js <three-bundle.js> <file.glb>...
 // Prints one JSON object: per file, the meshes three.js made (draw calls), the
 // meshes they draw (an InstancedMesh counts its instances), their triangles and
-// vertices (of every instance), the named nodes, the world bounding box (metres, Y-up) and the
+// vertices (of every instance), the meshes shaded flat (no normals), the named nodes, the world bounding box (metres, Y-up) and the
 // extras of the first vessel node; or the error. Exits 2 if any file fails.
 'use strict';
 
@@ -29,7 +29,7 @@ window.load = async (name) => {
   loader.setMeshoptDecoder(THREE.MeshoptDecoder);
   const bytes = await (await fetch('/files/' + name)).arrayBuffer();
   const gltf = await loader.parseAsync(bytes, '');
-  let meshes = 0, drawn = 0, triangles = 0, vertices = 0;
+  let meshes = 0, drawn = 0, triangles = 0, vertices = 0, flat = 0;
   const names = [];
   gltf.scene.updateMatrixWorld(true);
   gltf.scene.traverse((o) => {
@@ -41,12 +41,13 @@ window.load = async (name) => {
       const g = o.geometry;
       triangles += copies * (g.index ? g.index.count : g.attributes.position.count) / 3;
       vertices += copies * g.attributes.position.count;
+      if (o.material && o.material.flatShading) flat += 1;
     }
   });
   const box = new THREE.Box3().setFromObject(gltf.scene);
   const vessel = gltf.scene.children[0]?.children[0];
   return {
-    meshes, drawn, triangles, vertices, names: names.length,
+    meshes, drawn, triangles, vertices, flat, names: names.length,
     box: [...box.min.toArray(), ...box.max.toArray()],
     vessel: vessel ? vessel.userData : null,
   };
