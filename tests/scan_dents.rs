@@ -1,12 +1,14 @@
-//! Dents and bulges on every part of the envelope: a simulated dent on a head
-//! and one on a cone are found within 10 % of their depth and 100 mm of their
-//! place; a clean scan reports none on its heads, cone and courses, even when
-//! the fit is told a noise below the scan's (its net then follows the noise,
-//! and overshoots where few points hold it, at the courses' ends).
+//! Dents and bulges on every part of the envelope: a simulated dent on a head,
+//! on a concentric and on an eccentric cone is found within 10 % of its depth
+//! and 100 mm of its place; a dent across a head's knuckle–crown line is one
+//! dent, not one per patch; a clean scan reports none on its heads, cones and
+//! courses, even when the fit is told a noise below the scan's (its net then
+//! follows the noise, and overshoots where few points hold it, at the courses'
+//! ends).
 
 mod common;
 
-use common::scan::{CONED, DRUM, envelope};
+use common::scan::{CONED, DRUM, TORI_ECCENTRIC, envelope};
 use glam::DVec3;
 use vesselcad::scan::Envelope;
 use vesselcad::scan::checks::Finding;
@@ -134,4 +136,61 @@ fn a_fit_told_less_noise_than_the_scan_has_finds_no_dents() {
             i.checks.findings
         );
     }
+}
+
+#[test]
+fn a_dent_across_a_heads_knuckle_and_crown_is_one_dent() {
+    let env = envelope(TORI_ECCENTRIC);
+    // H1 (crown 1600, knuckle 200, flange 50): knuckle and crown meet 164.2 mm
+    // above the tangent line, at radius 914.3: EL −214.2. A 300 mm dent there
+    // lies half on the knuckle, half on the crown.
+    let points = scan(&env, "dent=20mm@EL-214/60°/300mm", 600.0, 31);
+    let i = inspected(&env, points, 1.5);
+    let dents: Vec<&Finding> = local(&i.checks.findings)
+        .into_iter()
+        .filter(|f| f.part == "H1")
+        .collect();
+    assert_eq!(dents.len(), 1, "{dents:#?}");
+    let head = dents[0];
+    assert_eq!(head.kind, "dent", "{head:?}");
+    assert!((head.size - 20.0).abs() <= 2.0, "{head:?}");
+    assert!((head.elevation + 214.0).abs() <= 100.0, "{head:?}");
+    assert!(arc(914.0, head.orientation, 60.0) <= 100.0, "{head:?}");
+    // The merged extent spans both patches' parts of the dent (each alone is
+    // under 300 mm along the meridian).
+    assert!(
+        head.extent.is_some_and(|e| e > 250.0 && e < 700.0),
+        "{head:?}"
+    );
+}
+
+#[test]
+fn a_dent_on_an_eccentric_cone_is_found_in_depth_and_place() {
+    let env = envelope(TORI_ECCENTRIC);
+    // R1 runs from EL3000 (D 2000) to EL3900 (D 1400), flat side at 90°: at
+    // EL3450 its section (radius 850) is centred 150 mm towards 90°, so at
+    // 270°, on the steep side, it lies 700 mm from the vessel's axis.
+    let points = scan(&env, "dent=20mm@EL3450/270°/500mm", 600.0, 32);
+    let i = inspected(&env, points, 1.5);
+    let f = &i.checks.findings;
+    let cone = dent(f, "R1");
+    assert!((cone.size - 20.0).abs() <= 2.0, "{cone:?}");
+    assert!((cone.elevation - 3450.0).abs() <= 100.0, "{cone:?}");
+    assert!(arc(850.0, cone.orientation, 270.0) <= 100.0, "{cone:?}");
+    assert!(
+        cone.extent.is_some_and(|e| e > 200.0 && e < 900.0),
+        "{cone:?}"
+    );
+    // Nothing else on the vessel, the cone's other side included.
+    let others: Vec<&Finding> = local(f)
+        .into_iter()
+        .filter(|x| !std::ptr::eq(*x, cone))
+        .collect();
+    assert!(others.is_empty(), "{others:#?}");
+    // The courses stand on axes 300 mm apart by design: the vessel is plumb.
+    assert!(
+        i.checks.plumbness.is_some_and(|p| p < 0.0005),
+        "{:?}",
+        i.checks.plumbness
+    );
 }

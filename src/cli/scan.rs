@@ -19,6 +19,7 @@ use vesselcad::scan::points::{PointFormat, load_points, write_points};
 use vesselcad::scan::register::RegisterOptions;
 use vesselcad::scan::report::{to_html_with_maps, to_json};
 use vesselcad::scan::simulate::{SimulateOptions, SiteTransform, simulate};
+use vesselcad::scan::step::fitted_step;
 use vesselcad::scan::unrolled::unrolled_maps;
 use vesselcad::scan::{Envelope, ScanError};
 
@@ -115,6 +116,9 @@ pub struct FitArgs {
     /// Write the deviation map as binary glTF with vertex colours.
     #[arg(long)]
     glb: Option<PathBuf>,
+    /// Write the fitted (as-built) surfaces as STEP (AP214) faces.
+    #[arg(long)]
+    step: Option<PathBuf>,
     /// The points are already in plant coordinates: do not register.
     #[arg(long)]
     keep_frame: bool,
@@ -212,7 +216,7 @@ fn same_file(a: &Path, b: &Path) -> bool {
     }
 }
 
-/// Refuses an output (`-o`, `--json`, `--glb`) that names an input or another
+/// Refuses an output (`-o`, `--json`, `--glb`, `--step`) that names an input or another
 /// output, before anything is read or written.
 fn refuse_overwrites(a: &FitArgs) -> Result<(), ScanError> {
     let mut outputs: Vec<(&'static str, &Path, &'static str)> =
@@ -222,6 +226,9 @@ fn refuse_overwrites(a: &FitArgs) -> Result<(), ScanError> {
     }
     if let Some(p) = &a.glb {
         outputs.push(("--glb", p, "GLB map"));
+    }
+    if let Some(p) = &a.step {
+        outputs.push(("--step", p, "STEP model"));
     }
     for (k, &(option, path, _)) in outputs.iter().enumerate() {
         let inputs = [
@@ -280,6 +287,13 @@ fn run_fit(a: &FitArgs) -> Result<(), ScanError> {
     if let Some(path) = &a.glb {
         let bytes = deviation_glb(&env, &inspection, scale);
         std::fs::write(path, bytes).map_err(|e| ScanError::io(path, e))?;
+    }
+    if let Some(path) = &a.step {
+        let name = path
+            .file_name()
+            .map_or_else(String::new, |n| n.to_string_lossy().into_owned());
+        let text = fitted_step(&env, &inspection.fits, &name)?;
+        std::fs::write(path, text).map_err(|e| ScanError::io(path, e))?;
     }
     for f in &inspection.checks.findings {
         outln!(

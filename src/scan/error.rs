@@ -111,6 +111,14 @@ pub enum ScanError {
         /// The condition that failed.
         rule: String,
     },
+    /// The fitted surfaces could not be made a B-rep for STEP.
+    #[error("{entity}: cannot write the fitted surfaces: {source}")]
+    Exchange {
+        /// The model, `<tag> as-built`.
+        entity: String,
+        /// The exchange pipeline's error.
+        source: Box<crate::exchange::ExchangeError>,
+    },
 }
 
 impl ScanError {

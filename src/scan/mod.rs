@@ -7,7 +7,8 @@
 //!   ──▶ fit (least-squares NURBS per patch with smoothing, net grown to the noise;
 //!       or, for an ordered CMM grid, exact interpolation: `grid`)
 //!   ──▶ checks (UG-80 roundness, UG-81 heads, dents, peaking, plumbness,
-//!       API 653 settlement, volume) ──▶ report (HTML, JSON) and a coloured GLB
+//!       API 653 settlement, volume) ──▶ report (HTML, JSON) and a coloured GLB;
+//!       the fitted patches as STEP faces (`step`)
 //! ```
 //!
 //! `simulate` draws synthetic scans with known defects, noise, gaps and a site
@@ -34,6 +35,7 @@ pub mod register;
 pub mod report;
 pub mod settlement;
 pub mod simulate;
+pub mod step;
 pub mod unrolled;
 
 pub use envelope::{Envelope, Role, ScanPart, ScanSurface, ShellMaterial};

@@ -79,3 +79,26 @@ pub const CONED: &str = r#"{
     ]
   }]
 }"#;
+
+/// The coned drum of [`CONED`] with a torispherical bottom head H1 (crown
+/// 1600, knuckle 200: two patches under the flange) and an eccentric reducer
+/// R1, flat side at 90°.
+pub const TORI_ECCENTRIC: &str = r#"{
+  "format": "vesselcad/1", "units": "mm",
+  "vessels": [{
+    "tag": "V-3", "kind": "vertical",
+    "placement": { "position": [0, 0, 0], "rotation": 0 },
+    "design": { "pressure": 350, "temperature": 100, "corrosion_allowance": 3, "material": "SA-516-70" },
+    "parts": [
+      { "head": { "id": "H1", "shape": "torispherical", "crown_radius": 1600, "knuckle_radius": 200, "straight_flange": 50, "thickness": 12 } },
+      { "shell": { "id": "S1", "od": 2000, "length": 3000, "thickness": 12 } },
+      { "reducer": { "id": "R1", "length": 900, "thickness": 12, "eccentric": 90 } },
+      { "shell": { "id": "S2", "od": 1400, "length": 2000, "thickness": 10 } },
+      { "head": { "id": "H2", "shape": "ellipsoidal", "straight_flange": 50, "thickness": 10 } }
+    ],
+    "nozzles": [
+      { "mark": "N1", "service": "inlet", "size": 6, "rating": 150, "facing": "RF", "host": "S2", "orientation": 30, "elevation": 5000, "projection": 1100 },
+      { "mark": "N2", "service": "outlet", "size": 6, "rating": 150, "facing": "RF", "host": "S1", "orientation": 160, "elevation": 800, "projection": 1300 }
+    ]
+  }]
+}"#;

@@ -1,5 +1,5 @@
 //! Local areas — dents and bulges — on a grid of the fitted deviation less its
-//! background, for courses, heads and concentric cones alike.
+//! background, for courses, heads and cones (concentric or eccentric) alike.
 //!
 //! An area is a 4-connected set of grid cells (wrapping around the axis) whose
 //! residual is past the dent threshold, all of one sign. The fit can overshoot
@@ -8,15 +8,22 @@
 //! it: their mean residual, less the same background, lies on the area's side
 //! of zero by three standard errors of the scan's noise. Heads and cones are
 //! gridded like courses: rows along the meridian about [`GRID`] apart, columns
-//! evenly round the axis; each row loses its trimmed harmonics 0–2 where the
-//! row is wide (radius at least a quarter of the diameter) and only the part's
-//! best shift near a head's crown, where a dent would fill the row.
+//! evenly round each row's section circle (a head's or concentric cone's are
+//! centred on its axis, an eccentric cone's move with its small end); each row
+//! loses its trimmed harmonics 0–2 where the row is wide (radius at least a
+//! quarter of the diameter) and only the part's best shift near a head's
+//! crown, where a dent would fill the row. A head is several patches (flange,
+//! knuckle, crown): areas of one part that reach a shared patch edge over
+//! common columns are one dent, reported once with the deepest piece's depth
+//! and place and the pieces' summed length along the meridian.
 
 use std::f64::consts::{PI, TAU};
 
 use glam::DVec3;
 
-use super::{Checks, Finding, GRID, best_shift, section_harmonics};
+use super::{Finding, GRID, best_shift, section_harmonics};
+use crate::nurbs::NurbsSurface;
+use crate::nurbs::builders::FULL_TURN_KNOTS;
 use crate::scan::envelope::Envelope;
 use crate::scan::fit::{PatchFit, deviation_at};
 use crate::scan::profile::{angle_of_u, u_of_angle};
@@ -128,29 +135,156 @@ pub fn cell(angle: f64, s01: f64, rows: usize, columns: usize) -> (usize, usize)
     (r, c)
 }
 
-/// Dents and bulges on the head or concentric cone patch `index` (swept about
-/// its local axis), pushed to `checks`.
+/// Whether every v-isocurve of `design` is a full circle parametrized as
+/// [`revolve`](crate::nurbs::builders::revolve)'s (so [`angle_of_u`] holds on
+/// it): true of a revolved patch and of an eccentric cone (ruled between two
+/// such circles), checked at sample points to 1e-9 of the patch's size.
+fn has_circle_sections(design: &NurbsSurface) -> bool {
+    if design.u_knots().as_slice() != FULL_TURN_KNOTS {
+        return false;
+    }
+    let (v0, v1) = design.domain().1;
+    let size = design
+        .control_points()
+        .iter()
+        .map(|p| p.length())
+        .fold(1.0, f64::max);
+    [0.0, 0.29, 0.71, 1.0].into_iter().all(|t| {
+        let v = v0 + (v1 - v0) * t;
+        let (centre, radius) = section(design, v);
+        [0.3, 1.9, 2.8, 4.4, 5.9].into_iter().all(|theta: f64| {
+            let p = design.point(u_of_angle(theta), v);
+            let expected = centre + radius * DVec3::new(theta.cos(), theta.sin(), 0.0);
+            (p - expected).length() <= 1e-9 * size
+        })
+    })
+}
+
+/// The centre and radius of the section circle of `design` at `v`.
+fn section(design: &NurbsSurface, v: f64) -> (DVec3, f64) {
+    let a = design.point(0.0, v);
+    let b = design.point(0.5, v);
+    let centre = 0.5 * (a + b);
+    (centre, (a - centre).length())
+}
+
+/// A dent or bulge of one patch, with what it takes to join it to the same
+/// dent's piece on a neighbouring patch of the part.
+#[derive(Clone, Debug)]
+pub struct PatchArea {
+    /// The finding as the patch alone reports it.
+    pub finding: Finding,
+    /// Index of the patch in [`Envelope::surfaces`].
+    pub surface: usize,
+    /// The part's diameter, mm.
+    pub diameter: f64,
+    /// Columns round the axis (the part's: the same on all its patches).
+    pub columns: usize,
+    /// Length along the meridian, mm.
+    pub along: f64,
+    /// Widest row's arc, mm.
+    pub across: f64,
+    /// The patch's v-start and v-end edge points at u = 0 (vessel frame), and
+    /// the columns the area holds on the first and last rows.
+    pub edges: [(DVec3, Vec<usize>); 2],
+}
+
+/// The findings of `pieces` with the pieces of one dent on neighbouring
+/// patches of a part joined: same part and sign, a shared edge (edge points
+/// within 1e-6 of the part's diameter) on which their columns meet
+/// (within one column). A joined finding keeps the deepest piece's size and
+/// place; its extent is the larger of the widest piece and the pieces' summed
+/// lengths along the meridian.
+pub fn join_across_patches(pieces: Vec<PatchArea>) -> Vec<Finding> {
+    let n = pieces.len();
+    let mut parent: Vec<usize> = (0..n).collect();
+    fn root(parent: &mut [usize], mut i: usize) -> usize {
+        while parent[i] != i {
+            parent[i] = parent[parent[i]];
+            i = parent[i];
+        }
+        i
+    }
+    let touch = |a: &PatchArea, b: &PatchArea| {
+        let tolerance = 1e-6 * a.diameter.max(1.0);
+        a.finding.part == b.finding.part
+            && a.finding.kind == b.finding.kind
+            && a.surface != b.surface
+            && a.columns == b.columns
+            && a.edges.iter().any(|(pa, ca)| {
+                b.edges.iter().any(|(pb, cb)| {
+                    (*pa - *pb).length() <= tolerance
+                        && ca.iter().any(|&x| {
+                            cb.iter().any(|&y| {
+                                let d = x.abs_diff(y);
+                                d.min(a.columns - d) <= 1
+                            })
+                        })
+                })
+            })
+    };
+    for i in 0..n {
+        for j in i + 1..n {
+            if touch(&pieces[i], &pieces[j]) {
+                let (ri, rj) = (root(&mut parent, i), root(&mut parent, j));
+                parent[ri.max(rj)] = ri.min(rj);
+            }
+        }
+    }
+    let mut out = Vec::new();
+    for i in 0..n {
+        if root(&mut parent, i) != i {
+            continue;
+        }
+        let group: Vec<&PatchArea> = (0..n)
+            .filter(|&j| root(&mut parent, j) == i)
+            .map(|j| &pieces[j])
+            .collect();
+        let deepest = group
+            .iter()
+            .max_by(|a, b| a.finding.size.total_cmp(&b.finding.size))
+            .unwrap_or(&group[0]);
+        let along: f64 = group.iter().map(|p| p.along).sum();
+        let across = group.iter().map(|p| p.across).fold(0.0, f64::max);
+        let mut finding = deepest.finding.clone();
+        finding.extent = Some(along.max(across));
+        out.push(finding);
+    }
+    out
+}
+
+/// Dents and bulges on the head or cone patch `index`, each with its section
+/// circles round the part's axis (a revolved patch or an eccentric cone).
 pub fn revolution_areas(
     envelope: &Envelope,
     index: usize,
     fit: &PatchFit,
     feet: &[Option<Foot>],
     threshold: f64,
-    checks: &mut Checks,
-) {
+) -> Vec<PatchArea> {
     let s = &envelope.surfaces[index];
-    if s.profile.is_none() {
-        return;
+    let design = &s.patch.surface;
+    if !has_circle_sections(design) {
+        return Vec::new();
     }
     let part = &envelope.parts[s.part];
-    let design = &s.patch.surface;
     let d = part.diameter;
     let (v0, v1) = design.domain().1;
-    // Rows: v evenly, about GRID apart along the meridian.
-    let meridian: Vec<DVec3> = (0..=64)
-        .map(|k| design.point(0.0, v0 + (v1 - v0) * k as f64 / 64.0))
-        .collect();
-    let length: f64 = meridian.windows(2).map(|w| (w[1] - w[0]).length()).sum();
+    // The length of the meridian at `theta` between v = a and b.
+    let meridian_length = |theta: f64, a: f64, b: f64| {
+        let u = u_of_angle(theta);
+        (0..64)
+            .map(|k| {
+                let (p, q) = (k as f64 / 64.0, (k + 1) as f64 / 64.0);
+                (design.point(u, a + (b - a) * q) - design.point(u, a + (b - a) * p)).length()
+            })
+            .sum::<f64>()
+    };
+    // Rows: v evenly, about GRID apart along the longest meridian (an
+    // eccentric cone's differ round it).
+    let length = (0..4)
+        .map(|k| meridian_length(k as f64 * PI / 2.0, v0, v1))
+        .fold(0.0, f64::max);
     let nz = ((length / GRID).ceil() as usize).max(2);
     let rows = nz + 1;
     let nt = ((PI * d / GRID).ceil() as usize).clamp(72, 2880);
@@ -163,7 +297,7 @@ pub fn revolution_areas(
         let p = design.point(0.0, v_of(iz));
         *a = (p - previous).length();
         previous = p;
-        *r = p.truncate().length();
+        *r = section(design, v_of(iz)).1;
     }
     for iz in 1..rows {
         along[iz] += along[iz - 1];
@@ -175,7 +309,7 @@ pub fn revolution_areas(
         .map(|f| (*f, deviation_at(design, &fit.surface, f.u, f.v)))
         .collect();
     if own.len() < 16 {
-        return;
+        return Vec::new();
     }
     let shift = best_shift(&own);
     let local_shift = s.inverse.transform_vector3(shift);
@@ -236,6 +370,8 @@ pub fn revolution_areas(
         )
     });
     let ok = confirmed(&found, rows, nt, points, fit.rms);
+    let edge = |v: f64| s.frame.transform_point3(design.point(0.0, v));
+    let mut out = Vec::new();
     for (a, ok) in found.iter().zip(ok) {
         if !ok {
             continue;
@@ -259,17 +395,30 @@ pub fn revolution_areas(
         let at = s
             .frame
             .transform_point3(design.point(u_of_angle(angles[extreme.1]), v_of(extreme.0)));
-        checks.findings.push(Finding {
-            kind: if a.sign < 0.0 { "dent" } else { "bulge" },
-            part: part.id.clone(),
-            size: residual[extreme.0][extreme.1].abs(),
-            unit: "mm",
-            elevation: at.z,
-            orientation: envelope.orientation_of(at),
-            extent: Some((along[zmax] - along[zmin]).max(across)),
-            limit: None,
-            exceeds: false,
-            rule: LOCAL_RULE,
+        let along = meridian_length(angles[extreme.1], v_of(zmin), v_of(zmax));
+        let on_row = |row: usize| -> Vec<usize> {
+            a.cells.iter().filter(|c| c.0 == row).map(|c| c.1).collect()
+        };
+        out.push(PatchArea {
+            finding: Finding {
+                kind: if a.sign < 0.0 { "dent" } else { "bulge" },
+                part: part.id.clone(),
+                size: residual[extreme.0][extreme.1].abs(),
+                unit: "mm",
+                elevation: at.z,
+                orientation: envelope.orientation_of(at),
+                extent: Some(along.max(across)),
+                limit: None,
+                exceeds: false,
+                rule: LOCAL_RULE,
+            },
+            surface: index,
+            diameter: d,
+            columns: nt,
+            along,
+            across,
+            edges: [(edge(v0), on_row(0)), (edge(v1), on_row(rows - 1))],
         });
     }
+    out
 }

@@ -30,7 +30,9 @@ use super::profile::u_of_angle;
 use super::project::Foot;
 use super::settlement::{Settlement, settlement};
 use crate::design::VesselKind;
-use local::{LOCAL_RULE, areas, cell, confirmed, harmonic, revolution_areas};
+use local::{
+    LOCAL_RULE, PatchArea, areas, cell, confirmed, harmonic, join_across_patches, revolution_areas,
+};
 
 /// Grid step of the course checks, mm.
 pub const GRID: f64 = 50.0;
@@ -184,6 +186,7 @@ pub fn check(
     let tank = envelope.kind == VesselKind::Tank;
     let vertical = envelope.kind != VesselKind::Horizontal;
     let mut centres: Vec<(f64, f64, f64)> = Vec::new();
+    let mut pieces: Vec<PatchArea> = Vec::new();
     for (index, s) in envelope.surfaces.iter().enumerate() {
         let part = &envelope.parts[s.part];
         let Some(fit) = &fits[index] else { continue };
@@ -245,26 +248,25 @@ pub fn check(
                         });
                     }
                 }
-                revolution_areas(
+                pieces.extend(revolution_areas(
                     envelope,
                     index,
                     fit,
                     feet,
                     options.dent_threshold,
-                    &mut checks,
-                );
+                ));
             }
-            Role::Cone => revolution_areas(
+            Role::Cone => pieces.extend(revolution_areas(
                 envelope,
                 index,
                 fit,
                 feet,
                 options.dent_threshold,
-                &mut checks,
-            ),
+            )),
             _ => {}
         }
     }
+    checks.findings.extend(join_across_patches(pieces));
     if vertical && centres.len() >= 3 {
         let n = centres.len() as f64;
         let mz = centres.iter().map(|c| c.0).sum::<f64>() / n;
@@ -447,8 +449,11 @@ fn course_checks(
         if iz > 0 && iz < nz && ovality > worst.0 {
             worst = (ovality, z, 0.5 * c[4].atan2(c[3]));
         }
+        // The section's centre off the course's design axis there: an
+        // eccentric reducer's courses stand on axes apart by design.
+        let axis = s.frame.transform_point3(DVec3::new(0.0, 0.0, local.z));
         let centre = s.frame.transform_point3(DVec3::new(c[1], c[2], local.z));
-        centres.push((centre.z, centre.x, centre.y));
+        centres.push((axis.z, centre.x - axis.x, centre.y - axis.y));
     }
     let fraction = worst.0 / d;
     checks.roundness.push((part.id.clone(), 100.0 * fraction));
