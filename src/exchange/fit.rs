@@ -20,16 +20,6 @@
 //! curve. Breaks (the neck's knots, where its parametrization is only C¹) are
 //! always nodes. The error of a cubic falls with the fourth power of the span,
 //! so a loop written as ~1 200 samples at 0.001 mm needs some 30–60 spans.
-//!
-//! The 3D curve and a pcurve's image are then up to the tolerance apart. A
-//! receiver may replace a pcurve by the projection of the 3D curve
-//! (OpenCASCADE's STEP reader does where they are further apart than twice
-//! the file's uncertainty), which moves the face's boundary across the
-//! curve; along a long edge of a thin face (a reinforcing pad's sliver
-//! beside a seam) that moves a measurable share of its area. Where the move
-//! would exceed [`AREA_SHARE`] of the face's area, the 3D curve is written
-//! as the image of that face's pcurve instead ([`follow`]), within [`AGREE`]
-//! of it, on the same spans cut into pieces.
 
 use std::collections::HashMap;
 
@@ -45,21 +35,6 @@ pub(super) const FIT_SHARE: f64 = 0.5;
 /// Samples of a node's derivative stencil.
 const STENCIL: usize = 5;
 
-/// Largest number of pieces [`follow`] cuts a span into.
-const MAX_PIECES: usize = 64;
-
-/// Largest share of a face's area a receiver may move by replacing the
-/// face's pcurve of a loop edge by the projection of the edge's 3D curve
-/// (as OpenCASCADE's STEP reader does where the two are further apart than
-/// twice the file's uncertainty): above it, the 3D curve follows that
-/// pcurve ([`follow`]).
-pub(super) const AREA_SHARE: f64 = 1e-7;
-
-/// Distance, mm, within which [`follow`] puts the 3D curve from the
-/// pcurve's image: half the uncertainty the STEP file states (1e-6 mm), so
-/// that a receiver keeps the pcurve as it is.
-pub(super) const AGREE: f64 = 0.5e-6;
-
 /// A loop edge fitted: the 3D curve and each use's pcurve control points (on
 /// the curve's knots and degree).
 #[derive(Clone, Debug)]
@@ -71,6 +46,7 @@ pub(super) struct LoopFit {
 /// One piece's slopes (between two breaks, from sample `lo`): in 3D and in
 /// each plane, at each of its samples.
 struct Slopes {
+    lo: usize,
     d3: Vec<DVec3>,
     d2: Vec<Vec<DVec2>>,
 }
@@ -81,61 +57,21 @@ struct Plane<'a> {
     metric: Vec<DVec2>,
 }
 
-/// One span of a fitted loop: its parameter range and the cubic Hermite data
-/// at its ends (value and derivative by the parameter at each) of the 3D
-/// curve and of each use's pcurve.
-#[derive(Clone, Debug)]
-pub(super) struct Span {
-    pub(super) t: (f64, f64),
-    /// Whether the curve may turn at the span's end (a break, or the loop
-    /// edge's end): a triple knot there, a double one (C¹) otherwise.
-    pub(super) turns: bool,
-    pub(super) d3: Hermite<DVec3>,
-    pub(super) d2: Vec<Hermite<DVec2>>,
-}
-
-/// A cubic's values and derivatives at the two ends of its span.
-#[derive(Clone, Copy, Debug)]
-pub(super) struct Hermite<V> {
-    pub(super) start: (V, V),
-    pub(super) end: (V, V),
-}
-
-impl<V> Hermite<V>
-where
-    V: Copy + std::ops::Mul<f64, Output = V> + std::ops::Add<Output = V>,
-{
-    /// The cubic's value and derivative at `x` in the span `t`.
-    fn at(&self, t: (f64, f64), x: f64) -> (V, V) {
-        let h = t.1 - t.0;
-        let s = (x - t.0) / h;
-        let (s2, s3) = (s * s, s * s * s);
-        let ((p0, d0), (p1, d1)) = (self.start, self.end);
-        let value = p0 * (2.0 * s3 - 3.0 * s2 + 1.0)
-            + d0 * (h * (s3 - 2.0 * s2 + s))
-            + p1 * (3.0 * s2 - 2.0 * s3)
-            + d1 * (h * (s3 - s2));
-        let slope = p0 * ((6.0 * s2 - 6.0 * s) / h)
-            + d0 * (3.0 * s2 - 4.0 * s + 1.0)
-            + p1 * ((6.0 * s - 6.0 * s2) / h)
-            + d1 * (3.0 * s2 - 2.0 * s);
-        (value, slope)
-    }
-}
-
 /// Fits the samples `points` at the increasing parameters `t`, with each use's
-/// (u, v) of the same samples on its surface (`uses`), to `FIT_SHARE ×
-/// tolerance`, every parameter in `breaks` that is a sample's being a node:
-/// nodes chosen greedily, each span as long as the 3D curve and every
-/// pcurve's image keep within the bound at the samples inside it. [`net`]
-/// writes the spans as B-splines.
-pub(super) fn fit_spans(
+/// (u, v) of the same samples on its surface, to `FIT_SHARE × tolerance`,
+/// every parameter in `breaks` that is a sample's being a node.
+///
+/// # Errors
+///
+/// The kernel's error where the knot vector cannot be built (fewer than two
+/// samples, parameters not increasing).
+pub(super) fn fit_loop(
     t: &[f64],
     points: &[DVec3],
     uses: &[(&NurbsSurface, &[DVec2])],
     breaks: &[f64],
     tolerance: f64,
-) -> Vec<Span> {
+) -> Result<LoopFit, NurbsError> {
     let n = t.len();
     let bound = FIT_SHARE * tolerance;
     let planes: Vec<Plane> = uses
@@ -160,13 +96,16 @@ pub(super) fn fit_spans(
         }
     }
     cuts.push(n - 1);
-    // Each piece's slopes at every sample, in 3D and in each plane (a
-    // break's sample has one on each side), computed once.
-    let mut out: Vec<Span> = Vec::new();
+    // Spans (a, b) with the piece their slopes are taken on; each piece's
+    // slopes at every sample, in 3D and in each plane (a break's sample has
+    // one on each side), computed once.
+    let mut spans: Vec<(usize, usize, usize)> = Vec::new();
+    let mut slopes: Vec<Slopes> = Vec::with_capacity(cuts.len() - 1);
     for w in cuts.windows(2) {
         let (lo, hi) = (w[0], w[1]);
         let stencils: Vec<Stencil> = (lo..=hi).map(|k| stencil(t, lo, hi, k)).collect();
         let piece = Slopes {
+            lo,
             d3: stencils.iter().map(|s| s.apply(points)).collect(),
             d2: planes
                 .iter()
@@ -218,160 +157,42 @@ pub(super) fn fit_spans(
                 }
             }
             step = (good - a).max(2);
-            let b = good;
-            out.push(Span {
-                t: (t[a], t[b]),
-                turns: b == hi,
-                d3: Hermite {
-                    start: (points[a], piece.d3[a - lo]),
-                    end: (points[b], piece.d3[b - lo]),
-                },
-                d2: planes
-                    .iter()
-                    .zip(&piece.d2)
-                    .map(|(p, d)| Hermite {
-                        start: (p.uv[a], d[a - lo]),
-                        end: (p.uv[b], d[b - lo]),
-                    })
-                    .collect(),
-            });
+            spans.push((a, good, slopes.len()));
             a = good;
         }
+        slopes.push(piece);
     }
-    out
-}
-
-/// The B-splines of fitted spans: the 3D curve and each pcurve on one knot
-/// vector, a double knot between two spans of a piece (both take one slope:
-/// C¹), a triple one where the curve turns.
-///
-/// # Errors
-///
-/// The kernel's error where the knot vector cannot be built.
-pub(super) fn net(spans: &[Span]) -> Result<LoopFit, NurbsError> {
-    let Some(first) = spans.first() else {
-        return Err(NurbsError::InvalidGeometry {
-            what: "fitted spans of a loop edge",
-            value: 0.0,
-            rule: "must be at least one (two samples)",
-        });
-    };
-    let mut knots = vec![first.t.0; 4];
-    let mut c3 = vec![first.d3.start.0];
-    let mut c2: Vec<Vec<DVec2>> = first.d2.iter().map(|d| vec![d.start.0]).collect();
-    for (j, span) in spans.iter().enumerate() {
-        let h = span.t.1 - span.t.0;
-        let (a, b) = (span.d3.start, span.d3.end);
-        c3.push(a.0 + a.1 * (h / 3.0));
-        c3.push(b.0 - b.1 * (h / 3.0));
-        for (c, d) in c2.iter_mut().zip(&span.d2) {
-            c.push(d.start.0 + d.start.1 * (h / 3.0));
-            c.push(d.end.0 - d.end.1 * (h / 3.0));
+    // The Bézier net: a double knot at a node inside a piece (both spans take
+    // its one slope: C¹), a triple one at a break (each side its own slope).
+    let mut knots = vec![t[0]; 4];
+    let mut c3 = vec![points[0]];
+    let mut c2: Vec<Vec<DVec2>> = planes.iter().map(|p| vec![p.uv[0]]).collect();
+    for (j, &(a, b, piece)) in spans.iter().enumerate() {
+        let h = t[b] - t[a];
+        let piece = &slopes[piece];
+        let (da, db) = (piece.d3[a - piece.lo], piece.d3[b - piece.lo]);
+        c3.push(points[a] + da * (h / 3.0));
+        c3.push(points[b] - db * (h / 3.0));
+        for ((c, p), d) in c2.iter_mut().zip(&planes).zip(&piece.d2) {
+            let (da, db) = (d[a - piece.lo], d[b - piece.lo]);
+            c.push(p.uv[a] + da * (h / 3.0));
+            c.push(p.uv[b] - db * (h / 3.0));
         }
+        let hi = piece.lo + piece.d3.len() - 1;
         let last = j + 1 == spans.len();
-        if last || span.turns {
-            knots.extend(std::iter::repeat_n(span.t.1, if last { 4 } else { 3 }));
-            c3.push(b.0);
-            for (c, d) in c2.iter_mut().zip(&span.d2) {
-                c.push(d.end.0);
+        if last || b == hi {
+            knots.extend(std::iter::repeat_n(t[b], if last { 4 } else { 3 }));
+            c3.push(points[b]);
+            for (c, p) in c2.iter_mut().zip(&planes) {
+                c.push(p.uv[b]);
             }
         } else {
-            knots.extend([span.t.1; 2]);
+            knots.extend([t[b]; 2]);
         }
     }
     let knots = KnotVector::try_new(3, knots)?;
     let curve = NurbsCurve::try_polynomial(knots, &c3)?;
     Ok(LoopFit { curve, pcurves: c2 })
-}
-
-/// How far a receiver moves a face's boundary (signed area, mm²) if it
-/// replaces the pcurve `plane` of `spans` on `surface` by the projection of
-/// the 3D curve: the 3D curve's offset from the pcurve's image across the
-/// curve within the surface, integrated along it (midpoint rule, four points
-/// a span).
-pub(super) fn area_shift(spans: &[Span], plane: usize, surface: &NurbsSurface) -> f64 {
-    let mut shift = 0.0;
-    for span in spans {
-        let h = span.t.1 - span.t.0;
-        for q in 0..4 {
-            let x = span.t.0 + h * (f64::from(q) + 0.5) / 4.0;
-            let (c, dc) = span.d3.at(span.t, x);
-            let (uv, _) = span.d2[plane].at(span.t, x);
-            let s = surface.first_derivatives(uv.x, uv.y);
-            let across = s.du.cross(s.dv).cross(dc).normalize_or_zero();
-            shift += (c - s.point).dot(across) * dc.length() * h / 4.0;
-        }
-    }
-    shift
-}
-
-/// `spans` with the 3D curve replaced by the image of the pcurve `plane` on
-/// `surface` (the receiver's projection of the 3D curve then gives that
-/// pcurve back): each span cut into equal pieces, as many as it takes for
-/// the cubic Hermite interpolant of the image (its values and exact
-/// derivatives, `S_u u' + S_v v'`, at the pieces' ends) to lie within
-/// `agree` of the image at a quarter, half and three quarters of every
-/// piece (its error, of the fourth order, peaks in the middle);
-/// each pcurve is cut at the same parameters, exactly (the same cubics).
-pub(super) fn follow(spans: &[Span], plane: usize, surface: &NurbsSurface, agree: f64) -> Vec<Span> {
-    let image = |span: &Span, x: f64| -> (DVec3, DVec3) {
-        let (uv, duv) = span.d2[plane].at(span.t, x);
-        let s = surface.first_derivatives(uv.x, uv.y);
-        (s.point, s.du * duv.x + s.dv * duv.y)
-    };
-    let mut out = Vec::with_capacity(spans.len() * 4);
-    for span in spans {
-        let (t0, t1) = span.t;
-        let pieces = |m: usize| -> Vec<Span> {
-            let at = |k: usize| t0 + (t1 - t0) * k as f64 / m as f64;
-            (0..m)
-                .map(|k| {
-                    let t = (at(k), at(k + 1));
-                    Span {
-                        t,
-                        turns: k + 1 == m && span.turns,
-                        d3: Hermite {
-                            start: image(span, t.0),
-                            end: image(span, t.1),
-                        },
-                        d2: span
-                            .d2
-                            .iter()
-                            .map(|d| Hermite {
-                                start: d.at(span.t, t.0),
-                                end: d.at(span.t, t.1),
-                            })
-                            .collect(),
-                    }
-                })
-                .collect()
-        };
-        let error = |pieces: &[Span]| -> f64 {
-            pieces
-                .iter()
-                .flat_map(|p| {
-                    [0.25, 0.5, 0.75].map(|f| {
-                        let x = p.t.0 + (p.t.1 - p.t.0) * f;
-                        p.d3.at(p.t, x).0.distance(image(span, x).0)
-                    })
-                })
-                .fold(0.0, f64::max)
-        };
-        let mut m = 1;
-        let mut cut = pieces(m);
-        loop {
-            let e = error(&cut);
-            if e <= agree || m >= MAX_PIECES {
-                break;
-            }
-            // The error falls with the fourth power of the piece's length.
-            let grow = ((e / agree).powf(0.25) * 1.2).ceil() as usize;
-            m = (m * grow.max(2)).min(MAX_PIECES);
-            cut = pieces(m);
-        }
-        out.extend(cut);
-    }
-    out
 }
 
 /// The derivative at a sample of the Lagrange polynomial through the
@@ -447,45 +268,8 @@ where
         + db * (h * (s3 - s2))
 }
 
-/// A face's area, roughly (for [`AREA_SHARE`]): its loops' area in (u, v),
-/// through their pcurves' points, times the surface's area element at the
-/// outer loop's centroid.
-fn area_estimate(face: &Face) -> f64 {
-    let mut twice = 0.0;
-    let mut centroid = DVec2::ZERO;
-    let mut count = 0.0;
-    for (l, lp) in std::iter::once(&face.outer).chain(&face.holes).enumerate() {
-        let points: Vec<DVec2> = lp
-            .iter()
-            .flat_map(|e| {
-                let mut p = e.pcurve.clone();
-                if !e.forward {
-                    p.reverse();
-                }
-                p
-            })
-            .collect();
-        for (k, p) in points.iter().enumerate() {
-            twice += p.perp_dot(points[(k + 1) % points.len()]);
-            if l == 0 {
-                centroid += *p;
-                count += 1.0;
-            }
-        }
-    }
-    if count == 0.0 {
-        return 0.0;
-    }
-    let c = centroid / count;
-    let d = face.surface.first_derivatives(c.x, c.y);
-    0.5 * twice.abs() * d.du.cross(d.dv).length()
-}
-
 /// Fits every degree-1 loop edge of a vessel's B-rep (`breaks`: each with the
 /// parameters it must keep as nodes) and each face's pcurve on it, in place.
-/// Where a receiver's projection of the 3D curve would move a face's
-/// boundary by more than [`AREA_SHARE`] of its area (a sliver along a long
-/// edge), the 3D curve follows that face's pcurve ([`follow`]).
 ///
 /// # Errors
 ///
@@ -506,7 +290,6 @@ pub(super) fn fit_loops(
             }
         }
     }
-    let areas: Vec<f64> = faces.iter().map(area_estimate).collect();
     let use_of = |faces: &[Face], (f, l, k): (usize, usize, usize)| -> OrientedEdge {
         let face = &faces[f];
         if l == 0 {
@@ -544,23 +327,8 @@ pub(super) fn fit_loops(
             .iter()
             .map(|(f, uv)| (&faces[*f].surface, uv.as_slice()))
             .collect();
-        let mut spans = fit_spans(t, &points, &planes, edge_breaks, tolerance);
-        // The use whose face's area a receiver's projection of the 3D curve
-        // would move most, relative to the face's area.
-        let worst = samples
-            .iter()
-            .enumerate()
-            .map(|(i, (f, _))| {
-                let shift = area_shift(&spans, i, &faces[*f].surface).abs();
-                (i, shift / areas[*f].max(f64::MIN_POSITIVE))
-            })
-            .max_by(|a, b| a.1.total_cmp(&b.1));
-        if let Some((i, share)) = worst
-            && share > AREA_SHARE
-        {
-            spans = follow(&spans, i, &faces[samples[i].0].surface, AGREE);
-        }
-        let fit = net(&spans).map_err(|e| (*edge, e.to_string()))?;
+        let fit = fit_loop(t, &points, &planes, edge_breaks, tolerance)
+            .map_err(|e| (*edge, e.to_string()))?;
         edges[*edge].curve = EdgeCurve::Loop(fit.curve);
         for (&(f, l, k), pcurve) in its_uses.iter().zip(fit.pcurves) {
             let face = &mut faces[f];
@@ -633,13 +401,13 @@ mod tests {
             (t, points, host_uv, neck_uv)
         };
         let (t, points, host_uv, neck_uv) = closed(&coarse);
-        let fit = net(&fit_spans(
+        let fit = fit_loop(
             &t,
             &points,
             &[(&host, &host_uv), (&neck, &neck_uv)],
             &[0.25, 0.5, 0.75],
             tolerance,
-        ))
+        )
         .expect("fit");
         let spans = fit.curve.knots().distinct().len() - 1;
         assert!(
@@ -671,71 +439,5 @@ mod tests {
             }
         }
         assert!(worst <= tolerance, "worst {worst} mm");
-    }
-
-    /// The same saddle loop, its 3D curve made to follow the host's pcurve:
-    /// at 20 001 parameters over the loop, the 3D curve lies within
-    /// [`AGREE`] of the pcurve's image (the independent fits were more than
-    /// 100 × that apart), both pcurves are the curves they were (1e-12),
-    /// and the area a projection of the 3D curve would move on the host is
-    /// within the image's own error times the loop's length.
-    #[test]
-    fn a_followed_curve_is_the_image_of_its_pcurve() {
-        let host = revolve(
-            &line(DVec3::new(0.0, -800.0, -400.0), DVec3::new(0.0, 800.0, -400.0))
-                .expect("line"),
-            DVec3::ZERO,
-            DVec3::Y,
-            TAU,
-        )
-        .expect("shell");
-        let neck = revolve(
-            &line(DVec3::new(150.0, 0.0, 0.0), DVec3::new(150.0, 0.0, 800.0)).expect("line"),
-            DVec3::ZERO,
-            DVec3::Z,
-            TAU,
-        )
-        .expect("neck");
-        let tolerance = 1e-3;
-        let l = neck_host_intersection(&neck, &host, tolerance).expect("loop");
-        let mut t: Vec<f64> = l.neck_uv.iter().map(|p| p.x).collect();
-        t.push(t[0] + 1.0);
-        let mut points = l.points.clone();
-        points.push(points[0]);
-        let mut host_uv = l.host_uv.clone();
-        host_uv.push(host_uv[0]);
-        let mut neck_uv = l.neck_uv.clone();
-        neck_uv.push(neck_uv[0] + DVec2::X);
-        let spans = fit_spans(
-            &t,
-            &points,
-            &[(&host, &host_uv), (&neck, &neck_uv)],
-            &[0.25, 0.5, 0.75],
-            tolerance,
-        );
-        let followed = follow(&spans, 0, &host, AGREE);
-        assert!(followed.len() > spans.len());
-        let (before, after) = (net(&spans).expect("fit"), net(&followed).expect("fit"));
-        let pcurve = |fit: &LoopFit, i: usize| {
-            let p: Vec<DVec3> = fit.pcurves[i].iter().map(|q| q.extend(0.0)).collect();
-            NurbsCurve::try_polynomial(fit.curve.knots().clone(), &p).expect("pcurve")
-        };
-        let (a, b) = before.curve.domain();
-        let (mut gap_before, mut gap_after, mut moved) = (0.0f64, 0.0f64, 0.0f64);
-        for k in 0..=20_000 {
-            let x = a + (b - a) * f64::from(k) / 20_000.0;
-            let (old, new) = (pcurve(&before, 0).point(x), pcurve(&after, 0).point(x));
-            gap_before = gap_before.max(before.curve.point(x).distance(host.point(old.x, old.y)));
-            gap_after = gap_after.max(after.curve.point(x).distance(host.point(new.x, new.y)));
-            moved = moved
-                .max(old.distance(new))
-                .max(pcurve(&before, 1).point(x).distance(pcurve(&after, 1).point(x)));
-        }
-        assert!(gap_before > 100.0 * AGREE, "independent fits {gap_before} mm apart");
-        assert!(gap_after <= AGREE, "followed: {gap_after} mm from the image");
-        assert!(moved <= 1e-12, "a pcurve moved by {moved}");
-        let length: f64 = points.windows(2).map(|w| w[0].distance(w[1])).sum();
-        let shift = area_shift(&followed, 0, &host).abs();
-        assert!(shift <= AGREE * length, "{shift} mm² moved");
     }
 }

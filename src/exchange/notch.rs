@@ -260,7 +260,8 @@ pub(super) fn neck_across(
         // The host u continuous with the samples round it on a closed host.
         let mut u = crossing.host_uv.x;
         if closed {
-            let f = (crossing.neck_uv.x - source.neck_uv[k].x) / (neck_there.x - source.neck_uv[k].x);
+            let f =
+                (crossing.neck_uv.x - source.neck_uv[k].x) / (neck_there.x - source.neck_uv[k].x);
             let expected = here.x + (there.x - here.x) * f;
             u += period * ((expected - u) / period).round();
         }
@@ -279,12 +280,25 @@ pub(super) fn neck_across(
         let end = on_seam[(i + 1) % on_seam.len()];
         let steps = (end + n - start) % n;
         let Some(middle) = (steps > 1).then(|| curve.host_uv[(start + steps / 2) % n]) else {
-            return Err((a, "the neck's loop touches the seam without crossing it".into()));
+            return Err((
+                a,
+                "the neck's loop touches the seam without crossing it".into(),
+            ));
         };
         let (side, edge, shift, list) = if middle.y < seam {
-            (Side::VMax, below.domain().1.1, shifts[0], &mut notches_below)
+            (
+                Side::VMax,
+                below.domain().1.1,
+                shifts[0],
+                &mut notches_below,
+            )
         } else {
-            (Side::VMin, above.domain().1.0, shifts[1], &mut notches_above)
+            (
+                Side::VMin,
+                above.domain().1.0,
+                shifts[1],
+                &mut notches_above,
+            )
         };
         let mut path: Vec<DVec2> = (0..=steps)
             .map(|s| {
