@@ -11,7 +11,9 @@ mod common;
 use std::collections::BTreeMap;
 use std::path::Path;
 
-use common::exchange::{across_seam, repro, support_edges_on_envelope, two_tanks};
+use common::exchange::{
+    across_seam, across_seam_padded, repro, support_edges_on_envelope, two_tanks,
+};
 use common::occt::{occt_python, occt_report};
 use serde_json::Value;
 use vesselcad::design::{Design, load};
@@ -201,6 +203,8 @@ fn occt_reads_iges_as_it_reads_step() {
         ("across-seam", across_seam()),
         ("D4", repro("D4-seam-crossing-plus-centre-nozzle")),
         ("D7", repro("D7-pad-across-knuckle-crown-seam")),
+        ("D7d", repro("D7d-pad-and-neck-across-knuckle-crown-seam")),
+        ("across-seam padded", across_seam_padded()),
     ] {
         let (theirs, reference) = read_both(&python, label, &design, IgesEntities::Brep, false);
         let free = |r: &Value| r["sewing_free"].as_u64().expect("count");

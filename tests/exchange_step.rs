@@ -11,7 +11,7 @@ mod common;
 
 use std::path::Path;
 
-use common::exchange::{across_seam, repro, two_tanks};
+use common::exchange::{across_seam, across_seam_padded, repro, two_tanks};
 use common::occt::{occt_python, occt_report};
 use glam::{DAffine3, DVec2};
 use serde_json::Value;
@@ -180,6 +180,11 @@ fn occt_reads_valid_sewn_named_faces() {
         ("D7", repro("D7-pad-across-knuckle-crown-seam")),
         ("D7b", repro("D7b-pad-across-toriconical-knuckle-cone")),
         ("D7c", repro("D7c-pad-across-flat-head-knuckle-plate")),
+        // The same with the neck's loop across the seam too: the pad is a
+        // face on each host patch, each notched by the neck's loop.
+        ("D7d", repro("D7d-pad-and-neck-across-knuckle-crown-seam")),
+        // A pad round a nozzle whose neck crosses its course's seam.
+        ("across-seam padded", across_seam_padded()),
     ] {
         let text = export_step(
             &design,
@@ -305,16 +310,9 @@ fn occt_reads_valid_sewn_named_faces() {
             let area = face_measures(&brep.edges, face).area;
             let theirs = f["area"].as_f64().expect("area");
             // A reinforcing pad across a seam is a face on each host patch:
-            // their sum is checked below. (OCCT reads D7's sliver beside the
-            // seam from STEP 5.8e-6 relative off ours, 0.027 mm² of 4,680,
-            // while it reads the same face from IGES within 1e-6: the file's
-            // pcurve of the pad loop's edge is ours, but OCCT's STEP reader
-            // replaces it (on both faces using it) by one closer to the 3D
-            // curve, whose image lies ~1e-4 mm from ours; the pcurve and the
-            // 3D curve are each fitted within half the exchange tolerance and
-            // differ by up to 1.6e-4 mm there, and the sliver's long edge
-            // carries that shift into its small area. The IGES reader keeps
-            // our pcurve.)
+            // their sum is checked below (OCCT's STEP reader reads D7's
+            // sliver 5.8e-6 relative off: it replaces that pcurve by the
+            // projection of the edge's 3D curve, 1.6e-4 mm from ours).
             if face.patch == vesselcad::mesh::PAD_PATCH {
                 let pad = pad_areas.entry(name.to_string()).or_insert((0.0, 0.0));
                 pad.0 += area;
@@ -395,7 +393,9 @@ fn occt_displacement_solid_volume() {
 /// nozzle, a ring of eight on every seam step; D4, an opening across a
 /// torispherical head's knuckle–crown seam, whose loop notches both patches;
 /// D7, D7b, D7c, a reinforcing pad across a knuckle's seam, whose loop notches
-/// both patches and which is a face on each, split on the seam) go through the same seam choice in the exchange model: with blind
+/// both patches and which is a face on each, split on the seam; D7d, the same
+/// with the neck's loop across the seam too) go through the same seam choice
+/// in the exchange model: with blind
 /// flanges closing every bore, each vessel is one closed shell, each edge used
 /// twice.
 #[test]
@@ -407,6 +407,7 @@ fn head_seam_repros_export_closed_shells() {
         "D7-pad-across-knuckle-crown-seam",
         "D7b-pad-across-toriconical-knuckle-cone",
         "D7c-pad-across-flat-head-knuckle-plate",
+        "D7d-pad-and-neck-across-knuckle-crown-seam",
         "D8-ring-of-8-on-every-seam-angle",
     ] {
         let mut design = load(format!(
@@ -424,19 +425,21 @@ fn head_seam_repros_export_closed_shells() {
     }
 }
 
-/// A reinforcing pad across a head's knuckle seam (D7, D7b, D7c) fills
-/// exactly what its loop notches out of the two host faces: the head's faces
-/// and the pad's face together have the area of the same head cut by the
-/// neck alone (the design without the pad), to 1e-6 relative. The pad is a
-/// face on each host patch, bounded by its loop's piece there (shared with
-/// the host face's notch) and the seam between the two (shared by the two),
-/// one of them with the neck's loop as a hole.
+/// A reinforcing pad across a head's knuckle seam (D7, D7b, D7c, and D7d
+/// whose neck crosses the seam too) fills exactly what its loop notches out
+/// of the two host faces: the head's faces and the pad's face together have
+/// the area of the same head cut by the neck alone (the design without the
+/// pad), to 1e-6 relative. The pad is a face on each host patch, bounded by
+/// its loop's piece there (shared with the host face's notch) and the seam
+/// between the two (shared by the two), one of them with the neck's loop as
+/// a hole, or, in D7d, each notched by the neck's loop.
 #[test]
 fn a_pad_across_a_knuckle_seam_fills_its_notches() {
     for name in [
         "D7-pad-across-knuckle-crown-seam",
         "D7b-pad-across-toriconical-knuckle-cone",
         "D7c-pad-across-flat-head-knuckle-plate",
+        "D7d-pad-and-neck-across-knuckle-crown-seam",
     ] {
         let padded = repro(name);
         let mut bare = padded.clone();
@@ -461,6 +464,79 @@ fn a_pad_across_a_knuckle_seam_fills_its_notches() {
         assert!(
             (with_pad - without).abs() <= 1e-6 * without,
             "{name}: head and pad {with_pad} mm² vs the head cut by the neck {without} mm²"
+        );
+    }
+}
+
+/// D7d: a reinforcing pad across a torispherical head's knuckle–crown seam
+/// whose neck's loop crosses the seam too. The pad is one face on each host
+/// patch, on that patch's own surface; the two share exactly the seam's
+/// pieces between the pad's and the neck's notches (two edges, both exact
+/// isocurves, on the seam); the neck's loop is split at the seam into edges
+/// each used once by the neck's bottom and once by one pad piece, and every
+/// edge of the head, pad and neck is used twice but the neck's top. Before,
+/// the pad was one face on the two patches joined.
+#[test]
+fn a_pad_and_neck_across_a_knuckle_seam_are_split_on_it() {
+    let design = repro("D7d-pad-and-neck-across-knuckle-crown-seam");
+    let sources = vessel_sources(&design, &[], ExchangeOptions::DEFAULT.tolerance).expect("src");
+    let brep = vessel_brep(&sources[0]).expect("brep");
+    let head = sources[0].nodes.iter().find(|n| n.id == "H2").expect("H2");
+    let pads: Vec<&vesselcad::exchange::Face> = brep
+        .faces
+        .iter()
+        .filter(|f| f.patch == vesselcad::mesh::PAD_PATCH)
+        .collect();
+    assert_eq!(pads.len(), 2, "one pad face per host patch");
+    // Each on a host patch's surface (the same control net, in the vessel frame).
+    for pad in &pads {
+        let on = head.patches.iter().any(|p| {
+            let s = p.surface.transformed(&head.frame).expect("placed");
+            s.control_points().len() == pad.surface.control_points().len()
+                && s.control_points()
+                    .iter()
+                    .zip(pad.surface.control_points())
+                    .all(|(a, b)| a.distance(b) <= 1e-9)
+        });
+        assert!(on, "a pad face is not on a host patch's surface");
+        assert!(pad.holes.is_empty(), "the neck's loop notches each piece");
+    }
+    let edges = |f: &vesselcad::exchange::Face| -> Vec<usize> {
+        f.outer
+            .iter()
+            .chain(f.holes.iter().flatten())
+            .map(|e| e.edge)
+            .collect()
+    };
+    let (a, b) = (edges(pads[0]), edges(pads[1]));
+    let shared: Vec<usize> = a.iter().copied().filter(|e| b.contains(e)).collect();
+    assert_eq!(
+        shared.len(),
+        2,
+        "the pieces share the seam on either side of the neck"
+    );
+    for &e in &shared {
+        assert!(
+            matches!(brep.edges[e].curve, EdgeCurve::Nurbs(_)),
+            "an exact isocurve"
+        );
+    }
+    // The neck's bottom: loop edges, each also used by one pad piece.
+    let neck = brep
+        .faces
+        .iter()
+        .find(|f| brep.nodes[f.node] == "P" && f.patch != vesselcad::mesh::PAD_PATCH)
+        .expect("the neck's face");
+    let bottom: Vec<usize> = edges(neck)
+        .into_iter()
+        .filter(|&e| matches!(brep.edges[e].curve, EdgeCurve::Loop(_)))
+        .collect();
+    assert!(bottom.len() >= 2, "the neck's loop is split at the seam");
+    for e in bottom {
+        assert_eq!(
+            usize::from(a.contains(&e)) + usize::from(b.contains(&e)),
+            1,
+            "edge {e} of the neck's loop"
         );
     }
 }

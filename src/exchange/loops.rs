@@ -659,7 +659,7 @@ impl Builder {
     /// u-range) cut at its notches, with the notches' uses between its
     /// pieces, in the direction of the face's outer loop: increasing u along
     /// the v-min side (`bottom`), decreasing along the v-max side.
-    fn notched_side(
+    pub(super) fn notched_side(
         &mut self,
         outer: &mut Vec<OrientedEdge>,
         curve: &NurbsCurve,

@@ -11,14 +11,27 @@
 //! the notches' ends, so both faces at the seam share the side's pieces
 //! between notches as they share any side, and the neck's bottom runs through
 //! the same crossing vertices.
+//!
+//! Where such an opening has a reinforcing pad, the pad's loop notches the
+//! host patches and the pad is a face on each; where the neck's loop crosses
+//! the seam too, [`neck_across`] solves its crossings of the seam exactly and
+//! splits it there, so that it notches each piece of the pad as the pad's
+//! loop notches each host face.
+
+use std::sync::Arc;
 
 use glam::{DAffine3, DVec2};
 
 use super::brep::OrientedEdge;
 use super::loops::{Builder, LoopEdges, NotchUse};
-use crate::mesh::{Cut, HostTrim, Notch};
-use crate::nurbs::Side;
+use crate::mesh::{Cut, HostTrim, Notch, closed_in_u};
+use crate::nurbs::intersect::{HostIsoline, IntersectionLoop, LoopSample, loop_crossing};
+use crate::nurbs::{NurbsSurface, Side};
 use crate::parts::Patch;
+
+/// Distance from the seam, relative to the joined v-range, within which a
+/// neck loop sample is taken as on it.
+const ON_SEAM: f64 = 1e-12;
 
 /// A loop's edges and each host patch's notch uses, by patch index.
 pub(super) type Notched = (LoopEdges, Vec<(usize, NotchUse)>);
@@ -163,4 +176,152 @@ pub(super) fn notched_loop(
         ));
     }
     Ok((edges, uses))
+}
+
+/// The neck's loop of a padded opening across the seam between the host
+/// patches `a` and `a + 1` of `hosts` (the pad's notches are in `cut.hosts`)
+/// when the neck's loop crosses the seam too: the loop (`cut.neck`, host
+/// (u, v) on the two patches joined in v) with a sample solved exactly on
+/// the seam at each crossing ([`loop_crossing`] between the neck `neck`, in
+/// the host part's frame, and the joined surface), its edges split there,
+/// and each patch's notch uses, as [`notched_loop`] gives them for a loop
+/// without a pad. Returns the loop with its seam samples too: the neck's
+/// bottom runs through them.
+///
+/// # Errors
+///
+/// `(host patch, rule)` where the patches cannot be joined, a crossing does
+/// not converge, or the loop touches the seam without crossing it.
+pub(super) fn neck_across(
+    builder: &mut Builder,
+    cut: &Cut,
+    neck: &NurbsSurface,
+    hosts: &[Patch],
+    host_frame: &DAffine3,
+    neck_knots: &[f64],
+) -> Result<(IntersectionLoop, Notched), (usize, String)> {
+    let (a, b) = match cut.hosts.as_slice() {
+        [(a, _), (b, _)] if *b == *a + 1 => (*a, *b),
+        _ => {
+            return Err((
+                cut.hosts.first().map_or(0, |h| h.0),
+                "a pad across more than one seam between host patches".into(),
+            ));
+        }
+    };
+    let (below, above) = (&hosts[a].surface, &hosts[b].surface);
+    let (joined, shifts) = below
+        .joined_v(&[above])
+        .map_err(|e| (a, format!("the host patches do not join: {e}")))?;
+    let seam = below.domain().1.1 + shifts[0];
+    let (jv0, jv1) = joined.domain().1;
+    let snap = ON_SEAM * (jv1 - jv0);
+    let (nu0, nu1) = neck.domain().0;
+    let neck_period = nu1 - nu0;
+    let ((u0, u1), _) = joined.domain();
+    let (period, closed) = (u1 - u0, closed_in_u(&joined));
+
+    let source = &cut.neck;
+    let n = source.points.len();
+    let mut curve = IntersectionLoop::default();
+    let mut on_seam = Vec::new();
+    for k in 0..n {
+        let mut here = source.host_uv[k];
+        if (here.y - seam).abs() <= snap {
+            here.y = seam;
+            on_seam.push(curve.points.len());
+        }
+        curve.points.push(source.points[k]);
+        curve.neck_uv.push(source.neck_uv[k]);
+        curve.host_uv.push(here);
+        let next = (k + 1) % n;
+        let there = source.host_uv[next];
+        if (here.y - seam) * (there.y - seam) >= 0.0 || (there.y - seam).abs() <= snap {
+            continue;
+        }
+        let mut neck_there = source.neck_uv[next];
+        if next == 0 {
+            neck_there.x += neck_period;
+        }
+        let crossing = loop_crossing(
+            neck,
+            &joined,
+            HostIsoline::V(seam),
+            LoopSample {
+                neck_uv: source.neck_uv[k],
+                host_uv: here,
+            },
+            LoopSample {
+                neck_uv: neck_there,
+                host_uv: there,
+            },
+        )
+        .map_err(|e| (a, format!("the neck's loop's crossing of the seam: {e}")))?;
+        // The host u continuous with the samples round it on a closed host.
+        let mut u = crossing.host_uv.x;
+        if closed {
+            let f =
+                (crossing.neck_uv.x - source.neck_uv[k].x) / (neck_there.x - source.neck_uv[k].x);
+            let expected = here.x + (there.x - here.x) * f;
+            u += period * ((expected - u) / period).round();
+        }
+        on_seam.push(curve.points.len());
+        curve.points.push(crossing.point);
+        curve.neck_uv.push(crossing.neck_uv);
+        curve.host_uv.push(DVec2::new(u, seam));
+    }
+    let n = curve.points.len();
+    if on_seam.len() < 2 {
+        return Err((a, "the neck's loop does not cross the seam".into()));
+    }
+    // Each piece between two seam samples, in the patch its samples lie in.
+    let (mut notches_below, mut notches_above) = (Vec::new(), Vec::new());
+    for (i, &start) in on_seam.iter().enumerate() {
+        let end = on_seam[(i + 1) % on_seam.len()];
+        let steps = (end + n - start) % n;
+        let Some(middle) = (steps > 1).then(|| curve.host_uv[(start + steps / 2) % n]) else {
+            return Err((
+                a,
+                "the neck's loop touches the seam without crossing it".into(),
+            ));
+        };
+        let (side, edge, shift, list) = if middle.y < seam {
+            (
+                Side::VMax,
+                below.domain().1.1,
+                shifts[0],
+                &mut notches_below,
+            )
+        } else {
+            (
+                Side::VMin,
+                above.domain().1.0,
+                shifts[1],
+                &mut notches_above,
+            )
+        };
+        let mut path: Vec<DVec2> = (0..=steps)
+            .map(|s| {
+                let p = curve.host_uv[(start + s) % n];
+                DVec2::new(p.x, p.y - shift)
+            })
+            .collect();
+        path[0].y = edge;
+        path[steps].y = edge;
+        if path[0].x > path[steps].x {
+            path.reverse();
+        }
+        list.push(Notch { side, path });
+    }
+    let neck_cut = Cut {
+        hosts: [(a, notches_below), (b, notches_above)]
+            .into_iter()
+            .filter(|(_, n)| !n.is_empty())
+            .map(|(k, n)| (k, HostTrim::Notches(Arc::from(n))))
+            .collect(),
+        neck: curve,
+        pad: None,
+    };
+    let notched = notched_loop(builder, &neck_cut, hosts, host_frame, neck_knots)?;
+    Ok((neck_cut.neck, notched))
 }

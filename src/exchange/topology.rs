@@ -25,8 +25,10 @@
 //!   knuckle and the crown, cone or plate beyond): a face on each host patch,
 //!   bounded by the pad loop's notch in it and the seam's isocurve between
 //!   the notch's ends (an edge the two pieces share), the neck's loop a hole
-//!   in the piece holding it; one face on the patches joined where the neck's
-//!   loop crosses the seam too;
+//!   in the piece holding it, or, where it crosses the seam too, split at its
+//!   crossings solved on the seam and notching each piece's seam side (the
+//!   seam's isocurve between the pad's and the neck's notches shared by the
+//!   two pieces);
 //! - shells: the faces joined through shared edges, closed when every edge of
 //!   the shell is used twice.
 
@@ -42,7 +44,7 @@ use super::brep::{Face, Port, VesselBrep, shells};
 use super::error::ExchangeError;
 use super::fit::fit_loops;
 use super::loops::{Builder, Hole, LoopEdges, Loops, NotchUse, SeamHole, seam_index};
-use super::notch::notched_loop;
+use super::notch::{neck_across, notched_loop};
 use super::seam::{on_pad_cylinder, uv_with_inserted, with_seam_samples};
 use super::source::{CutSource, NodeKind, VesselSource};
 use crate::mesh::{Cut, HostTrim, PadCut, closed_in_u};
@@ -160,22 +162,45 @@ pub fn vessel_brep_with(
             }
             // A pad across the seam: a face on each host patch, from its
             // notch to the seam, with the neck's loop as a hole where it lies
-            // in one patch; one face on the patches joined where the neck's
-            // loop crosses the seam too.
-            match &cut.pad {
-                Some(pad) => {
+            // in one patch; where the neck's loop crosses the seam too, split
+            // at the seam, notching each piece as the pad's loop notches the
+            // host faces.
+            if cut.pad.is_none() {
+                pairs.push((c, edges));
+                continue;
+            }
+            let hosts = &source.nodes[cut.host].patches;
+            let (neck_edges, neck_at) = match neck_in_one_patch(&cut.cut, hosts) {
+                Some((inside, uv)) => {
                     let neck_edges = builder
                         .loop_edges(&cut.cut.neck, &host_frame, &[], &neck_knots)
                         .map_err(|rule| fail(*k, &rule))?;
-                    let hosts = &source.nodes[cut.host].patches;
-                    match neck_in_one_patch(&cut.cut, hosts) {
-                        Some(inside) => pad_pieces.push((c, pieces, inside, neck_edges.clone())),
-                        None => pad_faces.push((cut, pad, neck_edges.clone(), edges, false, None)),
-                    }
-                    pairs.push((c, neck_edges));
+                    (neck_edges, NeckAt::Inside(inside, uv))
                 }
-                None => pairs.push((c, edges)),
-            }
+                None => {
+                    let nozzle_in_host = host_frame.inverse() * source.nodes[cut.neck].frame;
+                    let neck = source.nodes[cut.neck].patches[0]
+                        .surface
+                        .transformed(&nozzle_in_host)
+                        .map_err(|source| ExchangeError::Geometry {
+                            entity: entity(cut.neck),
+                            source,
+                        })?;
+                    let (with_seam, (neck_edges, neck_notches)) = neck_across(
+                        &mut builder,
+                        &cut.cut,
+                        &neck,
+                        hosts,
+                        &host_frame,
+                        &neck_knots,
+                    )
+                    .map_err(|(k, rule)| fail(k, &rule))?;
+                    seam_loops[c] = Some(with_seam);
+                    (neck_edges, NeckAt::Across(neck_notches))
+                }
+            };
+            pad_pieces.push((c, pieces, neck_at, neck_edges.clone()));
+            pairs.push((c, neck_edges));
             continue;
         }
         // The host patch a hole lies in, and the seam sample of a loop round its pole.
@@ -434,7 +459,7 @@ pub fn vessel_brep_with(
         });
     }
 
-    for (c, pieces, inside, neck_edges) in pad_pieces {
+    for (c, pieces, neck_at, neck_edges) in pad_pieces {
         let cut = &source.cuts[c];
         let host_frame = source.nodes[cut.host].frame;
         for (k, notch) in pieces {
@@ -445,9 +470,21 @@ pub fn vessel_brep_with(
                     source,
                 }
             })?;
-            let hole = (inside.0 == k).then_some((&neck_edges, inside.1.as_slice()));
+            let neck = match &neck_at {
+                NeckAt::Inside(inside, uv) if *inside == k => {
+                    NeckIn::Hole(&neck_edges, uv.as_slice())
+                }
+                NeckAt::Inside(..) => NeckIn::Notches(Vec::new()),
+                NeckAt::Across(notches) => NeckIn::Notches(
+                    notches
+                        .iter()
+                        .filter(|(patch, _)| *patch == k)
+                        .map(|(_, n)| n)
+                        .collect(),
+                ),
+            };
             let (outer, holes) =
-                pad_piece(&mut builder, &surface, &notch, hole).map_err(|rule| {
+                pad_piece(&mut builder, &surface, &notch, neck).map_err(|rule| {
                     ExchangeError::Topology {
                         entity: entity(cut.neck),
                         patch: crate::mesh::PAD_PATCH.to_string(),
@@ -553,16 +590,34 @@ fn neck_in_one_patch(cut: &Cut, hosts: &[Patch]) -> Option<(usize, Vec<DVec2>)> 
     }
 }
 
+/// Where a padded opening's neck loop lies, its pad's loop crossing the seam
+/// between two host patches.
+enum NeckAt {
+    /// In one patch (its index), with the loop's (u, v) on it.
+    Inside(usize, Vec<DVec2>),
+    /// Across the seam too: its notch uses in each patch, by patch index.
+    Across(Vec<(usize, NotchUse)>),
+}
+
+/// The neck's loop in one piece of a pad across a seam.
+enum NeckIn<'a> {
+    /// A hole: the loop's edges and (u, v) on the piece's patch.
+    Hole(&'a LoopEdges, &'a [DVec2]),
+    /// Notches into the piece's seam side (none where the neck lies in the
+    /// other piece).
+    Notches(Vec<&'a NotchUse>),
+}
+
 /// The face of a reinforcing pad's piece on one host patch (`surface`, vessel
 /// frame): the pad's loop along `notch` the other way round from the host's
 /// face, then the side's isocurve between the notch's ends (the edge the
-/// piece on the neighbouring patch shares), and the neck's loop (its edges
-/// and (u, v) on the patch) as a hole where it lies in this patch.
+/// piece on the neighbouring patch shares), cut where the neck's loop
+/// notches it, and the neck's loop as a hole where it lies in this patch.
 fn pad_piece(
     builder: &mut Builder,
     surface: &NurbsSurface,
     notch: &NotchUse,
-    hole: Option<(&LoopEdges, &[DVec2])>,
+    neck: NeckIn,
 ) -> Result<Loops, String> {
     let ((u0, u1), (v0, v1)) = surface.domain();
     let (v, bottom) = match notch.side {
@@ -578,12 +633,16 @@ fn pad_piece(
         side = side.split_at(high).map_err(|e| e.to_string())?.0;
     }
     let mut outer = Builder::against(notch.uses.clone());
-    outer.push(builder.side_use(side, DVec2::new(low, v), DVec2::new(high, v), bottom));
-    let holes = match hole {
-        Some((edges, uv)) => vec![builder.hole_use(surface, edges, uv, false)?],
-        None => Vec::new(),
-    };
-    Ok((outer, holes))
+    match neck {
+        NeckIn::Hole(edges, uv) => {
+            outer.push(builder.side_use(side, DVec2::new(low, v), DVec2::new(high, v), bottom));
+            Ok((outer, vec![builder.hole_use(surface, edges, uv, false)?]))
+        }
+        NeckIn::Notches(notches) => {
+            builder.notched_side(&mut outer, &side, v, notches, bottom)?;
+            Ok((outer, Vec::new()))
+        }
+    }
 }
 
 #[cfg(test)]

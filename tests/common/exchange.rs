@@ -1,6 +1,7 @@
 //! Designs the exchange tests (STEP and IGES) share: two storage tanks, the
 //! second with its roof vent on the roof's apex (an opening round its host's
-//! pole), and the same with a nozzle facing its course's seam; repros by name;
+//! pole), and the same with a nozzle facing its course's seam, with and
+//! without a pad; repros by name;
 //! the support edges lying on envelope edges (where sewing IGES faces differs
 //! from STEP's shared edges).
 
@@ -36,6 +37,14 @@ pub fn two_tanks() -> Design {
 pub fn across_seam() -> Design {
     let mut json: Value = serde_json::to_value(two_tanks()).expect("json");
     json["vessels"][1]["nozzles"][0]["orientation"] = 60.into();
+    serde_json::from_value(json).expect("design")
+}
+
+/// [`across_seam`] with a reinforcing pad (500 mm OD) round that nozzle:
+/// the pad's loop and the neck's both cross the course's seam.
+pub fn across_seam_padded() -> Design {
+    let mut json: Value = serde_json::to_value(across_seam()).expect("json");
+    json["vessels"][1]["nozzles"][0]["pad"] = serde_json::json!({"od": 500, "thickness": 10});
     serde_json::from_value(json).expect("design")
 }
 
