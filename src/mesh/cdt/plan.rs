@@ -82,7 +82,8 @@ pub(super) struct Plan {
 ///
 /// | Region | Path tried first | Falls back to | when |
 /// |---|---|---|---|
-/// | the whole parameter rectangle of a surface closed in u whose control points and side vertices repeat every quarter turn about Z, no holes (a plain course or cone, every head kind's crown, knuckle and cone, a skirt and its base ring, a nozzle's neck, hub and flange faces) | [`MeshPath::Sector`]: the quarter by the structured path, turned three times | `Structured` on the whole turn | the quarter's sides are not rings or poles, or a quarter's triangles do not turn into the next quarter's exactly |
+/// | the whole parameter rectangle of a surface closed in u whose control points and side vertices repeat every quarter turn about Z, no holes (a plain course or cone, every head kind's knuckle and cone, every crown but a sphere's, a skirt and its base ring, a nozzle's neck, hub and flange faces) | [`MeshPath::Sector`]: the quarter by the structured path, turned three times | `Structured` on the whole turn | the quarter's sides are not rings or poles, or a quarter's triangles do not turn into the next quarter's exactly |
+/// | a whole sphere patch with a ring and a pole, no holes, meshed to a chordal tolerance alone (a hemispherical, torispherical or F&D crown) | [`MeshPath::Structured`] on the whole turn, its rows chosen by the whole-triangle bound (`structured::sphere`) | the lattice's rows | the ring is not uniform from the seam, or the surface's turn is not four quarter arcs |
 /// | the whole rectangle of a patch closed in u, with holes (a course, head or cone with openings) or sides that do not repeat, or a nozzle neck whose bottom is its host's cut (a path along v on a straight neck) | [`MeshPath::Structured`]: rows zipped seam to seam, each opening's cavity filled ([`CAVITY_FILLS`]), every triangle screened, failures mended | `General` | a side is neither a ring nor a pole, a cavity reaches the seam or a pole or overlaps another and cannot be merged, a cavity cannot be filled, or a seam edge is beyond the tolerance |
 /// | anything else: a patch open in u (such as a reinforcing pad), a patch whose opening crosses its seam | [`MeshPath::General`]: seeds, spade, chordal refinement | — (an error) | spade rejects a loop segment, or refinement runs away |
 ///
@@ -224,11 +225,11 @@ mod tests {
             "cone: cone -> Sector",
             "skirt: skirt -> Sector",
             "skirt: base ring -> Sector",
-            "hemispherical: crown -> Sector",
+            "hemispherical: crown -> Structured",
             "2:1 ellipsoidal: crown -> Sector",
             "ellipsoidal 1.5: crown -> Sector",
             "F&D: knuckle -> Sector",
-            "F&D: crown -> Sector",
+            "F&D: crown -> Structured",
             "toriconical: knuckle -> Sector",
             "toriconical: cone -> Sector",
             "conical: cone -> Sector",

@@ -54,6 +54,7 @@ pub(super) mod lattice;
 mod mend;
 mod ruled;
 mod sector;
+mod sphere;
 mod sweep;
 
 /// Relative tolerance (to the region's extent) of "on a side of the rectangle".
@@ -86,7 +87,11 @@ pub(super) fn triangulate(
 ) -> Result<Option<(MeshPath, Rings)>, CdtError> {
     // A whole surface of revolution: its first quarter, turned round (within a
     // quarter of the budget, as the whole turn has four times its vertices).
-    if let Some(quarter) = &plan.quarter
+    // A whole sphere patch takes its own rows on the whole turn (see `sphere`).
+    if let Some(quarter) = plan
+        .quarter
+        .as_ref()
+        .filter(|_| !sphere::applies(info, region, options))
         && let Some(part) = structured(info, quarter, options, budget / QUARTERS, QUARTERS, memo)
             .map_err(|e| match e {
                 CdtError::BudgetExceeded { needed, .. } => CdtError::BudgetExceeded {
@@ -124,7 +129,10 @@ fn structured(
     // along the generators.
     let rows = match &bottom {
         Side::Path(_) => Vec::new(),
-        _ => seed::rows(info, region, budget)?,
+        _ => match sphere::rows(info, region, options, &bottom, &top, budget)? {
+            Some(rows) => rows,
+            None => seed::rows(info, region, budget)?,
+        },
     };
     // An oblique cone without openings: rows holding its rings' own u values,
     // zipped along its generators (see `ruled`).
