@@ -8,12 +8,11 @@
 
 mod common;
 
-use glam::DVec3;
+use common::fem_loads::{integrate, reactions};
 use vesselcad::calc::MaterialTable;
 use vesselcad::design::{Design, parse};
 use vesselcad::fem::conditions::GRAVITY;
-use vesselcad::fem::results::{run_ccx, solver_available};
-use vesselcad::fem::{ElementKind, FeMesh, FeModel, FemOptions, LoadCase, frd, inp, vessel_model};
+use vesselcad::fem::{FeModel, FemOptions, LoadCase, vessel_model};
 
 /// OD 1000 × 1500, t = 10, 2:1 heads, on a 1000 mm skirt; liquid 1000 mm
 /// above the bottom, density 800 kg/m³.
@@ -32,90 +31,6 @@ fn design() -> Design {
           ]}]}"#,
     )
     .unwrap_or_else(|e| panic!("test design: {e}"))
-}
-
-/// Position on quadratic element `e` at (ξ, η) ∈ [−1, 1]² (serendipity S8R).
-fn at(mesh: &FeMesh, e: usize, xi: f64, eta: f64) -> DVec3 {
-    let el = &mesh.elements[e];
-    assert_eq!(el.kind, ElementKind::Quad8);
-    let c = [(-1.0, -1.0), (1.0, -1.0), (1.0, 1.0), (-1.0, 1.0)];
-    let mut p = DVec3::ZERO;
-    for (i, &(a, b)) in c.iter().enumerate() {
-        let n = 0.25 * (1.0 + xi * a) * (1.0 + eta * b) * (xi * a + eta * b - 1.0);
-        p += mesh.nodes[el.nodes[i]] * n;
-    }
-    let mids = [
-        0.5 * (1.0 - xi * xi) * (1.0 - eta),
-        0.5 * (1.0 + xi) * (1.0 - eta * eta),
-        0.5 * (1.0 - xi * xi) * (1.0 + eta),
-        0.5 * (1.0 - xi) * (1.0 - eta * eta),
-    ];
-    for (i, n) in mids.iter().enumerate() {
-        p += mesh.nodes[el.nodes[4 + i]] * *n;
-    }
-    p
-}
-
-/// Σ over 3×3 Gauss points of `f(position, area vector)` over every element.
-fn integrate(mesh: &FeMesh, f: impl Fn(usize, DVec3, DVec3) -> f64) -> f64 {
-    let g = [
-        (-(0.6f64).sqrt(), 5.0 / 9.0),
-        (0.0, 8.0 / 9.0),
-        ((0.6f64).sqrt(), 5.0 / 9.0),
-    ];
-    let h = 1e-6;
-    let mut sum = 0.0;
-    for e in 0..mesh.elements.len() {
-        for &(xi, wi) in &g {
-            for &(eta, wj) in &g {
-                let dx = (at(mesh, e, xi + h, eta) - at(mesh, e, xi - h, eta)) / (2.0 * h);
-                let dy = (at(mesh, e, xi, eta + h) - at(mesh, e, xi, eta - h)) / (2.0 * h);
-                sum += wi * wj * f(e, at(mesh, e, xi, eta), dx.cross(dy));
-            }
-        }
-    }
-    sum
-}
-
-/// The sum of the reactions at the supported nodes of a CalculiX run of
-/// `model`, N.
-fn reactions(model: &FeModel, name: &str) -> Option<DVec3> {
-    if !solver_available() {
-        eprintln!("SKIPPED {name}: ccx (CalculiX) is not installed here; CI installs calculix-ccx");
-        return None;
-    }
-    let dir = tempfile::tempdir().expect("temporary directory");
-    let deck = dir.path().join(format!("{name}.inp"));
-    std::fs::write(&deck, inp::to_inp(model)).expect("write deck");
-    let path = run_ccx(&deck).unwrap_or_else(|e| panic!("{e}"));
-    let results = frd::read(&path).unwrap_or_else(|e| panic!("{e}"));
-    // CalculiX restrains (and reports) the nodes it expands each shell node
-    // into, through the thickness: trace them back by position.
-    let t = model
-        .mesh
-        .parts
-        .iter()
-        .map(|p| p.thickness)
-        .fold(0.0, f64::max);
-    let held: Vec<DVec3> = model
-        .supports
-        .iter()
-        .map(|s| model.mesh.nodes[s.node])
-        .collect();
-    let mut ids: Vec<usize> = results
-        .nodes
-        .iter()
-        .filter(|(_, p)| held.iter().any(|h| h.distance(**p) <= 0.51 * t))
-        .map(|(&id, _)| id)
-        .collect();
-    ids.sort_unstable();
-    ids.dedup();
-    Some(
-        ids.iter()
-            .filter_map(|n| results.reactions.get(n))
-            .copied()
-            .sum(),
-    )
 }
 
 /// The weight the foundation carries in case `m.case`: the metal of every
@@ -281,7 +196,7 @@ fn skirt_shell_carries_the_weight_as_axial_membrane_stress() {
     };
     let axial: Vec<f64> = ring
         .iter()
-        .map(|&n| common::fem::along(results[n].membrane, DVec3::Z, DVec3::Z))
+        .map(|&n| common::fem::along(results[n].membrane, glam::DVec3::Z, glam::DVec3::Z))
         .collect();
     let mean = axial.iter().sum::<f64>() / axial.len() as f64;
     let spread = axial.iter().map(|a| (a - mean).abs()).fold(0.0, f64::max);

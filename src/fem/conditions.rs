@@ -15,7 +15,10 @@
 //! ([`super::skirt`]: x, y and z held on its corner and mid-side nodes; the
 //! skirt carries no pressure), else its top ring (the envelope's ring nearest
 //! the skirt's top: axial displacement held all round, plus two nodes across
-//! the axis against sliding and turning), or each saddle's contact arc (vertical
+//! the axis against sliding and turning), each saddle's base plate when the
+//! saddles are meshed ([`super::saddle`]: every node held vertically and across
+//! the axis, the first saddle's also along it: anchored, the others sliding on
+//! slotted holes), else each saddle's contact arc (vertical
 //! displacement held on the nodes of the saddle's ring within its contact
 //! angle, the first saddle also held along and across the axis at its lowest
 //! node, the second across it). Legs and lugs are not modelled yet: such a
@@ -259,6 +262,47 @@ fn resting(mesh: &FeMesh, resolved: &ResolvedVessel) -> (Vec<Support>, String) {
             _ => None,
         })
         .collect();
+    let plates: Vec<(&str, usize)> = saddles
+        .iter()
+        .filter_map(|(part, _)| {
+            let id = format!("{}/{}", part.id, super::saddle::BASE_PLATE);
+            let k = mesh.parts.iter().position(|p| p.id == id)?;
+            mesh.structural
+                .contains(&k)
+                .then_some((part.id.as_str(), k))
+        })
+        .collect();
+    if !plates.is_empty() && plates.len() == saddles.len() {
+        // The saddles are meshed: each base plate (corner and mid-side nodes)
+        // bears on the foundation; the first is anchored, the others slide
+        // along the axis on slotted holes.
+        let axis = mesh.axis.1;
+        let across = if axis.x.abs() > axis.y.abs() { 2 } else { 1 };
+        let mut out = Vec::new();
+        for (k, &(_, part)) in plates.iter().enumerate() {
+            let dofs = if k == 0 {
+                vec![1, 2, 3]
+            } else {
+                let mut d = vec![across, 3];
+                d.sort_unstable();
+                d
+            };
+            out.extend(mesh.part_nodes(part).into_iter().map(|n| Support {
+                node: n,
+                dofs: dofs.clone(),
+            }));
+        }
+        let names: Vec<&str> = plates.iter().map(|p| p.0).collect();
+        return (
+            out,
+            format!(
+                "saddles {}: base plates held on the foundation ({} anchored; the others \
+                 held vertically and across the axis, free to slide along it)",
+                names.join(", "),
+                names[0]
+            ),
+        );
+    }
     if !saddles.is_empty() {
         let mut out = Vec::new();
         let axis = mesh.axis.1;

@@ -121,6 +121,20 @@ pub fn build_envelope(
         ));
         skirt = None;
     }
+    let mut saddles = super::saddle::find(design, resolved);
+    saddles.retain(|s| {
+        let split = s
+            .planes()
+            .iter()
+            .all(|&z| super::skirt::split_at(&mut chain, z));
+        if !split {
+            notes.push(format!(
+                "saddle {} left out: the envelope has no course under it (z {} mm)",
+                s.id, s.z
+            ));
+        }
+        split
+    });
     let r_max = chain
         .iter()
         .map(|s| s.rz(s.s0).x.max(s.rz(s.s1).x))
@@ -146,7 +160,13 @@ pub fn build_envelope(
             rule: format!("below 1e-4 of the vessel radius {r_max} mm"),
         });
     }
-    let n = ((TAU * r_max / size).ceil() as usize).div_ceil(8).max(2) * 8;
+    // Divisions round: a multiple of 8 (quarter points on nodes), of 24 under
+    // saddles (their horns at 120° and 150° on nodes).
+    let unit = if saddles.is_empty() { 8 } else { 24 };
+    let n = ((TAU * r_max / size).ceil() as usize)
+        .div_ceil(unit)
+        .max(16usize.div_ceil(unit))
+        * unit;
     let mer = meridian::stations(chain, size, n);
     let theta = |k: f64| TAU * k / n as f64;
     let mut b = Builder::new(options.order == 2);
@@ -249,6 +269,12 @@ pub fn build_envelope(
     }
     if let Some(s) = &skirt {
         skirt_shell(&mut b, s, &mer, &rings, size, &design.tag);
+    }
+    for s in &saddles {
+        if let Err(note) = super::saddle::attach(&mut b, s, &mer, &rings, &holes, size, &design.tag)
+        {
+            b.mesh.notes.push(note);
+        }
     }
     let sites: Vec<_> = holes
         .iter()

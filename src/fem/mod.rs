@@ -15,7 +15,9 @@
 //! colours; [`quality`] measures the mesh and [`quality_table`] reports it. Nozzles: [`window`] and [`nozzle`]
 //! on cylindrical courses (radial or not), [`head_nozzle`] on a head's centre.
 //! Supports: a vertical vessel's [`skirt`] is a shell part hanging from the
-//! envelope's ring at its top, held at its base.
+//! envelope's ring at its top, held at its base; a horizontal vessel's
+//! [`saddle`]s are shell parts (top plate bonded to the course, web, base
+//! plate) sharing the course's ring at the web, held at their base plates.
 
 pub mod builder;
 pub mod cap;
@@ -33,6 +35,7 @@ pub mod nozzle;
 pub mod quality;
 pub mod quality_table;
 pub mod results;
+pub mod saddle;
 pub mod skirt;
 pub mod vtu;
 pub mod window;

@@ -10,6 +10,7 @@ pub mod examples;
 pub mod exchange;
 pub mod fab;
 pub mod fem;
+pub mod fem_loads;
 pub mod full_build;
 pub mod glb;
 pub mod heads;
