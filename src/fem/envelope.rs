@@ -167,7 +167,19 @@ pub fn build_envelope(
         .div_ceil(unit)
         .max(16usize.div_ceil(unit))
         * unit;
-    let mer = meridian::stations(chain, size, n);
+    // Plan the nozzle windows; where an off-centre head nozzle's window
+    // reaches a pole cap, shrink that cap and plan again.
+    let meshed: Vec<String> = centre_necks.iter().map(|c| c.mark.clone()).collect();
+    let mut planned = Vec::new();
+    let mut mer = meridian::stations(chain.clone(), size, n, [f64::INFINITY; 2]);
+    let mut plan = super::window::plan(resolved, &mer, n, &parts, &meshed, &mut planned);
+    if plan.caps.iter().any(|c| c.is_finite()) {
+        planned.clear();
+        mer = meridian::stations(chain, size, n, plan.caps);
+        plan = super::window::plan(resolved, &mer, n, &parts, &meshed, &mut planned);
+    }
+    notes.extend(planned);
+    let holes = plan.holes;
     let theta = |k: f64| TAU * k / n as f64;
     let mut b = Builder::new(options.order == 2);
     b.mesh.parts = parts;
@@ -194,8 +206,6 @@ pub fn build_envelope(
             b.mesh.junctions.extend(ring.iter().copied());
         }
     }
-    let meshed: Vec<String> = centre_necks.iter().map(|c| c.mark.clone()).collect();
-    let holes = super::window::plan(resolved, &mer, n, &b.mesh.parts, &meshed, &mut b.mesh.notes);
     for (i, iv) in mer.intervals.iter().enumerate() {
         let seg = mer.segments[iv.seg];
         let (lower, upper) = (mer.stations[i], mer.stations[i + 1]);

@@ -163,7 +163,7 @@ pub fn chain(parts: &[(usize, Vec<Piece>, Lateral, f64)]) -> Vec<Segment> {
 
 /// Cumulative arc length over `[s0, s1]` sampled at [`SAMPLES`] + 1 points:
 /// (parameter, arc length) pairs.
-fn arc_table(seg: &Segment, s0: f64, s1: f64) -> Vec<(f64, f64)> {
+pub(super) fn arc_table(seg: &Segment, s0: f64, s1: f64) -> Vec<(f64, f64)> {
     let mut out = Vec::with_capacity(SAMPLES + 1);
     let mut acc = 0.0;
     let mut prev = seg.rz(s0);
@@ -185,8 +185,10 @@ fn on_axis(rz: DVec2, scale: f64) -> bool {
 
 /// Places the stations of `segments` for element size `size`, on a mesh of
 /// `divisions` circumferential divisions (a cap's rim is a junction whose size is the
-/// rim's circumferential spacing, which the cap's outer layer also takes).
-pub fn stations(segments: Vec<Segment>, size: f64, divisions: usize) -> Meridian {
+/// rim's circumferential spacing, which the cap's outer layer also takes). A
+/// pole's cap takes half its head's radius, at most `caps[0]` at the chain's
+/// start and `caps[1]` at its end (room for off-centre nozzles' windows).
+pub fn stations(segments: Vec<Segment>, size: f64, divisions: usize, caps: [f64; 2]) -> Meridian {
     let scale = segments
         .iter()
         .map(|s| s.rz(s.s0).x.max(s.rz(s.s1).x))
@@ -208,7 +210,7 @@ pub fn stations(segments: Vec<Segment>, size: f64, divisions: usize) -> Meridian
     if let Some(first) = segs.first().copied()
         && on_axis(first.rz(first.s0), scale)
     {
-        let rc = cap_radius(&first, part_rim(&segs, first.part));
+        let rc = cap_radius(&first, part_rim(&segs, first.part)).min(caps[0]);
         segs[0].s0 = first.piece.at_r(rc);
         start_cap = Some(Cap { seg: 0, radius: rc });
     }
@@ -216,7 +218,7 @@ pub fn stations(segments: Vec<Segment>, size: f64, divisions: usize) -> Meridian
     if let Some(last) = segs.last().copied()
         && on_axis(last.rz(last.s1), scale)
     {
-        let rc = cap_radius(&last, part_rim(&segs, last.part));
+        let rc = cap_radius(&last, part_rim(&segs, last.part)).min(caps[1]);
         segs[n - 1].s1 = last.piece.at_r(rc);
         end_cap = Some(Cap {
             seg: n - 1,

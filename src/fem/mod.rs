@@ -13,7 +13,8 @@
 //! write it; [`frd`] and [`results`] read a CalculiX run back and classify the
 //! stresses per part, and [`glb`] draws the deformed shape with von Mises
 //! colours; [`quality`] measures the mesh and [`quality_table`] reports it. Nozzles: [`window`] and [`nozzle`]
-//! on cylindrical courses (radial or not), [`head_nozzle`] on a head's centre.
+//! on cylindrical courses (radial or not) and off a head's centre (charted by
+//! [`head_window`]), [`head_nozzle`] on a head's centre.
 //! Supports: a vertical vessel's [`skirt`] is a shell part hanging from the
 //! envelope's ring at its top, held at its base; a horizontal vessel's
 //! [`saddle`]s are shell parts (top plate bonded to the course, web, base
@@ -28,6 +29,7 @@ pub mod frd;
 pub mod glb;
 pub mod grading;
 pub mod head_nozzle;
+pub mod head_window;
 pub mod inp;
 pub mod meridian;
 pub mod msh;

@@ -1,5 +1,5 @@
-//! A nozzle on a cylindrical course (radial, hillside, tangential or inclined),
-//! meshed conforming with the course: the window of [`super::window`] is filled
+//! A nozzle on a cylindrical course (radial, hillside, tangential or inclined)
+//! or off the centre of a head, meshed conforming with its host: the window of [`super::window`] is filled
 //! by a ring of quadrilaterals from the window's boundary (the course's own
 //! nodes) to the exact intersection curve of the neck's and the course's
 //! mid-surfaces, and the neck is swept from that curve to its end (the flange's
@@ -7,7 +7,7 @@
 //!
 //! The ring is laid out on the course unrolled, `(u, z) = (R·Δθ, Δz)` about the
 //! point where the nozzle axis meets the course, which maps exactly onto the
-//! cylinder; the curve's nodes are at neck angles φ whose unrolled polar
+//! cylinder (on a head, the chart `(ρ·Δθ, Δσ)` of [`super::head_window`]); the curve's nodes are at neck angles φ whose unrolled polar
 //! angles spread evenly over each side of the window, between the polar angles
 //! of its corners. The ring's layers blend the curve into the window
 //! boundary, graded ([`super::grading`]) from the curve's edge length to the
@@ -48,22 +48,15 @@ pub fn mesh(
     tag: &str,
 ) -> NeckEnd {
     let n = rings[0].len();
-    let seg = mer.segments[hole.seg];
     let (big_r, r) = (hole.big_r, hole.r);
-    // (u, z) about the opening's centre → the cylinder.
-    let on_course = |p: DVec2| {
-        let s = seg.piece.at_z(hole.z + p.y);
-        seg.point(s, hole.theta + p.x / big_r)
-    };
+    // The window's chart about the opening's centre → the host's surface.
+    let on_course = |p: DVec2| hole.surface(mer, p);
     // The neck at angle φ, t along its axis; where it meets the course.
     let on_neck = |phi: f64, t: f64| hole.on_neck(phi, t);
     let h0 = |phi: f64| hole.meet(phi).unwrap_or(0.0);
     let curve_uv = |phi: f64| hole.curve_uv(phi);
-    // The window boundary, counter-clockwise in (u, z) from its lower-left corner.
-    let station_z = |i: usize| {
-        let (sg, s) = mer.stations[i];
-        mer.segments[sg].rz(s).y - hole.z
-    };
+    // The window boundary, counter-clockwise in (u, v) from its lower-left corner.
+    let station_z = |i: usize| hole.station_v(mer, i);
     let node_at = |i: usize, k: i64| {
         let id = rings[i][k.rem_euclid(n as i64) as usize];
         let u = big_r * (TAU * k as f64 / n as f64 - hole.theta);
@@ -177,7 +170,11 @@ pub fn mesh(
         id: hole.mark.clone(),
         thickness: hole.wall,
     });
-    let length = hole.end - h0(0.0).max(h0(std::f64::consts::FRAC_PI_2));
+    let length = hole.end
+        - phis
+            .iter()
+            .map(|&p| h0(p))
+            .fold(f64::NEG_INFINITY, f64::max);
     let vs = grading::layers(length, first, size, size);
     let mut at: HashMap<usize, (f64, f64)> = HashMap::new();
     for (j, &id) in curve.iter().enumerate() {

@@ -1,7 +1,7 @@
-//! Where a nozzle opens into the structured course mesh: each nozzle on a
-//! cylindrical course (radial, hillside, tangential or inclined) takes a window
-//! of whole cells (station intervals × circumferential divisions) around its
-//! opening, which [`super::nozzle`] re-meshes as a ring of quadrilaterals from
+//! Where a nozzle opens into the structured mesh of rows and divisions: each
+//! nozzle on a cylindrical course (radial, hillside, tangential or inclined)
+//! or off the centre of a head takes a window of whole cells (station
+//! intervals × circumferential divisions) around its opening, which [`super::nozzle`] re-meshes as a ring of quadrilaterals from
 //! the window's edges to the exact intersection curve, and then the neck. The
 //! window reaches at least [`MARGIN`] times the opening's extent on each side of
 //! the point where the nozzle axis meets the course (and past the pad), and
@@ -9,21 +9,24 @@
 //! the cells' width at [`super::grading::RING_GROWTH`] (at
 //! [`super::grading::GROWTH`] where the course's end cuts that room short), holds at
 //! least [`MIN_LOOP`] cell edges round its boundary (so the opening gets as many
-//! nodes), and stays on its course. The intersection of the neck's and the
+//! nodes), and stays on its course (or head). The intersection of the neck's and the
 //! course's mid-surfaces is solved in closed form along each generator of the
-//! neck (a quadratic), so its nodes are exact points of both. Nozzles the mesh
-//! cannot take (off-centre head nozzles, or a window that would overlap another)
-//! are left out with a note saying so; centre head nozzles are meshed by
-//! [`super::head_nozzle`].
+//! neck (a quadratic; on a head [`super::head_window`] charts the head by
+//! meridian arc length and angle and solves it there), so its nodes are exact
+//! points of both. Nozzles the mesh cannot take (a window that would overlap
+//! another, an opening too near its head's centre) are left out with a note
+//! saying so; centre head nozzles are meshed by [`super::head_nozzle`].
 
 use std::f64::consts::{PI, TAU};
 
 use glam::{DVec2, DVec3};
 
 use super::FePart;
+use super::head_window::{self, HeadChart};
 use super::meridian::Meridian;
 use crate::constraints::ResolvedVessel;
 use crate::operating::profile::Piece;
+use crate::parts::PartGeometry;
 use crate::parts::tables::pipe;
 
 /// Window extent over the opening's extent, at least.
@@ -79,6 +82,11 @@ pub struct Hole {
     pub pad: Option<(f64, f64)>,
     /// Growth of the ring's size field ([`super::grading::layers_at`]).
     pub growth: f64,
+    /// On a head, its chart ([`super::head_window`]): then `theta`, `big_r`
+    /// are the angle and radius of the window's centre and `z` its meridian
+    /// arc length σ, and the window is charted `(ρ·Δθ, Δσ)`; `None` on a
+    /// course, unrolled `(R·Δθ, Δz)`.
+    pub chart: Option<HeadChart>,
 }
 
 impl Hole {
@@ -94,18 +102,55 @@ impl Hole {
         self.origin + self.axis * t + (self.e1 * phi.cos() + self.e2 * phi.sin()) * self.r
     }
 
-    /// Where the neck's generator at angle `phi` meets the course's
-    /// mid-surface: the distance along the axis from the origin (the outer
-    /// root of |q + t·d − c|² = R² across the vessel axis), `None` if it misses.
+    /// Where the neck's generator at angle `phi` meets the host's
+    /// mid-surface: the distance along the axis from the origin (on a course
+    /// the outer root of |q + t·d − c|² = R² across the vessel axis, on a head
+    /// [`HeadChart::meet`]), `None` if it misses.
     pub fn meet(&self, phi: f64) -> Option<f64> {
-        meet(self.on_neck(phi, 0.0), self.axis, self.centre, self.big_r)
+        let q = self.on_neck(phi, 0.0);
+        match &self.chart {
+            None => meet(q, self.axis, self.centre, self.big_r),
+            Some(c) => c.meet(q, self.axis).map(|m| m.t),
+        }
     }
 
-    /// The intersection point at neck angle `phi` unrolled about the window's
-    /// centre: (R·Δθ, Δz).
+    /// The intersection point at neck angle `phi` in the window's chart:
+    /// (R·Δθ, Δz) on a course, (ρ·Δθ, Δσ) on a head.
     pub fn curve_uv(&self, phi: f64) -> DVec2 {
-        let p = self.on_neck(phi, self.meet(phi).unwrap_or(0.0));
-        self.unroll(p)
+        let q = self.on_neck(phi, 0.0);
+        match &self.chart {
+            None => self.unroll(self.on_neck(phi, self.meet(phi).unwrap_or(0.0))),
+            Some(c) => {
+                let Some(m) = c.meet(q, self.axis) else {
+                    return DVec2::ZERO;
+                };
+                let centre = (self.theta, self.z, self.big_r);
+                super::head_window::uv(c, m.seg, m.s, q + self.axis * m.t, centre)
+            }
+        }
+    }
+
+    /// The exact point of the host's mid-surface at chart position `p`.
+    pub fn surface(&self, mer: &Meridian, p: DVec2) -> DVec3 {
+        let theta = self.theta + p.x / self.big_r;
+        match &self.chart {
+            None => {
+                let seg = mer.segments[self.seg];
+                seg.point(seg.piece.at_z(self.z + p.y), theta)
+            }
+            Some(c) => c.point(self.z + p.y, theta),
+        }
+    }
+
+    /// The chart's second coordinate of station `i`: Δz on a course, Δσ on a head.
+    pub fn station_v(&self, mer: &Meridian, i: usize) -> f64 {
+        match &self.chart {
+            None => station_z(mer, i) - self.z,
+            Some(c) => {
+                let (seg, s) = mer.stations[i];
+                c.sigma(seg, s) - self.z
+            }
+        }
     }
 
     /// A point of the course unrolled about the window's centre: (R·Δθ, Δz).
@@ -174,9 +219,23 @@ fn station_z(mer: &Meridian, i: usize) -> f64 {
     mer.segments[seg].rz(s).y
 }
 
-/// The windows of the nozzles of `resolved` on cylindrical courses, on the
-/// mesh of `n` divisions whose parts are `parts`; nozzles whose marks are in
-/// `meshed` (centre head nozzles) are skipped, what is left out goes to `notes`.
+/// The windows [`plan`] found, and the largest pole-cap rim radius at the
+/// chain's start and end that leaves room for the windows of off-centre head
+/// nozzles (infinite where none asks for less than the cap has).
+#[derive(Clone, Debug, PartialEq)]
+pub struct Plan {
+    /// The windows.
+    pub holes: Vec<Hole>,
+    /// Cap rim radius limits at the chain's start and end, mm.
+    pub caps: [f64; 2],
+}
+
+/// The windows of the nozzles of `resolved` on cylindrical courses and off
+/// the centre of heads, on the mesh of `n` divisions whose parts are `parts`;
+/// nozzles whose marks are in `meshed` (centre head nozzles) are skipped, what
+/// is left out goes to `notes`. A head nozzle whose window would reach its
+/// head's pole cap is left out, and [`Plan::caps`] says how small the cap
+/// must be for it ([`super::envelope`] plans again with that cap).
 pub fn plan(
     resolved: &ResolvedVessel,
     mer: &Meridian,
@@ -184,8 +243,9 @@ pub fn plan(
     parts: &[FePart],
     meshed: &[String],
     notes: &mut Vec<String>,
-) -> Vec<Hole> {
+) -> Plan {
     let mut holes: Vec<Hole> = Vec::new();
+    let mut caps = [f64::INFINITY; 2];
     for nz in &resolved.nozzles {
         if meshed.contains(&nz.mark) {
             continue;
@@ -198,63 +258,122 @@ pub fn plan(
         };
         let o = nz.frame.translation;
         let d = (nz.frame.matrix3 * DVec3::Z).normalize();
-        let seg = mer.segments.iter().position(|s| {
-            s.part == part
-                && matches!(s.piece, Piece::Line { r0, r1, z0, z1 }
-                    if (r0 - r1).abs() <= 1e-9 * r0.abs().max(1.0)
-                        && o.z > z0.min(z1) && o.z < z0.max(z1))
-        });
-        let Some(seg) = seg else {
-            skip(
-                "off-centre head nozzles are not meshed yet (only nozzles on cylindrical \
-                 courses and on a head's centre are)",
-            );
-            continue;
-        };
-        let segment = mer.segments[seg];
-        let centre = segment.centre.at(o.z);
-        let big_r = segment.rz(segment.s0).x;
         let g = nz.geometry;
         let (Ok(wall), Ok(flange)) = (pipe(g.nps).wall(g.schedule), g.flange_length()) else {
             skip("its pipe or flange is not in the tables");
             continue;
         };
         let r = 0.5 * (g.outside_diameter() - wall);
-        if r >= 0.8 * big_r {
-            skip("a neck wider than 0.8 of its course is not meshed yet");
-            continue;
-        }
-        let e2 = (DVec3::Z - d * d.z).normalize();
+        let course = mer.segments.iter().position(|s| {
+            s.part == part
+                && matches!(s.piece, Piece::Line { r0, r1, z0, z1 }
+                    if (r0 - r1).abs() <= 1e-9 * r0.abs().max(1.0)
+                        && o.z > z0.min(z1) && o.z < z0.max(z1))
+        });
         let mut hole = Hole {
             mark: nz.mark.clone(),
             part,
-            seg,
+            seg: 0,
             i0: 0,
             i1: 0,
             k0: 0,
             a: 0,
             theta: 0.0,
             z: 0.0,
-            centre,
-            big_r,
+            centre: DVec2::ZERO,
+            big_r: 0.0,
             r,
             wall,
             origin: o,
             axis: d,
-            e1: e2.cross(d),
-            e2,
+            e1: DVec3::X,
+            e2: DVec3::Y,
             end: g.projection - flange,
             pad: nz.pad,
             growth: super::grading::RING_GROWTH,
+            chart: None,
         };
-        let Some(tc) = meet(o, d, centre, big_r) else {
-            skip("its axis misses its course's mid-surface");
+        let segs: Vec<usize>;
+        if let Some(seg) = course {
+            let segment = mer.segments[seg];
+            hole.seg = seg;
+            hole.centre = segment.centre.at(o.z);
+            hole.big_r = segment.rz(segment.s0).x;
+            let Some(tc) = meet(o, d, hole.centre, hole.big_r) else {
+                skip("its axis misses its course's mid-surface");
+                continue;
+            };
+            let pc = o + d * tc;
+            hole.theta = (pc.y - hole.centre.y)
+                .atan2(pc.x - hole.centre.x)
+                .rem_euclid(TAU);
+            hole.z = pc.z;
+            hole.e2 = (DVec3::Z - d * d.z).normalize();
+            segs = vec![seg];
+        } else if matches!(host.geometry, PartGeometry::Head(_)) {
+            let chart = HeadChart::new(mer, part);
+            segs = chart.segments();
+            let (Some(&s_first), Some(&s_last)) = (segs.first(), segs.last()) else {
+                skip("its head has no rows");
+                continue;
+            };
+            // The pole cap on this head, if any: (end, rim radius).
+            let cap = match (mer.start_cap, mer.end_cap) {
+                (Some(c), _) if c.seg == s_first => Some((0, c.radius)),
+                (_, Some(c)) if c.seg == s_last => Some((1, c.radius)),
+                _ => None,
+            };
+            if let Some((side, rim)) = cap {
+                let sg = mer.segments[s_first];
+                let rho = (o.truncate() - sg.centre.at(o.z)).length();
+                let cell = TAU * rho / n as f64;
+                let ext = nz.pad.map_or(r, |(od, _)| (0.5 * od * 1.15).max(r));
+                // The ring's reach ([`plan`]'s `reach_at` below) with the
+                // window's edge count taken generously (more edges, more reach).
+                let edges = (8.0 * MARGIN * ext / cell).max(MIN_LOOP as f64);
+                let reach = ((cell - TAU * r / edges) / super::grading::RING_GROWTH).max(0.0);
+                let room = (MARGIN * ext).max(ext + reach) - r;
+                let Some(limit) = head_window::cap_limit(rho, rho - r, room, cell) else {
+                    skip(
+                        "it is too near its head's centre for a window (nozzles on the \
+                         centre, and off it by more than their window, are meshed)",
+                    );
+                    continue;
+                };
+                if rim > limit * (1.0 + 1e-9) {
+                    caps[side] = caps[side].min(limit);
+                    skip(&format!(
+                        "its window reaches its head's pole cap (rim radius {rim:.1} mm, \
+                         {limit:.1} mm leaves room)"
+                    ));
+                    continue;
+                }
+            }
+            let Some((theta, sigma, rho, m)) = head_window::centre(&chart, o, d) else {
+                skip("its axis meets its head nowhere on the head's rows");
+                continue;
+            };
+            hole.seg = m.seg;
+            hole.theta = theta;
+            hole.z = sigma;
+            hole.big_r = rho;
+            hole.centre = chart.segment(m.seg).centre.at(o.z);
+            let tangent = chart.tangent(m.seg, m.s, theta);
+            hole.e2 = (tangent - d * tangent.dot(d)).normalize();
+            hole.chart = Some(chart);
+        } else {
+            skip(&format!(
+                "nozzles on a {} are not meshed (only on cylindrical courses and heads)",
+                host.geometry.kind()
+            ));
             continue;
-        };
-        let pc = o + d * tc;
-        hole.theta = (pc.y - centre.y).atan2(pc.x - centre.x).rem_euclid(TAU);
-        hole.z = pc.z;
-        // The opening's extent about its centre, unrolled, and the pad's.
+        }
+        if r >= 0.8 * hole.big_r {
+            skip("a neck wider than 0.8 of its host's radius there is not meshed yet");
+            continue;
+        }
+        hole.e1 = hole.e2.cross(d);
+        // The opening's extent about its centre, in the chart, and the pad's.
         let mut lo = DVec2::splat(f64::INFINITY);
         let mut hi = DVec2::splat(f64::NEG_INFINITY);
         let mut deepest = f64::NEG_INFINITY;
@@ -266,13 +385,13 @@ pub fn plan(
                 break;
             };
             deepest = deepest.max(t);
-            let p = hole.unroll(hole.on_neck(phi, t));
+            let p = hole.curve_uv(phi);
             lo = lo.min(p);
             hi = hi.max(p);
         }
         if missed || hole.end <= deepest || phis_at(&hole, &[0.0]).is_none() {
             skip(
-                "its neck does not cross its course's mid-surface wholly before its end, \
+                "its neck does not cross its host's mid-surface wholly before its end, \
                  or its opening is not star-shaped about its centre",
             );
             continue;
@@ -285,6 +404,7 @@ pub fn plan(
         }
         // Room round the opening for the ring to grade from the curve's
         // spacing to the cells' width: at least (w − spacing)/GROWTH.
+        let big_r = hole.big_r;
         let w = TAU * big_r / n as f64;
         let reach_at = |growth: f64| {
             let mut reach = 0.0;
@@ -295,26 +415,28 @@ pub fn plan(
             }
             reach
         };
-        // Stations of this segment.
+        // Stations of the host's segments.
         let on_seg: Vec<usize> = (0..mer.intervals.len())
-            .filter(|&i| mer.intervals[i].seg == seg)
+            .filter(|&i| segs.contains(&mer.intervals[i].seg))
             .collect();
         let (Some(&first), Some(&last)) = (on_seg.first(), on_seg.last()) else {
-            skip("its course has no elements");
+            skip("its host has no elements");
             continue;
         };
         let top = last + 1;
-        let zc = hole.z;
-        // Where the course's end cuts the slow ring's room short, the ring
+        let v = |i: usize| hole.station_v(mer, i);
+        // Where the host's end cuts the slow ring's room short, the ring
         // grows faster, as the room allows (a slow growth there squeezes its
         // layers on that side).
         let slow = reach_at(hole.growth);
-        if station_z(mer, first) > zc + (lo.y * MARGIN).min(lo.y - slow)
-            || station_z(mer, top) < zc + (hi.y * MARGIN).max(hi.y + slow)
+        let growth = if v(first) > (lo.y * MARGIN).min(lo.y - slow)
+            || v(top) < (hi.y * MARGIN).max(hi.y + slow)
         {
-            hole.growth = super::grading::GROWTH;
-        }
-        let reach = reach_at(hole.growth);
+            super::grading::GROWTH
+        } else {
+            hole.growth
+        };
+        let reach = reach_at(growth);
         let lo = (lo * MARGIN).min(lo - DVec2::splat(reach));
         let hi = (hi * MARGIN).max(hi + DVec2::splat(reach));
         let cell = TAU / n as f64;
@@ -322,24 +444,18 @@ pub fn plan(
         let mut k0 = (kc + lo.x / (big_r * cell)).floor() as i64;
         let mut k1 = (kc + hi.x / (big_r * cell)).ceil() as i64;
         // The window's stations.
-        let mut i0 = (first..=top)
-            .rev()
-            .find(|&i| station_z(mer, i) <= zc + lo.y)
-            .unwrap_or(first);
-        let mut i1 = (first..=top)
-            .find(|&i| station_z(mer, i) >= zc + hi.y)
-            .unwrap_or(top);
-        if station_z(mer, i0) > zc + 1.1 * raw_lo.y || station_z(mer, i1) < zc + 1.1 * raw_hi.y {
-            skip("its opening is too near its course's end for a window");
+        let mut i0 = (first..=top).rev().find(|&i| v(i) <= lo.y).unwrap_or(first);
+        let mut i1 = (first..=top).find(|&i| v(i) >= hi.y).unwrap_or(top);
+        if v(i0) > 1.1 * raw_lo.y || v(i1) < 1.1 * raw_hi.y {
+            skip("its opening is too near its host's end for a window");
             continue;
         }
         // Widen to MIN_LOOP edges, keeping the window as square as it can be
         // (its width and height in mm), the nearer side first.
         while (k1 - k0) as usize + (i1 - i0) < MIN_LOOP / 2 {
             let width = (k1 - k0) as f64 * big_r * cell;
-            let height = station_z(mer, i1) - station_z(mer, i0);
-            let below = zc - station_z(mer, i0);
-            let above = station_z(mer, i1) - zc;
+            let height = v(i1) - v(i0);
+            let (below, above) = (-v(i0), v(i1));
             let grow_z = height < width && (i0 > first || i1 < top);
             if grow_z {
                 if (below <= above && i0 > first) || i1 == top {
@@ -359,6 +475,7 @@ pub fn plan(
             continue;
         }
         (hole.i0, hole.i1, hole.k0, hole.a) = (i0, i1, k0, a);
+        hole.growth = growth;
         let clash = holes.iter().find(|h| {
             h.part == part
                 && h.i0 < i1
@@ -373,5 +490,5 @@ pub fn plan(
         }
         holes.push(hole);
     }
-    holes
+    Plan { holes, caps }
 }
