@@ -18,6 +18,7 @@ fn pair() -> FeMesh {
         name: name.into(),
         id: name.into(),
         thickness: 1.0,
+        offset: 0.0,
     };
     FeMesh {
         nodes: vec![

@@ -72,6 +72,7 @@ fn parts_and_chain(
             name: format!("{}/{}", design.tag, sp.id),
             id: sp.id.to_string(),
             thickness: sp.thickness,
+            offset: 0.0,
         });
         pieces.push((
             k,

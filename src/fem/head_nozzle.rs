@@ -134,6 +134,7 @@ pub fn join(
             name: format!("{tag}/{}", nz.mark),
             id: nz.mark.clone(),
             thickness: wall,
+            offset: 0.0,
         });
         let line = Segment {
             piece: Piece::Line {

@@ -100,8 +100,9 @@ pub fn to_inp(model: &FeModel) -> String {
     for part in &mesh.parts {
         let _ = writeln!(
             out,
-            "*SHELL SECTION, ELSET={}, MATERIAL=STEEL, OFFSET=0\n{}",
+            "*SHELL SECTION, ELSET={}, MATERIAL=STEEL, OFFSET={}\n{}",
             set_name(&part.name),
+            part.offset,
             part.thickness
         );
     }

@@ -98,6 +98,11 @@ pub struct FePart {
     pub id: String,
     /// Shell thickness, mm.
     pub thickness: f64,
+    /// Where the nodes sit in the section, in thicknesses along the element
+    /// normal (CalculiX's `OFFSET`: the mid-surface lies `offset × thickness`
+    /// behind the nodes): 0 on the mid-surface; a plate bonded onto a course's
+    /// outside is offset so that its inner face is the course's.
+    pub offset: f64,
 }
 
 /// A conforming shell mesh in the plant frame, mm.

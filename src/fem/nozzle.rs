@@ -169,6 +169,7 @@ pub fn mesh(
         name: format!("{tag}/{}", hole.mark),
         id: hole.mark.clone(),
         thickness: hole.wall,
+        offset: 0.0,
     });
     let length = hole.end
         - phis
@@ -269,6 +270,7 @@ pub fn pads(b: &mut Builder, sites: &[PadSite], tag: &str) {
             name: format!("{tag}/{}/pad", site.mark),
             id: format!("{}/pad", site.mark),
             thickness: host + t,
+            offset: 0.0,
         });
         let (o, d) = (site.origin, site.axis);
         let nodes = &b.mesh.nodes;

@@ -181,12 +181,14 @@ pub fn attach(
         name: format!("{tag}/{}/{WEAR_PLATE}", s.id),
         id: format!("{}/{WEAR_PLATE}", s.id),
         thickness: host_t + s.web + plate,
+        offset: -(s.web + plate) / (2.0 * (host_t + s.web + plate)),
     });
     let beyond = (wk > hk).then(|| {
         b.mesh.parts.push(FePart {
             name: format!("{tag}/{}/{DOUBLER}", s.id),
             id: format!("{}/{DOUBLER}", s.id),
             thickness: host_t + plate,
+            offset: -plate / (2.0 * (host_t + plate)),
         });
         b.mesh.parts.len() - 1
     });
@@ -255,6 +257,7 @@ pub fn attach(
         name: format!("{tag}/{}/{WEB}", s.id),
         id: format!("{}/{WEB}", s.id),
         thickness: s.web,
+        offset: 0.0,
     });
     let web_point = |b: &Builder, r: f64, j: usize| {
         let top = b.mesh.nodes[arc[j]];
@@ -314,6 +317,7 @@ pub fn attach(
         name: format!("{tag}/{}/{BASE_PLATE}", s.id),
         id: format!("{}/{BASE_PLATE}", s.id),
         thickness: s.base_thickness,
+        offset: 0.0,
     });
     let mut plate: Vec<Vec<usize>> = Vec::with_capacity(2 * half_rows + 1);
     for r in 0..=2 * half_rows {

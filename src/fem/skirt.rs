@@ -114,6 +114,7 @@ pub fn mesh(
         name: format!("{tag}/{}", skirt.id),
         id: skirt.id.clone(),
         thickness: skirt.thickness,
+        offset: 0.0,
     });
     let slant = skirt.height * (1.0 + skirt.flare * skirt.flare).sqrt();
     // Fractions of the height from the top down.
