@@ -4,7 +4,7 @@
 //! governing thickness and its coincident ratio (how hard the calculation
 //! stresses it), and whether a required MDMT is met without impact testing. The
 //! curves themselves are [`super::ucs66`]; a part's figures come from
-//! [`super::part`].
+//! `calc::part` (the part calculation).
 //!
 //! The rules applied, coldest permitted wins:
 //! - Fig. UCS-66 at the governing thickness (UCS-66(a));
