@@ -35,6 +35,17 @@ fn example_designs_mesh_conforming_and_well_shaped() {
             // Rings with room to grade slowly keep to 1.5 (were 1.80 on the
             // column and 1.61 on the drum); the tank's N4 is cut short by
             // the bottom (1.75).
+            if tag == "V-101" {
+                // The drum's saddle rings split its courses; its course
+                // nozzles are still meshed (they were all left out as "too
+                // near its host's end" when only one piece was searched).
+                let left: Vec<_> = mesh
+                    .notes
+                    .iter()
+                    .filter(|n| n.contains("left out"))
+                    .collect();
+                assert!(left.is_empty(), "{name} {tag}: {left:?}");
+            }
             if tag == "C-201" {
                 // Its skirt is a shell part hanging from the envelope.
                 let skirt = mesh.parts.iter().position(|p| p.id == "SK");

@@ -309,7 +309,10 @@ pub fn plan(
                 .rem_euclid(TAU);
             hole.z = pc.z;
             hole.e2 = (DVec3::Z - d * d.z).normalize();
-            segs = vec![seg];
+            // Every piece of the course: a saddle's or skirt's ring splits it.
+            segs = (0..mer.segments.len())
+                .filter(|&t| mer.segments[t].part == part && mer.segments[t].piece == segment.piece)
+                .collect();
         } else if matches!(host.geometry, PartGeometry::Head(_)) {
             let chart = HeadChart::new(mer, part);
             segs = chart.segments();
