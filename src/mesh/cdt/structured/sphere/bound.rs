@@ -14,7 +14,7 @@ use std::f64::consts::TAU;
 
 use glam::DVec3;
 
-use super::layout::{Row, Spacing};
+use super::row::{Row, Spacing};
 use crate::mesh::TessellationOptions;
 
 /// Share of the tolerance the rows aim at: room for the evaluated vertices'

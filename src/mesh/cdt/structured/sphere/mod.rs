@@ -16,13 +16,15 @@
 
 mod bound;
 mod layout;
+mod row;
 
 use std::f64::consts::{FRAC_1_SQRT_2, FRAC_PI_2, TAU};
 
 use glam::DVec3;
 
 use self::bound::Bound;
-use self::layout::{Row, Spacing, laid_out};
+use self::layout::laid_out;
+use self::row::{Row, Spacing};
 use super::Side;
 use crate::mesh::TessellationOptions;
 use crate::mesh::cdt::CdtError;
