@@ -178,14 +178,7 @@ pub fn vessel_brep_with(
                     (neck_edges, NeckAt::Inside(inside, uv))
                 }
                 None => {
-                    let nozzle_in_host = host_frame.inverse() * source.nodes[cut.neck].frame;
-                    let neck = source.nodes[cut.neck].patches[0]
-                        .surface
-                        .transformed(&nozzle_in_host)
-                        .map_err(|source| ExchangeError::Geometry {
-                            entity: entity(cut.neck),
-                            source,
-                        })?;
+                    let neck = neck_in_host(source, cut, &entity(cut.neck))?;
                     let (with_seam, (neck_edges, neck_notches)) = neck_across(
                         &mut builder,
                         &cut.cut,
@@ -248,13 +241,7 @@ pub fn vessel_brep_with(
             let nozzle_in_host = host_frame.inverse() * source.nodes[cut.neck].frame;
             let (with_seam, seam) = match (&cut.cut.pad, cut.pad_od) {
                 (None, _) => {
-                    let neck = source.nodes[cut.neck].patches[0]
-                        .surface
-                        .transformed(&nozzle_in_host)
-                        .map_err(|source| ExchangeError::Geometry {
-                            entity: entity(cut.neck),
-                            source,
-                        })?;
+                    let neck = neck_in_host(source, cut, &entity(cut.neck))?;
                     with_seam_samples(&cut.cut.neck, &neck, host)
                 }
                 (Some(pad_loop), Some(od)) => on_pad_cylinder(pad_loop, 0.5 * od, &nozzle_in_host)
@@ -570,6 +557,23 @@ fn pad_outer_uv(
 /// Where the neck's loop of an opening across the seam between two host
 /// patches lies, when it lies in one of them: that patch's index and the
 /// loop's (u, v) on it (the cut gives them on the patches joined in v).
+/// The neck's surface of `cut` in its host's frame; `entity` names the neck
+/// in the error.
+fn neck_in_host(
+    source: &VesselSource,
+    cut: &CutSource,
+    entity: &str,
+) -> Result<NurbsSurface, ExchangeError> {
+    let nozzle_in_host = source.nodes[cut.host].frame.inverse() * source.nodes[cut.neck].frame;
+    source.nodes[cut.neck].patches[0]
+        .surface
+        .transformed(&nozzle_in_host)
+        .map_err(|source| ExchangeError::Geometry {
+            entity: entity.to_string(),
+            source,
+        })
+}
+
 fn neck_in_one_patch(cut: &Cut, hosts: &[Patch]) -> Option<(usize, Vec<DVec2>)> {
     let [(a, _), (b, _)] = cut.hosts.as_slice() else {
         return None;
