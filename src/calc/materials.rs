@@ -2,8 +2,11 @@
 //! and ASME B16.5 material group of each specification, every value with its source.
 //!
 //! The built-in table (`data/materials.json`, embedded at compile time) holds ASTM
-//! specified minimums and allowable stresses derived from them by the published
-//! ASME II-D rule, because Section II-D's own tables are licensed. A user points at
+//! specified minimums and allowable stresses at temperature derived from them by
+//! the published ASME II-D rule (Mandatory Appendix 1, with the public Tables Y-1
+//! and U trend ratios) below the creep range, and Table 1A values as publicly
+//! reproduced where the rule cannot reach, because Section II-D's own tables are
+//! licensed; each table says where and why it stops (`limit`). A user points at
 //! a licensed table in the same format with [`MaterialTable::from_path`]. Allowable
 //! stress is interpolated linearly in temperature between the table's points and is
 //! an error outside them: a calculation never extrapolates a stress.
@@ -38,6 +41,11 @@ pub struct StressTable {
     pub points: Vec<[f64; 2]>,
     /// Where the values come from.
     pub source: String,
+    /// Why the table stops where it does (the Code's temperature limit of the
+    /// material, or the end of the range a derivation is valid in); an error
+    /// above the table's last point quotes it.
+    #[serde(default)]
+    pub limit: Option<String>,
 }
 
 /// One material specification.
@@ -100,15 +108,23 @@ impl Material {
             (Some(a), Some(b)) => format!("{} to {} °C", a[0], b[0]),
             _ => "no points".to_string(),
         };
-        CalcError::Input {
-            entity: self.name.clone(),
-            field: "temperature".into(),
-            value: temperature,
-            rule: format!(
+        let above = points.last().is_some_and(|p| temperature > p[0]);
+        let rule = match &self.allowable_stress.limit {
+            Some(limit) if above => format!(
+                "the allowable stress table of {} covers {range}: {limit}",
+                self.name
+            ),
+            _ => format!(
                 "the allowable stress table of {} covers {range}; give a licensed table with the \
                  temperature (see MaterialTable::from_path)",
                 self.name
             ),
+        };
+        CalcError::Input {
+            entity: self.name.clone(),
+            field: "temperature".into(),
+            value: temperature,
+            rule,
         }
     }
 
