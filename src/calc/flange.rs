@@ -8,9 +8,10 @@
 //! Shipped, Classes 150 to 900 in bar from ASME B16.5-2009/-2013: Table 2-1.1
 //! (Group 1.1: A105, A350 LF2, A216 WCB, A515-70, A516-70), the same values
 //! B16.34-2013 Table 2-1.1 lists for the standard class; Table 2-1.2 (Group 1.2:
-//! A216 WCC, A352 LCC/LC2/LC3, A350 LF6 Cl. 2, A203 B/E); Table 2-2.1 (Group 2.1:
+//! A216 WCC, A352 LCC/LC2/LC3, A350 LF6 Cl. 2, A203 B/E); Table 2-1.4 (Group 1.4:
+//! A350 LF1 Cl. 1, A515-60, A516-60); Table 2-2.1 (Group 2.1:
 //! A182 F304, A240 304) and Table 2-2.2 (Group 2.2: A182 F316, A240 316), all
-//! four from −29 to 538 °C (Class 150's last entry); Table 2-2.3 (Group 2.3: A182
+//! five from −29 to 538 °C (Class 150's last entry); Table 2-2.3 (Group 2.3: A182
 //! F304L/F316L, A240 304L/316L) from −29 to 450 °C, the end of its table. Each
 //! row is checked against two public copies where two were found ([`SOURCE`]): a
 //! JavaScript flange-rating calculator on GitHub carrying every B16.5-2009 table
@@ -22,7 +23,10 @@
 //! 350, 400 and 450 °C. The copies agree on every shared entry but Group 2.2 at
 //! 538 °C, Classes 600 and 900, where the B16.34 copy prints 50.4 and 75.6 bar and
 //! the B16.5 copy 50.0 and 75.2: the lower is shipped. Group 1.2 above 300 °C and
-//! Group 2.3 at 325, 375 and 425 °C rest on the calculator alone. Other groups
+//! Group 2.3 at 325, 375 and 425 °C and the whole of Group 1.4 rest on the
+//! calculator alone (Group 1.4's Classes 300 to 2500 are proportional to one value
+//! per temperature within B16.5's rounding, and its Class 150 from 200 °C equals
+//! Group 1.1's, as the Class 150 ceiling makes every Group 1.x row). Other groups
 //! (1.3, …) are not shipped: their flanges are reported as not rated, never
 //! guessed.
 //!
@@ -88,6 +92,27 @@ const GROUP_1_2: [[f64; 17]; 4] = [
     ],
 ];
 
+/// Group 1.4 (A350 LF1 Cl. 1, A515-60, A516-60) working pressures, bar, Class
+/// 150, 300, 600, 900, at [`TEMPERATURES`]: B16.5 Table 2-1.4 as the JavaScript
+/// calculator of [`SOURCE`] reproduces it (one copy; see [`SOURCE`]).
+const GROUP_1_4: [[f64; 17]; 4] = [
+    [
+        16.3, 16.3, 16.0, 14.9, 14.4, 13.8, 12.1, 10.2, 9.3, 8.4, 7.4, 6.5, 5.5, 4.6, 3.7, 2.8, 1.4,
+    ],
+    [
+        42.6, 42.6, 41.8, 38.8, 37.6, 36.4, 34.9, 33.2, 32.2, 31.2, 30.4, 29.3, 25.8, 21.4, 14.1,
+        10.3, 5.9,
+    ],
+    [
+        85.1, 85.1, 83.5, 77.7, 75.1, 72.8, 69.8, 66.4, 64.5, 62.5, 60.7, 58.7, 51.5, 42.7, 28.2,
+        20.6, 11.8,
+    ],
+    [
+        127.7, 127.7, 125.3, 116.5, 112.7, 109.2, 104.7, 99.5, 96.7, 93.7, 91.1, 88.0, 77.3, 64.1,
+        42.3, 30.9, 17.7,
+    ],
+];
+
 /// Group 2.1 (304) working pressures, bar, Class 150, 300, 600, 900, at
 /// [`TEMPERATURES`]: B16.5 Table 2-2.1 as two public data files reproduce it
 /// (see [`SOURCE`]).
@@ -147,8 +172,8 @@ const GROUP_2_3: [[f64; 14]; 4] = [
 ];
 
 /// Where the shipped ratings come from.
-pub const SOURCE: &str = "ASME B16.5-2009/-2013 Tables 2-1.1, 2-1.2, 2-2.1 and 2-2.2 \
-    (Groups 1.1, 1.2, 2.1, 2.2, −29 to 538 °C) and 2-2.3 (Group 2.3, −29 to 450 °C), \
+pub const SOURCE: &str = "ASME B16.5-2009/-2013 Tables 2-1.1, 2-1.2, 2-1.4, 2-2.1 and \
+    2-2.2 (Groups 1.1, 1.2, 1.4, 2.1, 2.2, −29 to 538 °C) and 2-2.3 (Group 2.3, −29 to 450 °C), \
     standard class, bar. Every table as a public JavaScript B16.5 flange-rating \
     calculator on GitHub carries it (all B16.5-2009 tables, Classes 150 to 2500, −29 \
     to 816 °C). Checked against: Table 2-1.1 as published by valve makers for \
@@ -161,8 +186,8 @@ pub const SOURCE: &str = "ASME B16.5-2009/-2013 Tables 2-1.1, 2-1.2, 2-2.1 and 2
     450 °C, 2.3 at 350, 400, 450 °C) and Table 2-2.2 as a Python valve-sizing module \
     reproduces B16.34 CF8M (to 538 °C; at 538 °C it prints Classes 600 and 900 as \
     50.4 and 75.6 bar against the B16.5 copy's 50.0 and 75.2, the lower shipped). \
-    Classes 1500 and 2500 derived from the Class 300, 600 and 900 rows by Annex B \
-    (DERIVATION)";
+    Table 2-1.4 from the calculator alone (no second copy found). Classes 1500 and \
+    2500 derived from the Class 300, 600 and 900 rows by Annex B (DERIVATION)";
 
 /// The class's number, e.g. 150.
 pub fn class_number(class: FlangeClass) -> u32 {
@@ -196,7 +221,8 @@ pub const DERIVATION: &str = "ASME B16.5 Annex B rates every standard class from
     lowest of them allows (the high end's least). Checked against the published \
     Class 1500 and 2500 rows of every shipped group (the JavaScript copy of SOURCE): \
     Groups 1.1, 2.1, 2.2 (to 475 C) and 2.3 from 0.05 bar below to 0.25 bar above the \
-    derived value, Group 1.2 from 0.08 below to 0.54 above; Group 2.2 from 500 C is \
+    derived value, Group 1.2 from 0.08 below to 0.54 above, Group 1.4 from 0.02 to \
+    0.31 above; Group 2.2 from 500 C is \
     held below the proportional values by B16.5's ceiling pressures (140.9 / 235.0 \
     bar at 500 C), so its derived classes stop at 475 C";
 
@@ -212,6 +238,7 @@ fn rows(group: &str) -> Result<Rows, CalcError> {
     Ok(match group {
         "1.1" => (four(&GROUP_1_1), &TEMPERATURES, "Table 2-1.1"),
         "1.2" => (four(&GROUP_1_2), &TEMPERATURES, "Table 2-1.2"),
+        "1.4" => (four(&GROUP_1_4), &TEMPERATURES, "Table 2-1.4"),
         "2.1" => (four(&GROUP_2_1), &TEMPERATURES, "Table 2-2.1"),
         "2.2" => (four(&GROUP_2_2), &TEMPERATURES, "Table 2-2.2"),
         "2.3" => (four(&GROUP_2_3), &TEMPERATURES[..14], "Table 2-2.3"),
@@ -220,8 +247,8 @@ fn rows(group: &str) -> Result<Rows, CalcError> {
                 entity: format!("B16.5 group {group}"),
                 field: "group".into(),
                 value: f64::NAN,
-                rule: "only the Group 1.1, 1.2, 2.1, 2.2 and 2.3 rating tables (Tables \
-                       2-1.1, 2-1.2, 2-2.1, 2-2.2, 2-2.3) are shipped"
+                rule: "only the Group 1.1, 1.2, 1.4, 2.1, 2.2 and 2.3 rating tables \
+                       (Tables 2-1.1, 2-1.2, 2-1.4, 2-2.1, 2-2.2, 2-2.3) are shipped"
                     .into(),
             });
         }
