@@ -139,6 +139,9 @@ pub struct VesselBrep {
     pub shells: Vec<Shell>,
     /// Nozzle connection points.
     pub ports: Vec<Port>,
+    /// The exchange tolerance its opening loops were fitted to, mm: each
+    /// edge's curve and its pcurves' images lie within it of each other.
+    pub tolerance: f64,
 }
 
 /// Faces joined by shared edges (union–find), in order of their first face.

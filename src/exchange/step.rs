@@ -4,8 +4,9 @@
 //! structure, rational B-spline faces with pcurves, shells, manifold solids,
 //! named axis placements); AP242 adds nothing this file uses.
 //!
-//! Layout: a fixed header block (contexts, units, the identity placement) with
-//! ids below [`LOCAL_BASE`]; one block per vessel — its product, its surfaces,
+//! Layout: a header block (contexts, units, the uncertainty — the exchange
+//! tolerance, see [`write_step`] — and the identity placement) with ids below
+//! [`LOCAL_BASE`]; one block per vessel — its product, its surfaces,
 //! edges with pcurves, faces, shells and nozzle placements, in the vessel's own
 //! frame — written with ids counted from [`LOCAL_BASE`] and moved to its place
 //! in the file by adding an offset to every local id ([`rebase`]); last the
@@ -45,12 +46,14 @@ const VESSEL_REPRESENTATION: usize = LOCAL_BASE + 1;
 const VESSEL_IDENTITY: usize = LOCAL_BASE + 2;
 
 /// One vessel's block of entities, numbered locally from [`LOCAL_BASE`].
-#[derive(Clone, Debug, PartialEq, Eq)]
+#[derive(Clone, Debug, PartialEq)]
 pub struct StepBlock {
     /// The entity lines.
     pub text: String,
     /// One past the largest local id.
     pub next: usize,
+    /// The vessel's exchange tolerance, mm ([`VesselBrep::tolerance`]).
+    pub tolerance: f64,
 }
 
 /// Appends `x` as a STEP real (a decimal point always, `E` for the exponent).
@@ -597,6 +600,7 @@ pub fn vessel_block(brep: &VesselBrep, solids: bool) -> StepBlock {
     StepBlock {
         text: w.out,
         next: w.next,
+        tolerance: brep.tolerance,
     }
 }
 
@@ -645,8 +649,9 @@ pub fn rebase(out: &mut String, block: &str, offset: usize) {
     out.push_str(&block[copied..]);
 }
 
-/// The header section and the header block of shared entities.
-fn header(out: &mut String, name: &str) {
+/// The header section and the header block of shared entities, the
+/// geometric context's uncertainty `uncertainty` mm.
+fn header(out: &mut String, name: &str, uncertainty: f64) {
     out.push_str(
         "ISO-10303-21;\nHEADER;\nFILE_DESCRIPTION(('vesselcad exact model'),'2;1');\nFILE_NAME(",
     );
@@ -662,7 +667,12 @@ fn header(out: &mut String, name: &str) {
          #5=(LENGTH_UNIT()NAMED_UNIT(*)SI_UNIT(.MILLI.,.METRE.));\n\
          #6=(NAMED_UNIT(*)PLANE_ANGLE_UNIT()SI_UNIT($,.RADIAN.));\n\
          #7=(NAMED_UNIT(*)SI_UNIT($,.STERADIAN.)SOLID_ANGLE_UNIT());\n\
-         #8=UNCERTAINTY_MEASURE_WITH_UNIT(LENGTH_MEASURE(1.E-06),#5,'distance_accuracy_value','confusion accuracy');\n\
+         #8=UNCERTAINTY_MEASURE_WITH_UNIT(LENGTH_MEASURE("
+    );
+    real(out, uncertainty);
+    let _ = write!(
+        out,
+        "),#5,'distance_accuracy_value','confusion accuracy');\n\
          #{CONTEXT_3D}=(GEOMETRIC_REPRESENTATION_CONTEXT(3)GLOBAL_UNCERTAINTY_ASSIGNED_CONTEXT((#8))GLOBAL_UNIT_ASSIGNED_CONTEXT((#5,#6,#7))REPRESENTATION_CONTEXT('3D','millimetres'));\n\
          #{CONTEXT_2D}=(GEOMETRIC_REPRESENTATION_CONTEXT(2)PARAMETRIC_REPRESENTATION_CONTEXT()REPRESENTATION_CONTEXT('2D SPACE',''));\n\
          #11=CARTESIAN_POINT('',(0.0,0.0,0.0));\n\
@@ -684,10 +694,25 @@ pub struct PlacedBlock {
 }
 
 /// Writes the whole file: header, the vessels' blocks, the plant assembly.
+///
+/// The file's uncertainty (`distance_accuracy_value`) is the largest of the
+/// vessels' exchange tolerances (1e-3 mm without vessels): an opening loop's
+/// 3D curve and its pcurves' images are fitted separately, each within half
+/// of it, so they agree to it and not closer. A receiver that finds a pcurve
+/// further from its 3D curve than about twice the uncertainty may replace it
+/// by a projection of the 3D curve (OpenCASCADE's STEP reader does), which
+/// moves the face's boundary across the curve: along the long edge of a
+/// reinforcing pad's sliver beside a seam, with 1e-6 mm stated, by 5.8e-6 of
+/// the sliver's area.
 pub fn write_step(name: &str, vessels: &[PlacedBlock]) -> String {
     let total: usize = vessels.iter().map(|v| v.block.text.len()).sum();
     let mut out = String::with_capacity(total + 4096 + 1024 * vessels.len());
-    header(&mut out, name);
+    let uncertainty = vessels
+        .iter()
+        .map(|v| v.block.tolerance)
+        .reduce(f64::max)
+        .unwrap_or(super::ExchangeOptions::DEFAULT.tolerance);
+    header(&mut out, name, uncertainty);
     let mut offset = 0;
     let mut placed = Vec::with_capacity(vessels.len());
     for vessel in vessels {

@@ -528,6 +528,7 @@ pub fn vessel_brep_with(
         faces,
         shells,
         ports,
+        tolerance: source.tolerance,
     })
 }
 
