@@ -4,54 +4,23 @@
 //! vessel frame; then the least squares alone on 10⁶ points of course S1. For
 //! profiling (`perf record`, callgrind) of one step.
 //!
-//! `cargo run --profile test --example scan_profile -- [all|project|fit|check|ls] [density] [threads]`
-use std::time::Instant;
-
+//! `cargo run --profile test --example scan_profile -- [all|project|fit|check|inspect|ls] [density] [threads]`
+//! (`inspect` stops before the least squares on 10⁶ points, `ls` skips the
+//! whole inspect, `all` runs everything)
 use glam::DVec3;
 use vesselcad::design::parse;
 use vesselcad::scan::checks::{CheckOptions, check};
 use vesselcad::scan::fit::{FitOptions, Sample, fit_patch};
 use vesselcad::scan::inspect::{InspectOptions, inspect};
-use vesselcad::scan::simulate::{SimulateOptions, simulate};
 use vesselcad::scan::{Envelope, Foot, Targets};
 
 #[path = "../tests/common/scan.rs"]
 #[expect(dead_code, reason = "the example uses the drum only")]
 mod designs;
+#[path = "support/scan_run.rs"]
+mod run;
 
-/// CPU seconds of this process so far (user + system), from /proc: on a
-/// shared, loaded machine the wall clock measures the queue.
-fn cpu() -> f64 {
-    let stat = std::fs::read_to_string("/proc/self/stat").unwrap_or_default();
-    let after = stat.rsplit(')').next().unwrap_or("");
-    let fields: Vec<&str> = after.split_whitespace().collect();
-    let ticks = |i: usize| {
-        fields
-            .get(i)
-            .and_then(|s| s.parse::<f64>().ok())
-            .unwrap_or(0.0)
-    };
-    (ticks(11) + ticks(12)) / 100.0
-}
-
-/// Wall and CPU seconds of `f`.
-fn timed<T>(f: impl FnOnce() -> T) -> (T, f64, f64) {
-    let (t, c) = (Instant::now(), cpu());
-    let out = f();
-    (out, t.elapsed().as_secs_f64(), cpu() - c)
-}
-
-fn points(env: &Envelope, density: f64) -> Vec<DVec3> {
-    let options = SimulateOptions {
-        density,
-        noise: 1.0,
-        occlusion: 0.0,
-        seed: 5,
-        site: None,
-        defects: Vec::new(),
-    };
-    simulate(env, &options).expect("simulates").points
-}
+use run::{points, timed};
 
 fn samples_of(
     env: &Envelope,
@@ -145,7 +114,7 @@ fn main() {
     if which == "check" {
         return;
     }
-    if which == "all" {
+    if which == "all" || which == "inspect" {
         let options = InspectOptions {
             register: None,
             ..InspectOptions::DEFAULT
@@ -160,6 +129,9 @@ fn main() {
             scan.len() as f64 / wall,
             scan.len() as f64 / cpu_s.max(0.01)
         );
+    }
+    if which == "inspect" {
+        return;
     }
     let index = env
         .surfaces

@@ -19,12 +19,11 @@
 //! spacing reaches its floor.
 
 use glam::{DVec3, DVec4};
-use rayon::prelude::*;
 use serde::Serialize;
 
 use super::ScanError;
-use super::band::Band;
-use crate::nurbs::{KnotVector, MAX_ORDER, NurbsSurface, basis_functions};
+use super::cells::{NormalEquations, Sorted};
+use crate::nurbs::{KnotVector, NurbsSurface};
 
 /// One point to fit: its projection's parameters and its offset from there.
 #[derive(Clone, Copy, Debug, PartialEq)]
@@ -134,33 +133,6 @@ fn refined(design: &NurbsSurface, spacing: f64) -> Result<NurbsSurface, ScanErro
         .map_err(singular)
 }
 
-/// The nonzero rational basis functions at (u, v): (u index, v index, value).
-#[expect(
-    clippy::needless_range_loop,
-    reason = "index arithmetic over matrix rows and columns reads as the algorithm"
-)]
-fn rational_basis(s: &NurbsSurface, u: f64, v: f64, out: &mut Vec<(usize, usize, f64)>) {
-    out.clear();
-    let (p, q) = (s.u_degree(), s.v_degree());
-    let (uk, vk) = (s.u_knots(), s.v_knots());
-    let (u, v) = (uk.clamp(u), vk.clamp(v));
-    let (su, sv) = (uk.find_span(u), vk.find_span(v));
-    let nu: [f64; MAX_ORDER] = basis_functions(uk.as_slice(), su, u, p);
-    let nv: [f64; MAX_ORDER] = basis_functions(vk.as_slice(), sv, v, q);
-    let mut total = 0.0;
-    for a in 0..=p {
-        for b in 0..=q {
-            let (i, j) = (su - p + a, sv - q + b);
-            let w = s.homogeneous_point_at(i, j).w * nu[a] * nv[b];
-            total += w;
-            out.push((i, j, w));
-        }
-    }
-    for e in out.iter_mut() {
-        e.2 /= total;
-    }
-}
-
 /// Fits `samples` on the patch `design` (local frame).
 ///
 /// # Errors
@@ -198,15 +170,17 @@ pub fn fit_patch(
     let (lu, lv) = net_lengths(design);
     let mut spacing = (lu.max(lv) / 8.0).max(options.min_spacing);
     let mut rounds = 0;
+    let mut base = refined(design, spacing)?;
     loop {
         rounds += 1;
-        let base = refined(design, spacing)?;
         let (fit, cells_ok) = solve(&base, samples, options, what)?;
         let next = spacing / 2.0;
         let (nu, nv) = (base.u_count(), base.v_count());
-        let grown = refined(design, next).map(|s| s.u_count() * s.v_count());
+        let grown = refined(design, next);
         let can_grow = next >= options.min_spacing
-            && grown.is_ok_and(|n| n <= options.max_controls)
+            && grown
+                .as_ref()
+                .is_ok_and(|s| s.u_count() * s.v_count() <= options.max_controls)
             && nu * nv < samples.len();
         if (fit.rms <= options.noise && cells_ok) || !can_grow {
             return Ok(PatchFit {
@@ -216,6 +190,7 @@ pub fn fit_patch(
             });
         }
         spacing = next;
+        base = grown?;
     }
 }
 
@@ -232,52 +207,12 @@ fn solve(
     let size = nu * nv;
     let index = |i: usize, j: usize| j * nu + i;
     let width = (q * nu + p).max(2 * nu);
-    // One accumulator per rayon split (a few per thread), not per chunk: the
-    // band is n·w entries, which zeroing and merging per 4096 samples made
-    // the bulk of the work.
-    let zeros = || {
-        (
-            Band::zeros(size, width),
-            vec![vec![0.0; size]; 3],
-            vec![0.0; size],
-        )
-    };
-    let (matrix, rhs, support) = samples
-        .par_chunks(4096)
-        .fold(zeros, |(mut m, mut r, mut support), chunk| {
-            let mut basis = Vec::with_capacity(MAX_ORDER * MAX_ORDER);
-            for s in chunk {
-                rational_basis(base, s.u, s.v, &mut basis);
-                for &(i, j, a) in &basis {
-                    let k = index(i, j);
-                    support[k] += a;
-                    r[0][k] += a * s.offset.x;
-                    r[1][k] += a * s.offset.y;
-                    r[2][k] += a * s.offset.z;
-                    for &(i2, j2, b) in &basis {
-                        let l = index(i2, j2);
-                        if l <= k {
-                            m.add(k, l, a * b);
-                        }
-                    }
-                }
-            }
-            (m, r, support)
-        })
-        .reduce(zeros, |mut a, b| {
-            a.0.add_all(&b.0);
-            for c in 0..3 {
-                for (x, y) in a.1[c].iter_mut().zip(&b.1[c]) {
-                    *x += y;
-                }
-            }
-            for (x, y) in a.2.iter_mut().zip(&b.2) {
-                *x += y;
-            }
-            a
-        });
-    let mut matrix = matrix;
-    let mut rhs = rhs;
+    let sorted = Sorted::new(base, samples);
+    let NormalEquations {
+        mut matrix,
+        mut rhs,
+        support,
+    } = sorted.normal_equations(base, width);
     let unsupported = support.iter().filter(|&&s| s <= 0.0).count();
     if options.smoothing <= 0.0 && unsupported > 0 {
         return Err(ScanError::Singular {
@@ -375,42 +310,16 @@ fn solve(
                 rule: e.to_string(),
             })?;
     // Residuals, overall and per knot cell.
-    let (su, sv) = (base.u_knots().spans().len(), base.v_knots().spans().len());
-    let u_spans = base.u_knots().distinct();
-    let v_spans = base.v_knots().distinct();
-    let cell = |t: f64, knots: &[f64]| knots.partition_point(|&k| k <= t).saturating_sub(1);
-    let residuals: Vec<(usize, f64)> = samples
-        .par_iter()
-        .with_min_len(1024)
-        .map(|s| {
-            let mut basis = Vec::with_capacity(MAX_ORDER * MAX_ORDER);
-            rational_basis(base, s.u, s.v, &mut basis);
-            let mut fitted = DVec3::ZERO;
-            for &(i, j, a) in &basis {
-                let k = index(i, j);
-                fitted += a * DVec3::new(rhs[0][k], rhs[1][k], rhs[2][k]);
-            }
-            let c = cell(s.u, &u_spans).min(su - 1) * sv + cell(s.v, &v_spans).min(sv - 1);
-            (c, (s.offset - fitted).dot(s.normal))
-        })
-        .collect();
-    let mut cells = vec![(0usize, 0.0f64); su * sv];
-    let (mut sum, mut max) = (0.0, 0.0f64);
-    for &(c, r) in &residuals {
-        cells[c].0 += 1;
-        cells[c].1 += r * r;
-        sum += r * r;
-        max = max.max(r.abs());
-    }
+    let per_cell = sorted.residuals(base, &rhs, 4.0 * options.noise);
+    let sum: f64 = per_cell.iter().map(|c| c.squares).sum();
+    let max = per_cell.iter().map(|c| c.max).fold(0.0, f64::max);
     // Past 4 sigmas: 6·10⁻⁵ of Gaussian residuals; more means a shape the net
     // cannot follow yet (a dent between its control points).
-    let far = residuals
-        .iter()
-        .filter(|r| r.1.abs() > 4.0 * options.noise)
-        .count();
+    let far: usize = per_cell.iter().map(|c| c.far).sum();
     let cells_ok = far as f64 <= 2.0 + 1e-3 * samples.len() as f64
-        && cells.iter().all(|&(n, s2)| {
-            n < 8 || (s2 / n as f64).sqrt() <= options.noise * (1.0 + 4.0 / (2.0 * n as f64).sqrt())
+        && per_cell.iter().all(|c| {
+            let n = c.points as f64;
+            c.points < 8 || (c.squares / n).sqrt() <= options.noise * (1.0 + 4.0 / (2.0 * n).sqrt())
         });
     Ok((
         PatchFit {

@@ -15,6 +15,7 @@
 //! pose from the same exact surfaces, for tests and demos.
 
 mod band;
+mod cells;
 mod envelope;
 mod error;
 mod features;
