@@ -3,7 +3,8 @@
 //! the page served by the real `vesselcad serve`; an edit made through page A's
 //! parameter panel changes the geometry page B shows, and a bad value shows the
 //! server's error in page A and changes nothing in page B; undo, adding a nozzle
-//! and the typed editors go through the same pages. The History panel lists a
+//! and the typed editors go through the same pages; page B draws the edit from a
+//! meshopt-compressed delta. The History panel lists a
 //! store's revisions and its Undo button adds one; the view draws no frame while
 //! idle.
 
@@ -94,6 +95,16 @@ fn an_edit_in_one_page_changes_the_geometry_in_another() {
     assert!((before[0] - 7.2).abs() < 1e-3, "{before:?}");
     assert!((after[0] - 7.6).abs() < 1e-3, "{after:?}");
     assert!((after[1] - before[1]).abs() < 1e-6 && (after[2] - before[2]).abs() < 1e-6);
+    // Page B drew that edit from a meshopt-compressed delta.
+    let delta = &report["delta"];
+    assert_eq!(delta["revision"], 1, "{report}");
+    assert!(
+        delta["extensions"]
+            .as_array()
+            .is_some_and(|e| e.iter().any(|x| x == "EXT_meshopt_compression")),
+        "{delta}"
+    );
+    println!("page B's delta: {} bytes", delta["bytes"]);
     // Success is not shown as an error.
     assert_eq!(report["statusA"], "accepted as revision 1");
     assert_eq!(report["statusAError"], "");

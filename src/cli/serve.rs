@@ -9,6 +9,7 @@ use std::time::Duration;
 use clap::Args;
 
 use vesselcad::design::DesignError;
+use vesselcad::export::quantization_budget;
 use vesselcad::mesh::{
     DEFAULT_VERTEX_BUDGET, MAX_VERTEX_BUDGET, MIN_VERTEX_BUDGET, TessellationOptions,
 };
@@ -71,6 +72,13 @@ pub struct ServeArgs {
     /// `.json`; an old journal is migrated on first start.
     #[arg(long)]
     pub store: Option<String>,
+    /// Quantize the compact deltas viewers get (`KHR_mesh_quantization`,
+    /// 16-bit positions, byte normals, as `build --quantize`): the model is
+    /// meshed to 0.75 × the tolerance and a quarter of it is given to
+    /// quantization, so what viewers draw holds the tolerance. Deltas are
+    /// meshopt-compressed for the viewer page either way.
+    #[arg(long)]
+    pub quantize: bool,
 }
 
 /// A positive, finite number of seconds (at most a day).
@@ -94,12 +102,16 @@ pub fn run(args: ServeArgs) -> ExitCode {
             args.bind
         );
     }
+    let mut compact_deltas = server::COMPACT_DELTAS;
+    if args.quantize {
+        compact_deltas.quantize = Some(quantization_budget(args.tolerance));
+    }
     let options = ServeOptions {
         design: args.design,
         bind: args.bind,
         port: args.port,
         token: args.token,
-        tessellation: TessellationOptions::chord(args.tolerance)
+        tessellation: TessellationOptions::chord(compact_deltas.meshing_tolerance(args.tolerance))
             .with_max_vertices(args.max_vertices as usize),
         viewer_timeout: Duration::from_secs_f64(args.viewer_timeout),
         whole_glb_limit: args.whole_glb_limit,
@@ -107,6 +119,7 @@ pub fn run(args: ServeArgs) -> ExitCode {
         max_connections: usize::from(args.max_connections),
         idle_timeout: Duration::from_secs_f64(args.idle_timeout),
         store: args.store,
+        compact_deltas,
     };
     match server::run(options) {
         Ok(()) => ExitCode::SUCCESS,

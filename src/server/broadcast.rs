@@ -13,8 +13,17 @@
 //! viewer never blocks the editor or the other viewers. A viewer whose queue
 //! overflows is told so and sent a full resync; one whose socket accepts nothing
 //! for [`VIEWER_SEND_TIMEOUT`] is dropped.
+//!
+//! **Compact deltas.** A viewer that connects to `/ws?compress=meshopt` (the
+//! viewer page does) gets each delta's GLB written with the hub's
+//! [`GlbOptions`] ([`Hub::new`]; by default `EXT_meshopt_compression`, and
+//! `KHR_mesh_quantization` when `serve --quantize` meshed the model for it):
+//! the update carries that GLB beside the plain one, written only while such
+//! a viewer is connected ([`Hub::compact_viewer`]). Other viewers get the
+//! plain GLB, as before.
 
 use std::collections::BTreeMap;
+use std::sync::atomic::{AtomicUsize, Ordering};
 use std::sync::{Arc, Mutex};
 use std::time::Duration;
 
@@ -22,6 +31,7 @@ use axum::body::Bytes;
 use tokio::sync::broadcast;
 
 use super::session::Accepted;
+use crate::export::{Compression, GlbOptions, Scene, write_glb_with};
 
 /// Updates a viewer may fall behind by before it is sent a full resync.
 pub const VIEWER_QUEUE: usize = 64;
@@ -48,27 +58,83 @@ pub struct Update {
     pub revision: u64,
     /// The delta header (JSON text).
     pub header: String,
-    /// The GLB of the changed parts.
+    /// The GLB of the changed parts (plain: `f32`, no extension).
     pub glb: Bytes,
+    /// The same parts in the hub's compact form, for viewers that asked for
+    /// it; `None` when none was connected as it was written (they then get
+    /// the plain GLB, which they read too).
+    pub compact: Option<Bytes>,
 }
 
 impl Update {
-    /// The update of an accepted edit: writes its delta GLB (call it without
-    /// the session lock).
-    pub fn of(accepted: &Accepted) -> Update {
+    /// The update of an accepted edit: writes its delta GLB, and the compact
+    /// one with `compact` (call it without the session lock).
+    pub fn of(accepted: &Accepted, compact: Option<&GlbOptions>) -> Update {
         Update {
             revision: accepted.revision,
             header: accepted.to_json("delta").to_string(),
             glb: accepted.delta_glb(),
+            compact: compact.map(|options| compact_glb(&accepted.delta, options)),
+        }
+    }
+
+    /// The GLB a viewer gets: the compact one if it asked for it and it was
+    /// written, else the plain one.
+    pub fn glb_for(&self, compact: bool) -> &Bytes {
+        match (&self.compact, compact) {
+            (Some(c), true) => c,
+            _ => &self.glb,
         }
     }
 }
+
+/// `delta` written with `options`, or the plain GLB if it cannot be (the
+/// error is printed).
+fn compact_glb(delta: &Scene, options: &GlbOptions) -> Bytes {
+    match write_glb_with(delta, options) {
+        Ok(glb) => Bytes::from(glb),
+        Err(e) => {
+            eprintln!("vesselcad serve: cannot write a compact delta GLB: {e}");
+            Bytes::from(write_glb_with(delta, &GlbOptions::default()).unwrap_or_default())
+        }
+    }
+}
+
+/// The compact form of deltas a viewer may ask for: `EXT_meshopt_compression`
+/// of the plain GLB's `f32` data (lossless: the same vertices, so the same
+/// chordal bound).
+pub const COMPACT_DELTAS: GlbOptions = GlbOptions {
+    reuse: true,
+    quantize: None,
+    compress: Compression::Meshopt,
+    instancing: false,
+    normals: crate::export::Normals::Smooth,
+};
 
 /// Fans updates out to every viewer, in the order their tickets were taken.
 #[derive(Clone, Debug)]
 pub struct Hub {
     sender: broadcast::Sender<Arc<Update>>,
     order: Arc<Mutex<Order>>,
+    compact: Arc<CompactDeltas>,
+}
+
+/// How compact deltas are written, and how many viewers want them.
+#[derive(Debug)]
+struct CompactDeltas {
+    options: GlbOptions,
+    viewers: AtomicUsize,
+}
+
+/// A viewer's claim on compact deltas: while it lives, each update carries
+/// them.
+#[derive(Debug)]
+pub struct CompactViewer(Arc<CompactDeltas>);
+
+impl Drop for CompactViewer {
+    fn drop(&mut self) {
+        self.0.viewers.fetch_sub(1, Ordering::Relaxed);
+    }
 }
 
 /// Tickets taken and updates waiting for an earlier ticket.
@@ -95,6 +161,13 @@ pub struct Ticket {
 }
 
 impl Ticket {
+    /// Writes the update of `accepted` (its compact GLB too while a viewer
+    /// wants it) and publishes it.
+    pub fn publish_accepted(self, accepted: &Accepted) {
+        let compact = self.hub.compact_options();
+        self.publish(Update::of(accepted, compact.as_ref()));
+    }
+
     /// Sends `update` to every viewer once every earlier ticket is settled;
     /// never waits.
     pub fn publish(mut self, update: Update) {
@@ -113,14 +186,35 @@ impl Drop for Ticket {
 
 impl Default for Hub {
     fn default() -> Self {
-        Hub {
-            sender: broadcast::channel(VIEWER_QUEUE).0,
-            order: Arc::default(),
-        }
+        Hub::new(COMPACT_DELTAS)
     }
 }
 
 impl Hub {
+    /// A hub whose compact deltas are written with `compact`.
+    pub fn new(compact: GlbOptions) -> Hub {
+        Hub {
+            sender: broadcast::channel(VIEWER_QUEUE).0,
+            order: Arc::default(),
+            compact: Arc::new(CompactDeltas {
+                options: compact,
+                viewers: AtomicUsize::new(0),
+            }),
+        }
+    }
+
+    /// Registers a viewer that wants compact deltas (before it subscribes:
+    /// an update written before that is older than its snapshot).
+    pub fn compact_viewer(&self) -> CompactViewer {
+        self.compact.viewers.fetch_add(1, Ordering::Relaxed);
+        CompactViewer(self.compact.clone())
+    }
+
+    /// The compact deltas' options while a viewer wants them.
+    fn compact_options(&self) -> Option<GlbOptions> {
+        (self.compact.viewers.load(Ordering::Relaxed) > 0).then_some(self.compact.options)
+    }
+
     /// Sends an update to every viewer after those of the tickets already
     /// taken; never waits.
     pub fn publish(&self, update: Update) {
@@ -177,6 +271,7 @@ mod tests {
             revision,
             header: String::new(),
             glb: Bytes::new(),
+            compact: None,
         }
     }
 

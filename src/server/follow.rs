@@ -11,7 +11,7 @@ use std::time::Duration;
 use postgres::fallible_iterator::FallibleIterator;
 use tokio::sync::watch;
 
-use super::broadcast::{Hub, Update};
+use super::broadcast::Hub;
 use super::session::Session;
 use crate::store::CHANNEL;
 use crate::store::pg::{full_message, redact};
@@ -77,7 +77,7 @@ fn adopt(session: &Mutex<Session>, hub: &Hub) {
         s.catch_up().map(|c| c.map(|c| (c, hub.ticket())))
     };
     match caught {
-        Ok(Some((accepted, ticket))) => ticket.publish(Update::of(&accepted)),
+        Ok(Some((accepted, ticket))) => ticket.publish_accepted(&accepted),
         Ok(None) => {}
         Err(e) => eprintln!("vesselcad serve: cannot adopt another server's revision: {e}"),
     }

@@ -40,7 +40,7 @@ use std::path::PathBuf;
 use std::sync::{Arc, Mutex};
 use std::time::Duration;
 
-pub use broadcast::{MAX_VIEWER_MESSAGE, VIEWER_QUEUE, VIEWER_SEND_TIMEOUT};
+pub use broadcast::{COMPACT_DELTAS, MAX_VIEWER_MESSAGE, VIEWER_QUEUE, VIEWER_SEND_TIMEOUT};
 pub use error::{ApiError, ServeError};
 pub use routes::MAX_BODY;
 pub use viewer::WHOLE_GLB_LIMIT;
@@ -85,6 +85,11 @@ pub struct ServeOptions {
     /// The design store edits are committed to (a SQLite path or a PostgreSQL
     /// URL); without one, the journal beside the design.
     pub store: Option<String>,
+    /// How the deltas of viewers that connect with `compress=meshopt` are
+    /// written ([`broadcast::COMPACT_DELTAS`] by default: meshopt-compressed,
+    /// not quantized; a quantizing caller meshes to
+    /// [`GlbOptions::meshing_tolerance`](crate::export::GlbOptions::meshing_tolerance)).
+    pub compact_deltas: crate::export::GlbOptions,
 }
 
 impl ServeOptions {
@@ -102,6 +107,7 @@ impl ServeOptions {
             max_connections: limits::MAX_CONNECTIONS,
             idle_timeout: limits::IDLE_TIMEOUT,
             store: None,
+            compact_deltas: broadcast::COMPACT_DELTAS,
         }
     }
 }
@@ -149,7 +155,7 @@ pub async fn start(options: ServeOptions) -> Result<Server, ServeError> {
     let (shutdown, watching) = watch::channel(false);
     let state = AppState {
         session: session.clone(),
-        hub: Hub::default(),
+        hub: Hub::new(options.compact_deltas),
         token: options.token,
         loopback_only: options.bind.is_loopback(),
         shutdown: watching.clone(),

@@ -44,7 +44,7 @@ use serde::Deserialize;
 use serde_json::json;
 
 use super::assets::{self, Asset};
-use super::broadcast::{MAX_VIEWER_MESSAGE, Ticket, Update, VIEWER_READ_BUFFER};
+use super::broadcast::{MAX_VIEWER_MESSAGE, Ticket, VIEWER_READ_BUFFER};
 use super::error::ApiError;
 use super::guard::guard;
 use super::session::{Accepted, SheetFormat};
@@ -219,7 +219,7 @@ async fn stream(
     // A panic writing the GLB drops the ticket, which lets later updates out.
     AppState::unlocked(move || {
         accepted.wait_durable()?;
-        ticket.publish(Update::of(&accepted));
+        ticket.publish_accepted(&accepted);
         Ok(answer)
     })
     .await
@@ -419,10 +419,12 @@ async fn vessel_json(
     Ok(axum::Json(answer).into_response())
 }
 
-/// The `progressive` query parameter of `/ws`.
+/// The query parameters of `/ws`: `progressive` and `compress` (`meshopt`
+/// for compact deltas, `none` or absent for plain ones).
 #[derive(Deserialize)]
 struct SocketQuery {
     progressive: Option<String>,
+    compress: Option<String>,
 }
 
 async fn viewer_socket(
@@ -430,13 +432,27 @@ async fn viewer_socket(
     query: Result<Query<SocketQuery>, axum::extract::rejection::QueryRejection>,
     ws: WebSocketUpgrade,
 ) -> Response {
-    let progressive = query
-        .ok()
-        .and_then(|Query(q)| q.progressive)
-        .is_some_and(|p| p != "0" && p != "false");
+    let (progressive, compress) = match query {
+        Ok(Query(q)) => (q.progressive, q.compress),
+        Err(_) => (None, None),
+    };
+    let progressive = progressive.is_some_and(|p| p != "0" && p != "false");
+    let compact = match compress.as_deref() {
+        None | Some("none") => false,
+        Some("meshopt") => true,
+        Some(other) => {
+            return ApiError::BadQuery(format!(
+                "/ws: compress = {other:?}: must be \"meshopt\" or \"none\""
+            ))
+            .into_response();
+        }
+    };
     ws.max_message_size(MAX_VIEWER_MESSAGE)
         .read_buffer_size(VIEWER_READ_BUFFER)
         .on_upgrade(move |socket| async move {
+            // Before subscribing: every update after its snapshot carries
+            // the compact GLB.
+            let claim = compact.then(|| state.hub.compact_viewer());
             let queue = state.hub.subscribe();
             let shutdown = state.shutdown.clone();
             let snapshot = || {
@@ -461,6 +477,7 @@ async fn viewer_socket(
             };
             let timeout = state.viewer_timeout;
             let ping = state.viewer_ping;
-            run_viewer::<_, _>(socket, queue, snapshot, shutdown, timeout, ping).await;
+            run_viewer::<_, _>(socket, queue, snapshot, shutdown, timeout, ping, compact).await;
+            drop(claim);
         })
 }

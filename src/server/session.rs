@@ -275,10 +275,11 @@ pub struct Session {
     /// The whole model at the current revision, its GLB written on first
     /// request (without the session lock).
     full: Option<Arc<FullModel>>,
-    /// Each node's `extras` (kind, parameters, resolved figures) as last sent, by
-    /// vessel tag and stable id: a node whose metadata changed without its frame or geometry
-    /// (a nozzle's service, a vessel's overall length) is sent again too.
-    extras: BTreeMap<String, BTreeMap<String, Value>>,
+    /// A fingerprint of each node's `extras` (kind, parameters, resolved
+    /// figures) as last sent ([`extras_print`]), by vessel tag and stable id:
+    /// a node whose metadata changed without its frame or geometry (a
+    /// nozzle's service, a vessel's overall length) is sent again too.
+    extras: BTreeMap<String, BTreeMap<String, u64>>,
     /// Each vessel's bounding box (glTF frame), by tag.
     bounds: BTreeMap<String, Bounds>,
     /// The last revision that changed each vessel, by tag (absent: none since
@@ -721,18 +722,50 @@ fn vessel_of(id: &str) -> &str {
     id.split_once('/').map_or(id, |(tag, _)| tag)
 }
 
-/// Every node's `extras` by vessel tag, then by stable id.
-fn node_extras(scene: &Scene) -> BTreeMap<String, BTreeMap<String, Value>> {
+/// Vessel `tag`'s entry in the viewers' index: the fingerprint of each of its
+/// nodes' `extras` by stable id (empty for an unknown tag) and its box.
+fn index_vessel(model: &Model, tag: &str) -> (BTreeMap<String, u64>, Option<Bounds>) {
+    let scene = model.vessels_scene(&[tag]);
+    let vessel_box = vessel_bounds(&scene).pop().map(|(_, b)| b);
+    let prints = node_extras(&scene).remove(tag).unwrap_or_default();
+    (prints, vessel_box)
+}
+
+/// The fingerprint of every node's `extras` by vessel tag, then by stable id.
+fn node_extras(scene: &Scene) -> BTreeMap<String, BTreeMap<String, u64>> {
     let mut out = BTreeMap::new();
     for vessel in &scene.vessels {
         let mut of_vessel = BTreeMap::new();
-        of_vessel.insert(vessel.tag.clone(), vessel.extras.clone());
+        of_vessel.insert(vessel.tag.clone(), extras_print(&vessel.extras));
         for node in &vessel.nodes {
-            of_vessel.insert(node_id(&vessel.tag, &node.id), node.extras.clone());
+            of_vessel.insert(node_id(&vessel.tag, &node.id), extras_print(&node.extras));
         }
         out.insert(vessel.tag.clone(), of_vessel);
     }
     out
+}
+
+/// A 64-bit fingerprint of a node's `extras` (SipHash of its JSON text with
+/// fixed keys): what the session keeps of them instead of the values, a
+/// fraction of their memory (two different values share one with odds of
+/// 2⁻⁶⁴, and then only a metadata-only change would not be resent).
+fn extras_print(extras: &Value) -> u64 {
+    use std::hash::Hasher;
+    /// Feeds the JSON text to the hasher as it is written.
+    struct Feed(std::hash::DefaultHasher);
+    impl std::io::Write for Feed {
+        fn write(&mut self, bytes: &[u8]) -> std::io::Result<usize> {
+            self.0.write(bytes);
+            Ok(bytes.len())
+        }
+        fn flush(&mut self) -> std::io::Result<()> {
+            Ok(())
+        }
+    }
+    let mut feed = Feed(std::hash::DefaultHasher::new());
+    // Writing a `Value` into a sink that never fails cannot fail.
+    let _ = serde_json::to_writer(&mut feed, extras);
+    feed.0.finish()
 }
 
 /// A design as the JSON value patches apply to (its canonical form).

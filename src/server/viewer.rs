@@ -36,6 +36,11 @@
 //! fetches the vessels' GLBs itself, nearest its camera first
 //! ([`super::progressive`]).
 //!
+//! A viewer connecting with `compress=meshopt` (`/ws?progressive=1&compress=meshopt`,
+//! as the viewer page does) gets the deltas' GLBs `EXT_meshopt_compression`-compressed
+//! (and quantized under `serve --quantize`; see [`super::broadcast`]); it needs a
+//! meshopt decoder (three.js's `MeshoptDecoder`, exported by the page's bundle).
+//!
 //! Revisions of deltas follow each other by one from the hello's; a viewer
 //! ignores nothing and applies them in order. Viewers send nothing but pings and
 //! close frames (text they send is ignored; messages above
@@ -74,7 +79,8 @@ enum Ended {
 /// Serves one viewer until it goes, the server shuts down, or it stops reading
 /// (its socket accepts nothing for `timeout`); pings it every `ping`, so a quiet
 /// viewer is never an idle connection. `snapshot` gives the current full
-/// model (it locks the session).
+/// model (it locks the session). A `compact` viewer gets each delta's compact
+/// GLB where the update has one ([`Update::glb_for`]).
 pub async fn run_viewer<F, Fut>(
     socket: WebSocket,
     mut queue: broadcast::Receiver<Arc<Update>>,
@@ -82,6 +88,7 @@ pub async fn run_viewer<F, Fut>(
     mut shutdown: watch::Receiver<bool>,
     timeout: Duration,
     ping: Duration,
+    compact: bool,
 ) where
     F: Fn() -> Fut,
     Fut: std::future::Future<Output = Option<Snapshot>>,
@@ -112,7 +119,7 @@ pub async fn run_viewer<F, Fut>(
             if update.revision > at {
                 at = update.revision;
                 let header = update.header.clone();
-                if send_pair(&mut sink, header, &update.glb, timeout)
+                if send_pair(&mut sink, header, update.glb_for(compact), timeout)
                     .await
                     .is_err()
                 {
@@ -132,7 +139,8 @@ pub async fn run_viewer<F, Fut>(
                     Ok(update) if update.revision <= at => Ok(()),
                     Ok(update) => {
                         at = update.revision;
-                        send_pair(&mut sink, update.header.clone(), &update.glb, timeout).await
+                        send_pair(&mut sink, update.header.clone(), update.glb_for(compact), timeout)
+                            .await
                     }
                     Err(broadcast::error::RecvError::Lagged(missed)) => {
                         let Some(full) = snapshot().await else { break };

@@ -6,7 +6,8 @@
 // must show the server's error and change nothing in page B. Then Ctrl+Z in
 // page A (the server's undo, or its error), a nozzle added to the vessel through
 // page A's button (page B gets it and its pixels change), and the vessel's typed
-// editors. Prints one JSON report on stdout.
+// editors; the delta page B drew (its GLB's bytes and extensions). Prints one
+// JSON report on stdout.
 //
 // Usage: node viewer-test.js <base-url> <stable-id> <field> <new-value> <bad-value>
 // Exits 2 if anything fails or takes longer than the global time limit.
@@ -63,6 +64,9 @@ async function open(browser, log) {
     const statusAError = await a.locator('#error').textContent();
     const pixels1 = await b.evaluate(() => window.vesselcad.pixels());
     const editToView = await b.evaluate(() => window.vesselcad.lastApplied);
+    // The delta page B drew: its GLB's size and extensions (the page asks
+    // for meshopt-compressed deltas).
+    const delta = await b.evaluate(() => window.vesselcad.lastDelta);
 
     // A bad value: the page shows the server's error; page B sees no change.
     const again = a.locator(`#params input[name="${field}"]`);
@@ -118,7 +122,7 @@ async function open(browser, log) {
       shown, before, after, revision0, revision1, revision2, afterBad,
       statusA, statusAError, errorText, drawingSrc, webgl, picked, gaps, consoleErrors,
       pixelsChangedByEdit: pixels0 !== pixels1, pixelsChangedByAdd: pixels1 !== pixels2,
-      undo, added, addError, kindEditor, levelLabel, editToView: editToView > 0,
+      undo, added, addError, kindEditor, levelLabel, editToView: editToView > 0, delta,
     }));
   } finally {
     await browser.close();

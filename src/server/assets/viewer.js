@@ -28,11 +28,12 @@
 import {
   Scene, PerspectiveCamera, WebGLRenderer, HemisphereLight, DirectionalLight,
   Box3, Vector3, Vector2, Raycaster, Color, GLTFLoader, OrbitControls,
-  Group, Mesh, BoxGeometry, MeshStandardMaterial,
+  Group, Mesh, BoxGeometry, MeshStandardMaterial, MeshoptDecoder,
 } from '/static/three-bundle.js';
 
 const $ = (id) => document.getElementById(id);
-const loader = new GLTFLoader();
+// Deltas come meshopt-compressed (the socket asks for `compress=meshopt`).
+const loader = new GLTFLoader().setMeshoptDecoder(MeshoptDecoder);
 
 const state = {
   revision: -1,
@@ -55,6 +56,7 @@ const state = {
   generation: 0,       // bumped by each hello/resync: stale fetches are dropped
   deficient: new Map(), // stable id → the sentences of its deficiencies
   calcRevision: -1,    // the revision /calc.json last answered for
+  lastDelta: null,     // {revision, bytes, extensions} of the last delta's GLB
 };
 
 // ---- 3D view ---------------------------------------------------------------
@@ -292,6 +294,11 @@ async function applyFull(header, buffer) {
 async function applyDelta(header, buffer) {
   if (header.revision !== state.revision + 1) state.gaps += 1;
   const gltf = await parseGlb(buffer);
+  state.lastDelta = {
+    revision: header.revision,
+    bytes: buffer.byteLength,
+    extensions: gltf.parser.json.extensionsUsed || [],
+  };
   const changed = new Set(header.changed);
   for (const id of header.removed) {
     const node = state.nodes.get(id) || state.vessels.get(id);
@@ -505,7 +512,7 @@ $('token').value = currentToken();
 let pendingHeader = null;
 let queue = Promise.resolve();
 function connect() {
-  const ws = new WebSocket(`${location.protocol === 'https:' ? 'wss' : 'ws'}://${location.host}${withToken('/ws?progressive=1')}`);
+  const ws = new WebSocket(`${location.protocol === 'https:' ? 'wss' : 'ws'}://${location.host}${withToken('/ws?progressive=1&compress=meshopt')}`);
   ws.binaryType = 'arraybuffer';
   ws.onmessage = (event) => {
     if (typeof event.data === 'string') {
@@ -939,6 +946,7 @@ window.vesselcad = {
   get loaded() { return state.loaded.size; },
   get vessels() { return state.vessels.size; },
   get lastApplied() { return state.lastApplied; },
+  get lastDelta() { return state.lastDelta; },
   get frames() { return state.frames; },
   ids: () => [...state.nodes.keys()],
   get calcRevision() { return state.calcRevision; },

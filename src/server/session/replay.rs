@@ -7,14 +7,15 @@ use std::path::Path;
 use std::time::Instant;
 
 use super::stage::{canonical_numbers, parse_patch};
-use super::{Session, design_value, node_extras};
+use rayon::prelude::*;
+
+use super::{Session, design_value, index_vessel};
 use crate::design::{self, Design, Units};
 use crate::mesh::TessellationOptions;
 use crate::model::{Model, ModelError, Views};
 use crate::server::error::ServeError;
 use crate::server::journal::{Journal, journal_path};
 use crate::server::persist::Persistence;
-use crate::server::progressive::vessel_bounds;
 use crate::server::store_link::StoreLink;
 
 impl Session {
@@ -46,8 +47,10 @@ impl Session {
         };
         let started = Instant::now();
         let progress = |what: &str| {
+            let resident =
+                resident_mb().map_or(String::new(), |mb| format!(", {mb:.0} MB resident"));
             eprintln!(
-                "vesselcad serve: {} {what} ({:.1} s)",
+                "vesselcad serve: {} {what} ({:.1} s{resident})",
                 path.display(),
                 started.elapsed().as_secs_f64()
             );
@@ -145,9 +148,13 @@ impl Session {
             },
         })?;
         let memory = model.memory();
+        let mb = |bytes: usize| bytes as f64 / 1e6;
         progress(&format!(
-            "built: {:.1} MB of meshes; indexing for viewers",
-            memory.meshes as f64 / 1e6
+            "built: {:.1} MB of meshes, {:.1} MB of surfaces, regions, openings and cavities; \
+             indexing {} vessels for viewers",
+            mb(memory.meshes),
+            mb(memory.surfaces + memory.regions + memory.openings + memory.cavities),
+            design.vessels.len()
         ));
         let session = Session::assemble(
             path,
@@ -172,12 +179,34 @@ impl Session {
         saved_revision: u64,
         units: Units,
     ) -> Session {
-        let scene = model.scene();
+        let design = design_value(&model.design());
+        // Each vessel's node fingerprints and box, the vessels in parallel
+        // (one vessel's scene at a time: the plant's is never held at once).
+        let tags: Vec<&str> = design["vessels"]
+            .as_array()
+            .into_iter()
+            .flatten()
+            .filter_map(|v| v.get("tag")?.as_str())
+            .collect();
+        let indexed: Vec<_> = tags
+            .par_iter()
+            .map(|tag| (*tag, index_vessel(&model, tag)))
+            .collect();
+        let mut extras = BTreeMap::new();
+        let mut bounds = BTreeMap::new();
+        for (tag, (prints, vessel_box)) in indexed {
+            if !prints.is_empty() {
+                extras.insert(tag.to_string(), prints);
+            }
+            if let Some(b) = vessel_box {
+                bounds.insert(tag.to_string(), b);
+            }
+        }
         let mut session = Session {
             path: path.to_path_buf(),
-            design: design_value(&model.design()),
-            extras: node_extras(&scene),
-            bounds: vessel_bounds(&scene).into_iter().collect(),
+            design,
+            extras,
+            bounds,
             changed_at: BTreeMap::new(),
             options,
             sheets: BTreeMap::new(),
@@ -193,4 +222,13 @@ impl Session {
         session.model.take_changes();
         session
     }
+}
+
+/// The process's resident set, MB (`/proc/self/statm`; `None` elsewhere):
+/// printed with the start-up progress, so the model's memory and the
+/// session's can be told apart.
+fn resident_mb() -> Option<f64> {
+    let statm = std::fs::read_to_string("/proc/self/statm").ok()?;
+    let pages: f64 = statm.split_whitespace().nth(1)?.parse().ok()?;
+    Some(pages * 4096.0 / 1e6)
 }
