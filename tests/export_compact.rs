@@ -18,8 +18,8 @@ use glam::DVec3;
 use serde_json::Value;
 use vesselcad::design::{Design, resolve};
 use vesselcad::export::{
-    Compression, GlbOptions, Granularity, Scene, build_scene, merge_scene, patch_name,
-    quantization_budget, stream_glb_with, write_glb_with,
+    Compression, GlbOptions, Scene, build_scene, patch_name, quantization_budget, stream_glb_with,
+    write_glb_with,
 };
 use vesselcad::mesh::TessellationOptions;
 use vesselcad::model::Model;
@@ -350,45 +350,6 @@ fn three_js_loads_every_option_in_chromium() {
             );
         }
     }
-}
-
-/// A compact file writes a vertex once where positions are written the same
-/// and byte normals within one unit of each other (the second takes the
-/// first's normal): no two written vertices of a mesh are that close. Checked
-/// on the quantized file (normals as `x, y, z` bytes, the weld's own key) of
-/// the small plant merged per vessel, where patches meet along their
-/// boundaries; creases (a vertex per side) must remain.
-#[test]
-fn compact_files_weld_vertices_whose_byte_normals_are_within_one_unit() {
-    let (_, scene) = plant();
-    let merged = merge_scene(scene, Granularity::Vessel);
-    let options = GlbOptions {
-        compress: Compression::None,
-        ..GlbOptions::compact(TOLERANCE)
-    };
-    let glb = Glb::parse(&write_glb_with(&merged, &options).unwrap());
-    let (mut vertices, mut creases) = (0, 0);
-    for mesh in 0..glb.json["meshes"].as_array().unwrap().len() {
-        let p = glb.primitive(mesh);
-        let mut at: std::collections::HashMap<[u64; 3], Vec<[i64; 3]>> = Default::default();
-        for (q, n) in p.positions.iter().zip(&p.normals) {
-            let key = q.to_array().map(f64::to_bits);
-            let bytes = n.to_array().map(|c| (c * 127.0).round() as i64);
-            let here = at.entry(key).or_default();
-            for other in here.iter() {
-                let near = (0..3).all(|k| (other[k] - bytes[k]).abs() <= 1);
-                assert!(!near, "mesh {mesh}: {bytes:?} and {other:?} at {key:?}");
-            }
-            creases += usize::from(!here.is_empty());
-            here.push(bytes);
-            vertices += 1;
-        }
-    }
-    println!("{vertices} vertices, {creases} on creases");
-    assert!(
-        vertices > 10_000 && creases > 100,
-        "{vertices} vertices, {creases} creases"
-    );
 }
 
 /// Compressed byte normals go through meshopt's `OCTAHEDRAL` filter and decode

@@ -8,14 +8,11 @@
 //!
 //! Quantization moves every vertex by at most half a quantization step along each
 //! axis, so it takes part of the chordal budget: a caller that asks for tolerance
-//! `t` meshes to `t − q` with `q` = [`quantization_budget`]`(t)`, the bound of
-//! the coarsest power-of-two step within `t / 4` (a quarter: meshing to 0.75 t
-//! costs about 15 % more triangles on curved patches, while the 16-bit step of a
-//! patch up to 16 m across fits in 0.25 mm; 0.2114 mm of 1 mm), and
+//! `t` meshes to `t − q` with `q` = [`quantization_budget`]`(t)` = `t / 4` (a
+//! quarter: meshing to 0.75 t costs about 15 % more triangles on curved patches,
+//! while the 16-bit step of a patch up to 16 m across fits in 0.25 mm), and
 //! quantizes each mesh only when its step's bound is within `q`; a larger patch
 //! keeps `f32` positions. [`GlbOptions::meshing_tolerance`] is that `t − q`.
-
-use super::gltf_encoding::{quantization_bound, quantization_step};
 
 /// Compression of the binary buffer.
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
@@ -122,10 +119,8 @@ impl GlbOptions {
     }
 }
 
-/// The share of a chordal tolerance `tolerance` (mm) given to quantization:
-/// the bound of the coarsest power-of-two step within a quarter of it (0.2114
-/// mm of 1 mm, a step of 2⁻¹² m), so meshing keeps what the step does not use.
+/// The share of a chordal tolerance `tolerance` (mm) given to quantization: a
+/// quarter of it.
 pub fn quantization_budget(tolerance: f64) -> f64 {
-    let quarter = 0.25 * tolerance;
-    quantization_step(quarter).map_or(quarter, quantization_bound)
+    0.25 * tolerance
 }

@@ -13,7 +13,7 @@
 //! views and a second buffer, without data, the uncompressed layout the views
 //! and accessors describe.
 
-use glam::DVec3;
+use glam::{DVec3, Vec3};
 use gltf_json as json;
 use json::accessor::{ComponentType, GenericComponentType, Type};
 use json::buffer::{Stride, Target};
@@ -128,19 +128,14 @@ impl<'a> MeshBuffers<'a> {
         };
         let oct = mesh.oct_normals();
         let (mut lo, mut hi) = (DVec3::INFINITY, DVec3::NEG_INFINITY);
-        let mut units = Vec::with_capacity(mesh.vertex_count());
         for (vertex, p) in mesh.positions().enumerate() {
-            let Some(unit) = unit_normal(oct[vertex].decode()) else {
-                return Err(vertex_error(vertex));
-            };
-            if !metres(p).is_finite() {
+            if unit_normal(oct[vertex].decode()).is_none() || !metres(p).is_finite() {
                 return Err(vertex_error(vertex));
             }
-            units.push(unit);
             lo = lo.min(p);
             hi = hi.max(p);
         }
-        let encoding = Encoding::of(mesh, (lo, hi), &units, &self.options);
+        let encoding = Encoding::of(mesh, (lo, hi), &self.options);
         let count = encoding.vertex_count(mesh);
         let index_count = encoding.index_count(mesh);
         let streams = encoding.streams();
@@ -354,11 +349,10 @@ impl<'a> MeshBuffers<'a> {
 
 /// A stream's bytes in meshoptimizer's encoding: the vertex codec (version 0,
 /// the one `EXT_meshopt_compression` specifies) for attributes, the triangle
-/// codec for indices. A compressed file's byte normals are already the
-/// `OCTAHEDRAL` filter's codes ([`super::gltf_encoding`]: two 8-bit octahedral
-/// coordinates and a constant, which the decoder turns back into normalized
-/// bytes): on the example drum merged per vessel its normals took 17.3 KB as
-/// `x, y, z` bytes.
+/// codec for indices. Byte normals go through the `OCTAHEDRAL` filter first
+/// (two 8-bit octahedral coordinates and a constant, which the decoder turns
+/// back into normalized bytes): on the example drum merged per vessel its
+/// normals took 17.3 KB as `x, y, z` bytes.
 fn encode_view(stream: Stream, bytes: &[u8]) -> Vec<u8> {
     fn vertices<const N: usize>(bytes: &[u8]) -> Vec<u8> {
         let elements: Vec<[u8; N]> = bytes
@@ -371,7 +365,24 @@ fn encode_view(stream: Stream, bytes: &[u8]) -> Vec<u8> {
     match stream {
         Stream::PositionsF32 | Stream::NormalsF32 => vertices::<12>(bytes),
         Stream::PositionsU16 => vertices::<8>(bytes),
-        Stream::NormalsI8 | Stream::Instances => vertices::<4>(bytes),
+        Stream::NormalsI8 => {
+            let unit: Vec<[f32; 4]> = bytes
+                .chunks_exact(4)
+                .map(|c| {
+                    let n = Vec3::new(
+                        f32::from(c[0] as i8),
+                        f32::from(c[1] as i8),
+                        f32::from(c[2] as i8),
+                    )
+                    .normalize_or(Vec3::Z);
+                    [n.x, n.y, n.z, 0.0]
+                })
+                .collect();
+            let oct = meshopt::encode_filter_oct::<i8>(&unit, 8);
+            let oct: Vec<u8> = oct.iter().flatten().map(|&c| c as u8).collect();
+            vertices::<4>(&oct)
+        }
+        Stream::Instances => vertices::<4>(bytes),
         Stream::Indices32 | Stream::Indices16 => {
             let indices: Vec<u32> = if stream == Stream::Indices16 {
                 bytes

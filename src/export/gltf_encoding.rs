@@ -10,12 +10,9 @@
 //! budget, from an origin that is a whole number of steps — the patch node's
 //! translation and uniform scale, both exact in `f32`, so decoding adds no
 //! rounding — and normals as normalized bytes; a mesh wider than 65 535 steps
-//! keeps `f32` positions; compressed, normals are written as the 8-bit codes of
-//! meshopt's `OCTAHEDRAL` filter, straight from the unit normals. Each vertex's
-//! quantized position and normal bytes are computed once, for the weld and the
-//! bytes. Compact files weld vertices (`gltf_welding`), write them in meshopt's
-//! vertex-cache and fetch order when compressed, and use `u16` indices where
-//! they fit.
+//! keeps `f32` positions. Compact files write vertices that would be written
+//! the same once (`gltf_welding`), in meshopt's vertex-cache and fetch order when
+//! compressed, and use `u16` indices where they fit.
 
 use glam::{DVec3, Vec3};
 
@@ -123,25 +120,13 @@ pub(super) struct Encoding {
     /// The vertices written (welded, and in compression order with meshopt)
     /// and the triangles over them, in a compact file; `None`: the mesh's own.
     pub vertices: Option<WrittenVertices>,
-    /// Each mesh vertex's quantized position, when quantized (computed once,
-    /// for the weld and the bytes).
-    positions: Vec<[u16; 3]>,
-    /// Each mesh vertex's normal as the four bytes of its element, when
-    /// normals are bytes: normalized `x, y, z` bytes, or, compressed, the
-    /// `OCTAHEDRAL` filter's code (see [`oct_code`]).
-    normal_bytes: Vec<[u8; 4]>,
 }
 
 impl Encoding {
     /// The encoding of `mesh` (checked: finite, indices in range) under
     /// `options`.
-    /// `bounds` are the mesh's (min, max), mm; `units` its unit normals.
-    pub fn of(
-        mesh: &PackedMesh,
-        bounds: (DVec3, DVec3),
-        units: &[Vec3],
-        options: &GlbOptions,
-    ) -> Self {
+    /// `bounds` are the mesh's (min, max), mm.
+    pub fn of(mesh: &PackedMesh, bounds: (DVec3, DVec3), options: &GlbOptions) -> Self {
         let quantized = options
             .quantize
             .and_then(|bound| quantization(bounds, bound));
@@ -151,53 +136,34 @@ impl Encoding {
             byte_normals: options.quantize.is_some(),
             small_indices: false,
             vertices: None,
-            positions: Vec::new(),
-            normal_bytes: Vec::new(),
         };
-        if !options.is_compact() {
-            return encoding;
-        }
-        let compressed = options.compress == Compression::Meshopt;
-        if let Some(grid) = quantized {
-            encoding.positions = mesh.positions().map(|p| quantize(grid, p)).collect();
-        }
-        if encoding.normals && encoding.byte_normals {
-            encoding.normal_bytes = if compressed {
-                units.iter().map(|&n| oct_code(n)).collect()
+        if options.is_compact() {
+            let oct = mesh.oct_normals();
+            let (normals, byte_normals) = (encoding.normals, encoding.byte_normals);
+            let welded = weld(mesh, |v| {
+                let p = mesh.position(v);
+                let position = match quantized {
+                    Some(grid) => quantize(grid, p).map(u32::from),
+                    None => metres(p).to_array().map(f32::to_bits),
+                };
+                let normal = if !normals {
+                    0
+                } else if byte_normals {
+                    let [x, y, z] = byte_normal(unit_normal(oct[v].decode()).unwrap_or(Vec3::Z));
+                    u32::from_le_bytes([x as u8, y as u8, z as u8, 0])
+                } else {
+                    let [a, b] = oct[v].0;
+                    (u32::from(a as u16) << 16) | u32::from(b as u16)
+                };
+                (position, normal)
+            });
+            encoding.vertices = Some(if options.compress == Compression::Meshopt {
+                welded.cache_ordered()
             } else {
-                units
-                    .iter()
-                    .map(|&n| byte_normal(n).map(|c| c as u8))
-                    .map(|[x, y, z]| [x, y, z, 0])
-                    .collect()
-            };
+                welded
+            });
+            encoding.small_indices = encoding.vertex_count(mesh) <= 1 << 16;
         }
-        let oct = mesh.oct_normals();
-        let position = |v: usize| match quantized {
-            Some(_) => encoding.positions[v].map(u32::from),
-            None => metres(mesh.position(v)).to_array().map(f32::to_bits),
-        };
-        let welded = if !encoding.normals {
-            weld(mesh, position, |_| (), |_, _| true)
-        } else if encoding.byte_normals {
-            // Bytes within one unit of each other: the vertex takes the
-            // written one's normal, at most one unit (under a degree) away.
-            let bytes = &encoding.normal_bytes;
-            weld(
-                mesh,
-                position,
-                |v| bytes[v],
-                |a, b| (0..3).all(|k| (i16::from(a[k] as i8) - i16::from(b[k] as i8)).abs() <= 1),
-            )
-        } else {
-            weld(mesh, position, |v| oct[v].0, |a, b| a == b)
-        };
-        encoding.vertices = Some(if compressed {
-            welded.cache_ordered()
-        } else {
-            welded
-        });
-        encoding.small_indices = encoding.vertex_count(mesh) <= 1 << 16;
         encoding
     }
 
@@ -275,11 +241,7 @@ impl Encoding {
             out.reserve(count * stream.stride());
             if let Some(grid) = self.quantized {
                 for k in 0..count {
-                    let q = match self.positions.get(old(k)) {
-                        Some(&q) => q,
-                        None => quantize(grid, mesh.position(old(k))),
-                    };
-                    let [x, y, z] = q.map(u16::to_le_bytes);
+                    let [x, y, z] = quantize(grid, mesh.position(old(k))).map(u16::to_le_bytes);
                     out.extend_from_slice(&[x[0], x[1], y[0], y[1], z[0], z[1], 0, 0]);
                 }
             } else {
@@ -294,12 +256,6 @@ impl Encoding {
             }
         } else if normals {
             out.reserve(count * stream.stride());
-            if !self.normal_bytes.is_empty() {
-                for k in 0..count {
-                    out.extend_from_slice(&self.normal_bytes[old(k)]);
-                }
-                return;
-            }
             let oct = mesh.oct_normals();
             for k in 0..count {
                 let n = unit_normal(oct[old(k)].decode()).unwrap_or(Vec3::Z);
@@ -388,28 +344,6 @@ pub fn quantization_bound(step: f64) -> f64 {
     3f64.sqrt() * 0.5 * step / MM_TO_M * (1.0 + 1e-9)
 }
 
-/// A unit normal as meshoptimizer's `OCTAHEDRAL` filter stores it in 8 bits
-/// (`meshopt_encodeFilterOct`): the octahedral coordinates `u, v` as signed
-/// bytes, then 127 (the scale the decoder divides by) and 0. The decoder turns it
-/// back into normalized `x, y, z` bytes, so equal codes are equal normals.
-pub(super) fn oct_code(n: Vec3) -> [u8; 4] {
-    let l = n.x.abs() + n.y.abs() + n.z.abs();
-    let s = if l == 0.0 { 0.0 } else { 1.0 / l };
-    let (x, y) = (n.x * s, n.y * s);
-    let sign = |c: f32| if c >= 0.0 { 1.0 } else { -1.0 };
-    let (u, v) = if n.z >= 0.0 {
-        (x, y)
-    } else {
-        ((1.0 - y.abs()) * sign(x), (1.0 - x.abs()) * sign(y))
-    };
-    // `meshopt_quantizeSnorm(c, 8)`: the rounding's sign taken before clamping.
-    let snorm = |c: f32| {
-        let round = if c >= 0.0 { 0.5 } else { -0.5 };
-        (c.clamp(-1.0, 1.0) * 127.0 + round) as i32 as i8 as u8
-    };
-    [snorm(u), snorm(v), 127, 0]
-}
-
 /// A unit normal as three normalized bytes: of the roundings of its components
 /// up or down, the one whose length is nearest 1 (then nearest the normal), so
 /// that the decoded vector is a unit vector to within 8-bit precision. The
@@ -423,27 +357,22 @@ fn byte_normal(n: Vec3) -> [i8; 3] {
         let t = x as i32 as f32;
         t - f32::from(u8::from(x < t))
     });
-    // The eight candidates side by side, so the compiler can evaluate them
-    // four at a time (the same operations, in the same order, as one by one).
-    let mut c = [[0.0f32; 8]; 3];
-    for (k, c) in c.iter_mut().enumerate() {
-        for (bits, c) in c.iter_mut().enumerate() {
+    let mut best = ([0i8; 3], f32::INFINITY);
+    for bits in 0..8u32 {
+        let mut c = [0.0f32; 3];
+        for (k, c) in c.iter_mut().enumerate() {
             *c = (floor[k] + ((bits >> k) & 1) as f32).clamp(-127.0, 127.0);
         }
-    }
-    let mut errors = [0.0f32; 8];
-    for (i, error) in errors.iter_mut().enumerate() {
-        let (x, y, z) = (c[0][i], c[1][i], c[2][i]);
-        let length = (x * x + y * y + z * z).sqrt();
-        let along = (x * n.x + y * n.y + z * n.z) / length;
-        let e = (length / 127.0 - 1.0).abs() + 0.25 * (2.0 - 2.0 * along).max(0.0).sqrt();
-        *error = if length == 0.0 { f32::INFINITY } else { e };
-    }
-    let mut best = (0, f32::INFINITY);
-    for (i, &error) in errors.iter().enumerate() {
+        let c3 = Vec3::from(c);
+        let length = c3.length();
+        if length == 0.0 {
+            continue;
+        }
+        let along = c3.dot(n) / length;
+        let error = (length / 127.0 - 1.0).abs() + 0.25 * (2.0 - 2.0 * along).max(0.0).sqrt();
         if error < best.1 {
-            best = (i, error);
+            best = (c.map(|x| x as i8), error);
         }
     }
-    [0, 1, 2].map(|k| c[k][best.0] as i8)
+    best.0
 }

@@ -7,19 +7,15 @@
 //! its streams. A patch mesh repeats the vertices of a periodic surface's seam,
 //! and a mesh merged per part, vessel or plant (`--granularity`) repeats every
 //! vertex its patches share along their boundaries; a compact file writes each
-//! of them once. Two vertices are welded when their positions are written the
-//! same (the same quantized integers, or the same `f32` metres) and their
-//! normals nearly so: byte normals (normalized `x, y, z` bytes, or a compressed
-//! file's 8-bit octahedral codes) within one unit in each component, so the
-//! second vertex takes the first's normal, under a degree away; `f32` normals
-//! only when the same octahedral code makes them. Positions are never moved,
-//! so the chordal bound is what it was, and a crease (a nozzle's neck meeting
-//! its shell) keeps a vertex per side. Triangles keep their count and their
-//! corners' positions (a sliver whose corners quantize to one point keeps its
-//! place, as it would without welding). The plain file (`f32`, no compression)
-//! is written as the mesh is.
-
-use std::collections::hash_map::Entry;
+//! of them once. Two vertices are welded when they would be written the same:
+//! equal positions (the same quantized integers, or the same `f32` metres) and
+//! equal normals (the same normalized bytes, or the same octahedral code, from
+//! which the `f32` normal is made). Welding changes no number the file holds, so
+//! the chordal bound and the shading are what they were, and a crease (a
+//! nozzle's neck meeting its shell) keeps a vertex per side. Triangles keep their count and their corners' positions (a
+//! sliver whose corners quantize to one point keeps its place, as it would
+//! without welding). The plain file (`f32`, no compression) is written as the
+//! mesh is.
 
 use rustc_hash::FxHashMap;
 
@@ -34,54 +30,22 @@ pub(super) struct WrittenVertices {
     pub indices: Vec<u32>,
 }
 
-/// No further written vertex at the same position.
-const NONE: u32 = u32::MAX;
-
-/// The vertices of `mesh` welded, in the mesh's order: a vertex goes into the
-/// first written vertex with its `position` key whose `normal` key is `near`
-/// its own, or is written itself. Written vertices at one position are chained
-/// (a crease has one per side), so a lookup walks a handful of them.
-pub(super) fn weld<P, N>(
-    mesh: &PackedMesh,
-    position: impl Fn(usize) -> P,
-    normal: impl Fn(usize) -> N,
-    near: impl Fn(&N, &N) -> bool,
-) -> WrittenVertices
+/// The vertices of `mesh` with equal `key` (what is written of them) welded
+/// into the first of them, in the mesh's order.
+pub(super) fn weld<K>(mesh: &PackedMesh, key: impl Fn(usize) -> K) -> WrittenVertices
 where
-    P: std::hash::Hash + Eq,
+    K: std::hash::Hash + Eq,
 {
     let count = mesh.vertex_count();
-    let mut first: FxHashMap<P, u32> =
+    let mut first: FxHashMap<K, u32> =
         FxHashMap::with_capacity_and_hasher(count, Default::default());
     let mut kept = Vec::with_capacity(count);
-    let mut normals: Vec<N> = Vec::with_capacity(count);
-    let mut next_here: Vec<u32> = Vec::with_capacity(count);
     let mut welded = Vec::with_capacity(count);
     for v in 0..count {
-        let n = normal(v);
-        let new = kept.len() as u32;
-        let at = match first.entry(position(v)) {
-            Entry::Vacant(e) => *e.insert(new),
-            Entry::Occupied(e) => {
-                let mut w = *e.get();
-                loop {
-                    if near(&normals[w as usize], &n) {
-                        break w;
-                    }
-                    match next_here[w as usize] {
-                        NONE => {
-                            next_here[w as usize] = new;
-                            break new;
-                        }
-                        next => w = next,
-                    }
-                }
-            }
-        };
-        if at == new {
+        let next = kept.len() as u32;
+        let at = *first.entry(key(v)).or_insert(next);
+        if at == next {
             kept.push(v as u32);
-            normals.push(n);
-            next_here.push(NONE);
         }
         welded.push(at);
     }
