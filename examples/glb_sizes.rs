@@ -2,11 +2,14 @@
 //! nodes (draw calls) and write speed (bytes of output per second, before
 //! compression for the compressed variant's reference).
 //!
-//! `cargo run --profile test --example glb_sizes -- [DESIGN.json | --plant N] [TOLERANCE]`
+//! `cargo run --profile test --example glb_sizes -- [DESIGN.json | --plant N] [TOLERANCE [SHARE]]`
 //! (the example plant's horizontal drum by default, at 1 mm; `--plant N` a
 //! generated plant of N vessels). Each variant is written a few times and the
 //! fastest run counts. Meshes are made to the tolerance less the quantization
-//! budget, as `vesselcad build --quantize` makes them. The last rows are the
+//! budget, as `vesselcad build --quantize` makes them (SHARE: that share of
+//! the tolerance as the quantization budget instead, to compare splits).
+//! `GLB_SIZES_ROWS=part,vessel` runs only the rows whose names contain one of
+//! those words. The last rows are the
 //! compact file (reuse + quantization + meshopt) of the scene merged per part,
 //! vessel and plant (`--granularity`; merging is not timed), the part merge
 //! with instancing, and the compact file without normals (`--normals flat`) per
@@ -48,7 +51,11 @@ fn main() {
     let tolerance: f64 = rest
         .first()
         .map_or(1.0, |t| t.parse().expect("a tolerance"));
-    let meshing = tolerance - quantization_budget(tolerance);
+    // An optional share of the tolerance for quantization, to compare splits.
+    let budget = rest.get(1).map_or(quantization_budget(tolerance), |s| {
+        tolerance * s.parse::<f64>().expect("a share")
+    });
+    let meshing = tolerance - budget;
     let model = Model::from_design(&design, TessellationOptions::chord(meshing)).expect("builds");
     let scene = model.scene();
     let patches: usize = scene
@@ -67,10 +74,14 @@ fn main() {
         scene.vessels.len()
     );
     println!(
-        "| variant | bytes | JSON bytes | glTF meshes | draw calls | vertices written | write MB/s |"
+        "| variant | bytes | JSON bytes | glTF meshes | draw calls | vertices written | write MB/s | views |"
     );
-    println!("|---|---|---|---|---|---|---|");
-    let q = Some(quantization_budget(tolerance));
+    println!("|---|---|---|---|---|---|---|---|");
+    let q = Some(budget);
+    let compact = GlbOptions {
+        quantize: q,
+        ..GlbOptions::compact(tolerance)
+    };
     let variants = [
         (
             "f32, one mesh per patch",
@@ -110,33 +121,31 @@ fn main() {
             };
             (name, &scene, options)
         })
-        .chain(
-            merged
-                .iter()
-                .map(|(name, s)| (*name, s, GlbOptions::compact(tolerance))),
-        )
+        .chain(merged.iter().map(|(name, s)| (*name, s, compact)))
         .chain([
             (
                 "compact + instancing, --granularity part",
                 &merged[0].1,
-                GlbOptions::compact(tolerance).instanced(),
+                compact.instanced(),
             ),
-            (
-                "compact, --normals flat",
-                &scene,
-                GlbOptions::compact(tolerance).flat(),
-            ),
+            ("compact, --normals flat", &scene, compact.flat()),
             (
                 "compact, --normals flat, --granularity part",
                 &merged[0].1,
-                GlbOptions::compact(tolerance).flat(),
+                compact.flat(),
             ),
             (
                 "compact, --normals flat, --granularity vessel",
                 &merged[1].1,
-                GlbOptions::compact(tolerance).flat(),
+                compact.flat(),
             ),
         ]);
+    // `GLB_SIZES_ROWS=a,b`: only the rows whose names contain one of these.
+    let only: Vec<String> = std::env::var("GLB_SIZES_ROWS")
+        .map(|v| v.split(',').map(str::to_string).collect())
+        .unwrap_or_default();
+    let rows = rows
+        .filter(|(name, _, _)| only.is_empty() || only.iter().any(|o| name.contains(o.as_str())));
     for (name, scene, options) in rows {
         let mut best = f64::INFINITY;
         let mut bytes = Vec::new();
@@ -158,10 +167,32 @@ fn main() {
                 .filter_map(|a| json["accessors"][a as usize]["count"].as_u64())
                 .sum()
         });
+        // Each view's bytes in the file (encoded, when compressed), by what
+        // it holds: `P` positions, `N` normals, `I` indices, `X` instances.
+        let views: Vec<String> = json["bufferViews"]
+            .as_array()
+            .into_iter()
+            .flatten()
+            .map(|v| {
+                let what = match (v["target"].as_u64(), v["byteStride"].as_u64()) {
+                    (Some(34963), _) => "I",
+                    (_, Some(8)) => "P",
+                    (_, Some(4)) => "N",
+                    (Some(34962), Some(12)) => "P/N",
+                    _ => "X",
+                };
+                let length = v["extensions"]["EXT_meshopt_compression"]["byteLength"]
+                    .as_u64()
+                    .or(v["byteLength"].as_u64())
+                    .unwrap_or(0);
+                format!("{what} {length}")
+            })
+            .collect();
         println!(
-            "| {name} | {} | {json_len} | {meshes} | {draws} | {vertices} | {:.0} |",
+            "| {name} | {} | {json_len} | {meshes} | {draws} | {vertices} | {:.0} | {} |",
             bytes.len(),
-            bytes.len() as f64 / best / 1e6
+            bytes.len() as f64 / best / 1e6,
+            views.join(", ")
         );
     }
 }
