@@ -1,11 +1,25 @@
 //! Accumulates a mesh's nodes and elements: mid-side nodes keyed by their edge
-//! so neighbouring elements share them, and the plane coordinates of cap nodes.
+//! so neighbouring elements share them, the plane coordinates of cap nodes, and
+//! the envelope's ring nodes by station and division, so that pieces meshed
+//! apart ([`super::piece`]) share the nodes of the rings between them
+//! ([`NodeKey`]).
 
 use std::collections::HashMap;
 
 use glam::{DVec2, DVec3};
 
 use super::{Element, ElementKind, FeMesh};
+
+/// What a node is across pieces: a node of the envelope's rings (station,
+/// division), or the mid-side node of the edge between two such nodes. Pieces
+/// meshed apart weld their nodes of one key into one node.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
+pub enum NodeKey {
+    /// Corner node at meridian station `.0`, circumferential division `.1`.
+    Ring(usize, usize),
+    /// Mid-side node of the edge between two ring nodes (in ascending order).
+    Mid((usize, usize), (usize, usize)),
+}
 
 /// Accumulates nodes and elements; mid-side nodes are keyed by their edge so
 /// neighbouring elements share them.
@@ -16,6 +30,8 @@ pub struct Builder {
     /// Plane coordinates of cap nodes (offset from the axis).
     plane: Vec<Option<DVec2>>,
     mids: HashMap<(usize, usize), usize>,
+    /// Ring nodes: (station, division) by node index.
+    rings: HashMap<usize, (usize, usize)>,
     /// Whether elements get mid-side nodes.
     pub quadratic: bool,
 }
@@ -34,6 +50,34 @@ impl Builder {
         self.mesh.nodes.push(p);
         self.plane.push(plane);
         self.mesh.nodes.len() - 1
+    }
+
+    /// Adds the ring node at meridian station `station`, division `division`.
+    pub fn ring_node(
+        &mut self,
+        p: DVec3,
+        plane: Option<DVec2>,
+        station: usize,
+        division: usize,
+    ) -> usize {
+        let id = self.node(p, plane);
+        self.rings.insert(id, (station, division));
+        id
+    }
+
+    /// The mesh and each node's key across pieces: ring nodes, and the
+    /// mid-side nodes of edges between two ring nodes.
+    pub fn finish(self) -> (FeMesh, Vec<Option<NodeKey>>) {
+        let mut keys = vec![None; self.mesh.nodes.len()];
+        for (&id, &(i, k)) in &self.rings {
+            keys[id] = Some(NodeKey::Ring(i, k));
+        }
+        for (&(a, b), &id) in &self.mids {
+            if let (Some(&x), Some(&y)) = (self.rings.get(&a), self.rings.get(&b)) {
+                keys[id] = Some(NodeKey::Mid(x.min(y), x.max(y)));
+            }
+        }
+        (self.mesh, keys)
     }
 
     /// Plane coordinates of node `i` (zero if it has none).

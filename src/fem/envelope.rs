@@ -4,14 +4,23 @@
 //! is shared node for node), poles closed by [`super::cap`]. Corner and
 //! mid-side nodes are exact points of the mid-surface: mid-side nodes at the
 //! parameter midpoint of their piece and the angle midpoint.
+//!
+//! This module is the first of two steps: the [`Plan`] (the parts, the
+//! meridian's stations, the division count, the nozzles' windows, the skirt's
+//! ring, each saddle's course: closed forms, redone on every build). Then the
+//! pieces of [`super::piece`] — one per envelope part with its windows'
+//! nozzles, saddles and pads, and the skirt — are each meshed from their own
+//! inputs or taken from a [`super::cache::FemCache`] when those are unchanged,
+//! and welded on their shared rings ([`super::assemble`]).
 
 use std::f64::consts::TAU;
 
-use glam::{DVec2, DVec3};
-
-use super::builder::Builder;
-use super::meridian::{self, Segment};
-use super::{FeMesh, FePart, FemError};
+use super::head_nozzle::CentreNeck;
+use super::meridian::{self, Meridian, Segment};
+use super::saddle::SaddleShell;
+use super::skirt::SkirtShell;
+use super::window::Hole;
+use super::{FePart, FemError};
 use crate::constraints::{ResolvedVessel, stack_of};
 use crate::design::VesselDesign;
 use crate::operating::profile::{Surface, stack_profile};
@@ -89,18 +98,46 @@ fn parts_and_chain(
     Ok((parts, meridian::chain(&pieces)))
 }
 
-/// The conforming shell mesh of the pressure envelope (courses, reducers,
-/// heads) of `design`, resolved as `resolved`, in the plant frame.
+/// What the pieces are meshed from: the vessel's parts, meridian stations,
+/// division count and nozzle windows, with its skirt's ring and each saddle's
+/// course.
+#[derive(Clone, Debug)]
+pub struct Plan {
+    /// Vessel tag.
+    pub tag: String,
+    /// Whether elements are quadratic.
+    pub quadratic: bool,
+    /// Target element size, mm.
+    pub size: f64,
+    /// Circumferential divisions.
+    pub divisions: usize,
+    /// The envelope's parts (courses, heads, cones, centre necks).
+    pub parts: Vec<FePart>,
+    /// The stations.
+    pub mer: Meridian,
+    /// Nozzle windows.
+    pub holes: Vec<Hole>,
+    /// Necks on heads' centres (parts of the chain).
+    pub centre_necks: Vec<CentreNeck>,
+    /// The skirt and the station of the envelope's ring it hangs from.
+    pub skirt: Option<(SkirtShell, usize)>,
+    /// The saddles and the part of the course each stands under.
+    pub saddles: Vec<(SaddleShell, usize)>,
+    /// What the plan leaves out.
+    pub notes: Vec<String>,
+}
+
+/// Plans the mesh of the pressure envelope (courses, reducers, heads) of
+/// `design`, resolved as `resolved`, and of its skirt or saddles.
 ///
 /// # Errors
 ///
-/// [`FemError`] for a part without thickness, a wall too thick for its shape,
-/// a vessel with nothing to mesh, or options out of range.
-pub fn build_envelope(
+/// As [`super::build_envelope`].
+pub fn plan(
     design: &VesselDesign,
     resolved: &ResolvedVessel,
     options: &FemOptions,
-) -> Result<FeMesh, FemError> {
+) -> Result<Plan, FemError> {
     if !matches!(options.order, 1 | 2) {
         return Err(FemError::Option {
             field: "order",
@@ -173,182 +210,59 @@ pub fn build_envelope(
     let meshed: Vec<String> = centre_necks.iter().map(|c| c.mark.clone()).collect();
     let mut planned = Vec::new();
     let mut mer = meridian::stations(chain.clone(), size, n, [f64::INFINITY; 2]);
-    let mut plan = super::window::plan(resolved, &mer, n, &parts, &meshed, &mut planned);
-    if plan.caps.iter().any(|c| c.is_finite()) {
+    let mut windows = super::window::plan(resolved, &mer, n, &parts, &meshed, &mut planned);
+    if windows.caps.iter().any(|c| c.is_finite()) {
         planned.clear();
-        mer = meridian::stations(chain, size, n, plan.caps);
-        plan = super::window::plan(resolved, &mer, n, &parts, &meshed, &mut planned);
+        mer = meridian::stations(chain, size, n, windows.caps);
+        windows = super::window::plan(resolved, &mer, n, &parts, &meshed, &mut planned);
     }
     notes.extend(planned);
-    let holes = plan.holes;
-    let theta = |k: f64| TAU * k / n as f64;
-    let mut b = Builder::new(options.order == 2);
-    b.mesh.parts = parts;
-    b.mesh.notes = notes;
-    // Rings of corner nodes; the rims of caps carry plane coordinates.
-    let mut rings = Vec::with_capacity(mer.stations.len());
-    for (i, &(seg, s)) in mer.stations.iter().enumerate() {
-        let segment = mer.segments[seg];
-        let capped = (i == 0 && mer.start_cap.is_some())
-            || (i + 1 == mer.stations.len() && mer.end_cap.is_some());
-        let ring: Vec<usize> = (0..n)
-            .map(|k| {
-                let th = theta(k as f64);
-                let r = segment.rz(s).x;
-                let plane = capped.then(|| DVec2::new(th.cos(), th.sin()) * r);
-                b.node(segment.point(s, th), plane)
-            })
-            .collect();
-        rings.push(ring);
-    }
-    // Tangent lines between pieces (of one part or two): the rings at segment changes.
-    for (pair, ring) in mer.intervals.windows(2).zip(&rings[1..]) {
-        if pair[0].seg != pair[1].seg {
-            b.mesh.junctions.extend(ring.iter().copied());
+    let skirt = skirt.and_then(|s| match skirt_station(&mer, s.top) {
+        Some(i) => Some((s, i)),
+        None => {
+            notes.push(format!(
+                "skirt {} left out: the envelope has no ring at its top (z {} mm)",
+                s.id, s.top
+            ));
+            None
         }
-    }
-    for (i, iv) in mer.intervals.iter().enumerate() {
-        let seg = mer.segments[iv.seg];
-        let (lower, upper) = (mer.stations[i], mer.stations[i + 1]);
-        let smid = 0.5 * (iv.sa + iv.sb);
-        for k in 0..n {
-            if holes.iter().any(|h| h.covers(i, k, n)) {
-                continue;
+    });
+    let saddles = saddles
+        .into_iter()
+        .filter_map(|s| match super::saddle::host(&s, &mer) {
+            Some(part) => Some((s, part)),
+            None => {
+                notes.push(format!(
+                    "saddle {} left out: the envelope has no rings at its plate's edges and web",
+                    s.id
+                ));
+                None
             }
-            let k1 = (k + 1) % n;
-            let c = [rings[i][k], rings[i][k1], rings[i + 1][k1], rings[i + 1][k]];
-            let segs = &mer.segments;
-            b.quad(seg.part, c, &mut |b, x, y| {
-                // Which edge: along a ring (same station) or along the meridian.
-                let (kx, ky) = (
-                    c.iter().position(|&q| q == x).unwrap_or(0),
-                    c.iter().position(|&q| q == y).unwrap_or(0),
-                );
-                let station = |corner: usize| if corner < 2 { lower } else { upper };
-                let kk = |corner: usize| if corner == 0 || corner == 3 { k } else { k + 1 };
-                if station(kx) == station(ky) && kx / 2 == ky / 2 {
-                    let (sg, s) = station(kx);
-                    let th = theta(kk(kx).min(kk(ky)) as f64 + 0.5);
-                    b.mid(x, y, || segs[sg].point(s, th))
-                } else {
-                    let th = theta(kk(kx) as f64);
-                    b.mid(x, y, || seg.point(smid, th))
-                }
-            });
-        }
-    }
-    let last = rings.len() - 1;
-    if let Some(cap) = mer.start_cap {
-        let seg = mer.segments[cap.seg];
-        let ring = rings[0].clone();
-        super::cap::cap(&mut b, &ring, cap.radius, seg.part, false, &|p| {
-            seg.point_over(p)
-        });
-    } else {
-        b.mesh.boundary.extend(rings[0].iter().copied());
-    }
-    if let Some(cap) = mer.end_cap {
-        let seg = mer.segments[cap.seg];
-        let ring = rings[last].clone();
-        super::cap::cap(&mut b, &ring, cap.radius, seg.part, true, &|p| {
-            seg.point_over(p)
-        });
-    } else {
-        b.mesh.boundary.extend(rings[last].iter().copied());
-    }
-    for hole in &holes {
-        let end = super::nozzle::mesh(&mut b, hole, &mer, &rings, size, &design.tag);
-        b.mesh.necks.push(end);
-    }
-    for neck in &centre_necks {
-        let ring = if neck.at_start {
-            rings[0].clone()
-        } else {
-            rings[last].clone()
-        };
-        let mids = if b.quadratic {
-            (0..ring.len())
-                .map(|j| {
-                    let (x, y) = (ring[j], ring[(j + 1) % ring.len()]);
-                    b.mid(x, y, || DVec3::ZERO)
-                })
-                .collect()
-        } else {
-            Vec::new()
-        };
-        b.mesh.necks.push(neck.end(ring, mids));
-    }
-    if let Some(s) = &skirt {
-        skirt_shell(&mut b, s, &mer, &rings, size, &design.tag);
-    }
-    for s in &saddles {
-        if let Err(note) = super::saddle::attach(&mut b, s, &mer, &rings, &holes, size, &design.tag)
-        {
-            b.mesh.notes.push(note);
-        }
-    }
-    let sites: Vec<_> = holes
-        .iter()
-        .filter_map(|h| h.pad_site())
-        .chain(centre_necks.iter().filter_map(|c| c.pad_site()))
+        })
         .collect();
-    super::nozzle::pads(&mut b, &sites, &design.tag);
-    // Vessel frame → plant frame.
-    let frame = resolved.frame;
-    for p in &mut b.mesh.nodes {
-        *p = frame.transform_point3(*p);
-    }
-    for end in &mut b.mesh.necks {
-        end.centre = frame.transform_point3(end.centre);
-        end.axis = frame.transform_vector3(end.axis).normalize();
-    }
-    b.mesh.axis = (
-        frame.transform_point3(DVec3::ZERO),
-        frame.transform_vector3(DVec3::Z).normalize(),
-    );
-    Ok(b.mesh)
+    Ok(Plan {
+        tag: design.tag.clone(),
+        quadratic: options.order == 2,
+        size,
+        divisions: n,
+        parts,
+        mer,
+        holes: windows.holes,
+        centre_necks,
+        skirt,
+        saddles,
+        notes,
+    })
 }
 
-/// Hangs skirt `s` from the ring of `mer` at its top (the widest ring at that
-/// height), its base an open boundary and the part structural.
-fn skirt_shell(
-    b: &mut Builder,
-    s: &super::skirt::SkirtShell,
-    mer: &meridian::Meridian,
-    rings: &[Vec<usize>],
-    size: f64,
-    tag: &str,
-) {
-    let tol = 1e-6 * s.top.abs().max(1.0);
+/// The station of the widest ring of `mer` at height `z` (a skirt's top).
+fn skirt_station(mer: &Meridian, z: f64) -> Option<usize> {
+    let tol = 1e-6 * z.abs().max(1.0);
     let at = |i: usize| {
         let (seg, p) = mer.stations[i];
         mer.segments[seg].rz(p)
     };
-    let Some(i) = (0..mer.stations.len())
-        .filter(|&i| (at(i).y - s.top).abs() <= tol)
+    (0..mer.stations.len())
+        .filter(|&i| (at(i).y - z).abs() <= tol)
         .max_by(|&x, &y| at(x).x.total_cmp(&at(y).x))
-    else {
-        b.mesh.notes.push(format!(
-            "skirt {} left out: the envelope has no ring at its top (z {} mm)",
-            s.id, s.top
-        ));
-        return;
-    };
-    let nodes = &b.mesh.nodes;
-    let first = [i.checked_sub(1), (i + 1 < rings.len()).then_some(i + 1)]
-        .into_iter()
-        .flatten()
-        .map(|j| nodes[rings[i][0]].distance(nodes[rings[j][0]]))
-        .fold(size, f64::min);
-    let (seg, _) = mer.stations[i];
-    let c = mer.segments[seg].centre.at(s.top);
-    let top = super::skirt::TopRing {
-        nodes: rings[i].clone(),
-        centre: DVec3::new(c.x, c.y, s.top),
-        radius: at(i).x,
-        first,
-    };
-    let (part, base) = super::skirt::mesh(b, s, &top, size, tag);
-    b.mesh.structural.push(part);
-    b.mesh.boundary.extend(base);
 }

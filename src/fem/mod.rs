@@ -19,8 +19,16 @@
 //! envelope's ring at its top, held at its base; a horizontal vessel's
 //! [`saddle`]s are shell parts (top plate bonded to the course, web, base
 //! plate) sharing the course's ring at the web, held at their base plates.
+//!
+//! Incremental: [`envelope::plan`] lays out the stations, divisions and
+//! windows; each [`piece`] (an envelope part with its nozzles, saddles and
+//! pads, or the skirt) is meshed from its own inputs, or taken from a
+//! [`FemCache`] while they are unchanged, and [`assemble`] welds the pieces on
+//! their shared rings.
 
+pub mod assemble;
 pub mod builder;
+pub mod cache;
 pub mod cap;
 pub mod conditions;
 pub mod envelope;
@@ -34,6 +42,7 @@ pub mod inp;
 pub mod meridian;
 pub mod msh;
 pub mod nozzle;
+pub mod piece;
 pub mod quality;
 pub mod quality_table;
 pub mod results;
@@ -43,8 +52,10 @@ pub mod vtu;
 pub mod window;
 pub mod zones;
 
+pub use assemble::{build_envelope, build_envelope_cached};
+pub use cache::{FemCache, FemCounters};
 pub use conditions::{FeModel, LoadCase, Support};
-pub use envelope::{FemOptions, build_envelope};
+pub use envelope::FemOptions;
 pub use error::FemError;
 
 use glam::DVec3;
@@ -181,6 +192,24 @@ pub fn vessel_model(
     case: LoadCase,
     table: &crate::calc::MaterialTable,
 ) -> Result<FeModel, FemError> {
+    vessel_model_cached(design, tag, options, case, table, &mut FemCache::default())
+}
+
+/// As [`vessel_model`], meshing only the pieces of the envelope whose inputs
+/// differ from those `cache` holds ([`build_envelope_cached`]); loads,
+/// supports and materials are attached afresh.
+///
+/// # Errors
+///
+/// As [`vessel_model`].
+pub fn vessel_model_cached(
+    design: &crate::design::Design,
+    tag: &str,
+    options: &FemOptions,
+    case: LoadCase,
+    table: &crate::calc::MaterialTable,
+    cache: &mut FemCache,
+) -> Result<FeModel, FemError> {
     let index = design
         .vessels
         .iter()
@@ -205,6 +234,6 @@ pub fn vessel_model(
                 .join("; "),
         }
     })?;
-    let mesh = build_envelope(vessel, &resolved, options)?;
+    let mesh = build_envelope_cached(vessel, &resolved, options, cache)?;
     conditions::conditions(mesh, vessel, &resolved, case, table)
 }

@@ -47,7 +47,7 @@ pub fn mesh(
     size: f64,
     tag: &str,
 ) -> NeckEnd {
-    let n = rings[0].len();
+    let n = rings[hole.i0].len();
     let (big_r, r) = (hole.big_r, hole.r);
     // The window's chart about the opening's centre → the host's surface.
     let on_course = |p: DVec2| hole.surface(mer, p);

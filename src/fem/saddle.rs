@@ -112,6 +112,30 @@ pub const WEAR_PLATE: &str = "wear plate";
 /// See [`WEB`].
 pub const DOUBLER: &str = "doubler";
 
+/// The stations of `mer` at the planes of saddle `s` (top plate's edges and
+/// web), if it has rings at all three.
+fn stations(s: &SaddleShell, mer: &meridian::Meridian) -> Option<[usize; 3]> {
+    let at = |i: usize| {
+        let (seg, p) = mer.stations[i];
+        mer.segments[seg].rz(p)
+    };
+    let tol = 1e-6 * s.z.abs().max(1.0);
+    let station = |z: f64| (0..mer.stations.len()).find(|&i| (at(i).y - z).abs() <= tol);
+    let [Some(a), Some(i), Some(c)] = s.planes().map(station) else {
+        return None;
+    };
+    Some([a, i, c])
+}
+
+/// The part (index into the envelope's parts) of the course under saddle
+/// `s`: that of the first element row under its top plate; `None` when
+/// `mer` has no rings at the plate's edges and web.
+pub fn host(s: &SaddleShell, mer: &meridian::Meridian) -> Option<usize> {
+    let [a, _, c] = stations(s, mer)?;
+    let iv = mer.intervals.get(a.min(c))?;
+    Some(mer.segments[iv.seg].part)
+}
+
 /// Meshes saddle `s` into `b` on the envelope of `mer` (corner rings
 /// `rings`, `n` divisions round, windows `holes`) at element size `size`.
 /// Returns why the saddle was left out, if it was.
@@ -124,14 +148,12 @@ pub fn attach(
     size: f64,
     tag: &str,
 ) -> Result<(), String> {
-    let n = rings[0].len();
+    let n = rings.iter().map(Vec::len).max().unwrap_or(0);
     let at = |i: usize| {
         let (seg, p) = mer.stations[i];
         mer.segments[seg].rz(p)
     };
-    let tol = 1e-6 * s.z.abs().max(1.0);
-    let station = |z: f64| (0..mer.stations.len()).find(|&i| (at(i).y - z).abs() <= tol);
-    let [Some(i0), Some(i), Some(i1)] = s.planes().map(station) else {
+    let Some([i0, i, i1]) = stations(s, mer) else {
         return Err(format!(
             "saddle {} left out: the envelope has no rings at its plate's edges and web",
             s.id
