@@ -228,6 +228,7 @@ pub fn mesh(
         plane.insert(id, curve_uv(phis[j]));
     }
     let mut layers = vec![curve.clone()];
+    #[expect(clippy::needless_range_loop, reason = "`l` picks each ray's layer")]
     for l in 1..layer_count {
         let row = (0..count)
             .map(|j| {

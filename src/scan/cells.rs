@@ -353,10 +353,10 @@ impl<'a> CellBasis<'a> {
         let nu: [f64; MAX_ORDER] = basis_functions(uk.as_slice(), self.span.0, u, p);
         let nv: [f64; MAX_ORDER] = basis_functions(vk.as_slice(), self.span.1, v, q);
         let mut total = 0.0;
-        for b in 0..=q {
-            for a in 0..=p {
+        for (b, nv_b) in nv.iter().enumerate().take(q + 1) {
+            for (a, nu_a) in nu.iter().enumerate().take(p + 1) {
                 let t = b * (p + 1) + a;
-                let w = self.weights[t] * nu[a] * nv[b];
+                let w = self.weights[t] * nu_a * nv_b;
                 total += w;
                 out[t] = w;
             }
@@ -369,6 +369,10 @@ impl<'a> CellBasis<'a> {
 }
 
 #[cfg(test)]
+#[expect(
+    clippy::needless_range_loop,
+    reason = "a dense reference assembly by index"
+)]
 mod tests {
     use super::*;
 
