@@ -35,49 +35,11 @@ pub fn layers(span: f64, first: f64, last: f64, cap: f64) -> Vec<f64> {
 /// [`GROWTH`].
 pub fn layers_at(span: f64, first: f64, last: f64, cap: f64, growth: f64) -> Vec<f64> {
     let floor = 1e-9 * span.abs().max(1.0);
-    if span.is_nan() || span <= 1.5 * first.max(floor).min(last.max(floor)) {
-        return vec![0.0, 1.0];
-    }
-    let cum = cumulative(span, first, last, cap, growth);
-    let count = (cum[SAMPLES] - 1e-6).ceil().max(1.0) as usize;
-    spread(&cum, count)
-}
-
-/// The rows a span takes in the size field of [`layers_at`]: ∫ dx/h over it
-/// (not rounded; 0 for an empty span).
-pub fn rows(span: f64, first: f64, last: f64, cap: f64, growth: f64) -> f64 {
-    if span.is_nan() || span <= 0.0 {
-        return 0.0;
-    }
-    cumulative(span, first, last, cap, growth)[SAMPLES]
-}
-
-/// Exactly `count` rows (at least one) over a span in the size field of
-/// [`layers_at`], equidistributing ∫ dx/h: where the span takes fewer rows
-/// than `count` every row is that much thinner than its field size, where
-/// more that much thicker, so the rows at both edges keep their ratio to
-/// the edges' sizes as the rows inside do. The rings of [`super::nozzle`] give
-/// each of their rays its own span and edge sizes and one count.
-pub fn layers_count(
-    span: f64,
-    first: f64,
-    last: f64,
-    cap: f64,
-    growth: f64,
-    count: usize,
-) -> Vec<f64> {
-    let count = count.max(1);
-    if span.is_nan() || span <= 0.0 {
-        return (0..=count).map(|i| i as f64 / count as f64).collect();
-    }
-    spread(&cumulative(span, first, last, cap, growth), count)
-}
-
-/// ∫ dx/h from 0 at the [`SAMPLES`] + 1 sample ends of the span.
-fn cumulative(span: f64, first: f64, last: f64, cap: f64, growth: f64) -> Vec<f64> {
-    let floor = 1e-9 * span.abs().max(1.0);
     let (first, last) = (first.max(floor), last.max(floor));
     let cap = cap.max(first.min(last));
+    if span.is_nan() || span <= 1.5 * first.min(last) {
+        return vec![0.0, 1.0];
+    }
     let h = |x: f64| {
         (first + growth * (x - first).max(0.0))
             .min(last + growth * (span - x - last).max(0.0))
@@ -90,12 +52,8 @@ fn cumulative(span: f64, first: f64, last: f64, cap: f64, growth: f64) -> Vec<f6
         let prev = cum[k];
         cum.push(prev + span / SAMPLES as f64 / h(x));
     }
-    cum
-}
-
-/// Positions 0 … 1 of `count` rows equal in the integral `cum`.
-fn spread(cum: &[f64], count: usize) -> Vec<f64> {
     let total = cum[SAMPLES];
+    let count = (total - 1e-6).ceil().max(1.0) as usize;
     let mut out = Vec::with_capacity(count + 1);
     out.push(0.0);
     for i in 1..count {

@@ -23,20 +23,9 @@ use serde::Serialize;
 
 use super::ScanError;
 use super::cells::{NormalEquations, Sorted};
+pub use super::sample::Sample;
 use crate::nurbs::{KnotVector, NurbsSurface};
 
-/// One point to fit: its projection's parameters and its offset from there.
-#[derive(Clone, Copy, Debug, PartialEq)]
-pub struct Sample {
-    /// u of the projection.
-    pub u: f64,
-    /// v of the projection.
-    pub v: f64,
-    /// Point − S(u, v), local frame, mm.
-    pub offset: DVec3,
-    /// Design unit normal at (u, v), local frame.
-    pub normal: DVec3,
-}
 
 /// How to fit.
 #[derive(Clone, Copy, Debug, PartialEq)]

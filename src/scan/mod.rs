@@ -23,6 +23,7 @@ mod las_file;
 mod profile;
 mod project;
 mod random;
+mod sample;
 
 pub mod checks;
 pub mod defects;
