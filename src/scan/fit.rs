@@ -26,7 +26,6 @@ use super::cells::{NormalEquations, Sorted};
 pub use super::sample::Sample;
 use crate::nurbs::{KnotVector, NurbsSurface};
 
-
 /// How to fit.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct FitOptions {
