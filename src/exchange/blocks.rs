@@ -17,7 +17,8 @@ use xxhash_rust::xxh3::Xxh3;
 
 use super::error::ExchangeError;
 use super::source::vessel_source;
-use super::step::{PlacedBlock, StepBlock, vessel_block, write_step};
+use super::step::{StepBlock, vessel_block};
+use super::step_file::{PlacedBlock, write_step};
 use super::topology::vessel_brep_with;
 use crate::design::{Design, DrawingInfo, Placement, VesselDesign, resolve};
 use crate::export::SharedMarches;

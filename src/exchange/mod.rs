@@ -27,6 +27,7 @@ mod notch;
 mod seam;
 mod source;
 mod step;
+mod step_file;
 mod topology;
 
 pub use blocks::{ExchangeOptions, StepBlocks, export_step};
@@ -35,5 +36,6 @@ pub use error::ExchangeError;
 pub use iges_model::{IgesEntities, export_iges, export_iges_as, write_iges};
 pub use measure::{FaceMeasures, ORDER, face_measures, face_measures_with};
 pub use source::{CutSource, NodeKind, NodeSource, VesselSource, vessel_sources};
-pub use step::{LOCAL_BASE, PlacedBlock, StepBlock, rebase, vessel_block, write_step};
+pub use step::{LOCAL_BASE, StepBlock, rebase, vessel_block};
+pub use step_file::{PlacedBlock, write_step};
 pub use topology::{vessel_brep, vessel_brep_with};

@@ -5,7 +5,7 @@
 //! named axis placements); AP242 adds nothing this file uses.
 //!
 //! Layout: a header block (contexts, units, the uncertainty — the exchange
-//! tolerance, see [`write_step`] — and the identity placement) with ids below
+//! tolerance, see [`write_step`](super::write_step) — and the identity placement) with ids below
 //! [`LOCAL_BASE`]; one block per vessel — its product, its surfaces,
 //! edges with pcurves, faces, shells and nozzle placements, in the vessel's own
 //! frame — written with ids counted from [`LOCAL_BASE`] and moved to its place
@@ -23,7 +23,7 @@
 
 use std::fmt::Write as _;
 
-use glam::{DAffine3, DVec2, DVec3};
+use glam::{DVec2, DVec3};
 
 use super::brep::{EdgeCurve, Face, OrientedEdge, VesselBrep};
 use crate::nurbs::{NurbsCurve, NurbsSurface};
@@ -33,16 +33,16 @@ use crate::nurbs::{NurbsCurve, NurbsSurface};
 pub const LOCAL_BASE: usize = 100;
 
 /// Header block ids.
-const APPLICATION_CONTEXT: usize = 1;
-const PRODUCT_CONTEXT: usize = 3;
-const DEFINITION_CONTEXT: usize = 4;
-const CONTEXT_3D: usize = 9;
-const CONTEXT_2D: usize = 10;
-const IDENTITY: usize = 14;
+pub(super) const APPLICATION_CONTEXT: usize = 1;
+pub(super) const PRODUCT_CONTEXT: usize = 3;
+pub(super) const DEFINITION_CONTEXT: usize = 4;
+pub(super) const CONTEXT_3D: usize = 9;
+pub(super) const CONTEXT_2D: usize = 10;
+pub(super) const IDENTITY: usize = 14;
 
 /// Ids of a vessel block that the plant assembly refers to (local numbering).
-const VESSEL_DEFINITION: usize = LOCAL_BASE;
-const VESSEL_REPRESENTATION: usize = LOCAL_BASE + 1;
+pub(super) const VESSEL_DEFINITION: usize = LOCAL_BASE;
+pub(super) const VESSEL_REPRESENTATION: usize = LOCAL_BASE + 1;
 const VESSEL_IDENTITY: usize = LOCAL_BASE + 2;
 
 /// One vessel's block of entities, numbered locally from [`LOCAL_BASE`].
@@ -99,7 +99,7 @@ fn reference(out: &mut String, n: usize) {
 }
 
 /// Appends a STEP string literal (quotes doubled, non-ASCII as `\X2\` hex).
-fn string(out: &mut String, s: &str) {
+pub(super) fn string(out: &mut String, s: &str) {
     out.push('\'');
     for c in s.chars() {
         match c {
@@ -120,14 +120,14 @@ fn string(out: &mut String, s: &str) {
 }
 
 /// Writes entity lines with increasing ids.
-struct Writer {
-    out: String,
-    next: usize,
+pub(super) struct Writer {
+    pub(super) out: String,
+    pub(super) next: usize,
 }
 
 impl Writer {
     /// Starts the next entity: `#id=`; returns its id.
-    fn begin(&mut self) -> usize {
+    pub(super) fn begin(&mut self) -> usize {
         let id = self.next;
         self.next += 1;
         reference(&mut self.out, id);
@@ -136,12 +136,12 @@ impl Writer {
     }
 
     /// Ends an entity line.
-    fn end(&mut self) {
+    pub(super) fn end(&mut self) {
         self.out.push_str(";\n");
     }
 
     /// A list `(#a,#b,…)`.
-    fn refs(&mut self, ids: &[usize]) {
+    pub(super) fn refs(&mut self, ids: &[usize]) {
         self.out.push('(');
         for (i, id) in ids.iter().enumerate() {
             if i > 0 {
@@ -204,7 +204,13 @@ impl Writer {
     }
 
     /// `AXIS2_PLACEMENT_3D(name, origin, axis, ref_direction)`.
-    fn placement(&mut self, name: &str, origin: DVec3, axis: DVec3, across: DVec3) -> usize {
+    pub(super) fn placement(
+        &mut self,
+        name: &str,
+        origin: DVec3,
+        axis: DVec3,
+        across: DVec3,
+    ) -> usize {
         let (o, z, x) = (
             self.point3(origin),
             self.direction(axis),
@@ -647,149 +653,6 @@ pub fn rebase(out: &mut String, block: &str, offset: usize) {
         }
     }
     out.push_str(&block[copied..]);
-}
-
-/// The header section and the header block of shared entities, the
-/// geometric context's uncertainty `uncertainty` mm.
-fn header(out: &mut String, name: &str, uncertainty: f64) {
-    out.push_str(
-        "ISO-10303-21;\nHEADER;\nFILE_DESCRIPTION(('vesselcad exact model'),'2;1');\nFILE_NAME(",
-    );
-    string(out, name);
-    out.push_str(",'1970-01-01T00:00:00',(''),(''),'vesselcad','vesselcad','');\n");
-    out.push_str("FILE_SCHEMA(('AUTOMOTIVE_DESIGN { 1 0 10303 214 1 1 1 1 }'));\nENDSEC;\nDATA;\n");
-    let _ = write!(
-        out,
-        "#{APPLICATION_CONTEXT}=APPLICATION_CONTEXT('core data for automotive mechanical design processes');\n\
-         #2=APPLICATION_PROTOCOL_DEFINITION('international standard','automotive_design',2000,#1);\n\
-         #{PRODUCT_CONTEXT}=PRODUCT_CONTEXT('',#1,'mechanical');\n\
-         #{DEFINITION_CONTEXT}=PRODUCT_DEFINITION_CONTEXT('part definition',#1,'design');\n\
-         #5=(LENGTH_UNIT()NAMED_UNIT(*)SI_UNIT(.MILLI.,.METRE.));\n\
-         #6=(NAMED_UNIT(*)PLANE_ANGLE_UNIT()SI_UNIT($,.RADIAN.));\n\
-         #7=(NAMED_UNIT(*)SI_UNIT($,.STERADIAN.)SOLID_ANGLE_UNIT());\n\
-         #8=UNCERTAINTY_MEASURE_WITH_UNIT(LENGTH_MEASURE("
-    );
-    real(out, uncertainty);
-    let _ = write!(
-        out,
-        "),#5,'distance_accuracy_value','confusion accuracy');\n\
-         #{CONTEXT_3D}=(GEOMETRIC_REPRESENTATION_CONTEXT(3)GLOBAL_UNCERTAINTY_ASSIGNED_CONTEXT((#8))GLOBAL_UNIT_ASSIGNED_CONTEXT((#5,#6,#7))REPRESENTATION_CONTEXT('3D','millimetres'));\n\
-         #{CONTEXT_2D}=(GEOMETRIC_REPRESENTATION_CONTEXT(2)PARAMETRIC_REPRESENTATION_CONTEXT()REPRESENTATION_CONTEXT('2D SPACE',''));\n\
-         #11=CARTESIAN_POINT('',(0.0,0.0,0.0));\n\
-         #12=DIRECTION('',(0.0,0.0,1.0));\n\
-         #13=DIRECTION('',(1.0,0.0,0.0));\n\
-         #{IDENTITY}=AXIS2_PLACEMENT_3D('',#11,#12,#13);\n"
-    );
-}
-
-/// A vessel's block with its tag and its place in the plant.
-#[derive(Clone, Debug)]
-pub struct PlacedBlock {
-    /// The vessel's tag.
-    pub tag: String,
-    /// Vessel frame → plant frame.
-    pub frame: DAffine3,
-    /// Its entities.
-    pub block: std::sync::Arc<StepBlock>,
-}
-
-/// Writes the whole file: header, the vessels' blocks, the plant assembly.
-///
-/// The file's uncertainty (`distance_accuracy_value`) is the largest of the
-/// vessels' exchange tolerances (1e-3 mm without vessels): an opening loop's
-/// 3D curve and its pcurves' images are fitted separately, each within half
-/// of it, so they agree to it and not closer. A receiver that finds a pcurve
-/// further from its 3D curve than about twice the uncertainty may replace it
-/// by a projection of the 3D curve (OpenCASCADE's STEP reader does), which
-/// moves the face's boundary across the curve: along the long edge of a
-/// reinforcing pad's sliver beside a seam, with 1e-6 mm stated, by 5.8e-6 of
-/// the sliver's area.
-pub fn write_step(name: &str, vessels: &[PlacedBlock]) -> String {
-    let total: usize = vessels.iter().map(|v| v.block.text.len()).sum();
-    let mut out = String::with_capacity(total + 4096 + 1024 * vessels.len());
-    let uncertainty = vessels
-        .iter()
-        .map(|v| v.block.tolerance)
-        .reduce(f64::max)
-        .unwrap_or(super::ExchangeOptions::DEFAULT.tolerance);
-    header(&mut out, name, uncertainty);
-    let mut offset = 0;
-    let mut placed = Vec::with_capacity(vessels.len());
-    for vessel in vessels {
-        rebase(&mut out, &vessel.block.text, offset);
-        placed.push((vessel, offset));
-        offset += vessel.block.next - LOCAL_BASE;
-    }
-    let mut w = Writer {
-        out,
-        next: LOCAL_BASE + offset,
-    };
-    let (product, formation, definition, shape, representation) =
-        (w.next, w.next + 1, w.next + 2, w.next + 3, w.next + 4);
-    w.next += 5;
-    let _ = writeln!(
-        w.out,
-        "#{product}=PRODUCT('plant','plant','plant',(#{PRODUCT_CONTEXT}));\n\
-         #{formation}=PRODUCT_DEFINITION_FORMATION('','',#{product});\n\
-         #{definition}=PRODUCT_DEFINITION('design','',#{formation},#{DEFINITION_CONTEXT});\n\
-         #{shape}=PRODUCT_DEFINITION_SHAPE('','',#{definition});\n\
-         #{}=SHAPE_DEFINITION_REPRESENTATION(#{shape},#{representation});",
-        w.next
-    );
-    w.next += 1;
-    let mut items = vec![IDENTITY];
-    for (brep, offset) in placed {
-        let frame: DAffine3 = brep.frame;
-        let place = w.placement(
-            &brep.tag,
-            frame.translation,
-            frame.matrix3.z_axis.normalize(),
-            frame.matrix3.x_axis.normalize(),
-        );
-        items.push(place);
-        let transformation = w.begin();
-        let _ = write!(
-            w.out,
-            "ITEM_DEFINED_TRANSFORMATION('','',#{IDENTITY},#{place})"
-        );
-        w.end();
-        let relationship = w.begin();
-        let _ = write!(
-            w.out,
-            "(REPRESENTATION_RELATIONSHIP('','',#{},#{representation})REPRESENTATION_RELATIONSHIP_WITH_TRANSFORMATION(#{transformation})SHAPE_REPRESENTATION_RELATIONSHIP())",
-            VESSEL_REPRESENTATION + offset
-        );
-        w.end();
-        let usage = w.begin();
-        w.out.push_str("NEXT_ASSEMBLY_USAGE_OCCURRENCE(");
-        string(&mut w.out, &brep.tag);
-        w.out.push(',');
-        string(&mut w.out, &brep.tag);
-        let _ = write!(
-            w.out,
-            ",'',#{definition},#{},$)",
-            VESSEL_DEFINITION + offset
-        );
-        w.end();
-        let placement_shape = w.begin();
-        let _ = write!(
-            w.out,
-            "PRODUCT_DEFINITION_SHAPE('Placement','Placement of an item',#{usage})"
-        );
-        w.end();
-        w.begin();
-        let _ = write!(
-            w.out,
-            "CONTEXT_DEPENDENT_SHAPE_REPRESENTATION(#{relationship},#{placement_shape})"
-        );
-        w.end();
-    }
-    let _ = write!(w.out, "#{representation}=SHAPE_REPRESENTATION('plant',");
-    w.refs(&items);
-    let _ = write!(w.out, ",#{CONTEXT_3D})");
-    w.end();
-    w.out.push_str("ENDSEC;\nEND-ISO-10303-21;\n");
-    w.out
 }
 
 #[cfg(test)]
